@@ -1,0 +1,66 @@
+// Collision checking against the static world (workspace and obstacles) and
+// between robots, with the contract's semantics: bodies touch when they
+// overlap by more than geo::kContactTolerance, and a body may stick out of
+// the workspace by at most that much.
+//
+// Obstacles sit in an FCL broad phase (dynamic AABB tree); candidate pairs
+// are then decided by the exact planar signed distance of geo::, so FCL's
+// own contact rule never decides validity.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "earc/geometry/shapes.hpp"
+#include "earc/scene/robot_model.hpp"
+#include "earc/scene/scenario.hpp"
+
+namespace earc {
+
+class CollisionWorld {
+ public:
+  explicit CollisionWorld(const Scenario& scenario);
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+  const geo::Aabb& workspace() const { return workspace_; }
+  std::size_t obstacleCount() const { return obstacles_.size(); }
+  const geo::Body& obstacle(std::size_t i) const { return obstacles_[i]; }
+
+  // True when the body is inside the workspace and touches no obstacle.
+  // Thread-safe.
+  bool bodyFree(const geo::Body& body) const;
+
+  // Indices of the obstacles the body touches, appended to out (ascending).
+  void touchedObstacles(const geo::Body& body, std::vector<int>& out) const;
+
+  // A configuration is valid when it respects the joint limits, has no
+  // self-collision and every body part is free. Thread-safe.
+  bool stateValid(const RobotModel& robot, const double* q) const;
+
+  // A straight motion a -> b is valid when the configuration at every
+  // instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
+  // exactly the instants (steps and midpoints) at which a time-stamped
+  // solution of that motion is validated. Thread-safe.
+  bool motionValid(const RobotModel& robot, const double* a, const double* b) const;
+
+  // Number of invalid instants along a -> b, sampled as in motionValid.
+  int countInvalidInstants(const RobotModel& robot, const double* a, const double* b) const;
+
+ private:
+  struct Broadphase;
+  geo::Aabb workspace_;
+  std::vector<geo::Body> obstacles_;
+  std::vector<geo::Aabb> obstacle_bounds_;
+  std::unique_ptr<Broadphase> broadphase_;
+};
+
+// True when two robots at configurations qa and qb touch (bounding discs
+// first, then the exact test on every pair of body parts).
+bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);
+
+// Signed distance between two robots (smallest over their body parts).
+double robotDistance(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);
+
+}  // namespace earc

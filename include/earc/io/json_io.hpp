@@ -1,0 +1,43 @@
+// Reading and writing the contract's JSON formats (shared/spec/formats.md).
+// Readers ignore unknown keys and throw InputError naming the file, the JSON
+// path and the reason for anything else that is wrong.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "earc/io/input_error.hpp"
+#include "earc/scene/scenario.hpp"
+#include "earc/scene/solution.hpp"
+
+namespace earc {
+
+inline constexpr const char* kScenarioFormat = "earc.scenario.v1";
+inline constexpr const char* kSolutionFormat = "earc.solution.v1";
+
+// Parse JSON text strictly: no NaN/Infinity literals, no duplicate keys.
+// `file` only names the source in errors.
+nlohmann::json parseJsonText(const std::string& text, const std::string& file);
+nlohmann::json readJsonFile(const std::string& path);
+// Write atomically (temporary file, fsync, rename): a crash leaves the old
+// file or the new one, never half of one.
+void writeTextFileAtomic(const std::string& path, const std::string& text);
+
+// Structure and types only (no geometry).
+Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file);
+nlohmann::json scenarioToJson(const Scenario& s);
+
+// Structure, types, and the geometric validity of starts and goals (inside
+// the workspace, free of obstacles, no self-collision, within joint limits,
+// no two starts or two goals touching).
+Scenario loadScenario(const std::string& path);
+// Throws InputError for the first geometric problem of a parsed scenario.
+void checkScenarioGeometry(const Scenario& s, const std::string& file);
+
+// Paths must match the scenario's robots (names, dimensions) when one is given.
+Solution solutionFromJson(const nlohmann::json& doc, const Scenario* scenario, const std::string& file);
+nlohmann::json solutionToJson(const Solution& s);
+Solution loadSolution(const std::string& path, const Scenario* scenario);
+void saveSolution(const std::string& path, const Solution& s);
+
+}  // namespace earc

@@ -1,0 +1,59 @@
+// The multi-robot planners behind `earc-plan plan`: a planner is a function
+// of (scenario, settings, optional experience store) that returns a result
+// value carrying the solution, why it failed if it did, its statistics and
+// (on request) a trace of what it did.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "earc/scene/scenario.hpp"
+#include "earc/scene/solution.hpp"
+
+namespace earc {
+
+namespace exp { class ExperienceStore; }
+
+enum class Method { Arc, Earc, Prioritized, Coupled, Lightning };
+const char* methodName(Method m);
+Method methodFromName(const std::string& name);  // throws std::invalid_argument
+
+struct PlannerSettings {
+  Method method = Method::Arc;
+  double time_limit_s = 60.0;
+  std::uint64_t seed = 1;
+  bool trace = false;                 // record a trace of conflicts and subproblems
+  // Individual roadmaps.
+  int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
+  int roadmap_neighbors = 10;
+  // ARC's subproblems.
+  int initial_window = 8;             // steps before and after the conflict
+  double region_margin = 1.0;         // plane units (mobile) around the local query
+  double joint_margin = 0.6;          // radians (arms)
+  int max_expansions = 12;
+  // E-ARC's database solver.
+  int db_k = 10;                      // candidates retrieved per subproblem
+  int db_max_invalid_segments = 3;    // repair at most this many segments
+  bool db_learn = true;               // insert subproblems solved from scratch
+};
+
+enum class FailureCause { TimeLimit, InvalidInput, NoIndividualPath, SubproblemUnsolved, InvalidResult };
+const char* failureCauseName(FailureCause c);
+
+struct PlanResult {
+  Solution solution;                    // solved only when it validated
+  std::set<FailureCause> failures;      // empty when solved
+  nlohmann::json stats = nlohmann::json::object();
+  nlohmann::json trace = nullptr;       // earc.trace.v1 when settings.trace
+};
+
+// Plans with settings.method. The store is used (and learned into) only by
+// Method::Earc; pass nullptr otherwise. The solution reported as solved has
+// passed validateSolution; a solution that did not is reported unsolved
+// with FailureCause::InvalidResult.
+PlanResult plan(const Scenario& scenario, const PlannerSettings& settings,
+                exp::ExperienceStore* store = nullptr);
+
+}  // namespace earc

@@ -1,0 +1,83 @@
+// Robot models: what a planner needs to know about one robot's body and
+// configuration space. A model is immutable after construction and safe to
+// share between threads.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "earc/geometry/shapes.hpp"
+#include "earc/scene/scenario.hpp"
+
+namespace earc {
+
+class RobotModel {
+ public:
+  virtual ~RobotModel() = default;
+
+  // Configuration dimension (3 for a mobile robot, one per link for an arm).
+  virtual int dim() const = 0;
+
+  // Time distance in steps: the least (fractional) number of time steps in
+  // which the robot can move straight from a to b without breaking the
+  // scenario's resolution. A metric; 0 iff a and b are the same
+  // configuration (headings modulo 2 pi).
+  virtual double distance(const double* a, const double* b) const = 0;
+
+  // Whole number of steps a straight motion from a to b takes: ceil of
+  // distance (minus a 1e-9 slack), 0 only when a equals b.
+  int stepsBetween(const double* a, const double* b) const;
+
+  // out = the configuration at fraction s in [0, 1] of the straight motion
+  // from a to b (headings along the shortest arc, joints linearly).
+  virtual void interpolate(const double* a, const double* b, double s, double* out) const = 0;
+
+  // The robot's body at q, in world coordinates, replacing out's contents:
+  // one body for a mobile robot, one capsule per link for an arm.
+  virtual void bodies(const double* q, std::vector<geo::Body>& out) const = 0;
+
+  // True when two non-adjacent links of an arm touch (never for mobile robots).
+  virtual bool selfCollides(const double* q) const = 0;
+
+  // True when q respects the joint limits (always for mobile robots).
+  virtual bool withinLimits(const double* q) const = 0;
+
+  // Radius of a disc around boundingCenter(q) that contains the whole body
+  // at any configuration.
+  virtual double boundingRadius() const = 0;
+  virtual geo::Vec2 boundingCenter(const double* q) const = 0;
+
+  // A string that is equal for two robots exactly when their bodies and
+  // configuration spaces are the same up to a rigid placement (the base of
+  // an arm). Experiences are only ever shared between equal signatures.
+  virtual std::string geometrySignature() const = 0;
+
+  // Lower and upper bounds of each configuration coordinate for sampling:
+  // mobile x and y from the workspace, heading [-pi, pi]; arm joint limits.
+  virtual void samplingBounds(const geo::Aabb& workspace, std::vector<double>& lo,
+                              std::vector<double>& hi) const = 0;
+
+  // True for SE(2) robots (the third coordinate is a heading).
+  virtual bool isMobile() const = 0;
+
+  const RobotSpec& spec() const { return spec_; }
+  const Resolution& resolution() const { return resolution_; }
+
+ protected:
+  RobotModel(RobotSpec spec, Resolution res) : spec_(std::move(spec)), resolution_(res) {}
+  RobotSpec spec_;
+  Resolution resolution_;
+};
+
+std::unique_ptr<RobotModel> makeRobotModel(const RobotSpec& spec, const Resolution& res);
+
+// Models for every robot of a scenario, in the scenario's order.
+std::vector<std::shared_ptr<const RobotModel>> makeRobotModels(const Scenario& scenario);
+
+// Forward kinematics of a planar arm: joint positions (n+1 points, the base
+// first) for configuration q.
+void armJointPositions(const RobotSpec& arm, const double* q, std::vector<geo::Vec2>& out);
+
+}  // namespace earc

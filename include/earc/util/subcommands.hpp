@@ -1,0 +1,44 @@
+// Subcommand registry for the command-line programs: each subcommand lives
+// in its own file with its own options struct and registers a setup
+// function here; main() builds the CLI11 app from the registry. Adding a
+// subcommand never touches another subcommand's file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace earc::cli {
+
+using SetupFn = std::function<void(CLI::App&)>;
+
+struct SubcommandEntry {
+  std::string program;  // "earc-plan", "earc-db", ...
+  std::string name;
+  SetupFn setup;
+};
+
+inline std::vector<SubcommandEntry>& registry() {
+  static std::vector<SubcommandEntry> entries;
+  return entries;
+}
+
+// Use at namespace scope in a subcommand file:
+//   static earc::cli::Registrar reg("earc-plan", "validate", setupValidate);
+struct Registrar {
+  Registrar(std::string program, std::string name, SetupFn fn) {
+    registry().push_back({std::move(program), std::move(name), std::move(fn)});
+  }
+};
+
+// Builds the app for `program` from the registry, runs it, and maps
+// exceptions to exit codes: earc::InputError -> one line on stderr, exit 2;
+// any other std::exception -> one line, exit 1. Subcommand callbacks set
+// the exit code through the returned reference.
+int runProgram(const std::string& program, const std::string& description, int argc, char** argv);
+
+// Subcommand callbacks report their exit status here (default 0).
+void setExitCode(int code);
+
+}  // namespace earc::cli

@@ -1,0 +1,7 @@
+// earc-scenario: generate and convert multi-robot planning scenarios.
+// Subcommands register themselves (see earc/util/subcommands.hpp).
+#include "earc/util/subcommands.hpp"
+
+int main(int argc, char** argv) {
+  return earc::cli::runProgram("earc-scenario", "earc-scenario: generate and convert multi-robot planning scenarios", argc, argv);
+}

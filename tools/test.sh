@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Quick start, part two: install what is missing, build, and run every test:
+# the whole suite on the Release build, then the unit and command-line tests
+# again under AddressSanitizer and UndefinedBehaviorSanitizer.
+#   tools/test.sh            everything CI runs
+#   EARC_TEST_SLOW=1 tools/test.sh   also the long stress and crash tests
+set -euo pipefail
+src=$(cd "$(dirname "$0")/.." && pwd)
+jobs=$(nproc 2>/dev/null || echo 2)
+bash "$src/tools/setup.sh" --tests
+
+label_args=()
+if [[ "${EARC_TEST_SLOW:-0}" != "1" ]]; then
+  label_args=(-LE slow)
+fi
+
+echo "== Release build and tests"
+bash "$src/tools/build.sh" "$src/build"
+(cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
+
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+(cd "$src/build-asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+   ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench")
