@@ -1,0 +1,45 @@
+// Validity in the composite space of a few robots: every robot valid
+// against the world, and no two of them touching.
+#pragma once
+
+#include <random>
+#include <vector>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/scene/robot_model.hpp"
+
+namespace earc {
+
+using CompositeState = std::vector<std::vector<double>>;  // [robot][coordinate]
+
+// Steps a straight composite motion takes: the most any robot needs, so
+// that all robots move together and arrive at once.
+int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b);
+
+class CompositeChecker {
+ public:
+  CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots)
+      : world_(world), robots_(std::move(robots)) {}
+
+  // Every robot valid and no pair touching.
+  bool stateValid(const CompositeState& q) const;
+  // Valid at every instant k/(2n), k = 0..2n, n = compositeSteps(a, b): the
+  // steps and midpoints of the time-stamped motion.
+  bool motionValid(const CompositeState& a, const CompositeState& b) const;
+  // Fraction of a -> b before the first invalid instant (1 when valid).
+  double lastValidFraction(const CompositeState& a, const CompositeState& b) const;
+
+  const std::vector<const RobotModel*>& robots() const { return robots_; }
+
+ private:
+  bool instantValid(const CompositeState& a, const CompositeState& b, double s, CompositeState& scratch) const;
+  const CollisionWorld& world_;
+  std::vector<const RobotModel*> robots_;
+};
+
+// Random shortcutting of a composite waypoint sequence: replace the part
+// between two waypoints by the straight motion when that motion is valid.
+void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
+                       std::mt19937_64& rng);
+
+}  // namespace earc

@@ -1,0 +1,73 @@
+#include "earc/planning/composite.hpp"
+
+#include <algorithm>
+
+#include "earc/util/random.hpp"
+
+namespace earc {
+
+int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b) {
+  int n = 0;
+  for (std::size_t r = 0; r < robots.size(); ++r) n = std::max(n, robots[r]->stepsBetween(a[r].data(), b[r].data()));
+  return n;
+}
+
+bool CompositeChecker::stateValid(const CompositeState& q) const {
+  for (std::size_t r = 0; r < robots_.size(); ++r)
+    if (!world_.stateValid(*robots_[r], q[r].data())) return false;
+  for (std::size_t i = 0; i < robots_.size(); ++i)
+    for (std::size_t j = i + 1; j < robots_.size(); ++j)
+      if (robotsTouch(*robots_[i], q[i].data(), *robots_[j], q[j].data())) return false;
+  return true;
+}
+
+bool CompositeChecker::instantValid(const CompositeState& a, const CompositeState& b, double s,
+                                    CompositeState& scratch) const {
+  scratch.resize(robots_.size());
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    scratch[r].resize(a[r].size());
+    robots_[r]->interpolate(a[r].data(), b[r].data(), s, scratch[r].data());
+  }
+  return stateValid(scratch);
+}
+
+bool CompositeChecker::motionValid(const CompositeState& a, const CompositeState& b) const {
+  return lastValidFraction(a, b) >= 1.0;
+}
+
+double CompositeChecker::lastValidFraction(const CompositeState& a, const CompositeState& b) const {
+  int n = compositeSteps(robots_, a, b);
+  CompositeState scratch;
+  if (n == 0) return stateValid(a) ? 1.0 : 0.0;
+  // Coarse to fine: most invalid motions are caught by the first few
+  // samples, so test the instants in bisection order, then report the
+  // earliest invalid one.
+  const int instants = 2 * n;
+  int first_bad = instants + 1;
+  std::vector<char> tested(static_cast<std::size_t>(instants + 1), 0);
+  for (int stride = instants; stride >= 1; stride /= 2) {
+    for (int k = 0; k <= instants; k += stride) {
+      if (tested[static_cast<std::size_t>(k)]) continue;
+      tested[static_cast<std::size_t>(k)] = 1;
+      if (k >= first_bad) continue;
+      if (!instantValid(a, b, static_cast<double>(k) / instants, scratch)) first_bad = k;
+    }
+    if (stride == 1) break;  // every instant below first_bad has now been tested
+  }
+  if (first_bad > instants) return 1.0;
+  return std::max(0.0, static_cast<double>(first_bad - 1) / instants);
+}
+
+void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
+                       std::mt19937_64& rng) {
+  for (int it = 0; it < iterations && waypoints.size() > 2; ++it) {
+    std::size_t n = waypoints.size();
+    std::size_t i = uniformIndex(rng, n - 2);
+    std::size_t j = i + 2 + uniformIndex(rng, n - i - 2);
+    if (j >= n) continue;
+    if (checker.motionValid(waypoints[i], waypoints[j]))
+      waypoints.erase(waypoints.begin() + static_cast<std::ptrdiff_t>(i + 1), waypoints.begin() + static_cast<std::ptrdiff_t>(j));
+  }
+}
+
+}  // namespace earc
