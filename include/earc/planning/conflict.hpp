@@ -1,0 +1,53 @@
+// FindConflict: the earliest instant (a step or the midpoint of a step, as
+// the contract validates) at which two robots' time-stamped paths touch.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "earc/geometry/shapes.hpp"
+#include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
+
+namespace earc {
+
+struct Conflict {
+  int a = -1;  // scenario robot indices, a < b
+  int b = -1;
+  double t = 0;  // time step; x.5 for a midpoint
+  geo::Vec2 place;
+};
+
+// Configuration of a robot at instant k / 2 of its path (odd k: the midpoint
+// of steps k/2 and k/2 + 1; past the end: the last state).
+void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, double* out);
+
+class ConflictDetector {
+ public:
+  explicit ConflictDetector(std::vector<const RobotModel*> models);
+
+  // Earliest conflict among `paths` (one per robot; nullptr = robot absent)
+  // at instants from step `from` through step `to` (inclusive; clamped to
+  // the longest path). When `focus` is given, only pairs with at least one
+  // focused robot count. A sort-and-sweep over the bodies' bounds per
+  // instant (insertion sort: the order barely changes between instants)
+  // keeps this near linear in the number of robots.
+  std::optional<Conflict> first(const std::vector<const Path*>& paths, std::size_t from = 0,
+                                std::size_t to = static_cast<std::size_t>(-1),
+                                const std::vector<char>* focus = nullptr);
+
+  std::size_t exactTests() const { return exact_tests_; }
+
+ private:
+  std::vector<const RobotModel*> models_;
+  std::vector<geo::Aabb> boxes_;
+  std::vector<std::vector<double>> q_;
+  std::vector<geo::Body> bodies_;
+  std::size_t exact_tests_ = 0;
+};
+
+// All robots' paths as the detector's pointer view.
+std::vector<const Path*> pathPointers(const std::vector<Path>& paths);
+
+}  // namespace earc

@@ -1,0 +1,24 @@
+// The planning methods behind plan(), each callable on its own.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "earc/planning/planner.hpp"
+#include "earc/planning/solver.hpp"
+
+namespace earc {
+
+// ARC's hierarchy: decoupled (prioritized space-time) first, then coupled.
+std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy();
+
+// Whole-problem prioritized planning in space-time over the roadmaps.
+PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings);
+// Whole-problem RRT-Connect in the composite space of all robots.
+PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings);
+// E-ARC: ARC with the experience database solver first in the hierarchy.
+PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
+// Lightning (OMPL) with a whole-problem database.
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
+
+}  // namespace earc

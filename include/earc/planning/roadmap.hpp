@@ -1,0 +1,126 @@
+// Probabilistic roadmaps in one robot's own configuration space (a PRM
+// variant: k-nearest connections, edges validated lazily the first time a
+// search wants them and cached), shared by every robot with the same
+// geometry in the same environment.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <random>
+#include <unordered_map>
+#include <vector>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/subproblem.hpp"
+#include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
+#include "earc/util/kdtree.hpp"
+
+namespace earc {
+
+class Roadmap {
+ public:
+  struct Edge {
+    int to;
+    int steps;  // time steps of the straight motion
+    int id;     // index into the validity cache
+  };
+
+  Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed);
+
+  // Adds `samples` valid configurations (rejection-sampled) and connects
+  // each to its k nearest vertices. Edges are not checked here.
+  void grow(int samples);
+
+  int size() const { return static_cast<int>(configs_.size() / static_cast<std::size_t>(dim_)); }
+  const double* config(int v) const { return configs_.data() + static_cast<std::size_t>(v) * static_cast<std::size_t>(dim_); }
+  const std::vector<Edge>& edges(int v) const { return adjacency_[static_cast<std::size_t>(v)]; }
+
+  // Whether the edge's motion is valid against the world (checked once).
+  bool edgeValid(int id);
+  std::size_t edgeChecks() const { return edge_checks_; }
+
+  // Up to k roadmap vertices nearest to q (approximately, in the metric).
+  std::vector<int> nearest(const double* q, int k) const;
+
+  const RobotModel& model() const { return model_; }
+  const CollisionWorld& world() const { return world_; }
+
+ private:
+  void embed(const double* q, double* out) const;
+  void connect(int v);
+  const CollisionWorld& world_;
+  const RobotModel& model_;
+  int dim_;
+  int neighbors_;
+  std::mt19937_64 rng_;
+  std::vector<double> lo_, hi_;
+  std::vector<double> configs_;
+  std::vector<std::vector<Edge>> adjacency_;
+  std::vector<std::pair<int, int>> edge_ends_;
+  std::vector<std::int8_t> edge_state_;  // 0 unknown, 1 valid, -1 invalid
+  std::unordered_map<std::uint64_t, int> edge_ids_;
+  PointIndex index_;
+  std::size_t edge_checks_ = 0;
+};
+
+// A roadmap plus a few query vertices (a start, a goal), optionally
+// restricted to a configuration-space region. Vertex ids below
+// roadmap.size() are roadmap vertices; the query vertices follow.
+class QueryGraph {
+ public:
+  QueryGraph(Roadmap& roadmap, const ConfigBox* region = nullptr);
+
+  // Adds q as a vertex connected to its k nearest roadmap vertices inside
+  // the region and to the query vertices added before it.
+  int addVertex(const double* q, int k);
+
+  int size() const { return roadmap_.size() + static_cast<int>(extra_.size()); }
+  const double* config(int v) const;
+  bool allowed(int v) const;  // inside the region (query vertices always)
+
+  // Calls f(to, steps, edge_key) for every edge of v to an allowed vertex.
+  template <class F>
+  void forEachEdge(int v, F&& f) const {
+    const int n = roadmap_.size();
+    if (v < n) {
+      for (const auto& e : roadmap_.edges(v))
+        if (allowed(e.to)) f(e.to, e.steps, e.id);
+      auto it = back_edges_.find(v);
+      if (it != back_edges_.end())
+        for (const auto& e : it->second) f(e.to, e.steps, e.id);
+    } else {
+      for (const auto& e : extra_[static_cast<std::size_t>(v - n)].edges) f(e.to, e.steps, e.id);
+    }
+  }
+
+  // Validity of an edge given by its key (roadmap ids >= 0, query edges < 0).
+  bool edgeValid(int key);
+  Roadmap& roadmap() { return roadmap_; }
+  const RobotModel& model() const { return roadmap_.model(); }
+
+ private:
+  struct Extra {
+    std::vector<double> q;
+    std::vector<Roadmap::Edge> edges;
+  };
+  int addEdge(int a, int b);
+  Roadmap& roadmap_;
+  const ConfigBox* region_;
+  std::vector<Extra> extra_;
+  std::unordered_map<int, std::vector<Roadmap::Edge>> back_edges_;
+  std::vector<std::pair<int, int>> extra_edge_ends_;
+  std::vector<std::int8_t> extra_edge_state_;
+};
+
+// Shortest path in time steps from `from` to `to` (lazy: edges on a
+// candidate path are checked, invalid ones excluded, and the search
+// repeated). Vertex sequence, or nothing.
+std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline);
+
+// Time-stamps a sequence of configurations at the robot's resolution.
+Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& waypoints);
+
+}  // namespace earc

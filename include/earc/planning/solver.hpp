@@ -1,0 +1,131 @@
+// ARC's hierarchy of subproblem solvers: an ordered list behind one
+// interface, tried in turn for each subproblem (E-ARC puts its database
+// solver first).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/roadmap.hpp"
+#include "earc/planning/subproblem.hpp"
+#include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
+
+namespace earc {
+
+// One roadmap per distinct robot body in the environment: mobile robots
+// with equal geometry signatures share one; an arm has its own (its base
+// fixes where its body can be). Built on first use.
+class RoadmapSet {
+ public:
+  RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples, int neighbors,
+             std::uint64_t seed);
+  Roadmap& forRobot(int robot);
+  int initialSamples(int robot) const;
+  std::size_t edgeChecks() const;
+
+ private:
+  const CollisionWorld& world_;
+  std::vector<const RobotModel*> models_;
+  int samples_;
+  int neighbors_;
+  std::uint64_t seed_;
+  std::vector<int> slot_;  // robot -> roadmap index
+  std::vector<std::unique_ptr<Roadmap>> roadmaps_;
+};
+
+// Another robot's motion seen as an obstacle: its configuration at local
+// instant k (two instants a step) is that of `path` at instant
+// 2 * offset + k; past the path's end it waits at its last state.
+struct MovingObstacle {
+  const RobotModel* model = nullptr;
+  const Path* path = nullptr;
+  std::size_t offset = 0;
+  int robot = -1;
+};
+
+struct SolverContext {
+  const CollisionWorld& world;
+  const std::vector<const RobotModel*>& models;  // all robots of the scenario
+  RoadmapSet& roadmaps;
+  const std::vector<Path>& paths;                 // the current plan
+  const Subproblem& sub;
+  Deadline deadline;
+  std::uint64_t seed = 0;
+};
+
+struct SolverOutcome {
+  std::optional<LocalSolution> solution;
+  std::string how;            // the solver's name, or a refinement ("repair")
+  std::int64_t entry = -1;    // database entry used, if any
+};
+
+class SubproblemSolver {
+ public:
+  virtual ~SubproblemSolver() = default;
+  // Short name for statistics and traces.
+  virtual const char* name() const = 0;
+  // A local solution of ctx.sub: one path per subproblem robot (in
+  // ctx.sub.robots order), all of one length, from the local starts to the
+  // local goals, valid against the world and among the subproblem's robots
+  // at every step and midpoint; an empty outcome when none is found within
+  // the solver's budget or ctx.deadline.
+  virtual SolverOutcome solve(SolverContext& ctx) = 0;
+  // Told when the hierarchy accepted a solution, whichever solver found it.
+  virtual void accepted(const SolverContext& /*ctx*/, const LocalSolution& /*sol*/, const SolverOutcome& /*by*/) {}
+};
+
+struct DecoupledSettings {
+  double time_budget_s = 0.25;
+  std::size_t max_expansions = 60000;  // space-time states expanded per robot
+  int connect_neighbors = 10;
+  int max_orders = 4;                   // priority orders tried
+  bool avoid_others = true;             // treat robots outside the subproblem as moving obstacles
+};
+
+// Prioritized planning in space-time over the robots' roadmaps, waiting
+// allowed: each robot avoids the ones planned before it (and, with
+// avoid_others, the robots outside the subproblem along their current paths).
+class DecoupledSolver : public SubproblemSolver {
+ public:
+  explicit DecoupledSolver(DecoupledSettings s = {}) : settings_(s) {}
+  const char* name() const override { return "decoupled"; }
+  SolverOutcome solve(SolverContext& ctx) override;
+
+ private:
+  DecoupledSettings settings_;
+};
+
+struct CoupledSolverSettings {
+  double time_budget_s = 0.5;
+};
+
+// OMPL RRT-Connect in the composite space of the subproblem's robots,
+// restricted to the subproblem's region.
+class CoupledSubproblemSolver : public SubproblemSolver {
+ public:
+  explicit CoupledSubproblemSolver(CoupledSolverSettings s = {}) : settings_(s) {}
+  const char* name() const override { return "coupled"; }
+  SolverOutcome solve(SolverContext& ctx) override;
+
+ private:
+  CoupledSolverSettings settings_;
+};
+
+// Space-time A* for one robot over a query graph, avoiding moving
+// obstacles. The result starts at `start` at local time 0, reaches `goal`
+// and can then wait there without contact through step `hold_until`;
+// arrival no later than step `horizon`.
+std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
+                                    const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
+                                    std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions);
+
+// Robots outside the subproblem whose motion during local steps
+// [0, span] may come near the subproblem's region, as moving obstacles.
+std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t span);
+
+}  // namespace earc

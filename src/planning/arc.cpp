@@ -1,0 +1,366 @@
+#include "earc/planning/arc.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "earc/planning/composite.hpp"
+#include "earc/util/random.hpp"
+
+namespace earc {
+
+namespace {
+
+// Shortcutting iterations for an individual path: enough to remove most of
+// a roadmap path's zig-zag, cheap next to the roadmap query.
+constexpr int kIndividualShortcuts = 80;
+// Times the roadmap is doubled before a robot is declared pathless.
+constexpr int kRoadmapGrowths = 3;
+
+bool goalsApart(const std::vector<int>& robots, const std::vector<const RobotModel*>& models,
+                const std::vector<Path>& paths, std::size_t t) {
+  for (std::size_t i = 0; i < robots.size(); ++i)
+    for (std::size_t j = i + 1; j < robots.size(); ++j) {
+      auto a = static_cast<std::size_t>(robots[i]);
+      auto b = static_cast<std::size_t>(robots[j]);
+      if (robotsTouch(*models[a], paths[a].at(t), *models[b], paths[b].at(t))) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& robots, int level,
+                            const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
+                            const CollisionWorld& world, const PlannerSettings& settings) {
+  Subproblem sub;
+  sub.robots = robots;
+  std::sort(sub.robots.begin(), sub.robots.end());
+  sub.expansions = level;
+  std::size_t horizon = 0;  // last step of the longest path among the robots
+  for (int r : sub.robots) horizon = std::max(horizon, paths[static_cast<std::size_t>(r)].size() - 1);
+  const std::size_t w = static_cast<std::size_t>(settings.initial_window) << std::min(level, 30);
+  const auto tc = static_cast<std::size_t>(std::floor(conflict.t));
+  sub.t_start = tc > w ? tc - w : 0;
+  sub.t_end = std::min(horizon, static_cast<std::size_t>(std::ceil(conflict.t)) + w);
+  // Local goals that touch each other make the subproblem unsolvable: move
+  // the end of the window forward until they are apart (at the latest the
+  // robots' final goals, which a valid scenario keeps apart).
+  while (sub.t_end < horizon && !goalsApart(sub.robots, models, paths, sub.t_end)) ++sub.t_end;
+  const bool last_level = level >= settings.max_expansions;
+  sub.whole_problem = sub.t_start == 0 && sub.t_end >= horizon && last_level;
+
+  for (int r : sub.robots) {
+    const RobotModel& m = *models[static_cast<std::size_t>(r)];
+    const Path& p = paths[static_cast<std::size_t>(r)];
+    const double* s = p.at(sub.t_start);
+    const double* g = p.at(sub.t_end);
+    sub.starts.emplace_back(s, s + m.dim());
+    sub.goals.emplace_back(g, g + m.dim());
+    ConfigBox full;
+    m.samplingBounds(world.workspace(), full.lo, full.hi);
+    ConfigBox box;
+    if (sub.whole_problem) {
+      box = full;
+    } else {
+      box.lo.assign(static_cast<std::size_t>(m.dim()), 1e300);
+      box.hi.assign(static_cast<std::size_t>(m.dim()), -1e300);
+      for (std::size_t t = sub.t_start; t <= sub.t_end; ++t) {
+        const double* q = p.at(t);
+        for (int j = 0; j < m.dim(); ++j) {
+          box.lo[static_cast<std::size_t>(j)] = std::min(box.lo[static_cast<std::size_t>(j)], q[j]);
+          box.hi[static_cast<std::size_t>(j)] = std::max(box.hi[static_cast<std::size_t>(j)], q[j]);
+        }
+      }
+      const double grow = 1.0 + level;
+      for (int j = 0; j < m.dim(); ++j) {
+        auto ju = static_cast<std::size_t>(j);
+        if (m.isMobile() && j == 2) {  // headings stay free
+          box.lo[ju] = -std::numbers::pi;
+          box.hi[ju] = std::numbers::pi;
+          continue;
+        }
+        const double margin = (m.isMobile() ? settings.region_margin : settings.joint_margin) * grow;
+        box.lo[ju] = std::max(full.lo[ju], box.lo[ju] - margin);
+        box.hi[ju] = std::min(full.hi[ju], box.hi[ju] + margin);
+      }
+    }
+    // The footprint of the region in the plane: where the robot's body can be.
+    geo::Aabb foot;
+    if (m.isMobile()) {
+      foot = geo::Aabb{{box.lo[0], box.lo[1]}, {box.hi[0], box.hi[1]}}.inflated(m.boundingRadius());
+    } else {
+      geo::Vec2 c = m.boundingCenter(s);
+      foot = geo::Aabb{c, c}.inflated(m.boundingRadius());
+    }
+    sub.workspace_region.expand(foot);
+    sub.region.push_back(std::move(box));
+  }
+  return sub;
+}
+
+void splice(std::vector<Path>& paths, const Subproblem& sub, const LocalSolution& local) {
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) {
+    Path& p = paths[static_cast<std::size_t>(sub.robots[i])];
+    while (p.size() < sub.t_start + 1) p.push(p.back());
+    Path next = p.slice(0, sub.t_start);
+    next.append(local.paths[i]);
+    next.append(p, sub.t_end + 1);
+    p = std::move(next);
+  }
+}
+
+int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& spans, std::size_t t0,
+                     std::size_t t1) {
+  int added = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& span : spans) {
+      if (span.t1 < t0 || span.t0 > t1) continue;
+      bool shares = std::any_of(span.robots.begin(), span.robots.end(), [&](int r) {
+        return std::find(robots.begin(), robots.end(), r) != robots.end();
+      });
+      if (!shares) continue;
+      for (int r : span.robots)
+        if (std::find(robots.begin(), robots.end(), r) == robots.end()) {
+          robots.push_back(r);
+          ++added;
+          changed = true;
+        }
+    }
+  }
+  std::sort(robots.begin(), robots.end());
+  return added;
+}
+
+std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& roadmaps, const RobotModel& model,
+                                   int robot, const Deadline& deadline, std::uint64_t seed) {
+  const RobotSpec& spec = model.spec();
+  Roadmap& rm = roadmaps.forRobot(robot);
+  for (int attempt = 0; attempt <= kRoadmapGrowths; ++attempt) {
+    if (attempt > 0) rm.grow(rm.size());
+    QueryGraph graph(rm);
+    int s = graph.addVertex(spec.start.data(), 10);
+    int g = graph.addVertex(spec.goal.data(), 10);
+    auto vertices = shortestPath(graph, s, g, deadline);
+    if (deadline.expired()) return std::nullopt;
+    if (!vertices) continue;
+    std::vector<CompositeState> waypoints;
+    for (int v : *vertices) waypoints.push_back({std::vector<double>(graph.config(v), graph.config(v) + model.dim())});
+    CompositeChecker checker(world, {&model});
+    std::mt19937_64 rng(seed);
+    shortcutComposite(checker, waypoints, kIndividualShortcuts, rng);
+    std::vector<std::vector<double>> qs;
+    for (auto& w : waypoints) qs.push_back(std::move(w[0]));
+    return timeStamp(model, qs);
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+nlohmann::json boxJson(const geo::Aabb& b) { return {{b.lo.x, b.lo.y}, {b.hi.x, b.hi.y}}; }
+
+class ArcRun {
+ public:
+  ArcRun(const Scenario& scenario, const PlannerSettings& settings,
+         std::vector<std::unique_ptr<SubproblemSolver>> hierarchy)
+      : scenario_(scenario), settings_(settings), hierarchy_(std::move(hierarchy)), world_(scenario),
+        owned_models_(makeRobotModels(scenario)), deadline_(settings.time_limit_s) {
+    for (const auto& m : owned_models_) models_.push_back(m.get());
+  }
+
+  PlanResult run();
+
+ private:
+  bool resolve(const Conflict& c);
+  std::optional<int> conflictsWithResolved(const Subproblem& sub, const LocalSolution& local);
+  void traceEvent(nlohmann::json ev) {
+    if (settings_.trace) events_.push_back(std::move(ev));
+  }
+
+  const Scenario& scenario_;
+  const PlannerSettings& settings_;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy_;
+  CollisionWorld world_;
+  std::vector<std::shared_ptr<const RobotModel>> owned_models_;
+  std::vector<const RobotModel*> models_;
+  Deadline deadline_;
+  std::vector<Path> paths_;
+  std::vector<ResolvedSpan> spans_;
+  std::unique_ptr<RoadmapSet> roadmaps_;
+  nlohmann::json events_ = nlohmann::json::array();
+  // Statistics.
+  int conflicts_ = 0;
+  int expansions_ = 0;
+  int merged_ = 0;
+  int subproblem_id_ = 0;
+  std::map<std::string, int> by_solver_;
+  std::map<std::string, int> by_size_;
+  std::map<std::string, double> solver_time_;
+  std::set<FailureCause> failures_;
+  std::size_t last_t_start_ = 0;
+};
+
+std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const LocalSolution& local) {
+  // Would this local solution collide, inside its own span, with a robot
+  // whose earlier local solution covers that span? Then that robot joins.
+  std::vector<Path> candidate;
+  std::vector<const Path*> view = pathPointers(paths_);
+  candidate.reserve(sub.robots.size());
+  std::vector<char> focus(paths_.size(), 0);
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) {
+    auto r = static_cast<std::size_t>(sub.robots[i]);
+    Path p = paths_[r];
+    while (p.size() < sub.t_start + 1) p.push(p.back());
+    Path next = p.slice(0, sub.t_start);
+    next.append(local.paths[i]);
+    candidate.push_back(std::move(next));
+    focus[r] = 1;
+  }
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) view[static_cast<std::size_t>(sub.robots[i])] = &candidate[i];
+  const std::size_t t1 = sub.t_start + local.length() - 1;
+  ConflictDetector detector(models_);
+  auto c = detector.first(view, sub.t_start, t1, &focus);
+  if (!c) return std::nullopt;
+  const int other = focus[static_cast<std::size_t>(c->a)] ? c->b : c->a;
+  if (focus[static_cast<std::size_t>(other)]) return std::nullopt;
+  for (const auto& span : spans_) {
+    if (span.t1 < sub.t_start || span.t0 > t1) continue;
+    if (std::find(span.robots.begin(), span.robots.end(), other) != span.robots.end()) return other;
+  }
+  return std::nullopt;
+}
+
+bool ArcRun::resolve(const Conflict& c) {
+  std::vector<int> robots{c.a, c.b};
+  const auto tc = static_cast<std::size_t>(c.t);
+  int merged_here = mergeOverlapping(robots, spans_, tc, tc);
+  merged_ += merged_here;
+  for (int level = 0; level <= settings_.max_expansions;) {
+    if (deadline_.expired()) return false;
+    Subproblem sub = createSubproblem(c, robots, level, models_, paths_, world_, settings_);
+    nlohmann::json ev;
+    if (settings_.trace)
+      ev = {{"type", "subproblem"}, {"id", subproblem_id_}, {"conflict", conflicts_ - 1}, {"robots", sub.robots},
+            {"window", {sub.t_start, sub.t_end}}, {"region", boxJson(sub.workspace_region)},
+            {"expansions", level}, {"merged", merged_here}};
+    ++subproblem_id_;
+    SolverContext ctx{world_, models_, *roadmaps_, paths_, sub, deadline_,
+                      splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_))};
+    nlohmann::json attempts = nlohmann::json::array();
+    bool restart = false;
+    for (auto& solver : hierarchy_) {
+      Stopwatch sw;
+      SolverOutcome out = solver->solve(ctx);
+      const double secs = sw.seconds();
+      solver_time_[solver->name()] += secs;
+      const std::string how = out.how.empty() ? solver->name() : out.how;
+      attempts.push_back({{"solver", how}, {"ok", out.solution.has_value()}, {"time_s", secs}});
+      if (!out.solution) continue;
+      if (auto other = conflictsWithResolved(sub, *out.solution)) {
+        // Merge the robot rather than undo its earlier resolution, and
+        // solve again at the same level with the larger group.
+        robots.push_back(*other);
+        const int added = 1 + mergeOverlapping(robots, spans_, sub.t_start, sub.t_start + out.solution->length() - 1);
+        merged_here += added;
+        merged_ += added;
+        ev["solved_by"] = "merged";
+        restart = true;
+        break;
+      }
+      for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
+      ++by_solver_[how];
+      ++by_size_[std::to_string(sub.robots.size())];
+      expansions_ += level;
+      splice(paths_, sub, *out.solution);
+      spans_.push_back({sub.robots, sub.t_start, sub.t_start + out.solution->length() - 1});
+      last_t_start_ = sub.t_start;
+      if (settings_.trace) {
+        ev["solved_by"] = how;
+        if (out.entry >= 0) ev["entry"] = out.entry;
+        ev["attempts"] = attempts;
+        ev["length"] = out.solution->length();
+        traceEvent(ev);
+      }
+      return true;
+    }
+    if (settings_.trace) {
+      if (!restart) ev["solved_by"] = "failed";
+      ev["attempts"] = attempts;
+      traceEvent(ev);
+    }
+    if (!restart) ++level;
+  }
+  return false;
+}
+
+PlanResult ArcRun::run() {
+  Stopwatch clock;
+  PlanResult result;
+  result.solution.scenario = scenario_.name;
+  roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap_samples, settings_.roadmap_neighbors,
+                                           splitSeed(settings_.seed, 1));
+  for (std::size_t r = 0; r < models_.size(); ++r) {
+    auto p = individualPath(world_, *roadmaps_, *models_[r], static_cast<int>(r), deadline_,
+                            splitSeed(settings_.seed, 100 + r));
+    if (!p) {
+      failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
+      result.stats["unsolved_robot"] = scenario_.robots[r].name;
+      break;
+    }
+    paths_.push_back(std::move(*p));
+  }
+  const double individual_s = clock.seconds();
+  bool solved = false;
+  if (failures_.empty()) {
+    ConflictDetector detector(models_);
+    std::size_t from = 0;
+    for (;;) {
+      if (deadline_.expired()) {
+        failures_.insert(FailureCause::TimeLimit);
+        break;
+      }
+      auto c = detector.first(pathPointers(paths_), from);
+      if (!c) {
+        solved = true;
+        break;
+      }
+      ++conflicts_;
+      traceEvent({{"type", "conflict"}, {"id", conflicts_ - 1}, {"robots", {c->a, c->b}}, {"t", c->t},
+                  {"place", {c->place.x, c->place.y}}, {"at_s", clock.seconds()}});
+      if (!resolve(*c)) {
+        failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
+        break;
+      }
+      from = last_t_start_;
+    }
+  }
+  result.solution.solved = solved;
+  if (solved) result.solution.paths = std::move(paths_);
+  result.failures = failures_;
+  auto& st = result.stats;
+  st["planning_time_s"] = clock.seconds();
+  st["individual_paths_s"] = individual_s;
+  st["conflicts"] = conflicts_;
+  st["subproblems"] = subproblem_id_;
+  st["subproblems_by_solver"] = by_solver_;
+  st["subproblems_by_robots"] = by_size_;
+  st["solver_time_s"] = solver_time_;
+  st["window_expansions"] = expansions_;
+  st["robots_merged"] = merged_;
+  st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
+  if (settings_.trace) result.trace = {{"format", "earc.trace.v1"}, {"events", events_}};
+  return result;
+}
+
+}  // namespace
+
+PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings,
+                  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy) {
+  ArcRun run(scenario, settings, std::move(hierarchy));
+  return run.run();
+}
+
+}  // namespace earc

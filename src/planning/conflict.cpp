@@ -1,0 +1,93 @@
+#include "earc/planning/conflict.hpp"
+
+#include <algorithm>
+
+#include "earc/collision/collision_world.hpp"
+
+namespace earc {
+
+void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, double* out) {
+  const std::size_t t = k / 2;
+  const double* a = path.at(t);
+  if (k % 2 == 0 || t + 1 >= path.size()) {
+    std::copy(a, a + model.dim(), out);
+    return;
+  }
+  model.interpolate(a, path.at(t + 1), 0.5, out);
+}
+
+std::vector<const Path*> pathPointers(const std::vector<Path>& paths) {
+  std::vector<const Path*> out;
+  out.reserve(paths.size());
+  for (const auto& p : paths) out.push_back(&p);
+  return out;
+}
+
+ConflictDetector::ConflictDetector(std::vector<const RobotModel*> models) : models_(std::move(models)) {
+  const std::size_t n = models_.size();
+  boxes_.resize(n);
+  q_.resize(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    q_[r].resize(static_cast<std::size_t>(models_[r]->dim()));
+  }
+}
+
+std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& paths, std::size_t from,
+                                                std::size_t to, const std::vector<char>* focus) {
+  const std::size_t n = models_.size();
+  std::size_t horizon = 0;
+  for (const Path* p : paths)
+    if (p && !p->empty()) horizon = std::max(horizon, p->size() - 1);
+  to = std::min(to, horizon);
+  if (from > to) return std::nullopt;
+  std::vector<int> active;
+  for (std::size_t r = 0; r < n; ++r)
+    if (paths[r] && !paths[r]->empty()) active.push_back(static_cast<int>(r));
+  std::vector<int> order = active;  // by min x after the first instant's sort
+
+  for (std::size_t k = 2 * from; k <= 2 * to; ++k) {
+    for (int r : active) {
+      auto ru = static_cast<std::size_t>(r);
+      stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());
+      models_[ru]->bodies(q_[ru].data(), bodies_);
+      geo::Aabb box;
+      for (const auto& b : bodies_) box.expand(geo::bounds(b));
+      boxes_[ru] = box;
+    }
+    // Insertion sort by min x.
+    for (std::size_t i = 1; i < order.size(); ++i) {
+      int r = order[i];
+      std::size_t j = i;
+      while (j > 0 && boxes_[static_cast<std::size_t>(order[j - 1])].lo.x > boxes_[static_cast<std::size_t>(r)].lo.x) {
+        order[j] = order[j - 1];
+        --j;
+      }
+      order[j] = r;
+    }
+    std::optional<Conflict> best;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      auto ri = static_cast<std::size_t>(order[i]);
+      for (std::size_t j = i + 1; j < order.size(); ++j) {
+        auto rj = static_cast<std::size_t>(order[j]);
+        if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
+        if (!boxes_[ri].overlaps(boxes_[rj])) continue;
+        if (focus && !(*focus)[ri] && !(*focus)[rj]) continue;
+        ++exact_tests_;
+        if (!robotsTouch(*models_[ri], q_[ri].data(), *models_[rj], q_[rj].data())) continue;
+        Conflict c;
+        c.a = static_cast<int>(std::min(ri, rj));
+        c.b = static_cast<int>(std::max(ri, rj));
+        c.t = static_cast<double>(k) / 2.0;
+        geo::Vec2 ca = models_[ri]->boundingCenter(q_[ri].data());
+        geo::Vec2 cb = models_[rj]->boundingCenter(q_[rj].data());
+        c.place = (ca + cb) * 0.5;
+        // Deterministic choice among simultaneous conflicts: lowest pair.
+        if (!best || std::pair(c.a, c.b) < std::pair(best->a, best->b)) best = c;
+      }
+    }
+    if (best) return best;
+  }
+  return std::nullopt;
+}
+
+}  // namespace earc

@@ -1,0 +1,164 @@
+#include "earc/planning/planner.hpp"
+
+#include <stdexcept>
+
+#include "earc/planning/arc.hpp"
+#include "earc/planning/coupled_solver.hpp"
+#include "earc/planning/methods.hpp"
+#include "earc/util/random.hpp"
+#include "earc/validate/validator.hpp"
+
+namespace earc {
+
+const char* methodName(Method m) {
+  switch (m) {
+    case Method::Arc: return "arc";
+    case Method::Earc: return "earc";
+    case Method::Prioritized: return "prioritized";
+    case Method::Coupled: return "coupled";
+    case Method::Lightning: return "lightning";
+  }
+  return "?";
+}
+
+Method methodFromName(const std::string& name) {
+  for (Method m : {Method::Arc, Method::Earc, Method::Prioritized, Method::Coupled, Method::Lightning})
+    if (name == methodName(m)) return m;
+  throw std::invalid_argument("unknown method '" + name + "' (arc, earc, prioritized, coupled, lightning)");
+}
+
+const char* failureCauseName(FailureCause c) {
+  switch (c) {
+    case FailureCause::TimeLimit: return "time_limit";
+    case FailureCause::InvalidInput: return "invalid_input";
+    case FailureCause::NoIndividualPath: return "no_individual_path";
+    case FailureCause::SubproblemUnsolved: return "subproblem_unsolved";
+    case FailureCause::InvalidResult: return "invalid_result";
+  }
+  return "?";
+}
+
+std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy() {
+  std::vector<std::unique_ptr<SubproblemSolver>> h;
+  h.push_back(std::make_unique<DecoupledSolver>());
+  h.push_back(std::make_unique<CoupledSubproblemSolver>());
+  return h;
+}
+
+PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings) {
+  Stopwatch clock;
+  PlanResult result;
+  result.solution.scenario = scenario.name;
+  CollisionWorld world(scenario);
+  auto owned = makeRobotModels(scenario);
+  std::vector<const RobotModel*> models;
+  for (const auto& m : owned) models.push_back(m.get());
+  Deadline deadline(settings.time_limit_s);
+  RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
+                      splitSeed(settings.seed, 1));
+  // The whole problem as one subproblem: every robot, its real start and
+  // goal, the whole space; individual path lengths set the horizon.
+  Subproblem sub;
+  std::size_t longest = 0;
+  for (std::size_t r = 0; r < models.size(); ++r) {
+    auto p = individualPath(world, roadmaps, *models[r], static_cast<int>(r), deadline, splitSeed(settings.seed, 100 + r));
+    if (!p) {
+      result.failures.insert(deadline.expired() ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
+      result.stats["planning_time_s"] = clock.seconds();
+      return result;
+    }
+    longest = std::max(longest, p->size());
+    sub.robots.push_back(static_cast<int>(r));
+    sub.starts.push_back(scenario.robots[r].start);
+    sub.goals.push_back(scenario.robots[r].goal);
+    ConfigBox box;
+    models[r]->samplingBounds(world.workspace(), box.lo, box.hi);
+    sub.region.push_back(std::move(box));
+  }
+  sub.workspace_region = world.workspace();
+  sub.t_start = 0;
+  sub.t_end = longest;
+  sub.whole_problem = true;
+  std::vector<Path> none(models.size());
+  DecoupledSettings ds;
+  ds.time_budget_s = settings.time_limit_s;
+  ds.max_expansions = 2000000;
+  ds.max_orders = 1000;
+  ds.avoid_others = false;
+  DecoupledSolver solver(ds);
+  SolverContext ctx{world, models, roadmaps, none, sub, deadline, splitSeed(settings.seed, 2)};
+  SolverOutcome out = solver.solve(ctx);
+  if (out.solution) {
+    result.solution.solved = true;
+    result.solution.paths = std::move(out.solution->paths);
+  } else {
+    result.failures.insert(deadline.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
+  }
+  result.stats["planning_time_s"] = clock.seconds();
+  return result;
+}
+
+PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings) {
+  Stopwatch clock;
+  PlanResult result;
+  result.solution.scenario = scenario.name;
+  CollisionWorld world(scenario);
+  auto owned = makeRobotModels(scenario);
+  CoupledQuery q;
+  for (std::size_t r = 0; r < owned.size(); ++r) {
+    q.robots.push_back(owned[r].get());
+    q.starts.push_back(scenario.robots[r].start);
+    q.goals.push_back(scenario.robots[r].goal);
+  }
+  CoupledSettings cs;
+  cs.time_limit_s = settings.time_limit_s;
+  auto sol = solveCoupled(world, q, cs, settings.seed);
+  if (sol) {
+    result.solution.solved = true;
+    result.solution.paths = std::move(sol->paths);
+  } else {
+    result.failures.insert(FailureCause::TimeLimit);
+  }
+  result.stats["planning_time_s"] = clock.seconds();
+  return result;
+}
+
+PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
+  PlanResult result;
+  switch (settings.method) {
+    case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
+    case Method::Earc: result = planEarc(scenario, settings, store); break;
+    case Method::Prioritized: result = planPrioritized(scenario, settings); break;
+    case Method::Coupled: result = planCoupled(scenario, settings); break;
+    case Method::Lightning: result = planLightning(scenario, settings); break;
+  }
+  result.solution.method = methodName(settings.method);
+  // A fast wrong answer is a wrong answer: nothing is reported solved
+  // unless the validator agrees.
+  if (result.solution.solved) {
+    ValidatorSettings vs;
+    vs.max_listed = 3;
+    ValidationReport report = validateSolution(scenario, result.solution, vs);
+    if (!report.valid) {
+      result.solution.solved = false;
+      result.failures.insert(FailureCause::InvalidResult);
+      nlohmann::json v = nlohmann::json::array();
+      for (const auto& x : report.violations) v.push_back(x.detail);
+      result.stats["invalid_result"] = v;
+    } else {
+      result.stats["makespan"] = report.makespan;
+      result.stats["sum_of_costs"] = report.sum_of_costs;
+    }
+  }
+  if (!result.solution.solved) {
+    nlohmann::json why = nlohmann::json::array();
+    for (FailureCause c : result.failures) why.push_back(failureCauseName(c));
+    result.stats["failure"] = why;
+  }
+  result.stats["method"] = methodName(settings.method);
+  result.stats["seed"] = settings.seed;
+  result.solution.stats = result.stats;
+  return result;
+}
+
+}  // namespace earc

@@ -1,0 +1,231 @@
+#include "earc/planning/roadmap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+#include "earc/util/random.hpp"
+
+namespace earc {
+
+namespace {
+
+// Rejection sampling gives up after this many tries per requested sample
+// (a workspace that is almost all obstacle would otherwise spin forever).
+constexpr int kMaxTriesPerSample = 60;
+
+std::uint64_t edgeKey(int a, int b) {
+  auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+}  // namespace
+
+Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed)
+    : world_(world), model_(model), dim_(model.dim()), neighbors_(neighbors), rng_(seed),
+      index_(model.isMobile() ? 4 : model.dim()) {
+  model_.samplingBounds(world_.workspace(), lo_, hi_);
+}
+
+void Roadmap::embed(const double* q, double* out) const {
+  const Resolution& res = model_.resolution();
+  if (model_.isMobile()) {
+    // Scaled so that one time step of translation or of rotation is about
+    // one unit: Euclidean distance here approximates the time metric.
+    out[0] = q[0] / res.translation;
+    out[1] = q[1] / res.translation;
+    out[2] = std::cos(q[2]) / res.rotation;
+    out[3] = std::sin(q[2]) / res.rotation;
+  } else {
+    for (int j = 0; j < dim_; ++j) out[j] = q[j] / res.joint;
+  }
+}
+
+void Roadmap::grow(int samples) {
+  const int first = size();
+  std::vector<double> q(static_cast<std::size_t>(dim_));
+  std::vector<double> e(static_cast<std::size_t>(index_.dim()));
+  long tries = static_cast<long>(samples) * kMaxTriesPerSample;
+  int added = 0;
+  while (added < samples && tries-- > 0) {
+    for (int j = 0; j < dim_; ++j) q[static_cast<std::size_t>(j)] = uniform(rng_, lo_[static_cast<std::size_t>(j)], hi_[static_cast<std::size_t>(j)]);
+    if (!world_.stateValid(model_, q.data())) continue;
+    configs_.insert(configs_.end(), q.begin(), q.end());
+    adjacency_.emplace_back();
+    embed(q.data(), e.data());
+    index_.add(e.data());
+    ++added;
+  }
+  for (int v = first; v < size(); ++v) connect(v);
+}
+
+void Roadmap::connect(int v) {
+  std::vector<double> e(static_cast<std::size_t>(index_.dim()));
+  embed(config(v), e.data());
+  for (std::size_t u_raw : index_.nearest(e.data(), static_cast<std::size_t>(neighbors_) + 1)) {
+    int u = static_cast<int>(u_raw);
+    if (u == v) continue;
+    auto key = edgeKey(u, v);
+    if (edge_ids_.count(key)) continue;
+    int steps = model_.stepsBetween(config(v), config(u));
+    int id = static_cast<int>(edge_ends_.size());
+    edge_ids_.emplace(key, id);
+    edge_ends_.emplace_back(v, u);
+    edge_state_.push_back(0);
+    adjacency_[static_cast<std::size_t>(v)].push_back({u, steps, id});
+    adjacency_[static_cast<std::size_t>(u)].push_back({v, steps, id});
+  }
+}
+
+bool Roadmap::edgeValid(int id) {
+  auto& state = edge_state_[static_cast<std::size_t>(id)];
+  if (state == 0) {
+    auto [a, b] = edge_ends_[static_cast<std::size_t>(id)];
+    ++edge_checks_;
+    state = world_.motionValid(model_, config(a), config(b)) ? 1 : -1;
+  }
+  return state > 0;
+}
+
+std::vector<int> Roadmap::nearest(const double* q, int k) const {
+  std::vector<double> e(static_cast<std::size_t>(index_.dim()));
+  embed(q, e.data());
+  std::vector<int> out;
+  for (std::size_t i : index_.nearest(e.data(), static_cast<std::size_t>(k))) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+QueryGraph::QueryGraph(Roadmap& roadmap, const ConfigBox* region) : roadmap_(roadmap), region_(region) {}
+
+const double* QueryGraph::config(int v) const {
+  const int n = roadmap_.size();
+  return v < n ? roadmap_.config(v) : extra_[static_cast<std::size_t>(v - n)].q.data();
+}
+
+bool QueryGraph::allowed(int v) const {
+  if (v >= roadmap_.size() || region_ == nullptr) return true;
+  return region_->contains(roadmap_.config(v));
+}
+
+int QueryGraph::addEdge(int a, int b) {
+  int key = -1 - static_cast<int>(extra_edge_ends_.size());
+  extra_edge_ends_.emplace_back(a, b);
+  extra_edge_state_.push_back(0);
+  return key;
+}
+
+int QueryGraph::addVertex(const double* q, int k) {
+  const int n = roadmap_.size();
+  const int v = size();
+  Extra x;
+  x.q.assign(q, q + model().dim());
+  extra_.push_back(std::move(x));
+  auto link = [&](int u) {
+    int steps = model().stepsBetween(config(v), config(u));
+    int key = addEdge(v, u);
+    extra_[static_cast<std::size_t>(v - n)].edges.push_back({u, steps, key});
+    if (u < n)
+      back_edges_[u].push_back({v, steps, key});
+    else
+      extra_[static_cast<std::size_t>(u - n)].edges.push_back({v, steps, key});
+  };
+  // Ask for more neighbours than needed when a region filters them.
+  int want = region_ ? 4 * k : k;
+  int linked = 0;
+  for (int u : roadmap_.nearest(q, want)) {
+    if (!allowed(u)) continue;
+    link(u);
+    if (++linked >= k) break;
+  }
+  for (int u = n; u < v; ++u) link(u);
+  return v;
+}
+
+bool QueryGraph::edgeValid(int key) {
+  if (key >= 0) return roadmap_.edgeValid(key);
+  auto idx = static_cast<std::size_t>(-1 - key);
+  auto& state = extra_edge_state_[idx];
+  if (state == 0) {
+    auto [a, b] = extra_edge_ends_[idx];
+    state = roadmap_.world().motionValid(model(), config(a), config(b)) ? 1 : -1;
+  }
+  return state > 0;
+}
+
+std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline) {
+  const int n = graph.size();
+  const RobotModel& model = graph.model();
+  std::unordered_map<int, bool> invalid;  // edges this query found invalid
+  for (;;) {
+    if (deadline.expired()) return std::nullopt;
+    std::vector<double> g(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+    std::vector<int> parent(static_cast<std::size_t>(n), -1), parent_edge(static_cast<std::size_t>(n), 0);
+    std::vector<char> closed(static_cast<std::size_t>(n), 0);
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+    g[static_cast<std::size_t>(from)] = 0;
+    open.push({model.distance(graph.config(from), graph.config(to)), from});
+    bool found = false;
+    while (!open.empty()) {
+      int v = open.top().second;
+      open.pop();
+      if (closed[static_cast<std::size_t>(v)]) continue;
+      closed[static_cast<std::size_t>(v)] = 1;
+      if (v == to) {
+        found = true;
+        break;
+      }
+      graph.forEachEdge(v, [&](int u, int steps, int key) {
+        if (closed[static_cast<std::size_t>(u)] || invalid.count(key)) return;
+        double cand = g[static_cast<std::size_t>(v)] + steps;
+        if (cand < g[static_cast<std::size_t>(u)]) {
+          g[static_cast<std::size_t>(u)] = cand;
+          parent[static_cast<std::size_t>(u)] = v;
+          parent_edge[static_cast<std::size_t>(u)] = key;
+          open.push({cand + model.distance(graph.config(u), graph.config(to)), u});
+        }
+      });
+    }
+    if (!found) return std::nullopt;
+    std::vector<int> path{to};
+    std::vector<int> keys;
+    for (int v = to; v != from; v = parent[static_cast<std::size_t>(v)]) {
+      keys.push_back(parent_edge[static_cast<std::size_t>(v)]);
+      path.push_back(parent[static_cast<std::size_t>(v)]);
+    }
+    std::reverse(path.begin(), path.end());
+    std::reverse(keys.begin(), keys.end());
+    bool ok = true;
+    for (int key : keys) {
+      if (!graph.edgeValid(key)) {
+        invalid[key] = true;
+        ok = false;
+      }
+    }
+    if (ok) return path;
+  }
+}
+
+Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& waypoints) {
+  Path p(model.dim());
+  if (waypoints.empty()) return p;
+  p.push(waypoints.front().data());
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  for (std::size_t w = 1; w < waypoints.size(); ++w) {
+    const double* a = waypoints[w - 1].data();
+    const double* b = waypoints[w].data();
+    int n = model.stepsBetween(a, b);
+    for (int k = 1; k <= n; ++k) {
+      if (k == n) {
+        p.push(b);
+      } else {
+        model.interpolate(a, b, static_cast<double>(k) / n, q.data());
+        p.push(q.data());
+      }
+    }
+  }
+  return p;
+}
+
+}  // namespace earc

@@ -1,0 +1,57 @@
+#include <map>
+
+#include "earc/planning/solver.hpp"
+#include "earc/util/random.hpp"
+
+namespace earc {
+
+RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples,
+                       int neighbors, std::uint64_t seed)
+    : world_(world), models_(std::move(models)), samples_(samples), neighbors_(neighbors), seed_(seed) {
+  // Robots whose bodies are placed the same way share a roadmap: mobile
+  // robots by geometry alone, arms by geometry and base.
+  std::map<std::string, int> slots;
+  for (const RobotModel* m : models_) {
+    std::string key = m->geometrySignature();
+    if (!m->isMobile()) {
+      const RobotSpec& s = m->spec();
+      key += "@" + std::to_string(s.base_position.x) + "," + std::to_string(s.base_position.y) + "," +
+             std::to_string(s.base_angle);
+    }
+    auto [it, inserted] = slots.emplace(key, static_cast<int>(slots.size()));
+    slot_.push_back(it->second);
+  }
+  roadmaps_.resize(slots.size());
+}
+
+int RoadmapSet::initialSamples(int robot) const {
+  if (samples_ > 0) return samples_;
+  const RobotModel& m = *models_[static_cast<std::size_t>(robot)];
+  if (!m.isMobile()) return 1500;
+  // About three vertices per square of the robot's size: dense enough for
+  // local regions a few robot lengths wide to hold several vertices.
+  const geo::Aabb& ws = world_.workspace();
+  const double area = (ws.hi.x - ws.lo.x) * (ws.hi.y - ws.lo.y);
+  const double cell = std::max(0.25, 2.0 * m.boundingRadius());
+  return std::clamp(static_cast<int>(3.0 * area / (cell * cell)), 400, 20000);
+}
+
+Roadmap& RoadmapSet::forRobot(int robot) {
+  const int slot = slot_[static_cast<std::size_t>(robot)];
+  auto& rm = roadmaps_[static_cast<std::size_t>(slot)];
+  if (!rm) {
+    rm = std::make_unique<Roadmap>(world_, *models_[static_cast<std::size_t>(robot)], neighbors_,
+                                   splitSeed(seed_, static_cast<std::uint64_t>(slot)));
+    rm->grow(initialSamples(robot));
+  }
+  return *rm;
+}
+
+std::size_t RoadmapSet::edgeChecks() const {
+  std::size_t n = 0;
+  for (const auto& rm : roadmaps_)
+    if (rm) n += rm->edgeChecks();
+  return n;
+}
+
+}  // namespace earc

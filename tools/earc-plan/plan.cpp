@@ -1,0 +1,78 @@
+// earc-plan plan: plan a scenario with one method and write its solution.
+#include <iostream>
+
+#include "earc/io/json_io.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/util/subcommands.hpp"
+#include "earc/validate/validator.hpp"
+#include "plan_store.hpp"
+
+namespace earc {
+namespace {
+
+struct PlanOptions {
+  std::string scenario;
+  std::string output;
+  std::string method = "arc";
+  std::string db;
+  std::string trace;
+  double time_limit = 60.0;
+  std::uint64_t seed = 1;
+  int window = 0;
+  bool no_learn = false;
+  bool quiet = false;
+};
+
+int runPlan(const PlanOptions& o) {
+  Scenario scenario = loadScenario(o.scenario);
+  PlannerSettings s;
+  try {
+    s.method = methodFromName(o.method);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", "--method", e.what());
+  }
+  if (!(o.time_limit > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
+  s.time_limit_s = o.time_limit;
+  s.seed = o.seed;
+  s.trace = !o.trace.empty();
+  if (o.window > 0) s.initial_window = o.window;
+  s.db_learn = !o.no_learn;
+  auto store = openStoreForPlanning(s.method, o.db);
+  PlanResult r = plan(scenario, s, store.get());
+  saveSolution(o.output, r.solution);
+  if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
+  if (!o.quiet) {
+    const auto& st = r.stats;
+    if (r.solution.solved)
+      std::cout << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
+                << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0)
+                << ", makespan " << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0)
+                << "\n";
+    else
+      std::cout << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
+                << st.value("planning_time_s", 0.0) << " s\n";
+    std::cout << "solution: " << o.output << "\n";
+  }
+  return r.solution.solved ? 0 : 1;
+}
+
+void setupPlan(CLI::App& app) {
+  auto opts = std::make_shared<PlanOptions>();
+  auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved)");
+  cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->required();
+  cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->required();
+  cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled or lightning")->capture_default_str();
+  cmd->add_option("--db", opts->db, "Experience database (method earc)");
+  cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed for every random choice")->capture_default_str();
+  cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
+  cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict");
+  cmd->add_flag("--no-learn", opts->no_learn, "E-ARC: do not insert new experiences into the database");
+  cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
+  cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
+}
+
+cli::Registrar reg("earc-plan", "plan", setupPlan);
+
+}  // namespace
+}  // namespace earc
