@@ -133,6 +133,8 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
     case Method::Lightning: result = planLightning(scenario, settings); break;
   }
   result.solution.method = methodName(settings.method);
+  result.solution.scenario = scenario.name;
+  if (result.solution.solved) result.solution.nameRobots(scenario);
   // A fast wrong answer is a wrong answer: nothing is reported solved
   // unless the validator agrees.
   if (result.solution.solved) {

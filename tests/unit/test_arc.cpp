@@ -1,0 +1,295 @@
+// ARC: conflict detection, subproblem windows, expansion, merging, splicing,
+// and whole plans that must validate.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/arc.hpp"
+#include "earc/planning/conflict.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/validate/validator.hpp"
+
+using namespace earc;
+
+namespace {
+
+RobotSpec disc(const std::string& name, double r, std::vector<double> start, std::vector<double> goal) {
+  RobotSpec s;
+  s.name = name;
+  s.kind = RobotKind::Mobile;
+  s.shape = MobileShape::Disc;
+  s.radius = r;
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
+RobotSpec arm(const std::string& name, geo::Vec2 base, double angle, std::vector<double> start,
+              std::vector<double> goal) {
+  RobotSpec s;
+  s.name = name;
+  s.kind = RobotKind::Manipulator;
+  s.base_position = base;
+  s.base_angle = angle;
+  s.links = {0.5, 0.5, 0.5, 0.5, 0.5};
+  s.link_radius = 0.05;
+  s.joint_limits = {{-3.14159, 3.14159}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}};
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
+Scenario openScenario(double size) {
+  Scenario s;
+  s.name = "test";
+  s.workspace = {{0, 0}, {size, size}};
+  return s;
+}
+
+Path line(std::vector<std::vector<double>> states) {
+  Path p(static_cast<int>(states.front().size()));
+  for (auto& q : states) p.push(q.data());
+  return p;
+}
+
+struct Models {
+  std::vector<std::shared_ptr<const RobotModel>> owned;
+  std::vector<const RobotModel*> raw;
+  explicit Models(const Scenario& s) : owned(makeRobotModels(s)) {
+    for (auto& m : owned) raw.push_back(m.get());
+  }
+};
+
+}  // namespace
+
+TEST_CASE("FindConflict catches two discs that touch only at the midpoint of a step") {
+  Scenario s = openScenario(5);
+  s.resolution.translation = 0.5;
+  s.robots = {disc("a", 0.1, {1.0, 1.0, 0}, {1.4, 1.0, 0}), disc("b", 0.1, {1.4, 1.0, 0}, {1.0, 1.0, 0})};
+  Models m(s);
+  std::vector<Path> paths{line({{1.0, 1.0, 0}, {1.4, 1.0, 0}}), line({{1.4, 1.0, 0}, {1.0, 1.0, 0}})};
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(paths));
+  REQUIRE(c.has_value());
+  CHECK(c->t == doctest::Approx(0.5));
+  CHECK(c->a == 0);
+  CHECK(c->b == 1);
+  CHECK(c->place.x == doctest::Approx(1.2));
+}
+
+TEST_CASE("FindConflict reports nothing for discs that pass with clearance") {
+  Scenario s = openScenario(5);
+  s.robots = {disc("a", 0.1, {1, 1, 0}, {2, 1, 0}), disc("b", 0.1, {1, 1.3, 0}, {2, 1.3, 0})};
+  Models m(s);
+  std::vector<Path> paths{line({{1, 1, 0}, {1.05, 1, 0}, {1.1, 1, 0}}), line({{1, 1.3, 0}, {1.05, 1.3, 0}})};
+  ConflictDetector det(m.raw);
+  CHECK_FALSE(det.first(pathPointers(paths)).has_value());
+}
+
+TEST_CASE("FindConflict sees a robot that waits at its goal after its path ends") {
+  Scenario s = openScenario(5);
+  s.robots = {disc("a", 0.2, {1, 1, 0}, {1, 1, 0}), disc("b", 0.2, {2, 1, 0}, {1.3, 1, 0})};
+  Models m(s);
+  std::vector<Path> paths{line({{1, 1, 0}}), line({{2, 1, 0}, {1.8, 1, 0}, {1.6, 1, 0}, {1.3, 1, 0}})};
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(paths));
+  REQUIRE(c.has_value());
+  // At the midpoint of steps 2-3 b is at 1.45, 0.45 from a: apart. At step
+  // 3 it is at 1.3, 0.3 from a: touching (radii sum 0.4).
+  CHECK(c->t == doctest::Approx(3.0));
+}
+
+TEST_CASE("FindConflict with its broad phase agrees with all-pairs checking on random paths") {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.5, 19.5);
+  Scenario s = openScenario(20);
+  const int n = 40, steps = 60;
+  std::vector<Path> paths;
+  for (int i = 0; i < n; ++i) {
+    double x = u(rng), y = u(rng), dx = (u(rng) - 10) * 0.004, dy = (u(rng) - 10) * 0.004;
+    s.robots.push_back(disc("r" + std::to_string(i), 0.3, {x, y, 0}, {x + dx * steps, y + dy * steps, 0}));
+    Path p(3);
+    for (int t = 0; t <= steps; ++t) {
+      double q[3] = {x + dx * t, y + dy * t, 0};
+      p.push(q);
+    }
+    paths.push_back(std::move(p));
+  }
+  Models m(s);
+  // Brute force: earliest instant, then lowest pair.
+  std::optional<std::tuple<double, int, int>> expect;
+  for (int k = 0; k <= 2 * steps && !expect; ++k) {
+    for (int i = 0; i < n && !expect; ++i)
+      for (int j = i + 1; j < n; ++j) {
+        double qi[3], qj[3];
+        stateAtInstant(*m.raw[i], paths[i], k, qi);
+        stateAtInstant(*m.raw[j], paths[j], k, qj);
+        if (robotsTouch(*m.raw[i], qi, *m.raw[j], qj)) {
+          expect = std::make_tuple(k / 2.0, i, j);
+          break;
+        }
+      }
+  }
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(paths));
+  REQUIRE(c.has_value() == expect.has_value());
+  if (c) {
+    CHECK(c->t == doctest::Approx(std::get<0>(*expect)));
+    CHECK(c->a == std::get<1>(*expect));
+    CHECK(c->b == std::get<2>(*expect));
+  }
+}
+
+namespace {
+
+// Two discs on straight, crossing paths through (5, 5).
+struct CrossingFixture {
+  Scenario s = openScenario(10);
+  std::vector<Path> paths;
+  CrossingFixture() {
+    s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0})};
+    for (int r = 0; r < 2; ++r) {
+      Path p(3);
+      for (int t = 0; t <= 80; ++t) {
+        double q[3] = {r == 0 ? 3 + 0.05 * t : 5.0, r == 0 ? 5.0 : 3 + 0.05 * t, 0};
+        p.push(q);
+      }
+      paths.push_back(std::move(p));
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("A subproblem's window spans the conflict and its local query lies on the paths") {
+  CrossingFixture f;
+  Models m(f.s);
+  CollisionWorld world(f.s);
+  PlannerSettings settings;
+  settings.initial_window = 8;
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(f.paths));
+  REQUIRE(c.has_value());
+  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
+  CHECK(sub.t_start + 8 == static_cast<std::size_t>(c->t));
+  CHECK(sub.t_end >= static_cast<std::size_t>(c->t) + 8);
+  // The end moved past the crossing so that the local goals are apart.
+  CHECK_FALSE(robotsTouch(*m.raw[0], sub.goals[0].data(), *m.raw[1], sub.goals[1].data()));
+  for (int r = 0; r < 2; ++r) {
+    CHECK(sub.starts[r] == std::vector<double>(f.paths[r].at(sub.t_start), f.paths[r].at(sub.t_start) + 3));
+    CHECK(sub.region[r].contains(sub.starts[r].data()));
+    CHECK(sub.region[r].contains(sub.goals[r].data()));
+  }
+  CHECK_FALSE(sub.whole_problem);
+}
+
+TEST_CASE("Expanding a subproblem doubles its window and grows its region until it is the whole problem") {
+  CrossingFixture f;
+  Models m(f.s);
+  CollisionWorld world(f.s);
+  PlannerSettings settings;
+  settings.initial_window = 4;
+  settings.max_expansions = 5;
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(f.paths));
+  REQUIRE(c.has_value());
+  Subproblem a = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
+  Subproblem b = createSubproblem(*c, {0, 1}, 1, m.raw, f.paths, world, settings);
+  CHECK(a.t_start - b.t_start == 4);
+  CHECK(b.region[0].hi[0] - b.region[0].lo[0] > a.region[0].hi[0] - a.region[0].lo[0]);
+  Subproblem last = createSubproblem(*c, {0, 1}, 5, m.raw, f.paths, world, settings);
+  CHECK(last.whole_problem);
+  CHECK(last.t_start == 0);
+  CHECK(last.t_end == 80);
+  CHECK(last.goals[0] == f.s.robots[0].goal);
+}
+
+TEST_CASE("Splicing replaces the window and shifts the rest of the path in time") {
+  Path p = line({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {4, 0, 0}});
+  std::vector<Path> paths{p};
+  Subproblem sub;
+  sub.robots = {0};
+  sub.t_start = 1;
+  sub.t_end = 3;
+  LocalSolution local;
+  local.paths = {line({{1, 0, 0}, {1, 0, 0}, {1.5, 0, 0}, {2, 0, 0}, {2.5, 0, 0}, {3, 0, 0}})};
+  splice(paths, sub, local);
+  // One state before the window, six local states, one after.
+  REQUIRE(paths[0].size() == 8);
+  CHECK(paths[0].at(0)[0] == 0);
+  CHECK(paths[0].at(2)[0] == 1);
+  CHECK(paths[0].at(6)[0] == 3);
+  CHECK(paths[0].at(7)[0] == 4);  // the old suffix, three steps later
+}
+
+TEST_CASE("Splicing a robot that had already finished pads its path with waits first") {
+  std::vector<Path> paths{line({{0, 0, 0}, {1, 0, 0}})};
+  Subproblem sub;
+  sub.robots = {0};
+  sub.t_start = 4;
+  sub.t_end = 6;
+  LocalSolution local;
+  local.paths = {line({{1, 0, 0}, {1, 1, 0}, {1, 0, 0}})};
+  splice(paths, sub, local);
+  REQUIRE(paths[0].size() == 7);
+  CHECK(paths[0].at(4)[1] == 0);
+  CHECK(paths[0].at(5)[1] == 1);
+  CHECK(paths[0].at(6)[1] == 0);
+}
+
+TEST_CASE("Merging pulls in every robot of a resolved span that overlaps and shares a robot") {
+  std::vector<ResolvedSpan> spans{{{1, 4}, 10, 30}, {{4, 7}, 25, 40}, {{2, 9}, 0, 100}, {{1, 5}, 50, 60}};
+  std::vector<int> robots{1, 3};
+  int added = mergeOverlapping(robots, spans, 20, 28);
+  // {1,4} overlaps and shares 1 -> 4; {4,7} overlaps and now shares 4 -> 7;
+  // {2,9} overlaps but shares nothing; {1,5} does not overlap in time.
+  CHECK(robots == std::vector<int>{1, 3, 4, 7});
+  CHECK(added == 2);
+}
+
+TEST_CASE("ARC plans four discs crossing in the open, and the solution validates") {
+  Scenario s = openScenario(6);
+  s.robots = {disc("w", 0.3, {1, 3, 0}, {5, 3, 0}), disc("e", 0.3, {5, 3, 3.14}, {1, 3, 0}),
+              disc("s", 0.3, {3, 1, 1.57}, {3, 5, 0}), disc("n", 0.3, {3, 5, -1.57}, {3, 1, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 30;
+  settings.seed = 3;
+  PlanResult r = plan(s, settings);
+  REQUIRE(r.solution.solved);
+  CHECK(r.failures.empty());
+  CHECK(r.stats["conflicts"].get<int>() >= 1);
+  ValidationReport v = validateSolution(s, r.solution);
+  CHECK(v.valid);
+}
+
+TEST_CASE("ARC plans two facing arms whose straight motions collide, and the solution validates") {
+  Scenario s;
+  s.name = "arms";
+  s.workspace = {{-4, -4}, {4, 8}};
+  // Bases 4 apart facing each other; both reach for the middle and swap sides.
+  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              arm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 30;
+  settings.seed = 5;
+  PlanResult r = plan(s, settings);
+  REQUIRE(r.solution.solved);
+  ValidationReport v = validateSolution(s, r.solution);
+  CHECK(v.valid);
+}
+
+TEST_CASE("Every method reports a solution as solved only when it validates") {
+  Scenario s = openScenario(6);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0}), disc("b", 0.3, {5, 5, 0}, {1, 1, 0})};
+  for (Method m : {Method::Arc, Method::Prioritized, Method::Coupled}) {
+    CAPTURE(methodName(m));
+    PlannerSettings settings;
+    settings.method = m;
+    settings.time_limit_s = 20;
+    PlanResult r = plan(s, settings);
+    REQUIRE(r.solution.solved);
+    CHECK(validateSolution(s, r.solution).valid);
+    CHECK(r.solution.method == methodName(m));
+  }
+}
