@@ -1,0 +1,63 @@
+// One experience: a solved subproblem stored in canonical form (keys.hpp),
+// with its class, start/goal key, paths, and bookkeeping.
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "earc/scene/path.hpp"
+#include "earc/scene/scenario.hpp"
+
+namespace earc::exp {
+
+// Where a row came from.
+enum class Source { Build, Planner, Import };
+const char* sourceName(Source s);                          // "build", "planner", "import"
+std::optional<Source> sourceFromName(std::string_view name);
+const char* kindName(RobotKind k);                         // "mobile", "manipulator"
+std::optional<RobotKind> kindFromName(std::string_view name);
+
+// Experiences are only ever handed between subproblems of one class: same
+// kind, same number of robots, same bodies in the same canonical order,
+// and (manipulators) the same relative base transform class. All keys of a
+// class have one dimension.
+struct ExperienceClass {
+  RobotKind kind = RobotKind::Mobile;
+  int robot_count = 0;
+  std::string signature;   // geometry signatures in canonical order, '|'-joined
+  std::string base_class;  // manipulators: baseClassString(); mobile: empty
+  auto operator<=>(const ExperienceClass&) const = default;
+  bool operator==(const ExperienceClass&) const = default;
+  // Short readable form: "mobile x2 mobile:disc:r=0.300000" or
+  // "manipulator x2 dx=4.000,dy=0.000,dth=3.142 arm:...".
+  std::string label() const;
+};
+
+struct Experience {
+  std::int64_t id = 0;                // row id; 0 until stored
+  ExperienceClass cls;
+  std::vector<double> key;            // keyOfCanonicalPaths(cls.kind, paths)
+  std::vector<Path> paths;            // canonical order and frame, all of one length
+  double cost = 0.0;                  // pathCost(paths)
+  Source source = Source::Build;
+  std::int64_t created_at = 0;        // Unix seconds; 0: set on insert
+  double solve_time_s = 0.0;
+  std::int64_t retrieved = 0;         // recordUse counters
+  std::int64_t succeeded = 0;
+  std::int64_t created_session = 0;   // set by the store on insert
+};
+
+// Sum over robots of the path length in steps (states - 1).
+double pathCost(const std::vector<Path>& paths);
+
+// What is wrong with an experience, or nothing: robot count and signature
+// count, path dimensions and lengths, finite numbers, key dimension and
+// agreement with the paths' endpoints, cost, base class form. Used on every
+// insert and on every imported or verified row.
+std::optional<std::string> findProblem(const Experience& e);
+
+}  // namespace earc::exp

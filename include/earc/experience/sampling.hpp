@@ -1,0 +1,47 @@
+// Random subproblem queries shaped like the conflicts ARC turns into
+// subproblems (paper, "Database Construction": short start-goal distances
+// in a reduced region), shared by the database builder and the synthetic
+// entries of the retrieval benchmark.
+#pragma once
+
+#include <random>
+#include <vector>
+
+#include "earc/experience/experience.hpp"
+#include "earc/experience/keys.hpp"
+#include "earc/scene/robot_model.hpp"
+
+namespace earc::exp {
+
+struct QuerySampling {
+  // Mobile: each start lies this far from the conflict point (units) ...
+  double min_start_distance = 0.4;
+  double max_start_distance = 1.5;
+  // ... and its goal roughly across it: the direction back through the
+  // conflict point turned by at most this much (radians), at a distance
+  // drawn from the same range, so the straight paths cross.
+  double cross_jitter = 0.35;
+  // Manipulators: each goal joint within this of the start joint (radians).
+  double max_joint_step = 0.6;
+};
+
+struct Query {
+  std::vector<std::vector<double>> starts;
+  std::vector<std::vector<double>> goals;
+};
+
+// Mobile robots around a conflict point at the origin; headings uniform.
+Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& sampling = {});
+
+// Two arms: starts uniform within the joint limits (RobotModel sampling
+// bounds), goals a short joint distance away, clamped to the limits.
+Query sampleArmQuery(const RobotModel& a, const RobotModel& b, std::mt19937_64& rng,
+                     const QuerySampling& sampling = {});
+
+// A stored-form experience whose paths are straight lines of `steps`
+// states from the starts to the goals (no collision checking): synthetic
+// entries for benchmarks and tests.
+Experience straightLineExperience(std::span<const RobotTraits> robots, const Query& query, int steps,
+                                  Source source = Source::Build);
+
+}  // namespace earc::exp

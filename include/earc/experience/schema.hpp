@@ -1,0 +1,43 @@
+// The experience database's identity and schema versions.
+//
+// The schema is documented in schema/schema.sql; it is created and upgraded
+// only by the numbered migrations in migrations/NNNN_*.sql, whose text is
+// embedded here (a unit test keeps the two equal).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "earc/experience/sqlite.hpp"
+
+namespace earc::exp {
+
+// PRAGMA application_id of every earc experience database: "EARC".
+inline constexpr std::int64_t kApplicationId = 0x45415243;
+
+struct Migration {
+  int version;                // user_version after this step
+  std::string_view name;      // file name in migrations/
+  std::string_view sql;       // the file's text
+};
+
+// All migrations, in order; migrations()[i].version == i + 1.
+std::span<const Migration> migrations();
+
+// The schema version this program writes and reads: the last migration.
+int currentSchemaVersion();
+
+// Checks that the connection's file is an earc database this program can
+// use (or an empty file): ForeignDatabaseError for another application's
+// SQLite file or not a SQLite file at all, SchemaVersionError for a newer
+// schema. Returns the file's schema version (0 for an empty file).
+int checkIdentity(Connection& db);
+
+// Brings the file up to `target` (default: current), one migration per
+// BEGIN IMMEDIATE transaction with its user_version bump, so a crash
+// mid-way leaves the previous version intact. Safe against another process
+// migrating the same file at the same time. Returns the version reached.
+int migrate(Connection& db, int target = -1);
+
+}  // namespace earc::exp

@@ -1,0 +1,206 @@
+// A thin RAII layer over the SQLite C API for the experience store: one
+// Connection per open file, Statements finalized by unique_ptr, typed errors,
+// and write transactions that begin IMMEDIATE and are retried whole when
+// another process holds the write lock (shared/design/reliability.md).
+//
+// A Connection is not thread-safe; the store serializes its use. Never open
+// a Connection before fork() and use it after.
+#pragma once
+
+#include <sqlite3.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+namespace earc::exp {
+
+// Every error about a database file; what() names the file.
+class StoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The file is not an earc experience database: not SQLite at all, or a
+// SQLite file of another application (foreign application_id or tables).
+class ForeignDatabaseError : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
+// The file's schema is newer than this program understands (or, for a
+// read-only open, older than the program and not migratable in place).
+class SchemaVersionError : public StoreError {
+ public:
+  SchemaVersionError(const std::string& what, int file_version, int program_version)
+      : StoreError(what), file_version_(file_version), program_version_(program_version) {}
+  int fileVersion() const { return file_version_; }
+  int programVersion() const { return program_version_; }
+
+ private:
+  int file_version_;
+  int program_version_;
+};
+
+// The write lock stayed with another connection through every retry.
+class BusyError : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
+// A stored row failed validation; what() names the row id.
+class CorruptRowError : public StoreError {
+ public:
+  CorruptRowError(std::int64_t row, const std::string& reason)
+      : StoreError("row " + std::to_string(row) + ": " + reason), row_(row), reason_(reason) {}
+  std::int64_t row() const { return row_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::int64_t row_;
+  std::string reason_;
+};
+
+struct StatementFinalizer {
+  void operator()(sqlite3_stmt* s) const { sqlite3_finalize(s); }
+};
+struct ConnectionCloser {
+  void operator()(sqlite3* db) const { sqlite3_close_v2(db); }
+};
+
+// A prepared statement. step() throws BusyError for SQLITE_BUSY/LOCKED (the
+// caller's transaction is then retried whole) and StoreError otherwise.
+class Statement {
+ public:
+  Statement(sqlite3* db, std::string_view sql);
+
+  Statement& bind(int index, std::int64_t v);
+  Statement& bind(int index, int v) { return bind(index, static_cast<std::int64_t>(v)); }
+  Statement& bind(int index, double v);
+  Statement& bind(int index, std::string_view text);
+  Statement& bindBlob(int index, std::span<const unsigned char> bytes);
+
+  // True when a row is available, false when the statement is done.
+  bool step();
+  // Steps to completion, ignoring rows.
+  void run();
+  void reset();
+
+  int columnType(int col) const { return sqlite3_column_type(stmt_.get(), col); }
+  std::int64_t int64At(int col) const { return sqlite3_column_int64(stmt_.get(), col); }
+  double doubleAt(int col) const { return sqlite3_column_double(stmt_.get(), col); }
+  std::string textAt(int col) const;
+  std::span<const unsigned char> blobAt(int col) const;
+
+ private:
+  sqlite3* db_;
+  std::unique_ptr<sqlite3_stmt, StatementFinalizer> stmt_;
+};
+
+enum class OpenMode {
+  ReadWrite,  // create when missing, WAL, writable
+  ReadOnly,   // our own file, no writes (inspect, verify, export)
+  Hostile,    // an import source: read-only, cell_size_check, no mmap, length limit
+};
+
+// Connection tuning. Named here so every connection is opened alike.
+struct ConnectionSettings {
+  // How long one statement waits for another process's lock before
+  // SQLITE_BUSY: long enough to cover another planner's short insert, short
+  // enough that a planner never stalls for long.
+  int busy_timeout_ms = 2000;
+  // Whole-transaction retries after SQLITE_BUSY, with doubling backoff.
+  int write_attempts = 8;
+  std::chrono::milliseconds first_backoff{5};
+  std::chrono::milliseconds max_backoff{400};
+};
+
+// Cap on the WAL file kept after a checkpoint (bytes).
+inline constexpr std::int64_t kJournalSizeLimit = 64ll << 20;
+// Largest string or blob a hostile file may hand us (bytes): a path blob of
+// 4 robots x 5 joints x 100,000 steps is 16 MB.
+inline constexpr int kHostileMaxLength = 64 << 20;
+
+class Connection {
+ public:
+  // Opens and configures: extended result codes, SQLITE_DBCONFIG_DEFENSIVE,
+  // trusted_schema=OFF, foreign_keys=ON, busy_timeout; Hostile adds
+  // cell_size_check=ON, mmap_size=0 and a length limit. Journal mode is
+  // left to enableWal(), which the store calls once it has checked that the
+  // file is its own. Throws StoreError naming the file.
+  Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings = {});
+
+  const std::string& path() const { return path_; }
+  OpenMode mode() const { return mode_; }
+  sqlite3* handle() const { return db_.get(); }
+
+  void exec(std::string_view sql);
+  Statement prepare(std::string_view sql) { return Statement(db_.get(), sql); }
+  std::int64_t pragmaInt(std::string_view pragma);
+  std::string pragmaText(std::string_view pragma);
+
+  // journal_mode=WAL (checked: a file system without WAL support is an
+  // error), journal_size_limit, synchronous=FULL.
+  void enableWal();
+
+  // Runs body() inside BEGIN IMMEDIATE ... COMMIT. On SQLITE_BUSY anywhere
+  // (begin, body, commit) the transaction is rolled back and run again after
+  // a doubling backoff, at most settings.write_attempts times, then
+  // BusyError. Any other exception rolls back and propagates. body must
+  // therefore keep its effects inside the database until it returns.
+  template <class Body>
+  auto write(Body&& body) -> decltype(body());
+
+  // PRAGMA-free passive checkpoint: copies what it can from the WAL
+  // without waiting for readers (keeps the WAL from growing without bound
+  // behind a long-lived reader).
+  void checkpointPassive();
+
+  // Human-readable message for an SQLite result code on this connection.
+  std::string message(int rc) const;
+
+ private:
+  void beginImmediate();
+  void rollbackQuietly();
+  void backoff(int attempt) const;
+  [[noreturn]] void throwBusy(int attempts) const;
+
+  std::string path_;
+  OpenMode mode_;
+  ConnectionSettings settings_;
+  std::unique_ptr<sqlite3, ConnectionCloser> db_;
+};
+
+template <class Body>
+auto Connection::write(Body&& body) -> decltype(body()) {
+  for (int attempt = 1;; ++attempt) {
+    try {
+      beginImmediate();
+      if constexpr (std::is_void_v<decltype(body())>) {
+        body();
+        exec("COMMIT");
+        return;
+      } else {
+        auto result = body();
+        exec("COMMIT");
+        return result;
+      }
+    } catch (const BusyError&) {
+      rollbackQuietly();
+      if (attempt >= settings_.write_attempts) throwBusy(attempt);
+      backoff(attempt);
+    } catch (...) {
+      rollbackQuietly();
+      throw;
+    }
+  }
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,153 @@
+// The persistent experience store: an SQLite file of solved subproblems
+// (schema/schema.sql) with an in-memory k-d tree per class for k-closest
+// retrieval. Several processes may share one file: each keeps its own
+// index and brings it up to date with rows the others inserted (refresh);
+// writes are short IMMEDIATE transactions retried on SQLITE_BUSY, so no
+// insert is lost and none blocks planning for long.
+//
+// The planner's calls, in order (see also retrieval.hpp, which adds the
+// canonical transform around them):
+//   ExperienceStore store(path);                 // opens, migrates, indexes
+//   store.nearest(cls, key, k)                   // candidates, nearest first
+//   store.recordUse(id, resolved_the_conflict)   // buffered counters
+//   store.insert(experience, eps)                // learn a new solution
+//   store.flush() / destructor                   // write the counters
+//
+// All public methods are thread-safe (one internal mutex). Never keep a
+// store open across fork().
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "earc/experience/experience.hpp"
+#include "earc/experience/key_index.hpp"
+#include "earc/experience/sqlite.hpp"
+
+namespace earc::exp {
+
+struct StoreOptions {
+  // No migration and no writes (inspect, verify, export). Older schema
+  // versions are readable; newer ones are refused.
+  bool read_only = false;
+  // Count this open as a planning session (store_meta 'sessions'); rows
+  // inserted remember it, and curate --older-than-sessions reads it.
+  bool new_session = true;
+  ConnectionSettings connection;
+};
+
+// One retrieved experience and its distance to the query key.
+struct Match {
+  Experience experience;
+  double distance = 0.0;
+};
+
+// Usage counters are written in one transaction once this many distinct
+// rows have pending updates (and on flush() and close()).
+inline constexpr std::size_t kMaxPendingUses = 256;
+// A passive WAL checkpoint runs after this many write transactions or this
+// much time, whichever comes first.
+inline constexpr int kCheckpointEveryWrites = 100;
+inline constexpr std::chrono::seconds kCheckpointInterval{30};
+
+class ExperienceStore {
+ public:
+  // Opens (creating when missing, unless read_only) and loads the index.
+  // Throws ForeignDatabaseError, SchemaVersionError, StoreError.
+  explicit ExperienceStore(const std::string& path, const StoreOptions& options = {});
+  // Flushes pending counters; errors are reported on stderr, not thrown.
+  ~ExperienceStore();
+  ExperienceStore(const ExperienceStore&) = delete;
+  ExperienceStore& operator=(const ExperienceStore&) = delete;
+
+  const std::string& path() const { return path_; }
+  int schemaVersion() const { return version_; }
+  std::int64_t session() const { return session_; }
+  bool readOnly() const { return options_.read_only; }
+
+  // Loads rows other connections committed since the last refresh (all rows
+  // again after a deletion anywhere). Cheap when nothing changed: one
+  // PRAGMA data_version. nearest() and insert() call it themselves.
+  void refresh();
+
+  // Up to k experiences of the class, nearest key first (Euclidean), decoded
+  // and checked. Rows that fail decoding are skipped and reported once on
+  // stderr (earc-db verify names them all).
+  std::vector<Match> nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
+  // The same search without reading rows: ids and distances only.
+  std::vector<Neighbor> nearestIds(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
+  std::optional<Experience> get(std::int64_t id);
+
+  // Stores e unless an entry of its class lies within near_duplicate_eps in
+  // key space (distance <= eps; eps < 0 disables the check), checked inside
+  // the write transaction after loading every committed row. Sets id,
+  // created_session and (when 0) created_at. Returns the new id, or nothing
+  // for a near duplicate. Throws std::invalid_argument when findProblem(e).
+  std::optional<std::int64_t> insert(const Experience& e, double near_duplicate_eps);
+  // Several experiences in ONE transaction, each checked against the store
+  // and the batch's earlier entries: all are stored (or skipped as
+  // duplicates) or, on error, none.
+  std::vector<std::optional<std::int64_t>> insertAll(const std::vector<Experience>& batch, double near_duplicate_eps);
+
+  // Counts one retrieval of row id, and one success when it resolved the
+  // subproblem. Buffered; written by flush().
+  void recordUse(std::int64_t id, bool success);
+  void flush();
+  // Flush, checkpoint, close. Further calls throw std::logic_error.
+  void close();
+
+  std::size_t size() const;
+  // Loaded classes with their entry counts and key dimensions.
+  struct ClassInfo {
+    ExperienceClass cls;
+    std::size_t entries = 0;
+    std::size_t key_dim = 0;
+  };
+  std::vector<ClassInfo> classes() const;
+  const ClassIndex* classIndex(const ExperienceClass& cls) const;
+  // Rows left out of the index because their key was unreadable.
+  std::vector<std::int64_t> skippedRows() const;
+
+  // The underlying connection, for maintenance commands (earc-db). Not for
+  // the planner: bypasses the index and the mutex.
+  Connection& connection();
+
+ private:
+  void openLocked();
+  void refreshLocked();
+  void loadTailLocked();
+  std::int64_t metaLocked(const char* name);
+  std::optional<Experience> fetchLocked(std::int64_t id);
+  std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps);
+  void flushLocked();
+  void afterWriteLocked();
+  void warnSkipped(std::int64_t id, const std::string& why);
+  void requireOpen() const;
+  void requireWritable() const;
+
+  std::string path_;
+  StoreOptions options_;
+  int version_ = 0;
+  std::int64_t session_ = 0;
+  mutable std::mutex mutex_;
+  std::unique_ptr<Connection> conn_;
+  std::unique_ptr<Statement> fetch_;
+  std::unique_ptr<Statement> data_version_;
+  KeyIndex index_;
+  std::int64_t max_loaded_ = 0;
+  std::int64_t loaded_data_version_ = -1;
+  std::int64_t loaded_deletions_ = -1;
+  std::vector<std::int64_t> skipped_;
+  std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>> pending_uses_;  // id -> (retrieved, succeeded)
+  int writes_since_checkpoint_ = 0;
+  std::chrono::steady_clock::time_point last_checkpoint_;
+};
+
+}  // namespace earc::exp

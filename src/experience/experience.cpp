@@ -1,0 +1,109 @@
+#include "earc/experience/experience.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "earc/experience/keys.hpp"
+
+namespace earc::exp {
+
+namespace {
+
+// How far a stored key may be from the key of its paths' endpoints.
+constexpr double kKeyTolerance = 1e-6;
+
+std::size_t countParts(const std::string& s, char sep) {
+  std::size_t n = 1;
+  for (char ch : s) n += ch == sep;
+  return n;
+}
+
+// A base class string is well formed when it is its own canonical text.
+bool wellFormedBaseClass(const std::string& s) {
+  double dx, dy, dt;
+  char tail;
+  if (std::sscanf(s.c_str(), "dx=%lf,dy=%lf,dth=%lf%c", &dx, &dy, &dt, &tail) != 3) return false;
+  return std::isfinite(dx) && std::isfinite(dy) && std::isfinite(dt) && baseClassString(dx, dy, dt) == s;
+}
+
+}  // namespace
+
+const char* sourceName(Source s) {
+  switch (s) {
+    case Source::Build: return "build";
+    case Source::Planner: return "planner";
+    case Source::Import: return "import";
+  }
+  return "?";
+}
+
+std::optional<Source> sourceFromName(std::string_view name) {
+  for (Source s : {Source::Build, Source::Planner, Source::Import})
+    if (name == sourceName(s)) return s;
+  return std::nullopt;
+}
+
+const char* kindName(RobotKind k) { return k == RobotKind::Mobile ? "mobile" : "manipulator"; }
+
+std::optional<RobotKind> kindFromName(std::string_view name) {
+  if (name == "mobile") return RobotKind::Mobile;
+  if (name == "manipulator") return RobotKind::Manipulator;
+  return std::nullopt;
+}
+
+std::string ExperienceClass::label() const {
+  std::string s = std::string(kindName(kind)) + " x" + std::to_string(robot_count);
+  if (!base_class.empty()) s += " " + base_class;
+  return s + " " + signature;
+}
+
+double pathCost(const std::vector<Path>& paths) {
+  double c = 0;
+  for (const Path& p : paths) c += p.empty() ? 0.0 : static_cast<double>(p.size() - 1);
+  return c;
+}
+
+std::optional<std::string> findProblem(const Experience& e) {
+  const ExperienceClass& c = e.cls;
+  if (c.robot_count < 1 || c.robot_count > 64) return "robot_count " + std::to_string(c.robot_count) + " outside 1..64";
+  if (e.paths.size() != static_cast<std::size_t>(c.robot_count))
+    return std::to_string(e.paths.size()) + " paths for robot_count " + std::to_string(c.robot_count);
+  if (c.signature.empty() || countParts(c.signature, '|') != e.paths.size())
+    return "signature names " + std::to_string(c.signature.empty() ? 0 : countParts(c.signature, '|')) +
+           " robots, expected " + std::to_string(c.robot_count);
+  const int dim = e.paths.front().dim();
+  const std::size_t steps = e.paths.front().size();
+  for (std::size_t r = 0; r < e.paths.size(); ++r) {
+    const Path& p = e.paths[r];
+    if (p.dim() != dim || p.size() != steps || p.empty())
+      return "path " + std::to_string(r) + " differs in dimension or length from path 0 (or is empty)";
+    for (double v : p.raw())
+      if (!std::isfinite(v)) return "path " + std::to_string(r) + " has a non-finite coordinate";
+  }
+  if (c.kind == RobotKind::Mobile) {
+    if (dim != 3) return "mobile paths must have 3 coordinates, not " + std::to_string(dim);
+    if (!c.base_class.empty()) return "mobile class with a base class \"" + c.base_class + "\"";
+  } else {
+    if (c.robot_count != 2) return "manipulator classes hold pairs, not " + std::to_string(c.robot_count) + " arms";
+    if (!wellFormedBaseClass(c.base_class)) return "malformed base class \"" + c.base_class + "\"";
+  }
+  const int kd = keyDimension(c.kind, c.robot_count, dim);
+  if (e.key.size() != static_cast<std::size_t>(kd))
+    return "key has " + std::to_string(e.key.size()) + " values, the class needs " + std::to_string(kd);
+  const std::vector<double> expected = keyOfCanonicalPaths(c.kind, e.paths);
+  for (std::size_t i = 0; i < e.key.size(); ++i) {
+    if (!std::isfinite(e.key[i])) return "key value " + std::to_string(i) + " is not finite";
+    if (std::abs(e.key[i] - expected[i]) > kKeyTolerance)
+      return "key value " + std::to_string(i) + " disagrees with the paths' start/goal";
+  }
+  if (!std::isfinite(e.cost) || std::abs(e.cost - pathCost(e.paths)) > 1e-9)
+    return "cost " + std::to_string(e.cost) + " is not the paths' length in steps " + std::to_string(pathCost(e.paths));
+  if (!std::isfinite(e.solve_time_s) || e.solve_time_s < 0) return "solve_time_s is negative or not finite";
+  if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved)
+    return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +
+           std::to_string(e.succeeded) + ")";
+  if (e.created_at < 0) return "created_at is negative";
+  return std::nullopt;
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,78 @@
+// The migrations in migrations/*.sql, embedded in the binary.
+//
+// Kept by hand, byte for byte equal to the files: a unit test
+// (test_store_schema.cpp) compares each entry with its file. To add a
+// migration: write migrations/NNNN_name.sql, paste it here as the next
+// entry, and update schema/schema.sql.
+#include "earc/experience/schema.hpp"
+
+#include <iterator>
+
+namespace earc::exp {
+
+namespace {
+
+constexpr Migration kMigrations[] = {
+    {1, "0001_create_experiences.sql", R"sql(-- Migration 1: the experiences table.
+-- One row is one solved subproblem in canonical form (see
+-- include/earc/experience/keys.hpp): its class (kind, robot_count,
+-- signature, base_class), its start/goal key and every robot's path.
+PRAGMA application_id = 1161908803;  -- 0x45415243, "EARC"
+
+CREATE TABLE experiences (
+  -- AUTOINCREMENT: ids are never reused, so "rows with id > max loaded"
+  -- is exactly the set of rows another process inserted since.
+  id          INTEGER PRIMARY KEY AUTOINCREMENT,
+  kind        TEXT    NOT NULL CHECK (kind IN ('mobile', 'manipulator')),
+  robot_count INTEGER NOT NULL CHECK (robot_count BETWEEN 1 AND 64),
+  -- RobotModel::geometrySignature of each robot, canonical order, '|'-joined.
+  signature   TEXT    NOT NULL,
+  -- Manipulators: relative base transform class; '' for mobile robots.
+  base_class  TEXT    NOT NULL,
+  -- Start/goal key: little-endian IEEE doubles, no header (the class fixes
+  -- its length).
+  key         BLOB    NOT NULL,
+  -- Every robot's time-stamped path, canonical frame and order, as one
+  -- blob with a header (include/earc/experience/path_blob.hpp).
+  paths       BLOB    NOT NULL,
+  -- Sum over robots of the path length in steps.
+  cost        REAL    NOT NULL,
+  source      TEXT    NOT NULL CHECK (source IN ('build', 'planner', 'import')),
+  -- Unix time in seconds (UTC).
+  created_at  INTEGER NOT NULL
+);
+
+CREATE INDEX experiences_by_class ON experiences (kind, robot_count, signature, base_class);
+)sql"},
+    {2, "0002_usage_and_sessions.sql", R"sql(-- Migration 2: learning across sessions.
+-- Usage counters (recordUse), the time the solver took, the session that
+-- created a row, and a small key/value table with the session counter and
+-- a deletion counter that tells other processes to reload their index.
+ALTER TABLE experiences ADD COLUMN solve_time_s    REAL    NOT NULL DEFAULT 0;
+ALTER TABLE experiences ADD COLUMN retrieved_count INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE experiences ADD COLUMN succeeded_count INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE experiences ADD COLUMN created_session INTEGER NOT NULL DEFAULT 0;
+
+CREATE TABLE store_meta (
+  name  TEXT PRIMARY KEY,
+  value INTEGER NOT NULL
+) WITHOUT ROWID;
+
+-- sessions: read-write opens that counted as a planning session.
+-- deletions: rows deleted so far (by any program, through the trigger).
+INSERT INTO store_meta (name, value) VALUES ('sessions', 0), ('deletions', 0);
+
+CREATE TRIGGER experiences_count_deletions AFTER DELETE ON experiences
+BEGIN
+  UPDATE store_meta SET value = value + 1 WHERE name = 'deletions';
+END;
+)sql"},
+};
+
+}  // namespace
+
+std::span<const Migration> migrations() { return kMigrations; }
+
+int currentSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
+
+}  // namespace earc::exp

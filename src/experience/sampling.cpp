@@ -1,0 +1,66 @@
+#include "earc/experience/sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "earc/util/random.hpp"
+
+namespace earc::exp {
+
+Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s) {
+  Query q;
+  constexpr double pi = std::numbers::pi;
+  for (int i = 0; i < robots; ++i) {
+    const double a = uniform(rng, -pi, pi);
+    const double ds = uniform(rng, s.min_start_distance, s.max_start_distance);
+    const double across = a + pi + uniform(rng, -s.cross_jitter, s.cross_jitter);
+    const double dg = uniform(rng, s.min_start_distance, s.max_start_distance);
+    q.starts.push_back({ds * std::cos(a), ds * std::sin(a), uniform(rng, -pi, pi)});
+    q.goals.push_back({dg * std::cos(across), dg * std::sin(across), uniform(rng, -pi, pi)});
+  }
+  return q;
+}
+
+Query sampleArmQuery(const RobotModel& a, const RobotModel& b, std::mt19937_64& rng, const QuerySampling& s) {
+  Query q;
+  for (const RobotModel* arm : {&a, &b}) {
+    std::vector<double> lo, hi;
+    arm->samplingBounds(geo::Aabb{}, lo, hi);
+    std::vector<double> start(lo.size()), goal(lo.size());
+    for (std::size_t j = 0; j < lo.size(); ++j) {
+      start[j] = uniform(rng, lo[j], hi[j]);
+      goal[j] = std::clamp(start[j] + uniform(rng, -s.max_joint_step, s.max_joint_step), lo[j], hi[j]);
+    }
+    q.starts.push_back(std::move(start));
+    q.goals.push_back(std::move(goal));
+  }
+  return q;
+}
+
+Experience straightLineExperience(std::span<const RobotTraits> robots, const Query& query, int steps, Source source) {
+  const Canonical c = canonicalize(robots, query.starts, query.goals);
+  std::vector<Path> paths;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const auto& s = query.starts[r];
+    const auto& g = query.goals[r];
+    Path p(static_cast<int>(s.size()));
+    std::vector<double> q(s.size());
+    for (int t = 0; t < steps; ++t) {
+      // Exactly the start at t = 0 and exactly the goal at the end.
+      const double f = steps == 1 ? 0.0 : static_cast<double>(t) / (steps - 1);
+      for (std::size_t d = 0; d < s.size(); ++d) q[d] = t == steps - 1 ? g[d] : s[d] + f * (g[d] - s[d]);
+      p.push(q);
+    }
+    paths.push_back(std::move(p));
+  }
+  Experience e;
+  e.cls = c.cls;
+  e.paths = c.toCanonical(paths);
+  e.key = keyOfCanonicalPaths(e.cls.kind, e.paths);
+  e.cost = pathCost(e.paths);
+  e.source = source;
+  return e;
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,60 @@
+#include "earc/experience/schema.hpp"
+
+#include <cstdio>
+
+namespace earc::exp {
+
+namespace {
+
+std::string hex32(std::int64_t v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "0x%08llx", static_cast<unsigned long long>(v) & 0xffffffffull);
+  return buf;
+}
+
+}  // namespace
+
+int checkIdentity(Connection& db) {
+  const std::int64_t app = db.pragmaInt("application_id");  // NOTADB -> ForeignDatabaseError
+  const int version = static_cast<int>(db.pragmaInt("user_version"));
+  const int program = currentSchemaVersion();
+  if (app == kApplicationId) {
+    if (version > program)
+      throw SchemaVersionError(db.path() + ": schema version " + std::to_string(version) +
+                                   " is newer than this program's version " + std::to_string(program) +
+                                   "; use a newer earc (this one would not understand the file)",
+                               version, program);
+    if (version < 1)
+      throw ForeignDatabaseError(db.path() + ": earc application_id but schema version " +
+                                 std::to_string(version) + "; the file was not created by earc");
+    return version;
+  }
+  Statement tables = db.prepare("SELECT count(*) FROM sqlite_schema");
+  tables.step();
+  const std::int64_t objects = tables.int64At(0);
+  tables.reset();
+  if (app == 0 && version == 0 && objects == 0) return 0;  // empty or new file
+  throw ForeignDatabaseError(db.path() + ": not an earc experience database (application_id " + hex32(app) +
+                             ", expected " + hex32(kApplicationId) + " \"EARC\"; " + std::to_string(objects) +
+                             " schema objects, user_version " + std::to_string(version) + ")");
+}
+
+int migrate(Connection& db, int target) {
+  if (target < 0) target = currentSchemaVersion();
+  const auto steps = migrations();
+  for (;;) {
+    // Each step re-reads the version inside its own write transaction, so
+    // two processes opening a new file at once apply every step once.
+    int reached = db.write([&]() -> int {
+      int version = checkIdentity(db);
+      if (version >= target) return version;
+      const Migration& m = steps[static_cast<std::size_t>(version)];
+      db.exec(m.sql);
+      db.exec("PRAGMA user_version = " + std::to_string(m.version));
+      return -1;
+    });
+    if (reached >= 0) return reached;
+  }
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,199 @@
+#include "earc/experience/sqlite.hpp"
+
+#include <random>
+#include <thread>
+
+namespace earc::exp {
+
+namespace {
+
+bool isBusy(int rc) {
+  int primary = rc & 0xff;
+  return primary == SQLITE_BUSY || primary == SQLITE_LOCKED;
+}
+
+std::string fileOf(sqlite3* db) {
+  const char* f = sqlite3_db_filename(db, "main");
+  return f && *f ? f : "<memory>";
+}
+
+[[noreturn]] void throwFor(sqlite3* db, int rc, std::string_view context) {
+  std::string msg = fileOf(db) + ": " + std::string(context) + ": " + sqlite3_errmsg(db);
+  if (isBusy(rc)) throw BusyError(msg);
+  if ((rc & 0xff) == SQLITE_NOTADB) throw ForeignDatabaseError(fileOf(db) + ": not a SQLite database");
+  throw StoreError(msg);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- Statement
+
+Statement::Statement(sqlite3* db, std::string_view sql) : db_(db) {
+  sqlite3_stmt* raw = nullptr;
+  int rc = sqlite3_prepare_v3(db, sql.data(), static_cast<int>(sql.size()), 0, &raw, nullptr);
+  stmt_.reset(raw);
+  if (rc != SQLITE_OK) throwFor(db, rc, "preparing \"" + std::string(sql.substr(0, 60)) + "\"");
+}
+
+Statement& Statement::bind(int index, std::int64_t v) {
+  int rc = sqlite3_bind_int64(stmt_.get(), index, v);
+  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  return *this;
+}
+
+Statement& Statement::bind(int index, double v) {
+  int rc = sqlite3_bind_double(stmt_.get(), index, v);
+  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  return *this;
+}
+
+Statement& Statement::bind(int index, std::string_view text) {
+  int rc = sqlite3_bind_text64(stmt_.get(), index, text.data(), text.size(), SQLITE_TRANSIENT, SQLITE_UTF8);
+  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  return *this;
+}
+
+Statement& Statement::bindBlob(int index, std::span<const unsigned char> bytes) {
+  // A zero-length blob must still be a blob, not NULL: pass a non-null pointer.
+  static const unsigned char kEmpty = 0;
+  int rc = sqlite3_bind_blob64(stmt_.get(), index, bytes.empty() ? &kEmpty : bytes.data(), bytes.size(),
+                               SQLITE_TRANSIENT);
+  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  return *this;
+}
+
+bool Statement::step() {
+  int rc = sqlite3_step(stmt_.get());
+  if (rc == SQLITE_ROW) return true;
+  if (rc == SQLITE_DONE) {
+    sqlite3_reset(stmt_.get());
+    return false;
+  }
+  sqlite3_reset(stmt_.get());
+  throwFor(db_, rc, std::string("executing \"") + std::string(std::string_view(sqlite3_sql(stmt_.get())).substr(0, 60)) + "\"");
+}
+
+void Statement::run() {
+  while (step()) {
+  }
+}
+
+void Statement::reset() {
+  sqlite3_reset(stmt_.get());
+  sqlite3_clear_bindings(stmt_.get());
+}
+
+std::string Statement::textAt(int col) const {
+  const unsigned char* p = sqlite3_column_text(stmt_.get(), col);
+  int n = sqlite3_column_bytes(stmt_.get(), col);
+  return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n)) : std::string();
+}
+
+std::span<const unsigned char> Statement::blobAt(int col) const {
+  const void* p = sqlite3_column_blob(stmt_.get(), col);
+  int n = sqlite3_column_bytes(stmt_.get(), col);
+  if (!p || n <= 0) return {};
+  return {static_cast<const unsigned char*>(p), static_cast<std::size_t>(n)};
+}
+
+// --------------------------------------------------------------- Connection
+
+Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
+    : path_(path), mode_(mode), settings_(settings) {
+  int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
+  // The store serializes access itself; the connection need not.
+  flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
+  sqlite3* raw = nullptr;
+  int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
+  db_.reset(raw);
+  if (rc != SQLITE_OK) {
+    std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);
+    throw StoreError(path + ": cannot open: " + why);
+  }
+  sqlite3* db = db_.get();
+  sqlite3_extended_result_codes(db, 1);
+  // Defensive: no writable_schema, no journal_mode=OFF, no raw shadow-table
+  // writes; untrusted schema: functions in a file's views and triggers may
+  // not have side effects.
+  sqlite3_db_config(db, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+  sqlite3_db_config(db, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
+  sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_LOAD_EXTENSION, 0, nullptr);
+  sqlite3_busy_timeout(db, settings_.busy_timeout_ms);
+  exec("PRAGMA trusted_schema = OFF");
+  exec("PRAGMA foreign_keys = ON");
+  if (mode == OpenMode::Hostile) {
+    sqlite3_limit(db, SQLITE_LIMIT_LENGTH, kHostileMaxLength);
+    exec("PRAGMA cell_size_check = ON");
+    exec("PRAGMA mmap_size = 0");
+  }
+}
+
+void Connection::exec(std::string_view sql) {
+  std::string text(sql);
+  char* err = nullptr;
+  int rc = sqlite3_exec(db_.get(), text.c_str(), nullptr, nullptr, &err);
+  if (rc != SQLITE_OK) {
+    std::string msg = err ? err : sqlite3_errstr(rc);
+    sqlite3_free(err);
+    std::string context = path_ + ": " + text.substr(0, 60) + ": " + msg;
+    if (isBusy(rc)) throw BusyError(context);
+    if ((rc & 0xff) == SQLITE_NOTADB) throw ForeignDatabaseError(path_ + ": not a SQLite database");
+    throw StoreError(context);
+  }
+}
+
+std::int64_t Connection::pragmaInt(std::string_view pragma) {
+  Statement s = prepare("PRAGMA " + std::string(pragma));
+  std::int64_t v = s.step() ? s.int64At(0) : 0;
+  s.reset();
+  return v;
+}
+
+std::string Connection::pragmaText(std::string_view pragma) {
+  Statement s = prepare("PRAGMA " + std::string(pragma));
+  std::string v = s.step() ? s.textAt(0) : std::string();
+  s.reset();
+  return v;
+}
+
+void Connection::enableWal() {
+  std::string mode = pragmaText("journal_mode = WAL");
+  if (mode != "wal")
+    throw StoreError(path_ + ": cannot switch to WAL journaling (got \"" + mode +
+                     "\"); the file system may not support shared memory (network drive?)");
+  exec("PRAGMA journal_size_limit = " + std::to_string(kJournalSizeLimit));
+  // FULL: a commit that returned is on disk even across a power cut; the
+  // store's transactions are few and small, so the fsync is affordable.
+  exec("PRAGMA synchronous = FULL");
+}
+
+void Connection::checkpointPassive() {
+  if (mode_ != OpenMode::ReadWrite) return;
+  // Passive never blocks and never fails for busy readers; nothing to handle.
+  sqlite3_wal_checkpoint_v2(db_.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+}
+
+std::string Connection::message(int rc) const { return sqlite3_errstr(rc); }
+
+void Connection::beginImmediate() { exec("BEGIN IMMEDIATE"); }
+
+void Connection::rollbackQuietly() {
+  if (!sqlite3_get_autocommit(db_.get())) sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+}
+
+void Connection::backoff(int attempt) const {
+  // Doubling delay with jitter so two waiting processes do not retry in step.
+  auto base = settings_.first_backoff * (1 << std::min(attempt - 1, 16));
+  if (base > settings_.max_backoff) base = settings_.max_backoff;
+  thread_local std::minstd_rand jitter(std::random_device{}());
+  auto ms = base.count() / 2 + static_cast<long>(jitter() % static_cast<unsigned>(base.count() + 1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+}
+
+void Connection::throwBusy(int attempts) const {
+  throw BusyError(path_ + ": database stayed locked by another process through " + std::to_string(attempts) +
+                  " attempts (busy_timeout " + std::to_string(settings_.busy_timeout_ms) +
+                  " ms each); is a long transaction holding it?");
+}
+
+}  // namespace earc::exp

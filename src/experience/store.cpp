@@ -1,0 +1,334 @@
+#include "earc/experience/store.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+
+#include "earc/experience/keys.hpp"
+#include "earc/experience/path_blob.hpp"
+#include "earc/experience/rows.hpp"
+#include "earc/experience/schema.hpp"
+
+namespace earc::exp {
+
+namespace {
+
+std::int64_t nowUnixSeconds() {
+  return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// Resets a cached statement however the scope is left.
+struct ResetOnExit {
+  Statement& s;
+  ~ResetOnExit() { s.reset(); }
+};
+
+}  // namespace
+
+ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
+    : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
+  std::lock_guard lock(mutex_);
+  openLocked();
+}
+
+ExperienceStore::~ExperienceStore() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "earc: experience store %s: closing: %s\n", path_.c_str(), e.what());
+  }
+}
+
+void ExperienceStore::openLocked() {
+  const OpenMode mode = options_.read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite;
+  conn_ = std::make_unique<Connection>(path_, mode, options_.connection);
+  // Identity first: never switch a foreign file to WAL or write to it.
+  version_ = checkIdentity(*conn_);
+  if (options_.read_only) {
+    if (version_ == 0) throw ForeignDatabaseError(path_ + ": empty file, not an earc experience database");
+  } else {
+    conn_->enableWal();
+    version_ = migrate(*conn_);
+  }
+  if (!options_.read_only && options_.new_session) {
+    session_ = conn_->write([&] {
+      conn_->exec("UPDATE store_meta SET value = value + 1 WHERE name = 'sessions'");
+      return metaLocked("sessions");
+    });
+  } else {
+    session_ = metaLocked("sessions");
+  }
+  fetch_ = std::make_unique<Statement>(conn_->prepare(selectExperiencesSql(version_) + " WHERE id = ?1"));
+  data_version_ = std::make_unique<Statement>(conn_->prepare("PRAGMA data_version"));
+  refreshLocked();
+}
+
+std::int64_t ExperienceStore::metaLocked(const char* name) {
+  if (version_ < 2) return 0;  // store_meta arrived with migration 2
+  Statement s = conn_->prepare("SELECT value FROM store_meta WHERE name = ?1");
+  s.bind(1, std::string_view(name));
+  std::int64_t v = s.step() ? s.int64At(0) : 0;
+  s.reset();
+  return v;
+}
+
+void ExperienceStore::refresh() {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  refreshLocked();
+}
+
+void ExperienceStore::refreshLocked() {
+  std::int64_t dv = 0;
+  {
+    ResetOnExit guard{*data_version_};
+    dv = data_version_->step() ? data_version_->int64At(0) : 0;
+  }
+  if (dv == loaded_data_version_) return;  // no other connection committed
+  loaded_data_version_ = dv;
+  const std::int64_t deletions = metaLocked("deletions");
+  if (deletions != loaded_deletions_) {
+    // Rows were deleted somewhere: the index may point at them; reload all.
+    index_.clear();
+    skipped_.clear();
+    max_loaded_ = 0;
+    loaded_deletions_ = deletions;
+  }
+  loadTailLocked();
+}
+
+void ExperienceStore::loadTailLocked() {
+  Statement s = conn_->prepare(
+      "SELECT id, kind, robot_count, signature, base_class, key, substr(paths, 1, 16) FROM experiences "
+      "WHERE id > ?1 ORDER BY id");
+  s.bind(1, max_loaded_);
+  while (s.step()) {
+    const std::int64_t id = s.int64At(0);
+    max_loaded_ = id;
+    try {
+      auto kind = kindFromName(s.textAt(1));
+      if (!kind) throw CorruptRowError(id, "unknown kind \"" + s.textAt(1) + "\"");
+      ExperienceClass cls{*kind, static_cast<int>(s.int64At(2)), s.textAt(3), s.textAt(4)};
+      std::vector<double> key = decodeKey(s.blobAt(5), id);
+      const PathBlobHeader header = readPathBlobHeader(s.blobAt(6), id);
+      if (header.robots != cls.robot_count) throw CorruptRowError(id, "robot_count disagrees with the path blob");
+      if (key.size() != static_cast<std::size_t>(keyDimension(cls.kind, cls.robot_count, header.dim)))
+        throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
+      const ClassIndex* existing = index_.find(cls);
+      if (existing && existing->dim() != key.size())
+        throw CorruptRowError(id, "key dimension differs from the class's other rows");
+      index_.add(cls, id, key);
+    } catch (const CorruptRowError& e) {
+      skipped_.push_back(id);
+      warnSkipped(id, e.reason());
+    }
+  }
+}
+
+void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
+  static std::mutex warn_mutex;
+  static std::set<std::pair<std::string, std::int64_t>> warned;
+  std::lock_guard lock(warn_mutex);
+  if (!warned.insert({path_, id}).second) return;
+  std::fprintf(stderr, "earc: experience store %s: skipping row %lld: %s (run earc-db verify)\n", path_.c_str(),
+               static_cast<long long>(id), why.c_str());
+}
+
+std::optional<Experience> ExperienceStore::fetchLocked(std::int64_t id) {
+  ResetOnExit guard{*fetch_};
+  fetch_->bind(1, id);
+  if (!fetch_->step()) return std::nullopt;
+  return readExperience(*fetch_);
+}
+
+std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k) {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  refreshLocked();
+  std::vector<Match> out;
+  const ClassIndex* index = index_.find(cls);
+  if (!index || index->dim() != key.size()) return out;
+  for (const Neighbor& n : index->nearest(key, k)) {
+    try {
+      if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
+    } catch (const CorruptRowError& e) {
+      warnSkipped(n.id, e.reason());
+    }
+  }
+  return out;
+}
+
+std::vector<Neighbor> ExperienceStore::nearestIds(const ExperienceClass& cls, std::span<const double> key,
+                                                  std::size_t k) {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  refreshLocked();
+  const ClassIndex* index = index_.find(cls);
+  if (!index || index->dim() != key.size()) return {};
+  return index->nearest(key, k);
+}
+
+std::optional<Experience> ExperienceStore::get(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  return fetchLocked(id);
+}
+
+std::optional<std::int64_t> ExperienceStore::insert(const Experience& e, double near_duplicate_eps) {
+  std::lock_guard lock(mutex_);
+  return insertLocked({e}, near_duplicate_eps).front();
+}
+
+std::vector<std::optional<std::int64_t>> ExperienceStore::insertAll(const std::vector<Experience>& batch,
+                                                                    double near_duplicate_eps) {
+  std::lock_guard lock(mutex_);
+  return insertLocked(batch, near_duplicate_eps);
+}
+
+std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std::vector<Experience>& batch,
+                                                                       double eps) {
+  requireWritable();
+  std::vector<Experience> rows = batch;
+  const std::int64_t now = nowUnixSeconds();
+  for (Experience& e : rows) {
+    if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
+    if (e.created_at == 0) e.created_at = now;
+    e.created_session = session_;
+  }
+  auto within = [eps](const ClassIndex* index, const Experience& e) {
+    if (!index) return false;
+    if (index->dim() != e.key.size())
+      throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
+                                  " differs from the class's " + std::to_string(index->dim()));
+    auto n = index->nearest(e.key, 1);
+    return !n.empty() && n.front().distance <= eps;
+  };
+  auto ids = conn_->write([&] {
+    // Inside the write lock: every committed row is loaded, and nobody can
+    // insert until we commit, so the duplicate check sees everything.
+    refreshLocked();
+    KeyIndex batch_index;  // rows of this transaction, for the in-batch check
+    Statement insert = conn_->prepare(insertExperienceSql());
+    std::vector<std::optional<std::int64_t>> result;
+    result.reserve(rows.size());
+    for (const Experience& e : rows) {
+      if (eps >= 0 && (within(index_.find(e.cls), e) || within(batch_index.find(e.cls), e))) {
+        result.push_back(std::nullopt);
+        continue;
+      }
+      bindExperience(insert, e);
+      insert.run();
+      insert.reset();
+      const std::int64_t id = sqlite3_last_insert_rowid(conn_->handle());
+      if (eps >= 0) batch_index.add(e.cls, id, e.key);
+      result.push_back(id);
+    }
+    return result;
+  });
+  // Committed: now the rows may enter the in-memory index.
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (ids[i]) {
+      index_.add(rows[i].cls, *ids[i], rows[i].key);
+      max_loaded_ = std::max(max_loaded_, *ids[i]);
+    }
+  afterWriteLocked();
+  return ids;
+}
+
+void ExperienceStore::recordUse(std::int64_t id, bool success) {
+  std::lock_guard lock(mutex_);
+  requireWritable();
+  auto& [retrieved, succeeded] = pending_uses_[id];
+  ++retrieved;
+  if (success) ++succeeded;
+  if (pending_uses_.size() >= kMaxPendingUses) flushLocked();
+}
+
+void ExperienceStore::flush() {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  flushLocked();
+}
+
+void ExperienceStore::flushLocked() {
+  if (pending_uses_.empty()) return;
+  conn_->write([&] {
+    Statement update = conn_->prepare(
+        "UPDATE experiences SET retrieved_count = retrieved_count + ?2, succeeded_count = succeeded_count + ?3 "
+        "WHERE id = ?1");
+    for (const auto& [id, counts] : pending_uses_) {
+      update.bind(1, id).bind(2, counts.first).bind(3, counts.second);
+      update.run();
+      update.reset();
+    }
+  });
+  pending_uses_.clear();
+  afterWriteLocked();
+}
+
+void ExperienceStore::afterWriteLocked() {
+  const auto now = std::chrono::steady_clock::now();
+  if (++writes_since_checkpoint_ >= kCheckpointEveryWrites || now - last_checkpoint_ >= kCheckpointInterval) {
+    conn_->checkpointPassive();
+    writes_since_checkpoint_ = 0;
+    last_checkpoint_ = now;
+  }
+}
+
+void ExperienceStore::close() {
+  std::lock_guard lock(mutex_);
+  if (!conn_) return;
+  try {
+    if (!options_.read_only) {
+      flushLocked();
+      conn_->checkpointPassive();
+    }
+  } catch (...) {
+    fetch_.reset();
+    data_version_.reset();
+    conn_.reset();
+    throw;
+  }
+  fetch_.reset();
+  data_version_.reset();
+  conn_.reset();
+}
+
+std::size_t ExperienceStore::size() const {
+  std::lock_guard lock(mutex_);
+  return index_.size();
+}
+
+std::vector<ExperienceStore::ClassInfo> ExperienceStore::classes() const {
+  std::lock_guard lock(mutex_);
+  std::vector<ClassInfo> out;
+  for (const auto& [cls, index] : index_.classes()) out.push_back({cls, index->size(), index->dim()});
+  return out;
+}
+
+const ClassIndex* ExperienceStore::classIndex(const ExperienceClass& cls) const {
+  std::lock_guard lock(mutex_);
+  return index_.find(cls);
+}
+
+std::vector<std::int64_t> ExperienceStore::skippedRows() const {
+  std::lock_guard lock(mutex_);
+  return skipped_;
+}
+
+Connection& ExperienceStore::connection() {
+  requireOpen();
+  return *conn_;
+}
+
+void ExperienceStore::requireOpen() const {
+  if (!conn_) throw std::logic_error("ExperienceStore: used after close()");
+}
+
+void ExperienceStore::requireWritable() const {
+  requireOpen();
+  if (options_.read_only) throw std::logic_error("ExperienceStore: write on a store opened read-only");
+}
+
+}  // namespace earc::exp
