@@ -17,6 +17,10 @@ namespace {
 constexpr int kIndividualShortcuts = 80;
 // Times the roadmap is doubled before a robot is declared pathless.
 constexpr int kRoadmapGrowths = 3;
+// Merging stops at this many robots: beyond it neither prioritized nor
+// composite planning of a local subproblem succeeds in its budget, and
+// resolving the conflict without the merge is the better bet.
+constexpr std::size_t kMaxMergedRobots = 5;
 
 bool goalsApart(const std::vector<int>& robots, const std::vector<const RobotModel*>& models,
                 const std::vector<Path>& paths, std::size_t t) {
@@ -112,23 +116,24 @@ void splice(std::vector<Path>& paths, const Subproblem& sub, const LocalSolution
 }
 
 int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& spans, std::size_t t0,
-                     std::size_t t1) {
+                     std::size_t t1, std::size_t max_robots) {
+  // One hop only: the robots of spans that share a robot with the conflict
+  // itself. Following spans transitively snowballs two robots into a dozen,
+  // and no solver in the hierarchy can handle that.
+  const std::vector<int> core = robots;
   int added = 0;
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const auto& span : spans) {
-      if (span.t1 < t0 || span.t0 > t1) continue;
-      bool shares = std::any_of(span.robots.begin(), span.robots.end(), [&](int r) {
-        return std::find(robots.begin(), robots.end(), r) != robots.end();
-      });
-      if (!shares) continue;
-      for (int r : span.robots)
-        if (std::find(robots.begin(), robots.end(), r) == robots.end()) {
-          robots.push_back(r);
-          ++added;
-          changed = true;
-        }
-    }
+  for (const auto& span : spans) {
+    if (span.t1 < t0 || span.t0 > t1) continue;
+    bool shares = std::any_of(span.robots.begin(), span.robots.end(), [&](int r) {
+      return std::find(core.begin(), core.end(), r) != core.end();
+    });
+    if (!shares) continue;
+    std::vector<int> grown = robots;
+    for (int r : span.robots)
+      if (std::find(grown.begin(), grown.end(), r) == grown.end()) grown.push_back(r);
+    if (grown.size() > max_robots) continue;
+    added += static_cast<int>(grown.size() - robots.size());
+    robots = std::move(grown);
   }
   std::sort(robots.begin(), robots.end());
   return added;
@@ -236,7 +241,7 @@ std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const Lo
 bool ArcRun::resolve(const Conflict& c) {
   std::vector<int> robots{c.a, c.b};
   const auto tc = static_cast<std::size_t>(c.t);
-  int merged_here = mergeOverlapping(robots, spans_, tc, tc);
+  int merged_here = mergeOverlapping(robots, spans_, tc, tc, kMaxMergedRobots);
   merged_ += merged_here;
   for (int level = 0; level <= settings_.max_expansions;) {
     if (deadline_.expired()) return false;
@@ -259,16 +264,18 @@ bool ArcRun::resolve(const Conflict& c) {
       const std::string how = out.how.empty() ? solver->name() : out.how;
       attempts.push_back({{"solver", how}, {"ok", out.solution.has_value()}, {"time_s", secs}});
       if (!out.solution) continue;
-      if (auto other = conflictsWithResolved(sub, *out.solution)) {
-        // Merge the robot rather than undo its earlier resolution, and
-        // solve again at the same level with the larger group.
-        robots.push_back(*other);
-        const int added = 1 + mergeOverlapping(robots, spans_, sub.t_start, sub.t_start + out.solution->length() - 1);
-        merged_here += added;
-        merged_ += added;
-        ev["solved_by"] = "merged";
-        restart = true;
-        break;
+      if (robots.size() < kMaxMergedRobots) {
+        if (auto other = conflictsWithResolved(sub, *out.solution)) {
+          // Merge the robot rather than undo its earlier resolution, and
+          // solve again at the same level with the larger group.
+          robots.push_back(*other);
+          std::sort(robots.begin(), robots.end());
+          ++merged_here;
+          ++merged_;
+          ev["solved_by"] = "merged";
+          restart = true;
+          break;
+        }
       }
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
@@ -291,6 +298,8 @@ bool ArcRun::resolve(const Conflict& c) {
       ev["attempts"] = attempts;
       traceEvent(ev);
     }
+    // Once the subproblem is the whole problem, growing it changes nothing.
+    if (sub.whole_problem && !restart) return false;
     if (!restart) ++level;
   }
   return false;

@@ -13,33 +13,90 @@ namespace earc {
 
 namespace {
 
-// Checks one robot configuration against moving obstacles at a local instant.
+// Checks a robot against moving obstacles at local instants. Each
+// obstacle's bounding-disc centre is tabulated once per search, with boxes
+// over chunks of instants, so that a motion far from an obstacle costs a
+// few box tests instead of one interpolation and test per instant.
 class MotionGuard {
  public:
-  MotionGuard(const RobotModel& model, const std::vector<MovingObstacle>& obstacles)
-      : model_(model), obstacles_(obstacles) {
-    for (const auto& o : obstacles_) scratch_.emplace_back(static_cast<std::size_t>(o.model->dim()));
+  MotionGuard(const RobotModel& model, const std::vector<MovingObstacle>& obstacles, std::size_t last_instant)
+      : model_(model), obstacles_(obstacles), last_(last_instant) {
+    std::vector<double> q;
+    for (const auto& o : obstacles_) {
+      Track tr;
+      q.resize(static_cast<std::size_t>(o.model->dim()));
+      tr.centers.reserve(last_ + 1);
+      for (std::size_t k = 0; k <= last_; ++k) {
+        stateAtInstant(*o.model, *o.path, 2 * o.offset + k, q.data());
+        tr.centers.push_back(o.model->boundingCenter(q.data()));
+      }
+      for (std::size_t c = 0; c * kChunk <= last_; ++c) {
+        geo::Aabb box;
+        for (std::size_t k = c * kChunk; k < std::min(last_ + 1, (c + 1) * kChunk); ++k)
+          box.expand({tr.centers[k], tr.centers[k]});
+        tr.chunks.push_back(box);
+      }
+      tracks_.push_back(std::move(tr));
+      scratch_.emplace_back(static_cast<std::size_t>(o.model->dim()));
+    }
   }
 
-  bool free(const double* q, std::size_t instant) {
+  // The robot at q is free of every obstacle at local instant k.
+  bool free(const double* q, std::size_t k) {
     const geo::Vec2 c = model_.boundingCenter(q);
-    const double r = model_.boundingRadius();
+    for (std::size_t i = 0; i < obstacles_.size(); ++i)
+      if (!freeOf(i, q, c, k)) return false;
+    return true;
+  }
+
+  // The robot moving straight a -> b over `steps` steps from local step tau
+  // is free at instants 2 tau + 1 .. 2 tau + 2 steps.
+  bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::vector<double>& q) {
+    const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
+    const geo::Vec2 ca = model_.boundingCenter(a), cb = model_.boundingCenter(b);
+    const geo::Aabb swept = geo::Aabb{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)},
+                                      {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
-      const MovingObstacle& o = obstacles_[i];
-      double* oq = scratch_[i].data();
-      stateAtInstant(*o.model, *o.path, 2 * o.offset + instant, oq);
-      const geo::Vec2 oc = o.model->boundingCenter(oq);
-      const double reach = r + o.model->boundingRadius();
-      const geo::Vec2 d = c - oc;
-      if (d.x * d.x + d.y * d.y > reach * reach) continue;
-      if (robotsTouch(model_, q, *o.model, oq)) return false;
+      const double reach = model_.boundingRadius() + obstacles_[i].model->boundingRadius();
+      const geo::Aabb near = swept.inflated(reach);
+      for (std::size_t k = k0; k <= k1;) {
+        const std::size_t kc = std::min(k, last_);
+        const std::size_t chunk_end = (kc / kChunk + 1) * kChunk;  // first instant of the next chunk
+        if (k <= last_ && !tracks_[i].chunks[kc / kChunk].overlaps(near)) {
+          k = chunk_end;
+          continue;
+        }
+        if (k > last_ && !geo::Aabb{tracks_[i].centers[last_], tracks_[i].centers[last_]}.overlaps(near)) break;
+        model_.interpolate(a, b, static_cast<double>(k - 2 * tau) / (2 * steps), q.data());
+        if (!freeOf(i, q.data(), model_.boundingCenter(q.data()), k)) return false;
+        ++k;
+      }
     }
     return true;
   }
 
  private:
+  static constexpr std::size_t kChunk = 16;
+  struct Track {
+    std::vector<geo::Vec2> centers;  // bounding centre per instant 0..last
+    std::vector<geo::Aabb> chunks;   // box of the centres of each chunk of instants
+  };
+
+  bool freeOf(std::size_t i, const double* q, geo::Vec2 c, std::size_t k) {
+    const MovingObstacle& o = obstacles_[i];
+    const geo::Vec2 oc = tracks_[i].centers[std::min(k, last_)];
+    const double reach = model_.boundingRadius() + o.model->boundingRadius();
+    const geo::Vec2 d = c - oc;
+    if (d.x * d.x + d.y * d.y > reach * reach) return true;
+    double* oq = scratch_[i].data();
+    stateAtInstant(*o.model, *o.path, 2 * o.offset + k, oq);
+    return !robotsTouch(model_, q, *o.model, oq);
+  }
+
   const RobotModel& model_;
   const std::vector<MovingObstacle>& obstacles_;
+  std::size_t last_;
+  std::vector<Track> tracks_;
   std::vector<std::vector<double>> scratch_;
 };
 
@@ -54,8 +111,11 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions) {
   const RobotModel& model = graph.model();
   const int dim = model.dim();
-  MotionGuard guard(model, obstacles);
+  MotionGuard guard(model, obstacles, 2 * std::max(horizon, hold_until) + 2);
   if (!guard.free(graph.config(start), 0)) return std::nullopt;
+  // Unreachable in the region even with time ignored: say so now rather than
+  // after enumerating every (vertex, time) pair up to the horizon.
+  if (!shortestPath(graph, start, goal, deadline)) return std::nullopt;
 
   std::vector<double> h(static_cast<std::size_t>(graph.size()), -1.0);
   auto heuristic = [&](int v) {
@@ -63,10 +123,24 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     if (x < 0) x = model.distance(graph.config(v), graph.config(goal));
     return x;
   };
+  // The earliest arrival from which the robot can wait at its goal through
+  // hold_until. When the goal is taken at hold_until itself there is none,
+  // and searching the whole space-time graph to find that out is the most
+  // expensive way a subproblem fails.
+  std::size_t earliest_hold = 0;
+  for (std::size_t k = 2 * hold_until + 1; k-- > 0;) {
+    if (!guard.free(graph.config(goal), k)) {
+      earliest_hold = k / 2 + 1;
+      break;
+    }
+  }
+  if (earliest_hold > hold_until) return std::nullopt;
+  // Arriving later than hold_until needs only the arrival instant free.
   auto holds = [&](int v, std::size_t tau) {
-    for (std::size_t k = 2 * tau; k <= 2 * std::max(hold_until, tau); ++k)
-      if (!guard.free(graph.config(v), k)) return false;
-    return true;
+    return tau >= earliest_hold && (tau <= hold_until || guard.free(graph.config(v), 2 * tau));
+  };
+  auto priority = [&](int v, std::size_t tau) {
+    return std::max(static_cast<double>(tau) + heuristic(v), static_cast<double>(earliest_hold));
   };
 
   struct Item {
@@ -80,7 +154,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
   std::unordered_map<std::uint64_t, char> closed;
   const std::uint64_t root = nodeKey(start, 0);
   parent.emplace(root, root);
-  open.push({heuristic(start), 0, start});
+  open.push({priority(start, 0), 0, start});
   std::vector<double> q(static_cast<std::size_t>(dim));
   std::size_t expansions = 0;
   std::optional<std::uint64_t> found;
@@ -101,7 +175,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       const std::uint64_t k = nodeKey(u, tau);
       if (parent.count(k)) return;
       parent.emplace(k, key);
-      open.push({static_cast<double>(tau) + heuristic(u), tau, u});
+      open.push({priority(u, tau), tau, u});
     };
     // Wait one step.
     const double* here = graph.config(it.v);
@@ -111,11 +185,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       const std::size_t arrive = it.tau + static_cast<std::size_t>(steps);
       if (arrive > horizon || parent.count(nodeKey(u, arrive))) return;
       if (!graph.edgeValid(edge)) return;
-      const double* there = graph.config(u);
-      for (int k = 1; k <= 2 * steps; ++k) {
-        model.interpolate(here, there, static_cast<double>(k) / (2 * steps), q.data());
-        if (!guard.free(q.data(), 2 * it.tau + static_cast<std::size_t>(k))) return;
-      }
+      if (steps > 0 && !guard.motionFree(here, graph.config(u), steps, it.tau, q)) return;
       push(u, arrive);
     });
   }

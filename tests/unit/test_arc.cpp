@@ -238,14 +238,23 @@ TEST_CASE("Splicing a robot that had already finished pads its path with waits f
   CHECK(paths[0].at(6)[1] == 0);
 }
 
-TEST_CASE("Merging pulls in every robot of a resolved span that overlaps and shares a robot") {
+TEST_CASE("Merging pulls in the robots of resolved spans that overlap in time and share a conflict robot") {
   std::vector<ResolvedSpan> spans{{{1, 4}, 10, 30}, {{4, 7}, 25, 40}, {{2, 9}, 0, 100}, {{1, 5}, 50, 60}};
   std::vector<int> robots{1, 3};
-  int added = mergeOverlapping(robots, spans, 20, 28);
-  // {1,4} overlaps and shares 1 -> 4; {4,7} overlaps and now shares 4 -> 7;
-  // {2,9} overlaps but shares nothing; {1,5} does not overlap in time.
-  CHECK(robots == std::vector<int>{1, 3, 4, 7});
-  CHECK(added == 2);
+  int added = mergeOverlapping(robots, spans, 20, 28, 8);
+  // {1,4} overlaps and shares 1 -> 4. {4,7} overlaps but shares only the
+  // merged 4 (one hop, not transitive); {2,9} shares nothing; {1,5} is
+  // later in time.
+  CHECK(robots == std::vector<int>{1, 3, 4});
+  CHECK(added == 1);
+}
+
+TEST_CASE("Merging skips a span that would make the group larger than the cap") {
+  std::vector<ResolvedSpan> spans{{{1, 4, 5, 6}, 10, 30}, {{3, 8}, 10, 30}};
+  std::vector<int> robots{1, 3};
+  int added = mergeOverlapping(robots, spans, 20, 20, 4);
+  CHECK(robots == std::vector<int>{1, 3, 8});
+  CHECK(added == 1);
 }
 
 TEST_CASE("ARC plans four discs crossing in the open, and the solution validates") {

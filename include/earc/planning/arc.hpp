@@ -39,10 +39,12 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
 // the local path is longer than the span it replaces).
 void splice(std::vector<Path>& paths, const Subproblem& sub, const LocalSolution& local);
 
-// Robots of spans that contain step t and share a robot with `robots`,
-// added to `robots` until nothing changes. Returns how many were added.
+// Adds to `robots` the robots of every span that overlaps steps [t0, t1]
+// and shares a robot with the original `robots` (one hop, not transitive),
+// skipping a span that would make the group larger than max_robots.
+// Returns how many were added.
 int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& spans, std::size_t t0,
-                     std::size_t t1);
+                     std::size_t t1, std::size_t max_robots);
 
 // An individual path for one robot over its roadmap (grown when the query
 // fails), shortcut and time-stamped; nothing when none is found in time.
