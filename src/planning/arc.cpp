@@ -260,6 +260,7 @@ bool ArcRun::resolve(const Conflict& c) {
       Stopwatch sw;
       SolverOutcome out = solver->solve(ctx);
       const double secs = sw.seconds();
+      out.seconds = secs;
       solver_time_[solver->name()] += secs;
       const std::string how = out.how.empty() ? solver->name() : out.how;
       attempts.push_back({{"solver", how}, {"ok", out.solution.has_value()}, {"time_s", secs}});
@@ -360,6 +361,7 @@ PlanResult ArcRun::run() {
   st["window_expansions"] = expansions_;
   st["robots_merged"] = merged_;
   st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
+  for (auto& solver : hierarchy_) solver->finish(st);
   if (settings_.trace) result.trace = {{"format", "earc.trace.v1"}, {"events", events_}};
   return result;
 }

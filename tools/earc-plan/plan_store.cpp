@@ -1,12 +1,21 @@
 #include "plan_store.hpp"
 
+#include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 
 namespace earc {
 
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db) {
   if (method != Method::Earc) return nullptr;
-  throw InputError(db, "--db", "the experience store is not available in this build yet");
+  if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file");
+  try {
+    return std::make_shared<exp::ExperienceStore>(db);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Foreign, newer or damaged files: one line naming the file, nothing written.
+    throw InputError(db, "database", e.what());
+  }
 }
 
 }  // namespace earc

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,7 @@ struct SolverOutcome {
   std::optional<LocalSolution> solution;
   std::string how;            // the solver's name, or a refinement ("repair")
   std::int64_t entry = -1;    // database entry used, if any
+  double seconds = 0.0;       // time the solver took (set by the hierarchy)
 };
 
 class SubproblemSolver {
@@ -77,6 +79,9 @@ class SubproblemSolver {
   virtual SolverOutcome solve(SolverContext& ctx) = 0;
   // Told when the hierarchy accepted a solution, whichever solver found it.
   virtual void accepted(const SolverContext& /*ctx*/, const LocalSolution& /*sol*/, const SolverOutcome& /*by*/) {}
+  // Told once when planning ends (the robot models are still alive): a
+  // place to write what was learned and add the solver's own statistics.
+  virtual void finish(nlohmann::json& /*stats*/) {}
 };
 
 struct DecoupledSettings {

@@ -1,0 +1,54 @@
+// E-ARC's first solver: look the subproblem up in the experience store
+// (the paper's "DatabasePlanning", Algorithm 2). Retrieve the k closest
+// solutions of the subproblem's class (translated to the conflict for
+// mobile robots, roles swapped for a negative base-transform match of two
+// arms), keep those whose ends connect to the local start and goal without
+// collision, use the first that is valid against the world, else repair
+// the one with the fewest invalid segments when they are few, else hand
+// over to planning from scratch. Subproblems the later solvers solve are
+// learned (inserted when planning ends).
+#pragma once
+
+#include "earc/experience/store.hpp"
+#include "earc/planning/solver.hpp"
+
+namespace earc {
+
+struct DatabaseSolverSettings {
+  std::size_t k = 10;             // candidates retrieved
+  int max_invalid_segments = 3;   // repair only up to this many invalid runs
+  double repair_time_s = 0.1;     // composite replanning budget per run
+  bool learn = true;              // insert subproblems solved from scratch
+};
+
+class DatabaseSolver : public SubproblemSolver {
+ public:
+  DatabaseSolver(exp::ExperienceStore& store, DatabaseSolverSettings s) : store_(store), settings_(s) {}
+  const char* name() const override { return "database"; }
+  SolverOutcome solve(SolverContext& ctx) override;
+  void accepted(const SolverContext& ctx, const LocalSolution& sol, const SolverOutcome& by) override;
+  void finish(nlohmann::json& stats) override;
+
+  // The paper's database holds 2-, 3- and 4-robot subproblems.
+  static constexpr std::size_t kMaxRobots = 4;
+
+ private:
+  // start -> candidate's first state, the candidate, last state -> goal,
+  // held at the goals through the window.
+  LocalSolution connect(const std::vector<const RobotModel*>& robots, const Subproblem& sub,
+                        const std::vector<Path>& middle) const;
+
+  struct Pending {
+    std::vector<const RobotModel*> robots;
+    std::vector<Path> paths;
+    double seconds = 0.0;
+  };
+  exp::ExperienceStore& store_;
+  DatabaseSolverSettings settings_;
+  std::vector<Pending> pending_;
+  int queries_ = 0;
+  int hits_ = 0;
+  int repairs_ = 0;
+};
+
+}  // namespace earc

@@ -1,0 +1,194 @@
+// E-ARC's database solver (the paper's Algorithm 2) and planEarc.
+#include "earc/planning/database_solver.hpp"
+
+#include <algorithm>
+
+#include "earc/experience/retrieval.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/planning/arc.hpp"
+#include "earc/planning/composite.hpp"
+#include "earc/planning/coupled_solver.hpp"
+#include "earc/planning/methods.hpp"
+#include "earc/util/random.hpp"
+
+namespace earc {
+
+namespace {
+
+CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
+  CompositeState q;
+  for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
+  return q;
+}
+
+// Steps t whose motion t -> t+1 (either end or its midpoint) is invalid, as
+// maximal runs [first, last] of consecutive invalid steps.
+std::vector<std::pair<std::size_t, std::size_t>> invalidRuns(const CompositeChecker& checker,
+                                                             const std::vector<Path>& paths) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  const std::size_t n = paths.front().size();
+  std::vector<char> state_ok(n);
+  for (std::size_t t = 0; t < n; ++t) state_ok[t] = checker.stateValid(stateAt(paths, t));
+  for (std::size_t t = 0; t + 1 < n; ++t) {
+    bool ok = state_ok[t] && state_ok[t + 1] && checker.motionValid(stateAt(paths, t), stateAt(paths, t + 1));
+    if (ok) continue;
+    if (!runs.empty() && runs.back().second + 1 == t)
+      runs.back().second = t;
+    else
+      runs.emplace_back(t, t);
+  }
+  return runs;
+}
+
+// Appends the states of `part` after its first to `out` (paths joined end to start).
+void appendAfterFirst(std::vector<Path>& out, const std::vector<Path>& part) {
+  for (std::size_t r = 0; r < out.size(); ++r) out[r].append(part[r], 1);
+}
+
+}  // namespace
+
+SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
+  const Subproblem& sub = ctx.sub;
+  std::vector<const RobotModel*> robots;
+  for (int r : sub.robots) robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  if (robots.size() < 2 || robots.size() > kMaxRobots) return {std::nullopt, name(), -1};
+  auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k);
+  ++queries_;
+  if (candidates.empty()) return {std::nullopt, name(), -1};
+  CompositeChecker checker(ctx.world, robots);
+
+  struct Repairable {
+    std::size_t index;
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+  };
+  std::optional<Repairable> best;
+  std::optional<SolverOutcome> found;
+  for (std::size_t i = 0; i < candidates.size() && !found; ++i) {
+    if (ctx.deadline.expired()) break;
+    const auto& c = candidates[i];
+    const CompositeState first = stateAt(c.paths, 0);
+    const CompositeState last = stateAt(c.paths, c.paths.front().size() - 1);
+    // A candidate is only usable when the subproblem's start and goal
+    // connect to its ends without collision.
+    if (!checker.motionValid(sub.starts, first) || !checker.motionValid(last, sub.goals)) {
+      store_.recordUse(c.id, false);
+      continue;
+    }
+    auto runs = invalidRuns(checker, c.paths);
+    if (runs.empty()) {
+      found = SolverOutcome{connect(robots, sub, c.paths), "database", c.id};
+      store_.recordUse(c.id, true);
+      ++hits_;
+      break;
+    }
+    store_.recordUse(c.id, false);
+    if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
+  }
+  if (found) return std::move(*found);
+  if (!best || best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
+    return {std::nullopt, name(), -1};
+
+  // Repair: replan each invalid run between the valid states around it in
+  // the composite space, inside a box around the run.
+  const auto& c = candidates[best->index];
+  std::vector<Path> repaired;
+  for (const RobotModel* m : robots) repaired.emplace_back(m->dim());
+  std::size_t copied_to = 0;  // states [0, copied_to) of c.paths are in `repaired`
+  for (const auto& [first, last] : best->runs) {
+    const std::size_t a = first, b = last + 1;  // valid states around the run
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      for (std::size_t t = copied_to; t <= a; ++t) repaired[r].push(c.paths[r].at(t));
+    CoupledQuery q;
+    q.robots = robots;
+    q.starts = stateAt(c.paths, a);
+    q.goals = stateAt(c.paths, b);
+    q.region = sub.region;
+    CoupledSettings cs;
+    cs.time_limit_s = std::min(settings_.repair_time_s, ctx.deadline.remaining());
+    if (cs.time_limit_s <= 0) return {std::nullopt, name(), -1};
+    auto fix = solveCoupled(ctx.world, q, cs, splitSeed(ctx.seed, a));
+    if (!fix) {
+      store_.recordUse(c.id, false);
+      return {std::nullopt, name(), -1};
+    }
+    appendAfterFirst(repaired, fix->paths);
+    copied_to = b + 1;
+  }
+  for (std::size_t r = 0; r < robots.size(); ++r)
+    for (std::size_t t = copied_to; t < c.paths[r].size(); ++t) repaired[r].push(c.paths[r].at(t));
+  ++repairs_;
+  store_.recordUse(c.id, true);
+  return {connect(robots, sub, repaired), "repair", c.id};
+}
+
+LocalSolution DatabaseSolver::connect(const std::vector<const RobotModel*>& robots, const Subproblem& sub,
+                                      const std::vector<Path>& middle) const {
+  const CompositeState first = stateAt(middle, 0);
+  const CompositeState last = stateAt(middle, middle.front().size() - 1);
+  LocalSolution head = timeStampComposite(robots, {sub.starts, first});
+  LocalSolution tail = timeStampComposite(robots, {last, sub.goals});
+  LocalSolution out = std::move(head);
+  appendAfterFirst(out.paths, middle);
+  appendAfterFirst(out.paths, tail.paths);
+  // Hold at the goals through the window, as the other solvers do.
+  const std::size_t len = std::max(out.length(), sub.t_end - sub.t_start + 1);
+  for (auto& p : out.paths)
+    while (p.size() < len) p.push(p.back());
+  return out;
+}
+
+void DatabaseSolver::accepted(const SolverContext& ctx, const LocalSolution& sol, const SolverOutcome& by) {
+  if (!settings_.learn || by.how == "database" || by.how == "repair") return;
+  if (ctx.sub.robots.size() < 2 || ctx.sub.robots.size() > kMaxRobots) return;
+  Pending p;
+  for (int r : ctx.sub.robots) p.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  // Trailing steps where every robot waits at its goal say nothing about
+  // how the conflict was resolved: store the solution without them.
+  std::size_t len = sol.length();
+  auto still = [&](std::size_t t) {
+    for (const auto& path : sol.paths)
+      if (!std::equal(path.at(t), path.at(t) + path.dim(), path.at(t - 1))) return false;
+    return true;
+  };
+  while (len > 2 && still(len - 1)) --len;
+  for (const auto& path : sol.paths) p.paths.push_back(path.slice(0, len));
+  p.seconds = by.seconds;
+  pending_.push_back(std::move(p));
+}
+
+void DatabaseSolver::finish(nlohmann::json& stats) {
+  Stopwatch sw;
+  int learned = 0;
+  for (const auto& p : pending_)
+    if (exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) ++learned;
+  store_.flush();
+  stats["db_queries"] = queries_;
+  stats["db_hits"] = hits_;
+  stats["db_repairs"] = repairs_;
+  stats["db_learned"] = learned;
+  stats["db_learn_candidates"] = pending_.size();
+  stats["db_learn_time_s"] = sw.seconds();
+  pending_.clear();
+}
+
+PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
+  if (store == nullptr) throw InputError("", "--db", "method earc needs an experience database (--db FILE)");
+  DatabaseSolverSettings ds;
+  ds.k = static_cast<std::size_t>(settings.db_k);
+  ds.max_invalid_segments = settings.db_max_invalid_segments;
+  ds.learn = settings.db_learn;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+  hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
+  for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));
+  PlanResult r = runArc(scenario, settings, std::move(hierarchy));
+  // The hit rate: subproblems solved from the database (as retrieved or
+  // repaired) over all subproblems solved.
+  int subproblems = 0;
+  const nlohmann::json by = r.stats.value("subproblems_by_solver", nlohmann::json::object());
+  for (const auto& [name, count] : by.items()) subproblems += count.get<int>();
+  const int from_db = by.value("database", 0) + by.value("repair", 0);
+  r.stats["db_hit_rate"] = subproblems > 0 ? static_cast<double>(from_db) / subproblems : 0.0;
+  return r;
+}
+
+}  // namespace earc
