@@ -9,14 +9,26 @@
 
 namespace earc {
 
+struct Scenario;
+
 struct Solution {
   std::string scenario;  // the scenario's name
   std::string method;
   bool solved = false;
   std::vector<Path> paths;  // one per robot, in the scenario's order
   nlohmann::json stats = nlohmann::json::object();
+  // robot_names[i] names the robot of paths[i] (the document's "robot").
+  // Empty means the scenario's order. A solution read from a file keeps the
+  // file's entries as they are, so that the validator can report a path out
+  // of order or for an unknown robot (an unknown robot's path is left empty).
+  // solutionToJson needs the names: set them with nameRobots().
+  std::vector<std::string> robot_names;
 
-  // Makespan: longest path in steps (max over robots of states - 1).
+  // Sets robot_names to the scenario's robot names (paths in scenario order).
+  void nameRobots(const Scenario& scenario);
+
+  // Makespan: longest path in steps (max over robots of states - 1; an
+  // empty path counts 0).
   std::size_t makespan() const;
   // Sum over robots of states - 1.
   std::size_t sumOfCosts() const;
