@@ -1,0 +1,166 @@
+// Strict JSON text in and atomic text out.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "earc/io/json_io.hpp"
+#include "json_reader.hpp"
+
+namespace earc {
+namespace {
+
+using nlohmann::json;
+
+// Follows the parser's events to know the JSON path of the value being
+// read, so that a duplicate key or a syntax error can be located by path
+// as well as by line and column.
+class PathTracker {
+ public:
+  explicit PathTracker(const std::string& file) : file_(file) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: stack_.emplace_back(false); break;
+      case json::parse_event_t::array_start: stack_.emplace_back(true); break;
+      case json::parse_event_t::key: {
+        Frame& top = stack_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw InputError(file_, path(), "duplicate key \"" + top.key + "\"");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack_.pop_back();
+        elementDone();
+        break;
+      case json::parse_event_t::value: elementDone(); break;
+    }
+    return true;
+  }
+
+  // Path of the value the parser is in (or about to read).
+  std::string path() const {
+    std::string p = "$";
+    for (const Frame& f : stack_) {
+      if (f.array) p = io::element(p, f.index);
+      else if (!f.key.empty() || !f.keys.empty()) p = io::member(p, f.key.c_str());
+    }
+    return p;
+  }
+
+ private:
+  struct Frame {
+    explicit Frame(bool is_array) : array(is_array) {}
+    bool array = false;
+    std::size_t index = 0;                 // arrays: the element being read
+    std::string key;                       // objects: the member being read
+    std::unordered_set<std::string> keys;  // objects: keys seen so far
+  };
+  void elementDone() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  const std::string& file_;
+  std::vector<Frame> stack_;
+};
+
+// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax
+// error while parsing value - invalid literal; last read: 'NaN'" ->
+// where "line 3, column 7", reason "syntax error ...".
+void splitParseError(const std::string& what, std::string& where, std::string& reason) {
+  static const std::regex located(R"(^\[json\.exception\.[a-z_]+\.\d+\] (?:parse error )?at (line \d+, column \d+): (.*)$)");
+  static const std::regex plain(R"(^\[json\.exception\.[a-z_]+\.\d+\] (.*)$)");
+  std::smatch m;
+  if (std::regex_match(what, m, located)) {
+    where = m[1];
+    reason = m[2];
+  } else if (std::regex_match(what, m, plain)) {
+    reason = m[1];
+  } else {
+    reason = what;
+  }
+}
+
+}  // namespace
+
+json parseJsonText(const std::string& text, const std::string& file) {
+  PathTracker tracker(file);
+  try {
+    json doc = json::parse(text, std::ref(tracker));
+    return doc;
+  } catch (const json::exception& e) {
+    std::string where, reason;
+    splitParseError(e.what(), where, reason);
+    // A number too large for a double ("1e999") overflows to infinity: the
+    // parser refuses it without a position, the tracker knows the path.
+    const std::string path = tracker.path();
+    where = where.empty() ? path : where + " (" + path + ")";
+    if (reason.find("invalid literal") != std::string::npos)
+      reason += " (JSON has no NaN or Infinity; numbers must be finite)";
+    throw InputError(file, where, "malformed JSON: " + reason);
+  }
+}
+
+json readJsonFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  if (in.bad()) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
+  return parseJsonText(buf.str(), path);
+}
+
+void writeTextFileAtomic(const std::string& path, const std::string& text) {
+  auto failure = [&](const std::string& what) {
+    return std::runtime_error(path + ": " + what + ": " + std::strerror(errno));
+  };
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  // Same directory, so the rename stays on one file system and is atomic.
+  std::random_device rd;
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw failure("cannot create temporary file " + tmp);
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const auto err = failure("cannot write");
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      throw err;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  if (!synced || ::close(fd) != 0) {
+    const auto err = failure("cannot flush");
+    if (!synced) ::close(fd);  // a failed close has released fd already
+    ::unlink(tmp.c_str());
+    throw err;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const auto err = failure("cannot rename " + tmp + " to it");
+    ::unlink(tmp.c_str());
+    throw err;
+  }
+  // Make the rename itself durable.
+  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+}  // namespace earc

@@ -1,0 +1,231 @@
+// earc.scenario.v1 documents (shared/spec/formats.md, "Scenario").
+#include <numbers>
+#include <unordered_map>
+
+#include "earc/io/json_io.hpp"
+#include "earc/validate/validator.hpp"
+#include "json_reader.hpp"
+
+namespace earc {
+namespace {
+
+using namespace io;  // JsonReader, member, element, json
+
+Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) {
+  r.object(v, p);
+  Obstacle o;
+  const std::string type = r.string(r.required(v, "type", p), member(p, "type"));
+  o.center = r.vec2(r.required(v, "center", p), member(p, "center"));
+  if (type == "box") {
+    o.type = Obstacle::Type::Box;
+    const std::string sp = member(p, "size");
+    const json& size = r.required(v, "size", p);
+    r.numbers(size, 2, sp);
+    o.size = {r.positive(size[0], element(sp, 0)), r.positive(size[1], element(sp, 1))};
+    if (const json* a = r.optional(v, "angle")) o.angle = r.number(*a, member(p, "angle"));
+  } else if (type == "circle") {
+    o.type = Obstacle::Type::Circle;
+    o.radius = r.positive(r.required(v, "radius", p), member(p, "radius"));
+  } else {
+    r.fail(member(p, "type"), "unknown obstacle type \"" + type + "\" (expected \"box\" or \"circle\")");
+  }
+  return o;
+}
+
+void readMobile(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
+  spec.kind = RobotKind::Mobile;
+  const std::string sp = member(p, "shape");
+  const json& shape = r.object(r.required(v, "shape", p), sp);
+  const std::string type = r.string(r.required(shape, "type", sp), member(sp, "type"));
+  if (type == "disc") {
+    spec.shape = MobileShape::Disc;
+    spec.radius = r.positive(r.required(shape, "radius", sp), member(sp, "radius"));
+  } else if (type == "box") {
+    spec.shape = MobileShape::Box;
+    const std::string zp = member(sp, "size");
+    const json& size = r.required(shape, "size", sp);
+    r.numbers(size, 2, zp);
+    spec.box_size = {r.positive(size[0], element(zp, 0)), r.positive(size[1], element(zp, 1))};
+  } else {
+    r.fail(member(sp, "type"), "unknown shape type \"" + type + "\" (expected \"disc\" or \"box\")");
+  }
+  spec.start = r.numbers(r.required(v, "start", p), 3, member(p, "start"), "x, y, theta");
+  spec.goal = r.numbers(r.required(v, "goal", p), 3, member(p, "goal"), "x, y, theta");
+}
+
+void readManipulator(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
+  spec.kind = RobotKind::Manipulator;
+  const auto base = r.numbers(r.required(v, "base", p), 3, member(p, "base"), "x, y, theta0");
+  spec.base_position = {base[0], base[1]};
+  spec.base_angle = base[2];
+  const std::string lp = member(p, "links");
+  const json& links = r.array(r.required(v, "links", p), lp);
+  if (links.empty()) r.fail(lp, "an arm needs at least one link");
+  for (std::size_t i = 0; i < links.size(); ++i) spec.links.push_back(r.positive(links[i], element(lp, i)));
+  const std::size_t n = spec.links.size();
+  spec.link_radius = r.nonNegative(r.required(v, "link_radius", p), member(p, "link_radius"));
+  if (const json* lim = r.optional(v, "joint_limits", true)) {
+    const std::string jp = member(p, "joint_limits");
+    r.array(*lim, jp);
+    if (lim->size() != n)
+      r.fail(jp, "expected " + std::to_string(n) + " [lo, hi] pairs (one per link), got " + std::to_string(lim->size()));
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto lh = r.numbers((*lim)[j], 2, element(jp, j), "lo, hi");
+      if (lh[0] > lh[1])
+        r.fail(element(jp, j), "lo " + io::formatNumber(lh[0]) + " > hi " + io::formatNumber(lh[1]));
+      spec.joint_limits.emplace_back(lh[0], lh[1]);
+    }
+  } else {
+    spec.joint_limits.assign(n, {-std::numbers::pi, std::numbers::pi});
+  }
+  spec.start = r.numbers(r.required(v, "start", p), n, member(p, "start"), "one per link");
+  spec.goal = r.numbers(r.required(v, "goal", p), n, member(p, "goal"), "one per link");
+}
+
+json vec(geo::Vec2 v) { return json::array({v.x, v.y}); }
+
+}  // namespace
+
+Scenario scenarioFromJson(const json& doc, const std::string& file) {
+  const JsonReader r(file);
+  r.object(doc, "$");
+  r.format(doc, kScenarioFormat);
+  Scenario s;
+  if (const json* name = r.optional(doc, "name", true)) s.name = r.string(*name, "$.name");
+
+  const json& ws = r.object(r.required(doc, "workspace", "$"), "$.workspace");
+  s.workspace.lo = r.vec2(r.required(ws, "min", "$.workspace"), "$.workspace.min");
+  s.workspace.hi = r.vec2(r.required(ws, "max", "$.workspace"), "$.workspace.max");
+  if (!(s.workspace.lo.x < s.workspace.hi.x && s.workspace.lo.y < s.workspace.hi.y))
+    r.fail("$.workspace", "min must be below max in x and y");
+
+  if (const json* res = r.optional(doc, "resolution", true)) {
+    r.object(*res, "$.resolution");
+    // Each key defaults on its own.
+    if (const json* v = r.optional(*res, "translation")) s.resolution.translation = r.positive(*v, "$.resolution.translation");
+    if (const json* v = r.optional(*res, "rotation")) s.resolution.rotation = r.positive(*v, "$.resolution.rotation");
+    if (const json* v = r.optional(*res, "joint")) s.resolution.joint = r.positive(*v, "$.resolution.joint");
+  }
+
+  if (const json* obs = r.optional(doc, "obstacles", true)) {
+    r.array(*obs, "$.obstacles");
+    for (std::size_t i = 0; i < obs->size(); ++i)
+      s.obstacles.push_back(readObstacle(r, (*obs)[i], element("$.obstacles", i)));
+  }
+
+  const json& robots = r.array(r.required(doc, "robots", "$"), "$.robots");
+  std::unordered_map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const std::string p = element("$.robots", i);
+    const json& v = r.object(robots[i], p);
+    RobotSpec spec;
+    spec.name = r.string(r.required(v, "name", p), member(p, "name"));
+    if (auto [it, fresh] = seen.emplace(spec.name, i); !fresh)
+      r.fail(member(p, "name"), "duplicate robot name \"" + spec.name + "\" (also " +
+                                    element("$.robots", it->second) + ")");
+    const std::string type = r.string(r.required(v, "type", p), member(p, "type"));
+    if (type == "mobile") readMobile(r, v, p, spec);
+    else if (type == "manipulator") readManipulator(r, v, p, spec);
+    else r.fail(member(p, "type"), "unknown robot type \"" + type + "\" (expected \"mobile\" or \"manipulator\")");
+    s.robots.push_back(std::move(spec));
+  }
+  return s;
+}
+
+json scenarioToJson(const Scenario& s) {
+  json doc = json::object();
+  doc["format"] = kScenarioFormat;
+  doc["name"] = s.name;
+  doc["workspace"] = {{"min", vec(s.workspace.lo)}, {"max", vec(s.workspace.hi)}};
+  doc["resolution"] = {{"translation", s.resolution.translation},
+                       {"rotation", s.resolution.rotation},
+                       {"joint", s.resolution.joint}};
+  json obstacles = json::array();
+  for (const Obstacle& o : s.obstacles) {
+    if (o.type == Obstacle::Type::Box)
+      obstacles.push_back({{"type", "box"}, {"center", vec(o.center)}, {"size", vec(o.size)}, {"angle", o.angle}});
+    else
+      obstacles.push_back({{"type", "circle"}, {"center", vec(o.center)}, {"radius", o.radius}});
+  }
+  doc["obstacles"] = std::move(obstacles);
+  json robots = json::array();
+  for (const RobotSpec& r : s.robots) {
+    json j = {{"name", r.name}};
+    if (r.kind == RobotKind::Mobile) {
+      j["type"] = "mobile";
+      j["shape"] = r.shape == MobileShape::Disc ? json{{"type", "disc"}, {"radius", r.radius}}
+                                                 : json{{"type", "box"}, {"size", vec(r.box_size)}};
+    } else {
+      j["type"] = "manipulator";
+      j["base"] = {r.base_position.x, r.base_position.y, r.base_angle};
+      j["links"] = r.links;
+      j["link_radius"] = r.link_radius;
+      json limits = json::array();
+      for (auto [lo, hi] : r.joint_limits) limits.push_back({lo, hi});
+      j["joint_limits"] = std::move(limits);
+    }
+    j["start"] = r.start;
+    j["goal"] = r.goal;
+    robots.push_back(std::move(j));
+  }
+  doc["robots"] = std::move(robots);
+  return doc;
+}
+
+void checkScenarioGeometry(const Scenario& s, const std::string& file) {
+  const InstantChecker checker(s);
+  std::vector<int> all(s.robots.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  std::vector<Violation> found;
+  for (const bool goal : {false, true}) {
+    const char* label = goal ? "goal" : "start";
+    std::vector<const double*> q;
+    for (const RobotSpec& r : s.robots) q.push_back(goal ? r.goal.data() : r.start.data());
+    for (int i : all) checker.checkJointLimits(i, q[static_cast<std::size_t>(i)], 0, found);
+    checker.checkGeometry(all, q, 0, found);
+    if (found.empty()) continue;
+    // The first problem, named by the robot's path in the document. A
+    // robot-robot contact is reported at the later robot.
+    const Violation& v = found.front();
+    const int robot = v.robots.back();
+    std::string where = member(element("$.robots", static_cast<std::size_t>(robot)), label);
+    std::string reason;
+    switch (v.type) {
+      case Violation::Type::JointLimit: {
+        const auto [lo, hi] = s.robots[static_cast<std::size_t>(robot)].joint_limits[static_cast<std::size_t>(v.joint)];
+        where = element(where, static_cast<std::size_t>(v.joint));
+        reason = std::string(label) + " is outside the joint limits [" + io::formatNumber(lo) + ", " +
+                 io::formatNumber(hi) + "]";
+        break;
+      }
+      case Violation::Type::Workspace:
+        reason = std::string(label) + " is outside the workspace by " + io::formatNumber(v.amount);
+        break;
+      case Violation::Type::Obstacle:
+        reason = std::string(label) + " is in collision with obstacle " + std::to_string(v.obstacle) + " (" +
+                 element("$.obstacles", static_cast<std::size_t>(v.obstacle)) + ", " +
+                 (s.obstacles[static_cast<std::size_t>(v.obstacle)].type == Obstacle::Type::Box ? "box" : "circle") +
+                 "), overlap " + io::formatNumber(v.amount);
+        break;
+      case Violation::Type::SelfCollision:
+        reason = std::string(label) + " is in self-collision: " + v.detail;
+        break;
+      case Violation::Type::RobotRobot:
+        reason = std::string(label) + " touches the " + label + " of robot \"" +
+                 s.robots[static_cast<std::size_t>(v.robots.front())].name + "\" (" +
+                 element("$.robots", static_cast<std::size_t>(v.robots.front())) + "), overlap " +
+                 io::formatNumber(v.amount);
+        break;
+      default: reason = std::string(label) + ": " + v.detail; break;
+    }
+    throw InputError(file, where, reason);
+  }
+}
+
+Scenario loadScenario(const std::string& path) {
+  Scenario s = scenarioFromJson(readJsonFile(path), path);
+  checkScenarioGeometry(s, path);
+  return s;
+}
+
+}  // namespace earc

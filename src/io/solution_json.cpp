@@ -1,0 +1,129 @@
+// earc.solution.v1 documents (shared/spec/formats.md, "Solution").
+#include <stdexcept>
+#include <unordered_map>
+
+#include "earc/io/json_io.hpp"
+#include "json_reader.hpp"
+
+namespace earc {
+namespace {
+
+using namespace io;  // JsonReader, member, element, json
+
+// states: an array of states of `dim` numbers each; dim < 0 takes the
+// length of the first state.
+Path readStates(const JsonReader& r, const json& states, int dim, const std::string& p) {
+  r.array(states, p);
+  if (dim < 0) {
+    if (states.empty()) return Path(0);
+    const std::string s0 = element(p, 0);
+    dim = static_cast<int>(r.array(states[0], s0).size());
+    if (dim == 0) r.fail(s0, "a state needs at least one number");
+  }
+  Path path(dim);
+  path.reserve(states.size());
+  auto& raw = path.raw();
+  for (std::size_t t = 0; t < states.size(); ++t) {
+    const json& s = states[t];
+    const std::string sp = element(p, t);
+    if (!s.is_array() || s.size() != static_cast<std::size_t>(dim))
+      r.fail(sp, "expected a state of " + std::to_string(dim) + " numbers, got " + io::describe(s));
+    for (std::size_t i = 0; i < s.size(); ++i) raw.push_back(r.number(s[i], element(sp, i)));
+  }
+  return path;
+}
+
+}  // namespace
+
+Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::string& file) {
+  const JsonReader r(file);
+  r.object(doc, "$");
+  r.format(doc, kSolutionFormat);
+  Solution sol;
+  if (const json* v = r.optional(doc, "scenario", true)) sol.scenario = r.string(*v, "$.scenario");
+  if (const json* v = r.optional(doc, "method", true)) sol.method = r.string(*v, "$.method");
+  sol.solved = r.boolean(r.required(doc, "solved", "$"), "$.solved");
+  if (const json* v = r.optional(doc, "stats")) sol.stats = *v;
+
+  // An unsolved solution may leave "paths" out.
+  const json* paths = sol.solved ? &r.required(doc, "paths", "$") : r.optional(doc, "paths");
+  if (paths == nullptr) return sol;
+  r.array(*paths, "$.paths");
+  std::unordered_map<std::string, int> dims;
+  if (scenario != nullptr)
+    for (const RobotSpec& spec : scenario->robots) dims.emplace(spec.name, spec.dim());
+  for (std::size_t i = 0; i < paths->size(); ++i) {
+    const std::string p = element("$.paths", i);
+    const json& entry = r.object((*paths)[i], p);
+    std::string name = r.string(r.required(entry, "robot", p), member(p, "robot"));
+    const json& states = r.required(entry, "states", p);
+    int dim = -1;
+    if (scenario != nullptr) {
+      auto it = dims.find(name);
+      // A path for a robot the scenario does not have is a violation the
+      // validator reports, not malformed input: keep the name, not the states.
+      if (it == dims.end()) {
+        sol.paths.emplace_back(0);
+        sol.robot_names.push_back(std::move(name));
+        continue;
+      }
+      dim = it->second;
+    }
+    sol.paths.push_back(readStates(r, states, dim, member(p, "states")));
+    sol.robot_names.push_back(std::move(name));
+  }
+  return sol;
+}
+
+json solutionToJson(const Solution& s) {
+  if (s.robot_names.size() != s.paths.size())
+    throw std::invalid_argument("solutionToJson: robot_names must name every path (" +
+                                std::to_string(s.robot_names.size()) + " names, " +
+                                std::to_string(s.paths.size()) + " paths); call Solution::nameRobots");
+  json doc = json::object();
+  doc["format"] = kSolutionFormat;
+  doc["scenario"] = s.scenario;
+  doc["method"] = s.method;
+  doc["solved"] = s.solved;
+  json paths = json::array();
+  for (std::size_t i = 0; i < s.paths.size(); ++i) {
+    const Path& path = s.paths[i];
+    json states = json::array();
+    for (std::size_t t = 0; t < path.size(); ++t) {
+      const auto q = path.state(t);
+      states.push_back(json(std::vector<double>(q.begin(), q.end())));
+    }
+    paths.push_back({{"robot", s.robot_names[i]}, {"states", std::move(states)}});
+  }
+  doc["paths"] = std::move(paths);
+  doc["stats"] = s.stats;
+  return doc;
+}
+
+Solution loadSolution(const std::string& path, const Scenario* scenario) {
+  return solutionFromJson(readJsonFile(path), scenario, path);
+}
+
+void saveSolution(const std::string& path, const Solution& s) {
+  // One state per line: readable and diffable, yet compact for long paths.
+  // nlohmann prints doubles with the shortest text that reads back exactly.
+  const json doc = solutionToJson(s);
+  // Planner-made stats could hold invalid UTF-8: replaced, not thrown on.
+  auto dump = [](const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); };
+  std::string text = "{\n";
+  for (const char* key : {"format", "scenario", "method", "solved", "stats"})
+    text += "  " + json(key).dump() + ": " + dump(doc[key]) + ",\n";
+  text += "  \"paths\": [";
+  const json& paths = doc["paths"];
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    text += i ? ",\n" : "\n";
+    text += "    {\"robot\": " + dump(paths[i]["robot"]) + ", \"states\": [";
+    const json& states = paths[i]["states"];
+    for (std::size_t t = 0; t < states.size(); ++t) text += (t ? ",\n      " : "\n      ") + states[t].dump();
+    text += states.empty() ? "]}" : "\n    ]}";
+  }
+  text += paths.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  writeTextFileAtomic(path, text);
+}
+
+}  // namespace earc
