@@ -1,0 +1,46 @@
+#!/bin/bash
+# Bad input makes `earc-plan validate` exit 2 with one line on stderr naming
+# the file, where in it (line and column, or JSON path) and the reason.
+set -u
+PLAN="$1/earc-plan"
+DATA="$2/tests/data"
+fail() { echo "FAIL: $*"; exit 1; }
+ERR=$(mktemp)
+OUT=$(mktemp)
+trap 'rm -f "$ERR" "$OUT"' EXIT
+
+# expect SCENARIO SOLUTION PATTERN: exit 2, nothing on stdout, and exactly one
+# stderr line that matches PATTERN (grep -E).
+expect() {
+  "$PLAN" validate "$1" "$2" > "$OUT" 2> "$ERR"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$(basename "$1") + $(basename "$2"): exit $rc, expected 2; $(cat "$ERR")"
+  [ ! -s "$OUT" ] || fail "$(basename "$1"): unexpected stdout: $(cat "$OUT")"
+  [ "$(wc -l < "$ERR")" -eq 1 ] || fail "$(basename "$1"): expected one stderr line, got: $(cat "$ERR")"
+  grep -Eq "$3" "$ERR" || fail "$(basename "$1"): '$(cat "$ERR")' does not match '$3'"
+}
+
+VALID="$DATA/solutions/swap-discs__valid.json"
+SCEN="$DATA/scenarios/swap-discs.json"
+expect "$DATA/bad/malformed.json" "$VALID" \
+  '^earc-plan: error: .*bad/malformed\.json: line 4, column 35 \(.*\): malformed JSON: '
+expect "$DATA/bad/nan.json" "$VALID" \
+  'bad/nan\.json: line 3, column [0-9]+ \(\$\.robots\[0\]\.start\[1\]\): malformed JSON: .*invalid literal.*NaN'
+expect "$DATA/bad/start-in-collision.json" "$VALID" \
+  'bad/start-in-collision\.json: \$\.robots\[0\]\.start: start is in collision with obstacle 0 \(\$\.obstacles\[0\], box\), overlap 0\.35$'
+expect "$DATA/bad/starts-touch.json" "$VALID" \
+  '\$\.robots\[1\]\.start: start touches the start of robot "m0"'
+expect "$DATA/bad/duplicate-key.json" "$VALID" '\$\.robots\[0\]\.start: duplicate key "start"'
+expect "$DATA/bad/unknown-shape.json" "$VALID" '\$\.robots\[0\]\.shape\.type: unknown shape type "hexagon"'
+expect "$SCEN" "$DATA/bad/swap-discs__wrong-dimension.json" \
+  'swap-discs__wrong-dimension\.json: \$\.paths\[0\]\.states\[0\]: expected a state of 3 numbers'
+expect "$SCEN" "$DATA/bad/swap-discs__infinite-number.json" '\$\.paths\[0\]\.states\[1\]\[2\]: malformed JSON: number overflow'
+expect "$SCEN" "$DATA/bad/swap-discs__truncated.json" 'swap-discs__truncated\.json: line 2, column 56 '
+
+# --json still gives a verdict on stdout.
+"$PLAN" validate "$DATA/bad/nan.json" "$VALID" --json > "$OUT" 2> "$ERR"
+rc=$?
+[ $rc -eq 2 ] || fail "--json bad input: exit $rc"
+/usr/bin/python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); assert r["valid"] is False and r["malformed"] is True and "nan.json" in r["error"], r' "$OUT" \
+  || fail "--json bad input output: $(cat "$OUT")"
+echo "ok"

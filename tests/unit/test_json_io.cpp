@@ -1,0 +1,503 @@
+// Reading and writing earc.scenario.v1 / earc.solution.v1: every kind of bad
+// input is refused with a message naming the file, the JSON path and the
+// reason; what is written reads back exactly.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <unistd.h>
+
+#include "earc/io/json_io.hpp"
+
+using earc::InputError;
+using nlohmann::json;
+
+namespace {
+
+json validScenario() {
+  return json::parse(R"({
+    "format": "earc.scenario.v1", "name": "t",
+    "workspace": {"min": [0, 0], "max": [10, 10]},
+    "resolution": {"translation": 0.1, "rotation": 0.2, "joint": 0.3},
+    "obstacles": [{"type": "box", "center": [5, 5], "size": [1, 2], "angle": 0.5},
+                  {"type": "circle", "center": [8, 2], "radius": 0.5}],
+    "robots": [
+      {"name": "m0", "type": "mobile", "shape": {"type": "disc", "radius": 0.3},
+       "start": [1, 1, 0], "goal": [9, 9, 1]},
+      {"name": "m1", "type": "mobile", "shape": {"type": "box", "size": [0.8, 0.4]},
+       "start": [1, 9, 0], "goal": [9, 1, 3]},
+      {"name": "a0", "type": "manipulator", "base": [2, 5, 0], "links": [1, 0.5], "link_radius": 0.1,
+       "joint_limits": [[-3, 3], [-2, 2]], "start": [0, 0], "goal": [0.5, -0.5]}
+    ]})");
+}
+
+// The message of the InputError that reading doc throws ("" when none).
+std::string scenarioError(const json& doc) {
+  try {
+    earc::scenarioFromJson(doc, "in.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string geometryError(const json& doc) {
+  try {
+    earc::checkScenarioGeometry(earc::scenarioFromJson(doc, "in.json"), "in.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string parseError(const std::string& text) {
+  try {
+    earc::parseJsonText(text, "in.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Checks that the error names the file, the path and the reason.
+#define CHECK_ERROR(message, path, reason)                         \
+  do {                                                             \
+    const std::string m_ = (message);                              \
+    INFO("message: " << m_);                                       \
+    CHECK(m_.rfind("in.json: ", 0) == 0);                          \
+    CHECK(has(m_, std::string(path) + ": "));                      \
+    CHECK(has(m_, reason));                                        \
+  } while (0)
+
+std::string tempDir() {
+  auto dir = std::filesystem::temp_directory_path() / ("earc-io-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+void checkSameScenario(const earc::Scenario& a, const earc::Scenario& b) {
+  CHECK(a.name == b.name);
+  CHECK(a.workspace.lo == b.workspace.lo);
+  CHECK(a.workspace.hi == b.workspace.hi);
+  CHECK(a.resolution.translation == b.resolution.translation);
+  CHECK(a.resolution.rotation == b.resolution.rotation);
+  CHECK(a.resolution.joint == b.resolution.joint);
+  REQUIRE(a.obstacles.size() == b.obstacles.size());
+  for (std::size_t i = 0; i < a.obstacles.size(); ++i) {
+    CHECK(a.obstacles[i].type == b.obstacles[i].type);
+    CHECK(a.obstacles[i].center == b.obstacles[i].center);
+    CHECK(a.obstacles[i].size == b.obstacles[i].size);
+    CHECK(a.obstacles[i].angle == b.obstacles[i].angle);
+    CHECK(a.obstacles[i].radius == b.obstacles[i].radius);
+  }
+  REQUIRE(a.robots.size() == b.robots.size());
+  for (std::size_t i = 0; i < a.robots.size(); ++i) {
+    const auto& x = a.robots[i];
+    const auto& y = b.robots[i];
+    CHECK(x.name == y.name);
+    CHECK(x.kind == y.kind);
+    CHECK(x.shape == y.shape);
+    CHECK(x.radius == y.radius);
+    CHECK(x.box_size == y.box_size);
+    CHECK(x.base_position == y.base_position);
+    CHECK(x.base_angle == y.base_angle);
+    CHECK(x.links == y.links);
+    CHECK(x.link_radius == y.link_radius);
+    CHECK(x.joint_limits == y.joint_limits);
+    CHECK(x.start == y.start);
+    CHECK(x.goal == y.goal);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a well-formed scenario reads with every field in place") {
+  const earc::Scenario s = earc::scenarioFromJson(validScenario(), "in.json");
+  CHECK(s.name == "t");
+  CHECK(s.resolution.rotation == 0.2);
+  REQUIRE(s.obstacles.size() == 2);
+  CHECK(s.obstacles[0].angle == 0.5);
+  CHECK(s.obstacles[1].radius == 0.5);
+  REQUIRE(s.robots.size() == 3);
+  CHECK(s.robots[1].shape == earc::MobileShape::Box);
+  CHECK(s.robots[1].box_size == earc::geo::Vec2{0.8, 0.4});
+  CHECK(s.robots[2].kind == earc::RobotKind::Manipulator);
+  CHECK(s.robots[2].dim() == 2);
+  CHECK(s.robots[2].goal == std::vector<double>{0.5, -0.5});
+  CHECK_NOTHROW(earc::checkScenarioGeometry(s, "in.json"));
+}
+
+TEST_CASE("optional scenario fields take the contract's defaults one by one") {
+  json doc = validScenario();
+  doc["resolution"] = {{"rotation", 0.4}};
+  doc.erase("obstacles");
+  doc["robots"][2].erase("joint_limits");
+  doc["unknown_key"] = {{"anything", 1}};
+  doc["robots"][0]["colour"] = "red";
+  const earc::Scenario s = earc::scenarioFromJson(doc, "in.json");
+  CHECK(s.resolution.translation == 0.05);
+  CHECK(s.resolution.rotation == 0.4);
+  CHECK(s.resolution.joint == 0.05);
+  CHECK(s.obstacles.empty());
+  REQUIRE(s.robots[2].joint_limits.size() == 2);
+  CHECK(s.robots[2].joint_limits[1].first == -std::numbers::pi);
+  CHECK(s.robots[2].joint_limits[1].second == std::numbers::pi);
+
+  doc = validScenario();
+  doc["obstacles"][0].erase("angle");
+  CHECK(earc::scenarioFromJson(doc, "in.json").obstacles[0].angle == 0.0);
+}
+
+TEST_CASE("malformed JSON is reported with its line and column") {
+  const std::string m = parseError("{\n  \"a\": [1,\n   2,, 3]\n}");
+  CHECK(m.rfind("in.json: line 3, column ", 0) == 0);
+  CHECK(has(m, "$.a[2]"));
+  CHECK(has(m, "malformed JSON"));
+  CHECK(has(parseError(""), "malformed JSON"));
+}
+
+TEST_CASE("NaN, Infinity and overflowing numbers are refused by the parser") {
+  CHECK_ERROR(parseError(R"({"x": [1, NaN]})"), "line 1, column 11 ($.x[1])", "invalid literal");
+  CHECK(has(parseError(R"({"x": Infinity})"), "invalid literal"));
+  CHECK(has(parseError(R"({"x": -Infinity})"), "malformed JSON"));
+  CHECK_ERROR(parseError(R"({"x": [0, 1e999]})"), "$.x[1]", "number overflow");
+}
+
+TEST_CASE("a duplicate key is refused with its path") {
+  CHECK_ERROR(parseError(R"({"a": {"b": 1, "c": [{"d": 1, "d": 2}]}})"), "$.a.c[0].d", "duplicate key \"d\"");
+  CHECK_ERROR(parseError(R"({"a": 1, "a": 1})"), "$.a", "duplicate key");
+  CHECK(parseError(R"({"a": {"k": 1}, "b": {"k": 1}})").empty());  // same key in different objects
+}
+
+TEST_CASE("a missing required field is named by its path") {
+  for (const char* key : {"workspace", "robots", "format"}) {
+    json doc = validScenario();
+    doc.erase(key);
+    CHECK_ERROR(scenarioError(doc), std::string("$.") + key, "missing required field");
+  }
+  json doc = validScenario();
+  doc["robots"][0]["shape"].erase("radius");
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.radius", "missing required field \"radius\"");
+  doc = validScenario();
+  doc["robots"][2].erase("link_radius");
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].link_radius", "missing required field");
+  doc = validScenario();
+  doc["robots"][1].erase("goal");
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].goal", "missing required field");
+  doc = validScenario();
+  doc["obstacles"][1].erase("center");
+  CHECK_ERROR(scenarioError(doc), "$.obstacles[1].center", "missing required field");
+}
+
+TEST_CASE("a value of the wrong type is named with what was expected") {
+  json doc = validScenario();
+  doc["robots"][0]["shape"]["radius"] = "0.3";
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.radius", "expected a number, got the string \"0.3\"");
+  doc = validScenario();
+  doc["robots"] = json::object();
+  CHECK_ERROR(scenarioError(doc), "$.robots", "expected an array");
+  doc = validScenario();
+  doc["robots"][1]["name"] = 7;
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].name", "expected a string");
+  doc = validScenario();
+  doc["robots"][0]["start"][2] = true;
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].start[2]", "expected a number, got true");
+  doc = validScenario();
+  doc["workspace"]["min"] = {0, 0, 0};
+  CHECK_ERROR(scenarioError(doc), "$.workspace.min", "expected an array of 2 numbers, got 3");
+  doc = validScenario();
+  doc["format"] = "earc.scenario.v2";
+  CHECK_ERROR(scenarioError(doc), "$.format", "expected \"earc.scenario.v1\"");
+  CHECK_ERROR(scenarioError(json::array()), "$", "expected an object");
+}
+
+TEST_CASE("a non-finite number in a document built in memory is refused") {
+  json doc = validScenario();
+  doc["robots"][0]["goal"][1] = std::nan("");
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].goal[1]", "not a finite number");
+  doc = validScenario();
+  doc["obstacles"][0]["angle"] = HUGE_VAL;
+  CHECK_ERROR(scenarioError(doc), "$.obstacles[0].angle", "not a finite number");
+}
+
+TEST_CASE("sizes must be positive and the workspace non-empty") {
+  struct Case {
+    const char* pointer;
+    json value;
+    const char* path;
+    const char* reason;
+  };
+  const Case cases[] = {
+      {"/workspace/max/0", 0, "$.workspace", "min must be below max"},
+      {"/workspace/min/1", 10, "$.workspace", "min must be below max"},
+      {"/resolution/translation", 0, "$.resolution.translation", "must be > 0, got 0"},
+      {"/resolution/joint", -0.1, "$.resolution.joint", "must be > 0, got -0.1"},
+      {"/obstacles/0/size/1", 0, "$.obstacles[0].size[1]", "must be > 0, got 0"},
+      {"/obstacles/1/radius", -1, "$.obstacles[1].radius", "must be > 0, got -1"},
+      {"/robots/0/shape/radius", 0, "$.robots[0].shape.radius", "must be > 0"},
+      {"/robots/1/shape/size/0", -0.8, "$.robots[1].shape.size[0]", "must be > 0"},
+      {"/robots/2/links/1", 0, "$.robots[2].links[1]", "must be > 0"},
+      {"/robots/2/link_radius", -0.1, "$.robots[2].link_radius", "must be >= 0, got -0.1"},
+  };
+  for (const Case& c : cases) {
+    json doc = validScenario();
+    doc[json::json_pointer(c.pointer)] = c.value;
+    CHECK_ERROR(scenarioError(doc), c.path, c.reason);
+  }
+  json doc = validScenario();
+  doc["robots"][2]["link_radius"] = 0;  // a zero link radius is a plain segment
+  CHECK(scenarioError(doc).empty());
+  doc["robots"][2]["links"] = json::array();
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].links", "at least one link");
+}
+
+TEST_CASE("unknown robot, obstacle and shape types are refused") {
+  json doc = validScenario();
+  doc["robots"][1]["type"] = "drone";
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].type", "unknown robot type \"drone\"");
+  doc = validScenario();
+  doc["obstacles"][1]["type"] = "polygon";
+  CHECK_ERROR(scenarioError(doc), "$.obstacles[1].type", "unknown obstacle type \"polygon\"");
+  doc = validScenario();
+  doc["robots"][0]["shape"]["type"] = "triangle";
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.type", "unknown shape type \"triangle\"");
+}
+
+TEST_CASE("duplicate robot names are refused naming both robots") {
+  json doc = validScenario();
+  doc["robots"][2]["name"] = "m0";
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].name", "duplicate robot name \"m0\" (also $.robots[0])");
+}
+
+TEST_CASE("an arm's start, goal and joint limits need one entry per link") {
+  json doc = validScenario();
+  doc["robots"][2]["start"] = {0, 0, 0};
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].start", "expected an array of 2 numbers (one per link), got 3");
+  doc = validScenario();
+  doc["robots"][2]["goal"] = {0.5};
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].goal", "(one per link), got 1");
+  doc = validScenario();
+  doc["robots"][2]["joint_limits"] = {{-1, 1}};
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].joint_limits", "expected 2 [lo, hi] pairs (one per link), got 1");
+  doc = validScenario();
+  doc["robots"][0]["start"] = {1, 1};
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].start", "expected an array of 3 numbers (x, y, theta), got 2");
+}
+
+TEST_CASE("joint limits with lo above hi are refused") {
+  json doc = validScenario();
+  doc["robots"][2]["joint_limits"][1] = {1, -1};
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].joint_limits[1]", "lo 1 > hi -1");
+  doc["robots"][2]["joint_limits"][1] = {0, 0};  // a locked joint is fine
+  doc["robots"][2]["goal"][1] = 0;
+  doc["robots"][2]["start"][1] = 0;
+  CHECK(scenarioError(doc).empty());
+}
+
+TEST_CASE("a start or goal outside the workspace is invalid input") {
+  json doc = validScenario();
+  doc["robots"][0]["start"] = {0.1, 5, 0};
+  CHECK_ERROR(geometryError(doc), "$.robots[0].start", "start is outside the workspace by 0.2");
+  doc = validScenario();
+  doc["robots"][2]["base"] = {1, 5, 0};
+  doc["robots"][2]["goal"] = {2.9, 0};  // the arm reaches over the left edge
+  CHECK_ERROR(geometryError(doc), "$.robots[2].goal", "goal is outside the workspace");
+}
+
+TEST_CASE("a start or goal in an obstacle names the obstacle") {
+  json doc = validScenario();
+  doc["robots"][0]["goal"] = {8, 2.5, 0};
+  CHECK_ERROR(geometryError(doc), "$.robots[0].goal", "goal is in collision with obstacle 1 ($.obstacles[1], circle)");
+  doc = validScenario();
+  doc["robots"][1]["start"] = {5, 6.2, 0.3};  // rotated box corner into the rotated box
+  CHECK_ERROR(geometryError(doc), "$.robots[1].start", "obstacle 0 ($.obstacles[0], box)");
+}
+
+TEST_CASE("an arm start in self-collision is invalid input") {
+  json doc = validScenario();
+  doc["robots"][2] = json::parse(R"({"name": "a0", "type": "manipulator", "base": [5, 8, 0],
+      "links": [1, 1, 1], "link_radius": 0.1, "start": [0, 2.6, 2.6], "goal": [0, 0, 0]})");
+  CHECK_ERROR(geometryError(doc), "$.robots[2].start", "start is in self-collision: a0 links 1 and 3 overlap");
+}
+
+TEST_CASE("a start or goal outside the joint limits names the joint") {
+  json doc = validScenario();
+  doc["robots"][2]["goal"] = {0.5, 2.5};
+  CHECK_ERROR(geometryError(doc), "$.robots[2].goal[1]", "goal is outside the joint limits [-2, 2]");
+  doc["robots"][2]["goal"] = {0.5, 2 + 1e-7};  // the contract's 1e-6 slack
+  CHECK(geometryError(doc).empty());
+}
+
+TEST_CASE("two starts or two goals that touch are invalid input") {
+  json doc = validScenario();
+  doc["robots"][1]["start"] = {1.5, 1, 0};
+  CHECK_ERROR(geometryError(doc), "$.robots[1].start", "start touches the start of robot \"m0\" ($.robots[0])");
+  doc = validScenario();
+  doc["robots"][1]["goal"] = {8.45, 9, 0};  // disc r 0.3 and box half-length 0.4: 0.15 overlap
+  CHECK_ERROR(geometryError(doc), "$.robots[1].goal", "goal touches the goal of robot \"m0\"");
+  doc = validScenario();
+  doc["robots"][1]["goal"] = {8.3, 9, 0};  // exactly touching is not overlapping
+  CHECK(geometryError(doc).empty());
+}
+
+TEST_CASE("loadScenario reads, parses and checks geometry, naming the file") {
+  const std::string dir = tempDir();
+  const std::string path = dir + "/s.json";
+  json doc = validScenario();
+  doc["robots"][0]["start"] = {5, 5, 0};  // inside obstacle 0
+  earc::writeTextFileAtomic(path, doc.dump());
+  try {
+    earc::loadScenario(path);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.file() == path);
+    CHECK(e.where() == "$.robots[0].start");
+    CHECK(has(e.reason(), "obstacle 0"));
+  }
+  try {
+    earc::loadScenario(dir + "/missing.json");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(has(e.what(), "missing.json: cannot open file"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a scenario round-trips through JSON text exactly") {
+  json doc = validScenario();
+  doc["robots"][0]["start"] = {1.0 / 3.0, 1 + 1e-15, std::numbers::pi};
+  doc["obstacles"][0]["angle"] = 0.1 + 0.2;
+  doc["resolution"]["translation"] = 0.049999999999999996;
+  const earc::Scenario a = earc::scenarioFromJson(doc, "in.json");
+  const earc::Scenario b = earc::scenarioFromJson(earc::parseJsonText(earc::scenarioToJson(a).dump(), "x"), "x");
+  checkSameScenario(a, b);
+  // Defaults are written out, so a reader needs no knowledge of them.
+  const json out = earc::scenarioToJson(earc::scenarioFromJson(validScenario(), "in.json"));
+  CHECK(out["robots"][0]["start"][0].get<double>() == 1.0);
+  CHECK(out["format"] == earc::kScenarioFormat);
+}
+
+TEST_CASE("a solution round-trips through JSON and through a file exactly") {
+  earc::Solution s;
+  s.scenario = "t";
+  s.method = "earc";
+  s.solved = true;
+  s.stats = {{"planning_time_s", 0.25}, {"conflicts", 3}, {"note", "ok"}};
+  earc::Path p(3);
+  const double q0[] = {1.0 / 3.0, 2.0 / 7.0, -std::numbers::pi};
+  const double q1[] = {0.1 + 0.2, 1e-300, 5e-324};
+  p.push(q0);
+  p.push(q1);
+  earc::Path arm(2);
+  const double r0[] = {std::nextafter(1.0, 2.0), -0.0};
+  arm.push(r0);
+  s.paths = {p, arm};
+  s.robot_names = {"m0", "a0"};
+
+  const earc::Solution b = earc::solutionFromJson(earc::parseJsonText(earc::solutionToJson(s).dump(), "x"), nullptr, "x");
+  CHECK(b.scenario == s.scenario);
+  CHECK(b.method == s.method);
+  CHECK(b.solved);
+  CHECK(b.stats == s.stats);
+  CHECK(b.robot_names == s.robot_names);
+  CHECK(b.paths == s.paths);
+
+  const std::string dir = tempDir();
+  const std::string path = dir + "/sol.json";
+  earc::saveSolution(path, s);
+  const earc::Solution c = earc::loadSolution(path, nullptr);
+  CHECK(c.paths == s.paths);
+  CHECK(c.stats == s.stats);
+  CHECK(c.robot_names == s.robot_names);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a solution read against its scenario checks dimensions but keeps order and unknown robots") {
+  const earc::Scenario sc = earc::scenarioFromJson(validScenario(), "in.json");
+  json doc = json::parse(R"({"format": "earc.solution.v1", "scenario": "t", "solved": true, "paths": [
+      {"robot": "a0", "states": [[0, 0], [0.5, -0.5]]},
+      {"robot": "ghost", "states": "not even states"},
+      {"robot": "m0", "states": [[1, 1, 0]]}]})");
+  const earc::Solution s = earc::solutionFromJson(doc, &sc, "sol.json");
+  CHECK(s.robot_names == std::vector<std::string>{"a0", "ghost", "m0"});
+  CHECK(s.paths[0].dim() == 2);
+  CHECK(s.paths[1].empty());
+  CHECK(s.paths[2].size() == 1);
+
+  doc["paths"][0]["states"][1] = {0.5, -0.5, 0};
+  try {
+    earc::solutionFromJson(doc, &sc, "sol.json");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.where() == "$.paths[0].states[1]");
+    CHECK(has(e.reason(), "expected a state of 2 numbers"));
+  }
+}
+
+TEST_CASE("a solution's own fields are checked: format, solved, paths") {
+  auto error = [](const json& doc) {
+    try {
+      earc::solutionFromJson(doc, nullptr, "in.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  json doc = {{"format", "earc.solution.v1"}, {"solved", "yes"}, {"paths", json::array()}};
+  CHECK_ERROR(error(doc), "$.solved", "expected true or false");
+  doc["solved"] = true;
+  doc.erase("paths");
+  CHECK_ERROR(error(doc), "$.paths", "missing required field");
+  doc["solved"] = false;  // an unsolved solution may leave paths out
+  CHECK(error(doc).empty());
+  doc["paths"] = {{{"robot", "m0"}, {"states", {{1, 2, 3}, {1, 2}}}}};
+  CHECK_ERROR(error(doc), "$.paths[0].states[1]", "expected a state of 3 numbers");
+  doc["paths"] = {{{"robot", "m0"}, {"states", {{1, "2", 3}}}}};
+  CHECK_ERROR(error(doc), "$.paths[0].states[0][1]", "expected a number");
+  doc["paths"] = {{{"states", {{1, 2, 3}}}}};
+  CHECK_ERROR(error(doc), "$.paths[0].robot", "missing required field");
+  doc["format"] = "earc.scenario.v1";
+  CHECK_ERROR(error(doc), "$.format", "expected \"earc.solution.v1\"");
+}
+
+TEST_CASE("writing a solution needs the robot names") {
+  earc::Solution s;
+  s.paths.emplace_back(3);
+  CHECK_THROWS_AS(earc::solutionToJson(s), std::invalid_argument);
+  earc::Scenario sc;
+  sc.robots.resize(1);
+  sc.robots[0].name = "m0";
+  s.nameRobots(sc);
+  CHECK(earc::solutionToJson(s)["paths"][0]["robot"] == "m0");
+}
+
+TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
+  const std::string dir = tempDir();
+  const std::string path = dir + "/f.txt";
+  earc::writeTextFileAtomic(path, "old");
+  earc::writeTextFileAtomic(path, "new text");
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text == "new text");
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  CHECK(files == 1);
+  CHECK_THROWS_AS(earc::writeTextFileAtomic(dir + "/no/such/dir/f.txt", "x"), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("makespan and sum of costs count steps, not states") {
+  earc::Solution s;
+  earc::Path a(1), b(1), empty(1);
+  const double x = 0;
+  for (int i = 0; i < 4; ++i) a.push(&x);
+  b.push(&x);
+  s.paths = {a, b, empty};
+  CHECK(s.makespan() == 3);
+  CHECK(s.sumOfCosts() == 3);
+}
