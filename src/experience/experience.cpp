@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "earc/experience/keys.hpp"
 
@@ -18,12 +19,19 @@ std::size_t countParts(const std::string& s, char sep) {
   return n;
 }
 
-// A base class string is well formed when it is its own canonical text.
+// A base class string is well formed when it is what baseClassString
+// prints for some transform: three numbers with three decimals, the angle
+// in (-pi, pi] at that precision.
 bool wellFormedBaseClass(const std::string& s) {
   double dx, dy, dt;
   char tail;
   if (std::sscanf(s.c_str(), "dx=%lf,dy=%lf,dth=%lf%c", &dx, &dy, &dt, &tail) != 3) return false;
-  return std::isfinite(dx) && std::isfinite(dy) && std::isfinite(dt) && baseClassString(dx, dy, dt) == s;
+  if (!std::isfinite(dx) || !std::isfinite(dy) || !std::isfinite(dt)) return false;
+  const double pi_rounded = std::round(std::numbers::pi / kBaseClassQuantum) * kBaseClassQuantum;
+  if (dt <= -pi_rounded + 0.5 * kBaseClassQuantum || dt > pi_rounded + 0.5 * kBaseClassQuantum) return false;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "dx=%.3f,dy=%.3f,dth=%.3f", dx, dy, dt);
+  return s == buf && s.find("-0.000") == std::string::npos;
 }
 
 }  // namespace

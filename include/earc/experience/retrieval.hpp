@@ -1,0 +1,50 @@
+// The planner's side of the experience store (paper, "Database Retrieval
+// and Subproblem Planning"): canonicalize a subproblem, retrieve the k
+// closest stored solutions of its class, map them back into the
+// subproblem's frame and robot order; and learn a solved subproblem.
+//
+//   auto candidates = exp::retrieveCandidates(store, robots, starts, goals, settings.db_k);
+//   for (auto& c : candidates) { ... validate / connect / repair c.paths ...
+//                                store.recordUse(c.id, resolved); }
+//   if (solved_from_scratch) exp::learn(store, robots, local.paths, seconds, exp::Source::Planner);
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "earc/experience/store.hpp"
+#include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
+
+namespace earc::exp {
+
+// Planner inserts closer than this in key space (units for mobile robots,
+// radians for arms) to a stored entry are skipped: about one resolution
+// step, below which two subproblems are the same to the solver.
+inline constexpr double kNearDuplicateEps = 0.05;
+
+struct Candidate {
+  std::int64_t id = 0;      // for recordUse
+  double distance = 0.0;    // key distance to the query
+  std::vector<Path> paths;  // subproblem robot order and world frame
+};
+
+// Up to k stored solutions for the subproblem, nearest first, mapped into
+// its frame and robot order: each path starts near the robot's start and
+// ends near its goal (not exactly; the caller connects them). Empty when
+// the robots form no experience class (hasExperienceClass). For a
+// symmetric arm pair both role assignments are searched and merged.
+std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
+                                          const std::vector<std::vector<double>>& starts,
+                                          const std::vector<std::vector<double>>& goals, std::size_t k);
+
+// Stores a solved subproblem: paths in subproblem robot order and world
+// frame, all of one length (a LocalSolution). Its starts and goals are the
+// paths' endpoints. Returns the new id, or nothing for a near duplicate or
+// robots that form no class.
+std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
+                                  const std::vector<Path>& paths, double solve_time_s, Source source = Source::Planner,
+                                  double near_duplicate_eps = kNearDuplicateEps);
+
+}  // namespace earc::exp

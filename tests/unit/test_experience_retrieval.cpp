@@ -1,0 +1,107 @@
+// The planner's view: what is learned for one subproblem is retrieved for
+// the same subproblem elsewhere, listed differently, or with roles swapped.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "earc/experience/retrieval.hpp"
+#include "earc/experience/scratch.hpp"
+
+using namespace earc;
+using namespace earc::exp;
+
+namespace {
+
+Path line(std::vector<double> a, std::vector<double> b, int steps) {
+  Path p(static_cast<int>(a.size()));
+  for (int t = 0; t < steps; ++t) {
+    std::vector<double> q(a.size());
+    for (std::size_t d = 0; d < a.size(); ++d) q[d] = t == steps - 1 ? b[d] : a[d] + (b[d] - a[d]) * t / (steps - 1);
+    p.push(q);
+  }
+  return p;
+}
+
+std::unique_ptr<RobotModel> discModel() {
+  RobotSpec s;
+  s.radius = 0.3;
+  return makeRobotModel(s, Resolution{});
+}
+
+std::unique_ptr<RobotModel> armModel(double x, double y, double angle) {
+  RobotSpec s;
+  s.kind = RobotKind::Manipulator;
+  s.base_position = {x, y};
+  s.base_angle = angle;
+  s.links.assign(5, 0.5);
+  s.link_radius = 0.05;
+  s.joint_limits.assign(5, {-2.6, 2.6});
+  return makeRobotModel(s, Resolution{});
+}
+
+}  // namespace
+
+TEST_CASE("a mobile solution learned in one place is retrieved translated and reordered elsewhere") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto m = discModel();
+  std::vector<const RobotModel*> robots{m.get(), m.get()};
+  std::vector<Path> solved{line({0, 0, 0}, {2, 2, 0}, 6), line({2, 0, 1}, {0, 2, 1}, 6)};
+  REQUIRE(learn(store, robots, solved, 0.1).has_value());
+  // The same subproblem 10 units to the right, robots listed the other way.
+  auto moved = [](const Path& p) {
+    Path q = p;
+    for (std::size_t t = 0; t < q.size(); ++t) q.mutableAt(t)[0] += 10;
+    return q;
+  };
+  std::vector<std::vector<double>> starts{{12, 0, 1}, {10, 0, 0}}, goals{{10, 2, 1}, {12, 2, 0}};
+  auto found = retrieveCandidates(store, robots, starts, goals, 3);
+  REQUIRE(found.size() == 1);
+  CHECK(found[0].distance < 1e-9);
+  Path want0 = moved(solved[1]), want1 = moved(solved[0]);
+  for (std::size_t i = 0; i < want0.raw().size(); ++i) {
+    CHECK(found[0].paths[0].raw()[i] == doctest::Approx(want0.raw()[i]));
+    CHECK(found[0].paths[1].raw()[i] == doctest::Approx(want1.raw()[i]));
+  }
+}
+
+TEST_CASE("an arm solution learned with one role order is retrieved for the swapped order") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto a = armModel(0, 0, 0), b = armModel(3, 0, 0);
+  std::vector<double> sa{0.1, 0.2, 0.3, 0.4, 0.5}, ga{0.3, 0.2, 0.3, 0.4, 0.5};
+  std::vector<double> sb{1.1, 1.2, 1.3, 1.4, 1.5}, gb{1.3, 1.2, 1.3, 1.4, 1.5};
+  REQUIRE(learn(store, {a.get(), b.get()}, {line(sa, ga, 5), line(sb, gb, 5)}, 0.1).has_value());
+  auto found = retrieveCandidates(store, {b.get(), a.get()}, {sb, sa}, {gb, ga}, 3);
+  REQUIRE(found.size() == 1);
+  CHECK(found[0].paths[0].raw() == line(sb, gb, 5).raw());  // robot b's path at b's index
+  CHECK(found[0].paths[1].raw() == line(sa, ga, 5).raw());
+}
+
+TEST_CASE("a symmetric arm pair searches both role assignments") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  const double pi = std::numbers::pi;
+  auto lower = armModel(3, 3, pi / 2), upper = armModel(3, 7, -pi / 2);
+  std::vector<double> s1{0.1, 0.2, 0.3, 0.4, 0.5}, g1{0.2, 0.2, 0.3, 0.4, 0.5};
+  std::vector<double> s2{-0.5, 0.4, 0.3, 0.2, 0.1}, g2{-0.4, 0.4, 0.3, 0.2, 0.1};
+  REQUIRE(learn(store, {lower.get(), upper.get()}, {line(s1, g1, 4), line(s2, g2, 4)}, 0.1, Source::Planner, -1)
+              .has_value());
+  // The mirror-role query: the lower arm does what the upper arm did. Only
+  // the other role assignment matches it exactly.
+  auto found = retrieveCandidates(store, {lower.get(), upper.get()}, {s2, s1}, {g2, g1}, 1);
+  REQUIRE(found.size() == 1);
+  CHECK(found[0].distance < 1e-12);
+  CHECK(found[0].paths[0].raw() == line(s2, g2, 4).raw());
+}
+
+TEST_CASE("robots that form no class retrieve nothing and learn nothing") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto a = armModel(0, 0, 0);
+  auto m = discModel();
+  std::vector<double> q{0, 0, 0, 0, 0};
+  CHECK(retrieveCandidates(store, {a.get()}, {q}, {q}, 5).empty());
+  CHECK_FALSE(learn(store, {a.get(), m.get()}, {line(q, q, 2), line({0, 0, 0}, {1, 0, 0}, 2)}, 0.1).has_value());
+}
