@@ -1,0 +1,165 @@
+// E-ARC: the database solver in ARC's hierarchy, learning, translation to
+// the conflict, and repair.
+#include <doctest/doctest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/experience/retrieval.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/planning/composite.hpp"
+#include "earc/planning/coupled_solver.hpp"
+#include "earc/planning/database_solver.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/validate/validator.hpp"
+
+using namespace earc;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDb {
+  fs::path dir;
+  TempDb() {
+    char tmpl[] = "/tmp/earc-test-XXXXXX";
+    dir = mkdtemp(tmpl);
+  }
+  ~TempDb() { fs::remove_all(dir); }
+  std::string file(const std::string& name = "exp.db") const { return (dir / name).string(); }
+};
+
+RobotSpec disc(const std::string& name, std::vector<double> start, std::vector<double> goal) {
+  RobotSpec s;
+  s.name = name;
+  s.kind = RobotKind::Mobile;
+  s.shape = MobileShape::Disc;
+  s.radius = 0.3;
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
+// Four discs that cross at the centre of a 6 x 6 square, offset by (dx, dy).
+Scenario crossing(double dx, double dy, double size) {
+  Scenario s;
+  s.name = "crossing";
+  s.workspace = {{0, 0}, {size, size}};
+  s.robots = {disc("w", {1 + dx, 3 + dy, 0}, {5 + dx, 3 + dy, 0}), disc("e", {5 + dx, 3 + dy, 3.14}, {1 + dx, 3 + dy, 0}),
+              disc("s", {3 + dx, 1 + dy, 1.57}, {3 + dx, 5 + dy, 0}), disc("n", {3 + dx, 5 + dy, -1.57}, {3 + dx, 1 + dy, 0})};
+  return s;
+}
+
+PlannerSettings earcSettings(std::uint64_t seed) {
+  PlannerSettings p;
+  p.method = Method::Earc;
+  p.time_limit_s = 30;
+  p.seed = seed;
+  return p;
+}
+
+Path line(std::vector<std::vector<double>> states) {
+  Path p(static_cast<int>(states.front().size()));
+  for (auto& q : states) p.push(q.data());
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them from the database next time") {
+  TempDb tmp;
+  Scenario s = crossing(0, 0, 6);
+  int learned = 0;
+  {
+    exp::ExperienceStore store(tmp.file());
+    PlanResult first = plan(s, earcSettings(1), &store);
+    REQUIRE(first.solution.solved);
+    CHECK(validateSolution(s, first.solution).valid);
+    CHECK(first.stats["db_hits"].get<int>() == 0);  // the store was empty
+    learned = first.stats["db_learned"].get<int>();
+    CHECK(learned >= 1);
+    CHECK(store.size() == static_cast<std::size_t>(learned));
+  }
+  exp::ExperienceStore store(tmp.file());  // a new session on the same file
+  PlanResult second = plan(s, earcSettings(1), &store);
+  REQUIRE(second.solution.solved);
+  CHECK(validateSolution(s, second.solution).valid);
+  CHECK(second.stats["db_hits"].get<int>() + second.stats["db_repairs"].get<int>() >= 1);
+  CHECK(second.stats["db_hit_rate"].get<double>() > 0.0);
+}
+
+TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict happens") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  PlanResult first = plan(crossing(0, 0, 12), earcSettings(2), &store);
+  REQUIRE(first.solution.solved);
+  REQUIRE(store.size() >= 1);
+  Scenario moved = crossing(5.0, 4.0, 12);  // the same crossing elsewhere
+  PlannerSettings settings = earcSettings(2);
+  settings.db_learn = false;
+  PlanResult second = plan(moved, settings, &store);
+  REQUIRE(second.solution.solved);
+  CHECK(validateSolution(moved, second.solution).valid);
+  CHECK(second.stats["db_hits"].get<int>() + second.stats["db_repairs"].get<int>() >= 1);
+}
+
+TEST_CASE("The database solver repairs a retrieved solution that a new obstacle cuts") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  // Two discs swap places along x with a side step: a stored experience.
+  Scenario open;
+  open.name = "swap";
+  open.workspace = {{0, 0}, {10, 10}};
+  open.robots = {disc("a", {4, 5, 0}, {6, 5, 0}), disc("b", {6, 5, 0}, {4, 5, 0})};
+  auto owned = makeRobotModels(open);
+  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  // a goes up and over, b goes straight: waypoints time-stamped together.
+  std::vector<CompositeState> way{{{4, 5, 0}, {6, 5, 0}}, {{4, 6, 0}, {6, 5, 0}}, {{6, 6, 0}, {4, 5, 0}},
+                                  {{6, 5, 0}, {4, 5, 0}}};
+  LocalSolution stored = timeStampComposite(models, way);
+  CollisionWorld open_world(open);
+  CompositeChecker open_checker(open_world, models);
+  for (std::size_t w = 1; w < way.size(); ++w) REQUIRE(open_checker.motionValid(way[w - 1], way[w]));
+  REQUIRE(exp::learn(store, models, stored.paths, 0.1, exp::Source::Build).has_value());
+
+  // Now a small obstacle sits on a's path over the top.
+  Scenario blocked = open;
+  Obstacle o;
+  o.type = Obstacle::Type::Circle;
+  o.center = {5, 6};
+  o.radius = 0.15;
+  blocked.obstacles.push_back(o);
+  CollisionWorld world(blocked);
+  RoadmapSet roadmaps(world, models, 300, 10, 1);
+  std::vector<Path> plan_paths{line({{4, 5, 0}, {6, 5, 0}}), line({{6, 5, 0}, {4, 5, 0}})};
+  Subproblem sub;
+  sub.robots = {0, 1};
+  sub.starts = {{4, 5, 0}, {6, 5, 0}};
+  sub.goals = {{6, 5, 0}, {4, 5, 0}};
+  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
+  sub.workspace_region = {{1, 1}, {9, 9}};
+  sub.t_start = 0;
+  sub.t_end = 1;
+  SolverContext ctx{world, models, roadmaps, plan_paths, sub, Deadline(10), 7};
+  DatabaseSolverSettings ds;
+  ds.repair_time_s = 2.0;
+  DatabaseSolver solver(store, ds);
+  SolverOutcome out = solver.solve(ctx);
+  REQUIRE(out.solution.has_value());
+  CHECK(out.how == "repair");
+  CHECK(out.entry >= 1);
+  // The repaired local solution is valid in the new world at every step and midpoint.
+  CompositeChecker checker(world, models);
+  const auto& p = out.solution->paths;
+  for (std::size_t t = 0; t + 1 < p[0].size(); ++t) {
+    CompositeState a{{p[0].at(t), p[0].at(t) + 3}, {p[1].at(t), p[1].at(t) + 3}};
+    CompositeState b{{p[0].at(t + 1), p[0].at(t + 1) + 3}, {p[1].at(t + 1), p[1].at(t + 1) + 3}};
+    REQUIRE(checker.motionValid(a, b));
+  }
+  CHECK(std::vector<double>(p[0].back(), p[0].back() + 3) == sub.goals[0]);
+}
+
+TEST_CASE("E-ARC without a database is refused with a clear error") {
+  CHECK_THROWS_WITH_AS(plan(crossing(0, 0, 6), earcSettings(1), nullptr), doctest::Contains("--db"), InputError);
+}
