@@ -3,9 +3,11 @@
 // overlap by more than geo::kContactTolerance, and a body may stick out of
 // the workspace by at most that much.
 //
-// Obstacles sit in an FCL broad phase (dynamic AABB tree); candidate pairs
-// are then decided by the exact planar signed distance of geo::, so FCL's
-// own contact rule never decides validity.
+// Obstacle candidates come from a plain AABB loop for a few obstacles and
+// from an FCL broad phase (dynamic AABB tree) for many; every candidate is
+// then decided by the exact planar signed distance of geo::, so FCL's own
+// contact rule never decides validity. All methods are const and
+// thread-safe.
 #pragma once
 
 #include <memory>
@@ -19,7 +21,14 @@ namespace earc {
 
 class CollisionWorld {
  public:
+  // How obstacle candidates are found. Auto picks by obstacle count (a plain
+  // AABB loop for few obstacles, FCL's tree for many; the threshold and its
+  // measurement are in collision_world.cpp). Loop and Tree force one path,
+  // for benchmarks and tests; every mode gives the same answers.
+  enum class BroadphaseMode { Auto, Loop, Tree };
+
   explicit CollisionWorld(const Scenario& scenario);
+  CollisionWorld(const Scenario& scenario, BroadphaseMode mode);
   ~CollisionWorld();
   CollisionWorld(const CollisionWorld&) = delete;
   CollisionWorld& operator=(const CollisionWorld&) = delete;
@@ -27,6 +36,8 @@ class CollisionWorld {
   const geo::Aabb& workspace() const { return workspace_; }
   std::size_t obstacleCount() const { return obstacles_.size(); }
   const geo::Body& obstacle(std::size_t i) const { return obstacles_[i]; }
+  // True when obstacle queries go through FCL's tree.
+  bool usesTree() const { return broadphase_ != nullptr; }
 
   // True when the body is inside the workspace and touches no obstacle.
   // Thread-safe.
@@ -50,6 +61,10 @@ class CollisionWorld {
 
  private:
   struct Broadphase;
+  // Calls visit(i) for each obstacle i whose AABB overlaps box, until visit
+  // returns true (stop); returns whether it stopped.
+  template <class Visit>
+  bool forEachCandidate(const geo::Aabb& box, Visit&& visit) const;
   geo::Aabb workspace_;
   std::vector<geo::Body> obstacles_;
   std::vector<geo::Aabb> obstacle_bounds_;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "earc/geometry/shapes.hpp"
@@ -23,6 +24,22 @@ struct Obstacle {
   double angle = 0.0;  // box
   double radius = 0.0; // circle
   geo::Body body() const;
+
+  // Shorthands for code that builds scenes (tests, generators, benchmarks).
+  static Obstacle makeBox(geo::Vec2 center, geo::Vec2 size, double angle = 0.0) {
+    Obstacle o;
+    o.center = center;
+    o.size = size;
+    o.angle = angle;
+    return o;
+  }
+  static Obstacle makeCircle(geo::Vec2 center, double radius) {
+    Obstacle o;
+    o.type = Type::Circle;
+    o.center = center;
+    o.radius = radius;
+    return o;
+  }
 };
 
 enum class RobotKind { Mobile, Manipulator };
@@ -45,6 +62,33 @@ struct RobotSpec {
   std::vector<double> goal;
 
   int dim() const { return kind == RobotKind::Mobile ? 3 : static_cast<int>(links.size()); }
+
+  // Shorthands for code that builds scenes; start and goal are left empty
+  // and joint limits default ([-pi, pi] each).
+  static RobotSpec mobileDisc(std::string name, double radius) {
+    RobotSpec s;
+    s.name = std::move(name);
+    s.radius = radius;
+    return s;
+  }
+  static RobotSpec mobileBox(std::string name, geo::Vec2 size) {
+    RobotSpec s;
+    s.name = std::move(name);
+    s.shape = MobileShape::Box;
+    s.box_size = size;
+    return s;
+  }
+  static RobotSpec arm(std::string name, geo::Vec2 base, double base_angle, std::vector<double> links,
+                       double link_radius) {
+    RobotSpec s;
+    s.name = std::move(name);
+    s.kind = RobotKind::Manipulator;
+    s.base_position = base;
+    s.base_angle = base_angle;
+    s.links = std::move(links);
+    s.link_radius = link_radius;
+    return s;
+  }
 };
 
 struct Scenario {

@@ -1,0 +1,225 @@
+// Static-world and robot-robot collision checking with the contract's rules.
+//
+// Broad phase: below kTreeMinObstacles obstacles a plain loop over their
+// AABBs; from there on FCL's dynamic AABB tree, walked read-only with the
+// body's AABB. Either way the broad phase only proposes candidates: every
+// candidate is decided by geo::touches (exact signed distance, overlap >
+// kContactTolerance), never by FCL's own contact rule.
+#include "earc/collision/collision_world.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cylinder.h>
+
+namespace earc {
+namespace {
+
+// Below this many obstacles a plain loop over their AABBs beats FCL's tree.
+// Measured with `earc-bench micro` (Release, CPU time, box robot at random
+// poses on ~25 % blocked grid maps; ns per stateValid, loop / tree):
+//   4: 64 / 65   16: 83 / 82   24: 93 / 93   32: 102 / 93   64: 146 / 108
+//   128: 240 / 125   1000: 2760 / 215   4000: 12600 / 320
+// The two tie at about 24 obstacles; the tree is ahead from 32 on.
+// (FCL's own manager.collide() needs a heap-allocated query object and cost
+// ~390 ns per query at 1000 boxes, so the tree is walked directly instead.)
+constexpr std::size_t kTreeMinObstacles = 32;
+
+// Thickness of the 3-D stand-ins for planar obstacles in FCL; any positive
+// value works since only the x-y extents of their AABBs are ever read.
+constexpr double kSlabThickness = 1.0;
+
+}  // namespace
+
+// FCL's dynamic AABB tree over the obstacles. The manager stores raw
+// pointers to the collision objects, which this struct owns. Queries read
+// the tree only, so concurrent queries are safe.
+struct CollisionWorld::Broadphase {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+
+  explicit Broadphase(const std::vector<Obstacle>& obstacles) {
+    objects.reserve(obstacles.size());
+    std::vector<fcl::CollisionObjectd*> raw;
+    for (std::size_t i = 0; i < obstacles.size(); ++i) {
+      const Obstacle& o = obstacles[i];
+      fcl::Transform3d tf = fcl::Transform3d::Identity();
+      tf.translation() = fcl::Vector3d(o.center.x, o.center.y, 0.0);
+      std::shared_ptr<fcl::CollisionGeometryd> shape;
+      if (o.type == Obstacle::Type::Circle) {
+        shape = std::make_shared<fcl::Cylinderd>(o.radius, kSlabThickness);
+      } else {
+        shape = std::make_shared<fcl::Boxd>(o.size.x, o.size.y, kSlabThickness);
+        tf.linear() = fcl::AngleAxisd(o.angle, fcl::Vector3d::UnitZ()).toRotationMatrix();
+      }
+      auto obj = std::make_unique<fcl::CollisionObjectd>(shape, tf);
+      obj->setUserData(reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)));
+      raw.push_back(obj.get());
+      objects.push_back(std::move(obj));
+    }
+    manager.registerObjects(raw);
+    manager.setup();
+  }
+
+  // Calls visit(obstacle index) for every obstacle whose AABB overlaps q
+  // until visit returns true; returns whether it did.
+  template <class Visit>
+  bool query(const geo::Aabb& q, Visit&& visit) const {
+    using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
+    const Node* root = manager.getTree().getRoot();
+    if (root == nullptr) return false;
+    // Explicit stack: the tree is balanced, so 64 levels hold any real
+    // obstacle count; deeper trees spill to the heap.
+    const Node* fixed[64];
+    std::vector<const Node*> spill;
+    int top = 0;
+    auto push = [&](const Node* n) {
+      if (top < 64) fixed[top++] = n;
+      else spill.push_back(n);
+    };
+    auto pop = [&] {
+      if (spill.empty()) return fixed[--top];
+      const Node* n = spill.back();
+      spill.pop_back();
+      return n;
+    };
+    push(root);
+    while (top > 0 || !spill.empty()) {
+      const Node* n = pop();
+      const auto& lo = n->bv.min_;
+      const auto& hi = n->bv.max_;
+      if (lo[0] > q.hi.x || hi[0] < q.lo.x || lo[1] > q.hi.y || hi[1] < q.lo.y) continue;
+      if (!n->isLeaf()) {
+        push(n->children[0]);
+        push(n->children[1]);
+        continue;
+      }
+      auto* obj = static_cast<const fcl::CollisionObjectd*>(n->data);
+      if (visit(static_cast<std::size_t>(reinterpret_cast<std::uintptr_t>(obj->getUserData())))) return true;
+    }
+    return false;
+  }
+};
+
+CollisionWorld::CollisionWorld(const Scenario& scenario) : CollisionWorld(scenario, BroadphaseMode::Auto) {}
+
+CollisionWorld::CollisionWorld(const Scenario& scenario, BroadphaseMode mode) : workspace_(scenario.workspace) {
+  obstacles_.reserve(scenario.obstacles.size());
+  for (const Obstacle& o : scenario.obstacles) {
+    obstacles_.push_back(o.body());
+    obstacle_bounds_.push_back(geo::bounds(obstacles_.back()));
+  }
+  const bool tree = mode == BroadphaseMode::Tree ||
+                    (mode == BroadphaseMode::Auto && obstacles_.size() >= kTreeMinObstacles);
+  if (tree) broadphase_ = std::make_unique<Broadphase>(scenario.obstacles);
+}
+
+CollisionWorld::~CollisionWorld() = default;
+
+template <class Visit>
+bool CollisionWorld::forEachCandidate(const geo::Aabb& box, Visit&& visit) const {
+  if (broadphase_) return broadphase_->query(box, visit);
+  for (std::size_t i = 0; i < obstacles_.size(); ++i)
+    if (obstacle_bounds_[i].overlaps(box) && visit(i)) return true;
+  return false;
+}
+
+bool CollisionWorld::bodyFree(const geo::Body& body) const {
+  // Negated so that a non-finite body (NaN extents) is never inside.
+  if (!(geo::excessOutside(body, workspace_) <= geo::kContactTolerance)) return false;
+  return !forEachCandidate(geo::bounds(body), [&](std::size_t i) { return geo::touches(body, obstacles_[i]); });
+}
+
+void CollisionWorld::touchedObstacles(const geo::Body& body, std::vector<int>& out) const {
+  const std::size_t first = out.size();
+  forEachCandidate(geo::bounds(body), [&](std::size_t i) {
+    if (geo::touches(body, obstacles_[i])) out.push_back(static_cast<int>(i));
+    return false;
+  });
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+}
+
+bool CollisionWorld::stateValid(const RobotModel& robot, const double* q) const {
+  if (!robot.withinLimits(q) || robot.selfCollides(q)) return false;
+  // Per-thread scratch: no allocation per query, nothing shared between threads.
+  thread_local std::vector<geo::Body> parts;
+  robot.bodies(q, parts);
+  for (const geo::Body& b : parts)
+    if (!bodyFree(b)) return false;
+  return true;
+}
+
+namespace {
+
+// Calls visit(q) with the configuration at each instant k / (2n), k = 0..2n,
+// n = stepsBetween(a, b), of the straight motion a -> b, until visit returns
+// false. Order: the ends, then halves, quarters, ... so that a blocked
+// motion is usually rejected early; every instant is visited once.
+template <class Visit>
+void forEachInstant(const RobotModel& robot, const double* a, const double* b, Visit&& visit) {
+  const long long last = 2LL * robot.stepsBetween(a, b);
+  std::vector<double> q(static_cast<std::size_t>(robot.dim()));
+  auto at = [&](long long k) {
+    robot.interpolate(a, b, last == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(last), q.data());
+    return visit(static_cast<const double*>(q.data()));
+  };
+  if (!at(0) || last == 0 || !at(last)) return;
+  long long stride = 1;
+  while (stride * 2 <= last) stride *= 2;
+  for (; stride >= 1; stride /= 2)
+    for (long long k = stride; k < last; k += 2 * stride)
+      if (!at(k)) return;
+}
+
+}  // namespace
+
+bool CollisionWorld::motionValid(const RobotModel& robot, const double* a, const double* b) const {
+  bool valid = true;
+  forEachInstant(robot, a, b, [&](const double* q) {
+    valid = stateValid(robot, q);
+    return valid;
+  });
+  return valid;
+}
+
+int CollisionWorld::countInvalidInstants(const RobotModel& robot, const double* a, const double* b) const {
+  int invalid = 0;
+  forEachInstant(robot, a, b, [&](const double* q) {
+    invalid += !stateValid(robot, q);
+    return true;
+  });
+  return invalid;
+}
+
+bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
+  // Bounding discs first, compared squared (no square root): most pairs of
+  // an instant end here. Rounding at the boundary cannot matter, as
+  // touching needs an overlap of kContactTolerance.
+  const double reach = a.boundingRadius() + b.boundingRadius();
+  const geo::Vec2 gap = a.boundingCenter(qa) - b.boundingCenter(qb);
+  if (geo::dot(gap, gap) > reach * reach) return false;
+  thread_local std::vector<geo::Body> pa;  // per-thread scratch, see stateValid
+  thread_local std::vector<geo::Body> pb;
+  a.bodies(qa, pa);
+  b.bodies(qb, pb);
+  for (const geo::Body& x : pa) {
+    const geo::Aabb bx = geo::bounds(x);
+    for (const geo::Body& y : pb)
+      if (bx.overlaps(geo::bounds(y)) && geo::touches(x, y)) return true;
+  }
+  return false;
+}
+
+double robotDistance(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
+  std::vector<geo::Body> pa;
+  std::vector<geo::Body> pb;
+  a.bodies(qa, pa);
+  b.bodies(qb, pb);
+  double best = std::numeric_limits<double>::infinity();
+  for (const geo::Body& x : pa)
+    for (const geo::Body& y : pb) best = std::min(best, geo::signedDistance(x, y));
+  return best;
+}
+
+}  // namespace earc
