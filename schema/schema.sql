@@ -1,4 +1,4 @@
--- The experience database schema, current version (2).
+-- The experience database schema, current version (3).
 --
 -- This file documents the schema; the program never runs it. Databases are
 -- created and upgraded only by the numbered migrations in ../migrations/,
@@ -11,7 +11,7 @@
 -- schema version. A program refuses files with another application_id and
 -- files whose user_version is newer than its own.
 PRAGMA application_id = 1161908803;
-PRAGMA user_version = 2;
+PRAGMA user_version = 3;
 
 -- One row per solved subproblem, in canonical form
 -- (include/earc/experience/keys.hpp).
@@ -34,6 +34,10 @@ CREATE TABLE experiences (
 
 -- Index loading and per-class counts read by class.
 CREATE INDEX experiences_by_class ON experiences (kind, robot_count, signature, base_class);
+
+-- Loading the k-d trees reads only this index, never the path blobs; id
+-- first, so "rows since id N" is a range scan.
+CREATE INDEX experiences_keys ON experiences (id, kind, robot_count, signature, base_class, key);
 
 -- Counters: 'sessions' (planning sessions opened read-write) and
 -- 'deletions' (rows deleted; a change makes other processes reload).

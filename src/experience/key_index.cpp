@@ -72,6 +72,9 @@ void ClassIndex::add(std::int64_t id, std::span<const double> key) {
                                 std::to_string(dim_));
   keys_.insert(keys_.end(), key.begin(), key.end());
   ids_.push_back(id);
+}
+
+void ClassIndex::settle() {
   const double limit = std::max<double>(static_cast<double>(kMinTailBeforeRebuild),
                                         kTailRebuildFraction * static_cast<double>(indexed_));
   if (static_cast<double>(tailSize()) > limit) rebuild();
@@ -128,6 +131,10 @@ void KeyIndex::add(const ExperienceClass& cls, std::int64_t id, std::span<const 
   auto it = classes_.find(cls);
   if (it == classes_.end()) it = classes_.emplace(cls, std::make_unique<ClassIndex>(key.size())).first;
   it->second->add(id, key);
+}
+
+void KeyIndex::settle() {
+  for (auto& [cls, index] : classes_) index->settle();
 }
 
 std::size_t KeyIndex::size() const {

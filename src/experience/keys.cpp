@@ -177,6 +177,15 @@ Canonical swappedRoles(const Canonical& c, const std::vector<std::vector<double>
   return s;
 }
 
+Experience canonicalExperience(const Canonical& form, const std::vector<Path>& subproblem_paths) {
+  Experience e;
+  e.cls = form.cls;
+  e.paths = form.toCanonical(subproblem_paths);
+  e.key = keyOfCanonicalPaths(e.cls.kind, e.paths);
+  e.cost = pathCost(e.paths);
+  return e;
+}
+
 std::vector<Path> Canonical::toCanonical(const std::vector<Path>& paths) const {
   if (paths.size() != order.size()) throw std::invalid_argument("toCanonical: one path per robot expected");
   std::vector<Path> out;

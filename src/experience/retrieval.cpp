@@ -49,12 +49,7 @@ std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<cons
     starts.emplace_back(p.at(0), p.at(0) + p.dim());
     goals.emplace_back(p.back(), p.back() + p.dim());
   }
-  const Canonical form = canonicalize(traits, starts, goals);
-  Experience e;
-  e.cls = form.cls;
-  e.paths = form.toCanonical(paths);
-  e.key = keyOfCanonicalPaths(e.cls.kind, e.paths);
-  e.cost = pathCost(e.paths);
+  Experience e = canonicalExperience(canonicalize(traits, starts, goals), paths);
   e.source = source;
   e.solve_time_s = solve_time_s;
   return store.insert(e, near_duplicate_eps);

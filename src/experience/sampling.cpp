@@ -54,11 +54,7 @@ Experience straightLineExperience(std::span<const RobotTraits> robots, const Que
     }
     paths.push_back(std::move(p));
   }
-  Experience e;
-  e.cls = c.cls;
-  e.paths = c.toCanonical(paths);
-  e.key = keyOfCanonicalPaths(e.cls.kind, e.paths);
-  e.cost = pathCost(e.paths);
+  Experience e = canonicalExperience(c, paths);
   e.source = source;
   return e;
 }

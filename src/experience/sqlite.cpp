@@ -125,6 +125,9 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     sqlite3_limit(db, SQLITE_LIMIT_LENGTH, kHostileMaxLength);
     exec("PRAGMA cell_size_check = ON");
     exec("PRAGMA mmap_size = 0");
+  } else {
+    exec("PRAGMA cache_size = -" + std::to_string(kPageCacheKiB));
+    exec("PRAGMA mmap_size = " + std::to_string(kMmapBytes));
   }
 }
 

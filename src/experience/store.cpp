@@ -18,6 +18,20 @@ std::int64_t nowUnixSeconds() {
   return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
+// Whether a key length can belong to the class without reading the paths
+// (the per-robot dimension lives in the path blob): exact for mobile
+// robots, one of the possible lengths for arms. verify checks it exactly.
+bool plausibleKeyDimension(const ExperienceClass& cls, std::size_t n) {
+  if (cls.robot_count < 1) return false;
+  if (cls.kind == RobotKind::Mobile) return n == static_cast<std::size_t>(keyDimension(cls.kind, cls.robot_count, 3));
+  const std::size_t per_joint = static_cast<std::size_t>(2 * cls.robot_count);
+  return n > 0 && n % per_joint == 0 && n / per_joint <= static_cast<std::size_t>(kArmKeyJoints);
+}
+
+// Keys added between two settle() calls in bulk work: bounds the linear
+// tail without rebuilding a tree per key.
+constexpr std::size_t kSettleEvery = 1024;
+
 // Resets a cached statement however the scope is left.
 struct ResetOnExit {
   Statement& s;
@@ -99,9 +113,9 @@ void ExperienceStore::refreshLocked() {
 }
 
 void ExperienceStore::loadTailLocked() {
-  Statement s = conn_->prepare(
-      "SELECT id, kind, robot_count, signature, base_class, key, substr(paths, 1, 16) FROM experiences "
-      "WHERE id > ?1 ORDER BY id");
+  // Version 3 has a covering index: the scan never touches the path blobs.
+  Statement s = conn_->prepare(std::string("SELECT id, kind, robot_count, signature, base_class, key FROM experiences") +
+                               (version_ >= 3 ? " INDEXED BY experiences_keys" : "") + " WHERE id > ?1 ORDER BY id");
   s.bind(1, max_loaded_);
   while (s.step()) {
     const std::int64_t id = s.int64At(0);
@@ -111,9 +125,7 @@ void ExperienceStore::loadTailLocked() {
       if (!kind) throw CorruptRowError(id, "unknown kind \"" + s.textAt(1) + "\"");
       ExperienceClass cls{*kind, static_cast<int>(s.int64At(2)), s.textAt(3), s.textAt(4)};
       std::vector<double> key = decodeKey(s.blobAt(5), id);
-      const PathBlobHeader header = readPathBlobHeader(s.blobAt(6), id);
-      if (header.robots != cls.robot_count) throw CorruptRowError(id, "robot_count disagrees with the path blob");
-      if (key.size() != static_cast<std::size_t>(keyDimension(cls.kind, cls.robot_count, header.dim)))
+      if (!plausibleKeyDimension(cls, key.size()))
         throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
       const ClassIndex* existing = index_.find(cls);
       if (existing && existing->dim() != key.size())
@@ -124,6 +136,7 @@ void ExperienceStore::loadTailLocked() {
       warnSkipped(id, e.reason());
     }
   }
+  index_.settle();
 }
 
 void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
@@ -221,7 +234,10 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       insert.run();
       insert.reset();
       const std::int64_t id = sqlite3_last_insert_rowid(conn_->handle());
-      if (eps >= 0) batch_index.add(e.cls, id, e.key);
+      if (eps >= 0) {
+        batch_index.add(e.cls, id, e.key);
+        if (result.size() % kSettleEvery == 0) batch_index.settle();
+      }
       result.push_back(id);
     }
     return result;
@@ -232,6 +248,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       index_.add(rows[i].cls, *ids[i], rows[i].key);
       max_loaded_ = std::max(max_loaded_, *ids[i]);
     }
+  index_.settle();
   afterWriteLocked();
   return ids;
 }

@@ -25,7 +25,10 @@ TEST_CASE("k-d tree retrieval with an unindexed tail equals brute force at every
   ClassIndex index(8);
   std::int64_t id = 0;
   for (std::size_t target : {1u, 5u, 63u, 64u, 65u, 300u, 2100u, 5000u}) {
-    while (index.size() < target) index.add(++id, randomKey(rng, 8));
+    while (index.size() < target) {
+      index.add(++id, randomKey(rng, 8));
+      if (id % 7 == 0) index.settle();
+    }
     for (int q = 0; q < 20; ++q) {
       auto key = randomKey(rng, 8);
       auto a = index.nearest(key, 10);
@@ -45,6 +48,7 @@ TEST_CASE("the unindexed tail is folded into the tree once it outgrows its share
   ClassIndex index(4);
   for (int i = 0; i < 10000; ++i) {
     index.add(i + 1, randomKey(rng, 4));
+    index.settle();
     const double limit = std::max<double>(kMinTailBeforeRebuild,
                                           kTailRebuildFraction * static_cast<double>(index.size() - index.tailSize()));
     REQUIRE(static_cast<double>(index.tailSize()) <= limit);

@@ -37,8 +37,11 @@ class ClassIndex {
   std::size_t size() const { return ids_.size(); }
   std::size_t tailSize() const { return ids_.size() - indexed_; }
 
-  // Appends a key (dimension must match); may rebuild the tree.
+  // Appends a key to the tail (dimension must match).
   void add(std::int64_t id, std::span<const double> key);
+  // Folds the tail into the tree when it outgrew its share. Call after a
+  // batch of add(): rebuilding per key would cost a tree per few keys.
+  void settle();
   // Folds the tail into the tree now.
   void rebuild();
 
@@ -65,6 +68,8 @@ class KeyIndex {
   // Throws std::invalid_argument when the key's dimension differs from the
   // class's earlier keys.
   void add(const ExperienceClass& cls, std::int64_t id, std::span<const double> key);
+  // ClassIndex::settle for every class.
+  void settle();
   void clear() { classes_.clear(); }
   std::size_t size() const;
   const std::map<ExperienceClass, std::unique_ptr<ClassIndex>>& classes() const { return classes_; }

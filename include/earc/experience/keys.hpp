@@ -90,6 +90,12 @@ struct Canonical {
   std::vector<Path> fromCanonical(const std::vector<Path>& paths) const;
 };
 
+// A stored-form experience of a solved subproblem: paths in subproblem
+// order and world frame, mapped to canonical form; key from the canonical
+// paths' endpoints, cost from their lengths. Source and bookkeeping are
+// left at their defaults.
+Experience canonicalExperience(const Canonical& form, const std::vector<Path>& subproblem_paths);
+
 // True when the robots form a class the store can hold: one or more mobile
 // robots, or exactly two manipulators with equal dimensions.
 bool hasExperienceClass(std::span<const RobotTraits> robots);

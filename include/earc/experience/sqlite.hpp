@@ -124,6 +124,14 @@ struct ConnectionSettings {
 
 // Cap on the WAL file kept after a checkpoint (bytes).
 inline constexpr std::int64_t kJournalSizeLimit = 64ll << 20;
+// Page cache of our own connections (KiB): retrieval reads k rows at random
+// places in the file; keeping recently read pages saves the system calls.
+inline constexpr int kPageCacheKiB = 32 * 1024;
+// Memory-mapped reads of our own files (never of hostile ones): a page read
+// becomes a memory access instead of a system call. Measured on 100,000
+// 2-robot rows, 10 random rows not in the page cache: 69 us with pread,
+// 47 us mapped.
+inline constexpr std::int64_t kMmapBytes = 256ll << 20;
 // Largest string or blob a hostile file may hand us (bytes): a path blob of
 // 4 robots x 5 joints x 100,000 steps is 16 MB.
 inline constexpr int kHostileMaxLength = 64 << 20;

@@ -1,0 +1,99 @@
+// Whole-file operations behind earc-db: inspect (what is in a database),
+// verify (is every byte of it sound), curate (remove near-duplicates and
+// unused entries, merge files), and copying a live database safely.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "earc/experience/experience.hpp"
+#include "earc/experience/sqlite.hpp"
+#include "earc/io/input_error.hpp"
+
+namespace earc::exp {
+
+struct ClassSummary {
+  ExperienceClass cls;
+  std::int64_t entries = 0;
+  std::int64_t key_dim = 0;
+  std::int64_t path_bytes = 0;
+  std::int64_t retrieved = 0;
+  std::int64_t succeeded = 0;
+  double mean_cost = 0.0;        // steps summed over robots
+  double mean_solve_time_s = 0.0;
+};
+
+struct InspectReport {
+  std::string path;
+  int schema_version = 0;
+  std::int64_t file_bytes = 0;   // main file
+  std::int64_t wal_bytes = 0;    // -wal file (0 when absent)
+  std::int64_t sessions = 0;
+  std::int64_t entries = 0;
+  std::int64_t path_bytes = 0;   // sum of path blob sizes
+  std::int64_t key_bytes = 0;
+  std::vector<ClassSummary> classes;
+  std::vector<Experience> samples;  // the first entries by id
+};
+
+// Reads without writing (opens read-only; older schemas are fine).
+InspectReport inspectDatabase(const std::string& path, int sample_entries);
+
+struct VerifyReport {
+  int schema_version = 0;
+  std::int64_t rows = 0;
+  std::vector<std::string> problems;  // empty when the file is sound
+  std::vector<std::string> notes;     // not problems (e.g. an older schema)
+  bool ok() const { return problems.empty(); }
+};
+
+// integrity_check, application_id and schema version, every row (column
+// types, blob headers and lengths, finite numbers, key and class
+// consistency), one key dimension per class. Never writes.
+VerifyReport verifyDatabase(const std::string& path);
+
+struct CurateSettings {
+  std::vector<std::string> merge;      // other databases or exports to add first
+  double dedupe_eps = -1.0;            // >= 0: keep one entry per eps-ball in each class
+  bool drop_unused = false;            // delete entries never retrieved ...
+  int older_than_sessions = 0;         // ... created at least this many sessions ago
+  std::string output;                  // non-empty: curate a copy, leave the original untouched
+  bool vacuum = false;                 // give freed pages back to the file system
+};
+
+struct CurateReport {
+  std::int64_t rows_before = 0;
+  std::int64_t merged = 0;
+  std::int64_t duplicates_removed = 0;
+  std::int64_t unused_removed = 0;
+  std::int64_t rows_after = 0;
+  std::string curated_path;
+};
+
+// Merges, then removes near-duplicates (keeping in each eps-ball the entry
+// that succeeded most, then was retrieved most, then is oldest), then drops
+// unused entries; each step one write transaction.
+CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
+
+// A consistent copy of a live database (VACUUM INTO; never cp): readers and
+// writers may keep using the source. `to` must not exist.
+void copyDatabase(const std::string& from, const std::string& to);
+
+// Runs f(); a database file that cannot be used (missing, foreign, newer,
+// damaged) becomes an InputError naming it: one line and exit status 2 in
+// the tools. BusyError stays a runtime error (exit status 1).
+template <class F>
+auto withInputErrors(const std::string& path, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const BusyError&) {
+    throw;
+  } catch (const StoreError& e) {
+    std::string reason = e.what();
+    if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
+    throw InputError(path, "", reason);
+  }
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,54 @@
+// Moving experiences between files: a portable JSON-lines export, and
+// imports that treat every input as hostile (shared/design/reliability.md):
+// SQLite inputs are opened read-only with quick_check, cell_size_check and
+// no mmap; every row of every input is validated (types, dimensions, finite
+// numbers, blob header and length, class consistency) before anything is
+// written, and the rows are then stored in ONE transaction: an import
+// applies whole or not at all.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "earc/experience/experience.hpp"
+#include "earc/experience/store.hpp"
+
+namespace earc::exp {
+
+// First line of an export: {"format": kExportFormat, "schema_version": N,
+// "rows": count}; then one JSON object per row, in id order.
+inline constexpr const char* kExportFormat = "earc.experiences.v1";
+
+// Writes every row of the database at db_path to out_path (atomically:
+// temporary file, fsync, rename). Doubles are written in the shortest form
+// that reads back to the same double. Returns the number of rows.
+std::size_t exportJsonl(const std::string& db_path, const std::string& out_path);
+
+// One row as an export line's object, and back. experienceFromJson throws
+// InputError(file, where, reason) for anything malformed or inconsistent.
+nlohmann::json experienceToJson(const Experience& e);
+Experience experienceFromJson(const nlohmann::json& row, const std::string& file, const std::string& where);
+
+// Every row of an import source (.jsonl export or earc SQLite database,
+// told apart by content), validated. Throws InputError naming the file and
+// the bad rows (line numbers for exports, row ids for databases).
+std::vector<Experience> readImportSource(const std::string& path);
+
+struct ImportSettings {
+  double near_duplicate_eps = -1.0;  // < 0: store every row
+  bool mark_imported = false;        // set every row's source to 'import'
+};
+
+struct ImportReport {
+  std::size_t read = 0;
+  std::size_t inserted = 0;
+  std::size_t duplicates = 0;
+};
+
+// Reads and validates every input, then inserts all rows in one transaction.
+ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& inputs,
+                        const ImportSettings& settings = {});
+
+}  // namespace earc::exp

@@ -1,0 +1,217 @@
+#include "earc/experience/maintenance.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "earc/experience/key_index.hpp"
+#include "earc/experience/rows.hpp"
+#include "earc/experience/schema.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/experience/transfer.hpp"
+#include "earc/io/input_error.hpp"
+
+namespace earc::exp {
+
+namespace {
+
+StoreOptions readOnlyOptions() {
+  StoreOptions o;
+  o.read_only = true;
+  return o;
+}
+
+std::int64_t fileSize(const std::string& path) {
+  std::error_code ec;
+  auto n = std::filesystem::file_size(path, ec);
+  return ec ? 0 : static_cast<std::int64_t>(n);
+}
+
+std::int64_t count(Connection& db, const std::string& sql) {
+  Statement s = db.prepare(sql);
+  std::int64_t n = s.step() ? s.int64At(0) : 0;
+  s.reset();
+  return n;
+}
+
+// Keys kept between two index rebuilds while deduplicating.
+constexpr std::size_t kSettleEvery = 1024;
+
+// Near-duplicate removal inside one class: rows ordered best first, each
+// kept unless a kept row lies within eps. Returns the ids to delete. Needs
+// the current schema (usage counters).
+std::vector<std::int64_t> nearDuplicates(Connection& db, int version, double eps) {
+  struct Row {
+    std::int64_t id, succeeded, retrieved;
+    ExperienceClass cls;
+    std::vector<double> key;
+  };
+  std::vector<Row> rows;
+  Statement s = db.prepare(selectExperiencesSql(version) +
+                           " ORDER BY succeeded_count DESC, retrieved_count DESC, id ASC");
+  while (s.step()) {
+    Experience e = readExperience(s);
+    rows.push_back({e.id, e.succeeded, e.retrieved, e.cls, std::move(e.key)});
+  }
+  KeyIndex kept;
+  std::size_t added = 0;
+  std::vector<std::int64_t> drop;
+  for (const Row& r : rows) {
+    const ClassIndex* index = kept.find(r.cls);
+    if (index) {
+      auto n = index->nearest(r.key, 1);
+      if (!n.empty() && n.front().distance <= eps) {
+        drop.push_back(r.id);
+        continue;
+      }
+    }
+    kept.add(r.cls, r.id, r.key);
+    if (++added % kSettleEvery == 0) kept.settle();
+  }
+  return drop;
+}
+
+std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
+  Statement del = db.prepare("DELETE FROM experiences WHERE id = ?1");
+  for (std::int64_t id : ids) {
+    del.bind(1, id);
+    del.run();
+    del.reset();
+  }
+  return static_cast<std::int64_t>(ids.size());
+}
+
+}  // namespace
+
+InspectReport inspectDatabase(const std::string& path, int sample_entries) {
+  ExperienceStore store(path, readOnlyOptions());
+  Connection& db = store.connection();
+  InspectReport r;
+  r.path = path;
+  r.schema_version = store.schemaVersion();
+  r.file_bytes = fileSize(path);
+  r.wal_bytes = fileSize(path + "-wal");
+  r.sessions = store.session();
+  db.exec("BEGIN");  // one snapshot for every number
+  const std::string usage = r.schema_version >= 2 ? "sum(retrieved_count), sum(succeeded_count), avg(solve_time_s)"
+                                                  : "0, 0, 0.0";
+  Statement classes = db.prepare(
+      "SELECT kind, robot_count, signature, base_class, count(*), sum(length(key)), sum(length(paths)), " + usage +
+      ", avg(cost) FROM experiences GROUP BY kind, robot_count, signature, base_class ORDER BY kind, robot_count, "
+      "base_class, signature");
+  while (classes.step()) {
+    ClassSummary c;
+    c.cls = {kindFromName(classes.textAt(0)).value_or(RobotKind::Mobile), static_cast<int>(classes.int64At(1)),
+             classes.textAt(2), classes.textAt(3)};
+    c.entries = classes.int64At(4);
+    c.key_dim = c.entries ? classes.int64At(5) / c.entries / 8 : 0;
+    c.path_bytes = classes.int64At(6);
+    c.retrieved = classes.int64At(7);
+    c.succeeded = classes.int64At(8);
+    c.mean_solve_time_s = classes.doubleAt(9);
+    c.mean_cost = classes.doubleAt(10);
+    r.entries += c.entries;
+    r.key_bytes += classes.int64At(5);
+    r.path_bytes += c.path_bytes;
+    r.classes.push_back(std::move(c));
+  }
+  Statement sample = db.prepare(selectExperiencesSql(r.schema_version) + " ORDER BY id LIMIT ?1");
+  sample.bind(1, sample_entries);
+  while (sample.step()) {
+    try {
+      r.samples.push_back(readExperience(sample));
+    } catch (const CorruptRowError&) {
+      // inspect shows what it can; verify names the bad rows
+    }
+  }
+  db.exec("COMMIT");
+  return r;
+}
+
+VerifyReport verifyDatabase(const std::string& path) {
+  VerifyReport r;
+  if (!std::filesystem::exists(path)) throw InputError(path, "", "no such file");
+  std::unique_ptr<Connection> db;
+  try {
+    db = std::make_unique<Connection>(path, OpenMode::Hostile);
+    r.schema_version = checkIdentity(*db);
+  } catch (const StoreError& e) {
+    r.problems.push_back(e.what());
+    return r;
+  }
+  if (r.schema_version == 0) {
+    r.problems.push_back(path + ": empty file, not an earc experience database");
+    return r;
+  }
+  if (r.schema_version < currentSchemaVersion())
+    r.notes.push_back("schema version " + std::to_string(r.schema_version) + " (this program: " +
+                      std::to_string(currentSchemaVersion()) + "); migrated on the next read-write open");
+  Statement integrity = db->prepare("PRAGMA integrity_check");
+  while (integrity.step())
+    if (integrity.textAt(0) != "ok") r.problems.push_back("integrity_check: " + integrity.textAt(0));
+  std::map<ExperienceClass, std::pair<std::size_t, std::int64_t>> key_dims;  // class -> (dim, first row)
+  try {
+    db->exec("BEGIN");
+    Statement rows = db->prepare(selectExperiencesSql(r.schema_version) + " ORDER BY id");
+    while (rows.step()) {
+      ++r.rows;
+      try {
+        Experience e = readExperience(rows);
+        auto [it, fresh] = key_dims.try_emplace(e.cls, e.key.size(), e.id);
+        if (!fresh && it->second.first != e.key.size())
+          r.problems.push_back("row " + std::to_string(e.id) + ": key dimension " + std::to_string(e.key.size()) +
+                               " differs from row " + std::to_string(it->second.second) + " of the same class");
+      } catch (const CorruptRowError& e) {
+        r.problems.push_back(e.what());
+      }
+    }
+    db->exec("COMMIT");
+  } catch (const StoreError& e) {
+    r.problems.push_back(e.what());
+  }
+  return r;
+}
+
+CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+  CurateReport r;
+  r.curated_path = path;
+  if (!settings.output.empty()) {
+    copyDatabase(path, settings.output);
+    r.curated_path = settings.output;
+  }
+  StoreOptions options;
+  options.new_session = false;  // curation is not a planning session
+  ExperienceStore store(r.curated_path, options);
+  Connection& db = store.connection();
+  r.rows_before = count(db, "SELECT count(*) FROM experiences");
+  if (!settings.merge.empty()) {
+    ImportSettings merge;
+    merge.near_duplicate_eps = std::max(0.0, settings.dedupe_eps);  // never the same row twice
+    r.merged = static_cast<std::int64_t>(importInto(store, settings.merge, merge).inserted);
+  }
+  if (settings.dedupe_eps >= 0)
+    r.duplicates_removed = db.write([&] { return deleteIds(db, nearDuplicates(db, store.schemaVersion(), settings.dedupe_eps)); });
+  if (settings.drop_unused)
+    r.unused_removed = db.write([&] {
+      Statement del = db.prepare(
+          "DELETE FROM experiences WHERE retrieved_count = 0 AND created_session <= "
+          "(SELECT value FROM store_meta WHERE name = 'sessions') - ?1");
+      del.bind(1, settings.older_than_sessions);
+      del.run();
+      return static_cast<std::int64_t>(sqlite3_changes(db.handle()));
+    });
+  if (settings.vacuum) db.exec("VACUUM");
+  r.rows_after = count(db, "SELECT count(*) FROM experiences");
+  return r;
+}
+
+void copyDatabase(const std::string& from, const std::string& to) {
+  if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
+  ExperienceStore source(from, readOnlyOptions());  // identity and version checked
+  Statement vacuum = source.connection().prepare("VACUUM INTO ?1");
+  vacuum.bind(1, std::string_view(to));
+  vacuum.run();
+}
+
+}  // namespace earc::exp

@@ -1,0 +1,256 @@
+#include "earc/experience/transfer.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "earc/experience/rows.hpp"
+#include "earc/experience/schema.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
+
+namespace earc::exp {
+
+namespace {
+
+using nlohmann::json;
+
+// Bad rows listed in one import error before "... and N more".
+constexpr std::size_t kListedBadRows = 10;
+
+bool looksLikeSqlite(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open for reading");
+  char head[16] = {};
+  in.read(head, sizeof head);
+  return in.gcount() == 16 && std::string(head, 16) == std::string("SQLite format 3\0", 16);
+}
+
+json pathsToJson(const std::vector<Path>& paths) {
+  json out = json::array();
+  for (const Path& p : paths) {
+    json states = json::array();
+    for (std::size_t t = 0; t < p.size(); ++t) states.push_back(std::vector<double>(p.state(t).begin(), p.state(t).end()));
+    out.push_back(std::move(states));
+  }
+  return out;
+}
+
+// Collects bad rows so one error can name several of them.
+struct BadRows {
+  std::string file;
+  std::vector<std::string> list;
+  std::size_t count = 0;
+  void add(const std::string& where, const std::string& reason) {
+    if (list.size() < kListedBadRows) list.push_back(where + ": " + reason);
+    ++count;
+  }
+  void throwIfAny() const {
+    if (count == 0) return;
+    std::string reason = std::to_string(count) + " bad row" + (count == 1 ? "" : "s") + "; nothing was imported";
+    for (const auto& s : list) reason += "\n  " + s;
+    if (count > list.size()) reason += "\n  ... and " + std::to_string(count - list.size()) + " more";
+    throw InputError(file, "", reason);
+  }
+};
+
+const json& field(const json& row, const char* name, const std::string& file, const std::string& where) {
+  auto it = row.find(name);
+  if (it == row.end()) throw InputError(file, where, std::string("missing field \"") + name + "\"");
+  return *it;
+}
+
+std::int64_t integerField(const json& row, const char* name, const std::string& file, const std::string& where) {
+  const json& v = field(row, name, file, where);
+  if (!v.is_number_integer()) throw InputError(file, where + "." + name, "not an integer");
+  return v.get<std::int64_t>();
+}
+
+double numberField(const json& row, const char* name, const std::string& file, const std::string& where) {
+  const json& v = field(row, name, file, where);
+  if (!v.is_number() || !std::isfinite(v.get<double>())) throw InputError(file, where + "." + name, "not a finite number");
+  return v.get<double>();
+}
+
+std::string textField(const json& row, const char* name, const std::string& file, const std::string& where) {
+  const json& v = field(row, name, file, where);
+  if (!v.is_string()) throw InputError(file, where + "." + name, "not a string");
+  return v.get<std::string>();
+}
+
+std::vector<double> numbers(const json& v, const std::string& file, const std::string& where) {
+  if (!v.is_array()) throw InputError(file, where, "not an array of numbers");
+  std::vector<double> out;
+  out.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+      throw InputError(file, where + "[" + std::to_string(i) + "]", "not a finite number");
+    out.push_back(v[i].get<double>());
+  }
+  return out;
+}
+
+std::vector<Experience> readJsonl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open for reading");
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(path, "line 1", "empty file: expected an earc experience export");
+  json header = parseJsonText(line, path + ": line 1");
+  if (!header.is_object() || header.value("format", json()) != kExportFormat)
+    throw InputError(path, "line 1", std::string("not an earc experience export (expected format \"") + kExportFormat + "\")");
+  std::vector<Experience> rows;
+  BadRows bad{path, {}, 0};
+  std::size_t number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    const std::string where = "line " + std::to_string(number);
+    try {
+      rows.push_back(experienceFromJson(parseJsonText(line, path + ": " + where), path, where));
+    } catch (const InputError& e) {
+      // Row errors name the line already; parse errors name the JSON path.
+      bad.add(e.file() == path ? e.where() : where + (e.where().empty() ? "" : " " + e.where()), e.reason());
+    }
+  }
+  bad.throwIfAny();
+  if (header.contains("rows") && header["rows"].is_number_integer() &&
+      header["rows"].get<std::int64_t>() != static_cast<std::int64_t>(rows.size()))
+    throw InputError(path, "line 1", "header announces " + header["rows"].dump() + " rows, the file holds " +
+                                         std::to_string(rows.size()) + " (truncated?)");
+  return rows;
+}
+
+std::vector<Experience> readSqlite(const std::string& path) {
+  try {
+    Connection db(path, OpenMode::Hostile);
+    const int version = checkIdentity(db);  // foreign or newer: refused before reading rows
+    if (version == 0) throw InputError(path, "", "empty database");
+    // quick_check before reading rows: a damaged file is refused as a whole.
+    Statement check = db.prepare("PRAGMA quick_check");
+    std::string first;
+    while (check.step())
+      if (first.empty()) first = check.textAt(0);
+    if (first != "ok") throw InputError(path, "", "quick_check failed: " + first);
+    Statement table = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'experiences'");
+    table.step();
+    if (table.int64At(0) != 1) throw InputError(path, "", "no experiences table");
+    table.reset();
+    std::vector<Experience> rows;
+    BadRows bad{path, {}, 0};
+    Statement select = db.prepare(selectExperiencesSql(version) + " ORDER BY id");
+    while (select.step()) {
+      try {
+        rows.push_back(readExperience(select));
+      } catch (const CorruptRowError& e) {
+        bad.add("row " + std::to_string(e.row()), e.reason());
+      }
+    }
+    bad.throwIfAny();
+    return rows;
+  } catch (const StoreError& e) {
+    throw InputError(path, "", e.what());
+  }
+}
+
+}  // namespace
+
+json experienceToJson(const Experience& e) {
+  return json{{"id", e.id},
+              {"kind", kindName(e.cls.kind)},
+              {"robot_count", e.cls.robot_count},
+              {"signature", e.cls.signature},
+              {"base_class", e.cls.base_class},
+              {"key", e.key},
+              {"paths", pathsToJson(e.paths)},
+              {"cost", e.cost},
+              {"source", sourceName(e.source)},
+              {"created_at", e.created_at},
+              {"solve_time_s", e.solve_time_s},
+              {"retrieved", e.retrieved},
+              {"succeeded", e.succeeded},
+              {"created_session", e.created_session}};
+}
+
+Experience experienceFromJson(const json& row, const std::string& file, const std::string& where) {
+  if (!row.is_object()) throw InputError(file, where, "not a JSON object");
+  Experience e;
+  e.id = integerField(row, "id", file, where);
+  const std::string w = where + " (id " + std::to_string(e.id) + ")";
+  auto kind = kindFromName(textField(row, "kind", file, w));
+  if (!kind) throw InputError(file, w + ".kind", "not \"mobile\" or \"manipulator\"");
+  const std::int64_t count = integerField(row, "robot_count", file, w);
+  if (count < 1 || count > 64) throw InputError(file, w + ".robot_count", "outside 1..64");
+  e.cls = {*kind, static_cast<int>(count), textField(row, "signature", file, w), textField(row, "base_class", file, w)};
+  e.key = numbers(field(row, "key", file, w), file, w + ".key");
+  const json& paths = field(row, "paths", file, w);
+  if (!paths.is_array()) throw InputError(file, w + ".paths", "not an array");
+  for (std::size_t r = 0; r < paths.size(); ++r) {
+    const std::string pw = w + ".paths[" + std::to_string(r) + "]";
+    if (!paths[r].is_array() || paths[r].empty()) throw InputError(file, pw, "not a non-empty array of states");
+    const std::size_t dim = paths[r][0].is_array() ? paths[r][0].size() : 0;
+    if (dim < 1 || dim > 64) throw InputError(file, pw + "[0]", "a state must hold 1..64 numbers");
+    Path p(static_cast<int>(dim));
+    for (std::size_t t = 0; t < paths[r].size(); ++t) {
+      std::vector<double> q = numbers(paths[r][t], file, pw + "[" + std::to_string(t) + "]");
+      if (q.size() != dim) throw InputError(file, pw + "[" + std::to_string(t) + "]", "dimension differs from state 0");
+      p.push(q);
+    }
+    e.paths.push_back(std::move(p));
+  }
+  e.cost = numberField(row, "cost", file, w);
+  auto source = sourceFromName(textField(row, "source", file, w));
+  if (!source) throw InputError(file, w + ".source", "not \"build\", \"planner\" or \"import\"");
+  e.source = *source;
+  e.created_at = integerField(row, "created_at", file, w);
+  e.solve_time_s = numberField(row, "solve_time_s", file, w);
+  e.retrieved = integerField(row, "retrieved", file, w);
+  e.succeeded = integerField(row, "succeeded", file, w);
+  e.created_session = integerField(row, "created_session", file, w);
+  if (auto problem = findProblem(e)) throw InputError(file, w, *problem);
+  return e;
+}
+
+std::size_t exportJsonl(const std::string& db_path, const std::string& out_path) {
+  StoreOptions options;
+  options.read_only = true;
+  ExperienceStore store(db_path, options);
+  Connection& db = store.connection();
+  std::ostringstream out;
+  // One read transaction: the header's count and the rows are one snapshot.
+  db.exec("BEGIN");
+  Statement count = db.prepare("SELECT count(*) FROM experiences");
+  count.step();
+  const std::int64_t rows = count.int64At(0);
+  count.reset();
+  out << json{{"format", kExportFormat}, {"schema_version", store.schemaVersion()}, {"rows", rows}}.dump() << "\n";
+  Statement select = db.prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
+  std::size_t written = 0;
+  while (select.step()) {
+    out << experienceToJson(readExperience(select)).dump() << "\n";
+    ++written;
+  }
+  db.exec("COMMIT");
+  writeTextFileAtomic(out_path, out.str());
+  return written;
+}
+
+std::vector<Experience> readImportSource(const std::string& path) {
+  return looksLikeSqlite(path) ? readSqlite(path) : readJsonl(path);
+}
+
+ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& inputs, const ImportSettings& settings) {
+  std::vector<Experience> all;
+  for (const std::string& input : inputs) {
+    std::vector<Experience> rows = readImportSource(input);
+    all.insert(all.end(), std::make_move_iterator(rows.begin()), std::make_move_iterator(rows.end()));
+  }
+  for (Experience& e : all) {
+    e.id = 0;
+    if (settings.mark_imported) e.source = Source::Import;
+  }
+  ImportReport report;
+  report.read = all.size();
+  for (const auto& id : store.insertAll(all, settings.near_duplicate_eps)) (id ? report.inserted : report.duplicates)++;
+  return report;
+}
+
+}  // namespace earc::exp

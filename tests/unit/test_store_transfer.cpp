@@ -1,0 +1,273 @@
+// Export, import, verify and curate: moving experiences between files
+// without losing, changing or letting in anything bad.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "earc/experience/maintenance.hpp"
+#include "earc/experience/rows.hpp"
+#include "earc/experience/sampling.hpp"
+#include "earc/experience/scratch.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/experience/transfer.hpp"
+#include "earc/gen/generators.hpp"
+
+using namespace earc;
+using namespace earc::exp;
+
+namespace {
+
+// A database with mobile rows of 2 and 3 robots and arm-pair rows, some
+// with usage counts, written through the store.
+void fill(const std::string& path, std::uint64_t seed, int per_class = 20) {
+  RobotSpec disc;
+  disc.radius = 0.3;
+  const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+  gen::ArmSettings arms;
+  arms.robots = 2;
+  auto models = makeRobotModels(gen::generateArms(arms));
+  std::vector<RobotTraits> arm_pair{traitsOf(*models[0]), traitsOf(*models[1])};
+  std::mt19937_64 rng(seed);
+  ExperienceStore store(path);
+  std::vector<Experience> rows;
+  for (int i = 0; i < per_class; ++i) {
+    rows.push_back(straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5));
+    rows.push_back(straightLineExperience(std::vector<RobotTraits>{d, d, d}, sampleMobileQuery(3, rng), 7,
+                                          Source::Planner));
+    rows.push_back(straightLineExperience(arm_pair, sampleArmQuery(*models[0], *models[1], rng), 4));
+    rows.back().solve_time_s = 0.1 * (i + 1) / 3.0;  // not a short decimal
+  }
+  auto ids = store.insertAll(rows, -1);
+  for (std::size_t i = 0; i < ids.size(); i += 4) store.recordUse(*ids[i], i % 8 == 0);
+}
+
+// Every row of a database except id and created_session, in id order.
+std::vector<nlohmann::json> contents(const std::string& path) {
+  StoreOptions ro;
+  ro.read_only = true;
+  ExperienceStore store(path, ro);
+  Statement s = store.connection().prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
+  std::vector<nlohmann::json> out;
+  while (s.step()) {
+    nlohmann::json row = experienceToJson(readExperience(s));
+    row.erase("id");
+    row.erase("created_session");
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+std::int64_t rowCount(const std::string& path) {
+  Connection c(path, OpenMode::ReadOnly);
+  Statement s = c.prepare("SELECT count(*) FROM experiences");
+  s.step();
+  return s.int64At(0);
+}
+
+std::string importError(const std::string& db, const std::vector<std::string>& inputs) {
+  ExperienceStore store(db);
+  try {
+    importInto(store, inputs);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  FAIL("import accepted bad input");
+  return "";
+}
+
+std::vector<std::string> readLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+void writeLines(const std::string& path, const std::vector<std::string>& lines) {
+  std::ofstream out(path);
+  for (const auto& l : lines) out << l << "\n";
+}
+
+}  // namespace
+
+TEST_CASE("export then import gives the same rows, every double bit for bit") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db"), jsonl = dir.file("a.jsonl");
+  fill(a, 1);
+  CHECK(exportJsonl(a, jsonl) == 60);
+  ExperienceStore store(b);
+  ImportReport r = importInto(store, {jsonl});
+  store.close();
+  CHECK(r.read == 60);
+  CHECK(r.inserted == 60);
+  CHECK(contents(b) == contents(a));
+  // JSON equality compares doubles exactly; make sure some are not short decimals.
+  CHECK(contents(a)[2]["solve_time_s"].get<double>() == 0.1 * 1 / 3.0);
+}
+
+TEST_CASE("an earc database imports directly with the same rows") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db");
+  fill(a, 2);
+  ExperienceStore store(b);
+  CHECK(importInto(store, {a}).inserted == 60);
+  store.close();
+  CHECK(contents(b) == contents(a));
+}
+
+TEST_CASE("an export line with a bad row makes the import apply nothing and names the line") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db"), good = dir.file("good.jsonl"), bad = dir.file("bad.jsonl");
+  fill(a, 3);
+  exportJsonl(a, good);
+  auto lines = readLines(good);
+  auto row = nlohmann::json::parse(lines[5]);
+  row["paths"][0][1][0] = "oops";
+  lines[5] = row.dump();
+  writeLines(bad, lines);
+  const std::string msg = importError(b, {good, bad});  // the good file first: still nothing applied
+  CHECK(msg.find("line 6") != std::string::npos);
+  CHECK(msg.find("nothing was imported") != std::string::npos);
+  CHECK(rowCount(b) == 0);
+}
+
+TEST_CASE("an export row whose key disagrees with its paths is refused") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
+  fill(a, 4, 2);
+  exportJsonl(a, jsonl);
+  auto lines = readLines(jsonl);
+  auto row = nlohmann::json::parse(lines[1]);
+  row["key"][0] = row["key"][0].get<double>() + 1.0;
+  lines[1] = row.dump();
+  writeLines(jsonl, lines);
+  CHECK(importError(dir.file("b.db"), {jsonl}).find("disagrees with the paths") != std::string::npos);
+}
+
+TEST_CASE("a truncated export is refused by its announced row count") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
+  fill(a, 5, 2);
+  exportJsonl(a, jsonl);
+  auto lines = readLines(jsonl);
+  lines.pop_back();
+  writeLines(jsonl, lines);
+  CHECK(importError(dir.file("b.db"), {jsonl}).find("truncated") != std::string::npos);
+}
+
+TEST_CASE("a database with a corrupt blob is refused as an import source, naming the row id") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db");
+  fill(a, 6);
+  {
+    Connection c(a, OpenMode::ReadWrite);
+    c.exec("UPDATE experiences SET paths = substr(paths, 1, length(paths) - 8) WHERE id = 17");
+  }
+  const std::string msg = importError(b, {a});
+  CHECK(msg.find("row 17") != std::string::npos);
+  CHECK(msg.find("length") != std::string::npos);
+  CHECK(rowCount(b) == 0);
+}
+
+TEST_CASE("a foreign SQLite file is refused as an import source") {
+  ScratchDirectory dir("transfer");
+  const std::string foreign = dir.file("foreign.db");
+  {
+    Connection c(foreign, OpenMode::ReadWrite);
+    c.exec("CREATE TABLE experiences (id INTEGER PRIMARY KEY, kind TEXT)");
+  }
+  CHECK(importError(dir.file("b.db"), {foreign}).find("not an earc experience database") != std::string::npos);
+}
+
+TEST_CASE("verify passes a sound database and names every bad row of a damaged one") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 7);
+  VerifyReport ok = verifyDatabase(a);
+  CHECK(ok.ok());
+  CHECK(ok.rows == 60);
+  {
+    Connection c(a, OpenMode::ReadWrite);
+    Statement get = c.prepare("SELECT paths FROM experiences WHERE id = 4");
+    REQUIRE(get.step());
+    auto blob = std::vector<unsigned char>(get.blobAt(0).begin(), get.blobAt(0).end());
+    get.reset();
+    blob[4] = 2;  // format version 2
+    Statement put = c.prepare("UPDATE experiences SET paths = ?1 WHERE id = 4");
+    put.bindBlob(1, blob);
+    put.run();
+    c.exec("UPDATE experiences SET key = substr(key, 1, 8) WHERE id = 9");
+  }
+  VerifyReport bad = verifyDatabase(a);
+  CHECK_FALSE(bad.ok());
+  REQUIRE(bad.problems.size() == 2);
+  CHECK(bad.problems[0].find("row 4: path blob: format version 2") != std::string::npos);
+  CHECK(bad.problems[1].find("row 9: key has 1 values") != std::string::npos);
+}
+
+TEST_CASE("curate removes near-duplicates keeping the most successful entry") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  std::int64_t first = 0, second = 0;
+  {
+    RobotSpec disc;
+    disc.radius = 0.3;
+    const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+    std::mt19937_64 rng(8);
+    ExperienceStore store(a);
+    Experience e = straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5);
+    first = *store.insert(e, -1);
+    second = *store.insert(e, -1);
+    store.insert(straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5), -1);
+    store.recordUse(second, true);
+  }
+  CurateSettings s;
+  s.dedupe_eps = 1e-9;
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.duplicates_removed == 1);
+  CHECK(r.rows_after == 2);
+  StoreOptions ro;
+  ro.read_only = true;
+  ExperienceStore store(a, ro);
+  CHECK_FALSE(store.get(first).has_value());
+  CHECK(store.get(second).has_value());
+}
+
+TEST_CASE("curate drops entries never retrieved, optionally only old ones") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 9);  // session 1: 60 rows, 15 of them retrieved
+  {
+    ExperienceStore later(a);  // sessions 2 and 3
+  }
+  {
+    ExperienceStore later(a);
+  }
+  CurateSettings keep_recent;
+  keep_recent.drop_unused = true;
+  keep_recent.older_than_sessions = 3;  // created in session <= 0: none
+  CHECK(curateDatabase(a, keep_recent).unused_removed == 0);
+  CurateSettings old;
+  old.drop_unused = true;
+  old.older_than_sessions = 2;  // created in session <= 1
+  CurateReport r = curateDatabase(a, old);
+  CHECK(r.unused_removed == 45);
+  CHECK(r.rows_after == 15);
+}
+
+TEST_CASE("curate into a copy merges other files and leaves the original untouched") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db"), out = dir.file("merged.db");
+  fill(a, 10);
+  fill(b, 11);
+  CurateSettings s;
+  s.merge = {b, b};  // the same file twice: its rows once
+  s.output = out;
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.merged == 60);
+  CHECK(rowCount(out) == 120);
+  CHECK(rowCount(a) == 60);
+  CHECK(verifyDatabase(out).ok());
+  CHECK_THROWS_AS(copyDatabase(a, out), InputError);  // never overwrites
+}

@@ -1,0 +1,46 @@
+// earc-db curate --db FILE [--merge OTHER...] [--dedupe EPS] [--drop-unused
+// [--older-than-sessions N]] [-o OUT] [--vacuum]: offline dataset curation.
+// With -o the database is first copied (VACUUM INTO, never cp) and only the
+// copy is changed.
+#include <iostream>
+
+#include "earc/experience/maintenance.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace {
+
+struct CurateOptions {
+  std::string db;
+  earc::exp::CurateSettings settings;
+};
+
+void runCurate(const CurateOptions& opt, std::ostream& out) {
+  const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::curateDatabase(opt.db, opt.settings); });
+  out << "curated " << r.curated_path << ": " << r.rows_before << " rows before";
+  if (!opt.settings.merge.empty()) out << ", " << r.merged << " merged";
+  if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";
+  if (opt.settings.drop_unused) out << ", " << r.unused_removed << " unused removed";
+  out << ", " << r.rows_after << " rows after\n";
+}
+
+void setupCurate(CLI::App& app) {
+  auto opt = std::make_shared<CurateOptions>();
+  CLI::App* sub = app.add_subcommand("curate", "Merge databases, remove near-duplicates and unused entries");
+  sub->add_option("--db", opt->db, "Experience database file")->required()->check(CLI::ExistingFile);
+  sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--dedupe", opt->settings.dedupe_eps,
+                  "Keep one entry per key-distance ball of this radius in each class (the most successful)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--drop-unused", opt->settings.drop_unused, "Delete entries never retrieved");
+  sub->add_option("--older-than-sessions", opt->settings.older_than_sessions,
+                  "With --drop-unused: only entries created at least this many planning sessions ago")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
+  sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
+  sub->callback([opt] { runCurate(*opt, std::cout); });
+}
+
+}  // namespace
+
+static earc::cli::Registrar reg("earc-db", "curate", setupCurate);

@@ -1,0 +1,31 @@
+// earc-db export --db FILE -o OUT.jsonl: every row as portable JSON lines
+// (a header line, then one object per row; doubles round-trip exactly).
+#include <iostream>
+
+#include "earc/experience/maintenance.hpp"
+#include "earc/experience/transfer.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace {
+
+struct ExportOptions {
+  std::string db;
+  std::string out;
+};
+
+void runExport(const ExportOptions& opt, std::ostream& out) {
+  const std::size_t rows = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out); });
+  out << "exported " << rows << " rows from " << opt.db << " to " << opt.out << "\n";
+}
+
+void setupExport(CLI::App& app) {
+  auto opt = std::make_shared<ExportOptions>();
+  CLI::App* sub = app.add_subcommand("export", "Write every experience as JSON lines (" + std::string(earc::exp::kExportFormat) + ")");
+  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->required();
+  sub->callback([opt] { runExport(*opt, std::cout); });
+}
+
+}  // namespace
+
+static earc::cli::Registrar reg("earc-db", "export", setupExport);

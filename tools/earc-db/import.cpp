@@ -1,0 +1,47 @@
+// earc-db import --db FILE IN...: adds the rows of exports (.jsonl) and of
+// other earc databases. Inputs are treated as hostile and validated whole
+// before anything is written; the import applies in one transaction, so a
+// bad row anywhere means nothing is imported (exit 2, the row named).
+#include <iostream>
+
+#include "earc/experience/maintenance.hpp"
+#include "earc/experience/transfer.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace {
+
+struct ImportOptions {
+  std::string db;
+  std::vector<std::string> inputs;
+  double dedupe = -1.0;
+  bool mark_imported = false;
+};
+
+void runImport(const ImportOptions& opt, std::ostream& out) {
+  earc::exp::ImportSettings settings;
+  settings.near_duplicate_eps = opt.dedupe;
+  settings.mark_imported = opt.mark_imported;
+  const auto report = earc::exp::withInputErrors(opt.db, [&] {
+    earc::exp::StoreOptions options;
+    options.new_session = false;
+    earc::exp::ExperienceStore store(opt.db, options);
+    return earc::exp::importInto(store, opt.inputs, settings);
+  });
+  out << "imported " << report.inserted << " of " << report.read << " rows into " << opt.db;
+  if (report.duplicates) out << " (" << report.duplicates << " near-duplicates skipped)";
+  out << "\n";
+}
+
+void setupImport(CLI::App& app) {
+  auto opt = std::make_shared<ImportOptions>();
+  CLI::App* sub = app.add_subcommand("import", "Add experiences from exports (.jsonl) or other earc databases, all or nothing");
+  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
+  sub->add_option("inputs", opt->inputs, "Export files or earc databases")->required()->check(CLI::ExistingFile);
+  sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)");
+  sub->add_flag("--mark-imported", opt->mark_imported, "Set every imported row's source to 'import'");
+  sub->callback([opt] { runImport(*opt, std::cout); });
+}
+
+}  // namespace
+
+static earc::cli::Registrar reg("earc-db", "import", setupImport);
