@@ -1,0 +1,71 @@
+// Random scenario families of the E-ARC experiments (paper, "Experiments"):
+// mobile robots in an open or cluttered square, and facing pairs of planar
+// 5-DOF arms. Each generator is a pure function of its settings: the same
+// seed gives the same scenario on every platform (see random.hpp), and
+// every scenario it returns passes checkScenarioGeometry.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "earc/geometry/shapes.hpp"
+#include "earc/scene/scenario.hpp"
+
+namespace earc::gen {
+
+// The body of a generated mobile robot.
+struct MobileFootprint {
+  MobileShape shape = MobileShape::Box;
+  geo::Vec2 box_size{0.6, 0.4};  // full length along the heading, full width
+  double radius = 0.3;           // disc
+};
+
+// Robot "m<index>" with this footprint; start and goal left empty.
+RobotSpec mobileRobot(int index, const MobileFootprint& footprint);
+
+// Obstacle count used when obstacles are asked for without a count.
+inline constexpr int kDefaultMobileObstacles = 12;
+
+struct MobileSettings {
+  int robots = 16;               // 2..128
+  int obstacles = 0;             // random boxes
+  bool rotated_obstacles = false;
+  double workspace = 20.0;       // side of the square [0, w] x [0, w]
+  double obstacle_min_side = 1.0;
+  double obstacle_max_side = 3.0;
+  MobileFootprint footprint;
+  std::uint64_t seed = 1;
+};
+
+// Throws std::invalid_argument for settings out of range and
+// std::runtime_error when no valid layout was found (too crowded).
+Scenario generateMobile(const MobileSettings& settings);
+
+// Arm layout: arm 2k is the lower arm of pair k, arm 2k+1 the upper one.
+inline constexpr int kArmLinks = 5;
+inline constexpr double kArmLinkLength = 0.5;
+inline constexpr double kArmLinkRadius = 0.05;
+inline constexpr double kArmJoint1Limit = 3.141592653589793;  // joint 1: [-pi, pi]
+inline constexpr double kArmJointLimit = 2.6;                 // joints 2..5
+inline constexpr double kArmFacingDistance = 4.0;  // lower to upper base of a pair
+inline constexpr double kArmPairSpacing = 3.0;     // between neighbouring pairs
+// Base to workspace border: full reach (5 x 0.5 + 0.05) plus 0.45.
+inline constexpr double kArmWorkspaceMargin = 3.0;
+// Obstacles between the rows keep this distance from every base.
+inline constexpr double kArmBaseClearance = 0.6;
+
+struct ArmSettings {
+  int robots = 4;                // 2..128
+  int obstacles = 0;             // random boxes between the two rows
+  bool rotated_obstacles = false;
+  double obstacle_min_side = 0.4;
+  double obstacle_max_side = 1.0;
+  std::uint64_t seed = 1;
+};
+
+// Default obstacle count for arms: one per pair.
+int defaultArmObstacles(int robots);
+
+Scenario generateArms(const ArmSettings& settings);
+
+}  // namespace earc::gen
