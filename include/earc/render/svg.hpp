@@ -1,0 +1,46 @@
+// Pictures of scenarios and solutions as SVG: the workspace, the obstacles,
+// every robot's start (solid) and goal (outlined), and for a solution each
+// robot's path and the robots at chosen time steps. The world's y axis
+// points up; the picture's points down, so y is flipped.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "earc/geometry/shapes.hpp"
+#include "earc/scene/scenario.hpp"
+#include "earc/scene/solution.hpp"
+
+namespace earc::render {
+
+struct SvgOptions {
+  // Time steps at which every robot is drawn, one panel per step side by
+  // side. Empty: one panel without a time step (starts and goals only).
+  std::vector<std::size_t> steps;
+  double panel_width_px = 800.0;
+  // Path polylines drop points that lie within this distance of the
+  // simplified line: a 5000-step path becomes a few dozen points.
+  double tolerance_px = 0.5;
+  bool labels = true;  // robot names
+};
+
+// Scenario only: options.steps are ignored (there are no paths).
+std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options = {});
+
+// Paths as polylines in one colour per robot (mobile robots: the reference
+// point; arms: the end of the last link), starts and goals, and the robots
+// at options.steps (a robot past its last state stays there).
+std::string solutionSvg(const Scenario& scenario, const Solution& solution, const SvgOptions& options = {});
+
+// Douglas-Peucker simplification: keeps the first and last point and every
+// point needed so that no dropped point lies farther than tolerance from the
+// kept polyline.
+std::vector<geo::Vec2> decimatePolyline(const std::vector<geo::Vec2>& points, double tolerance);
+
+// Writes the SVG to path, or for a path ending in ".png" converts it with
+// rsvg-convert. Throws std::runtime_error when rsvg-convert is needed and
+// not on PATH (it names the package librsvg2-bin) or fails.
+void writeImage(const std::string& path, const std::string& svg);
+
+}  // namespace earc::render

@@ -1,0 +1,267 @@
+// SVG pictures of scenarios and solutions.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "earc/gen/generators.hpp"
+#include "earc/gen/random.hpp"
+#include "earc/render/svg.hpp"
+
+using namespace earc;
+using namespace earc::render;
+
+namespace {
+
+std::size_t countOf(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
+  return n;
+}
+
+// Well-formed for our purposes: every tag closes in order, attribute values
+// are quoted, and text holds no bare '<' or '&'.
+bool wellFormed(const std::string& xml) {
+  std::vector<std::string> open;
+  std::size_t i = 0;
+  while (i < xml.size()) {
+    if (xml[i] == '&') {
+      const auto semi = xml.find(';', i);
+      if (semi == std::string::npos || semi - i > 6) return false;
+      i = semi + 1;
+      continue;
+    }
+    if (xml[i] != '<') {
+      ++i;
+      continue;
+    }
+    const auto end = xml.find('>', i);
+    if (end == std::string::npos) return false;
+    std::string tag = xml.substr(i + 1, end - i - 1);
+    i = end + 1;
+    if (countOf(tag, "\"") % 2 != 0 || tag.find('<') != std::string::npos) return false;
+    if (tag.starts_with("?") || tag.starts_with("!")) continue;
+    if (tag.starts_with("/")) {
+      if (open.empty() || open.back() != tag.substr(1)) return false;
+      open.pop_back();
+    } else if (!tag.ends_with("/")) {
+      open.push_back(tag.substr(0, tag.find(' ')));
+    }
+  }
+  return open.empty();
+}
+
+Solution straightSolution(const Scenario& s, std::size_t steps) {
+  Solution sol;
+  sol.scenario = s.name;
+  sol.method = "test";
+  sol.solved = true;
+  for (const auto& r : s.robots) {
+    Path p(r.dim());
+    std::vector<double> q(r.start.size());
+    for (std::size_t t = 0; t <= steps; ++t) {
+      const double f = static_cast<double>(t) / static_cast<double>(steps);
+      for (std::size_t k = 0; k < q.size(); ++k) q[k] = r.start[k] + f * (r.goal[k] - r.start[k]);
+      p.push(q.data());
+    }
+    sol.paths.push_back(std::move(p));
+  }
+  return sol;
+}
+
+Scenario oneDisc(geo::Vec2 start, geo::Vec2 goal) {
+  Scenario s;
+  s.name = "one";
+  s.workspace = {{0, 0}, {10, 10}};
+  RobotSpec r = gen::mobileRobot(0, {MobileShape::Disc, {}, 0.5});
+  r.start = {start.x, start.y, 0};
+  r.goal = {goal.x, goal.y, 0};
+  s.robots.push_back(r);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("a scenario SVG is well-formed with one group per robot") {
+  gen::MobileSettings ms;
+  ms.robots = 8;
+  ms.obstacles = 5;
+  const Scenario s = gen::generateMobile(ms);
+  const std::string svg = scenarioSvg(s);
+  CHECK(wellFormed(svg));
+  CHECK(countOf(svg, "<g class=\"robot\"") == 8);
+  CHECK(countOf(svg, "<polygon") >= 5 + 2 * 8);  // obstacles, and box robots at start and goal
+  CHECK(countOf(svg, ">m7</text>") == 1);
+}
+
+TEST_CASE("arms are drawn link by link as capsules with joints") {
+  gen::ArmSettings as;
+  as.robots = 2;
+  const Scenario s = gen::generateArms(as);
+  const std::string svg = scenarioSvg(s);
+  CHECK(wellFormed(svg));
+  CHECK(countOf(svg, "<g class=\"robot\"") == 2);
+  CHECK(countOf(svg, "<path d=\"M") == 2 * 2 * 5);  // 5 links at start and goal
+}
+
+TEST_CASE("a solution SVG draws each robot's path as a polyline and the robots at the chosen step") {
+  gen::MobileSettings ms;
+  ms.robots = 4;
+  const Scenario s = gen::generateMobile(ms);
+  SvgOptions o;
+  o.steps = {10};
+  const std::string svg = solutionSvg(s, straightSolution(s, 40), o);
+  CHECK(wellFormed(svg));
+  CHECK(countOf(svg, "<polyline class=\"path\"") == 4);
+  CHECK(countOf(svg, "t = 10") == 1);
+  CHECK(countOf(svg, "<polygon") == 3 * 4);  // start, goal and step 10
+}
+
+TEST_CASE("a strip draws one panel per step, each with every robot") {
+  gen::MobileSettings ms;
+  ms.robots = 3;
+  const Scenario s = gen::generateMobile(ms);
+  SvgOptions o;
+  o.steps = {0, 5, 20};
+  const std::string svg = solutionSvg(s, straightSolution(s, 20), o);
+  CHECK(wellFormed(svg));
+  CHECK(countOf(svg, "<g class=\"panel\"") == 3);
+  CHECK(countOf(svg, "<g class=\"robot\"") == 9);
+  CHECK(countOf(svg, "t = 20") == 1);
+}
+
+TEST_CASE("a strip moves each panel right and draws the same path in each") {
+  const Scenario s = oneDisc({1, 1}, {9, 9});
+  SvgOptions o;
+  o.steps = {0, 10};
+  o.panel_width_px = 500;
+  const std::string svg = solutionSvg(s, straightSolution(s, 10), o);
+  CHECK(countOf(svg, "transform=\"translate(0,0)\"") == 1);
+  CHECK(countOf(svg, "transform=\"translate(516,0)\"") == 1);  // width + gap
+  const auto at = svg.find("points=\"");
+  const std::string points = svg.substr(at, svg.find('"', at + 8) - at);
+  CHECK(countOf(svg, points) == 2);
+}
+
+TEST_CASE("paths are matched to robots by name, not by position") {
+  Scenario s = oneDisc({1, 1}, {9, 9});
+  RobotSpec second = s.robots[0];
+  second.name = "m1";
+  second.start = {1, 9, 0};
+  second.goal = {9, 1, 0};
+  s.robots.push_back(second);
+  Solution sol = straightSolution(s, 10);
+  std::swap(sol.paths[0], sol.paths[1]);
+  sol.robot_names = {"m1", "m0"};
+  SvgOptions o;
+  o.steps = {10};  // every robot at its goal
+  const std::string svg = solutionSvg(s, sol, o);
+  // m0 ends at (9, 9): top right, so its last polyline point has a small y.
+  const auto group = svg.find("data-robot=\"m0\"");
+  const auto points = svg.find("points=\"", group) + 8;
+  const std::string line = svg.substr(points, svg.find('"', points) - points);
+  const double last_y = std::stod(line.substr(line.rfind(',') + 1));
+  CHECK(last_y < 200);
+}
+
+TEST_CASE("the y axis points up: a robot near the top is drawn near the top of the picture") {
+  const std::string svg = scenarioSvg(oneDisc({5, 9}, {5, 1}));
+  // The filled start disc follows the outlined goal in the robot's group.
+  const auto goal = svg.find("<circle", svg.find("class=\"robot\""));
+  const auto start = svg.find("<circle", goal + 1);
+  auto cy = [&](std::size_t at) { return std::stod(svg.substr(svg.find("cy=\"", at) + 4)); };
+  CHECK(cy(start) < cy(goal));
+}
+
+TEST_CASE("robot and scenario names are escaped") {
+  Scenario s = oneDisc({2, 2}, {8, 8});
+  s.name = "a<b & \"c\"";
+  s.robots[0].name = "r<0>";
+  const std::string svg = scenarioSvg(s);
+  CHECK(wellFormed(svg));
+  CHECK(countOf(svg, "r&lt;0&gt;") == 2);  // data attribute and label
+}
+
+TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
+  std::vector<geo::Vec2> line, corner;
+  for (int k = 0; k <= 1000; ++k) line.push_back({0.01 * k, 0.02 * k});
+  line.push_back(line.back());  // a wait
+  CHECK(decimatePolyline(line, 0.01).size() == 2);
+  for (int k = 0; k <= 100; ++k) corner.push_back({0.1 * k, 0.0});
+  for (int k = 1; k <= 100; ++k) corner.push_back({10.0, 0.1 * k});
+  const auto kept = decimatePolyline(corner, 0.01);
+  REQUIRE(kept.size() == 3);
+  CHECK(kept[1] == geo::Vec2{10.0, 0.0});
+}
+
+TEST_CASE("no point dropped by decimation lies farther than the tolerance from the kept polyline") {
+  gen::Random rng(12);
+  std::vector<geo::Vec2> walk{{0, 0}};
+  double heading = 0;
+  for (int k = 0; k < 3000; ++k) {
+    heading += rng.uniform(-0.3, 0.3);
+    walk.push_back(walk.back() + geo::Vec2{std::cos(heading), std::sin(heading)});
+  }
+  const double tol = 0.5;
+  const auto kept = decimatePolyline(walk, tol);
+  CHECK(kept.size() < walk.size() / 2);
+  double worst = 0;
+  for (const auto& p : walk) {
+    double best = 1e300;
+    for (std::size_t k = 0; k + 1 < kept.size(); ++k) {
+      const geo::Vec2 d = kept[k + 1] - kept[k];
+      const double t = std::clamp(geo::dot(p - kept[k], d) / std::max(geo::dot(d, d), 1e-300), 0.0, 1.0);
+      best = std::min(best, geo::norm(p - (kept[k] + d * t)));
+    }
+    worst = std::max(worst, best);
+  }
+  CHECK(worst <= tol + 1e-9);
+}
+
+TEST_CASE("an SVG of 128 robots over 5000 steps stays small") {
+  gen::MobileSettings ms;
+  ms.robots = 128;
+  ms.obstacles = 12;
+  const Scenario s = gen::generateMobile(ms);
+  // Each path: straight to the workspace centre line, then to the goal.
+  Solution sol;
+  sol.scenario = s.name;
+  sol.solved = true;
+  for (const auto& r : s.robots) {
+    Path p(3);
+    const double mid[3] = {10.0, r.start[1], 0.0};
+    for (int t = 0; t < 2500; ++t) {
+      const double f = t / 2500.0;
+      const double q[3] = {r.start[0] + f * (mid[0] - r.start[0]), r.start[1], r.start[2]};
+      p.push(q);
+    }
+    for (int t = 0; t <= 2500; ++t) {
+      const double f = t / 2500.0;
+      const double q[3] = {mid[0] + f * (r.goal[0] - mid[0]), mid[1] + f * (r.goal[1] - mid[1]), r.goal[2]};
+      p.push(q);
+    }
+    sol.paths.push_back(std::move(p));
+  }
+  SvgOptions o;
+  o.steps = {2500};
+  const std::string svg = solutionSvg(s, sol, o);
+  CHECK(wellFormed(svg));
+  CHECK(svg.size() < 200'000);
+}
+
+TEST_CASE("writing a .png without rsvg-convert on PATH names the package to install") {
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  setenv("PATH", "/nonexistent-earc-test", 1);
+  std::string message;
+  try {
+    writeImage(std::string(EARC_BINARY_DIR) + "/render-test.png", "<svg/>");
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  setenv("PATH", saved.c_str(), 1);
+  CHECK(message.find("librsvg2-bin") != std::string::npos);
+}
