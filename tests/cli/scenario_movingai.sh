@@ -1,0 +1,34 @@
+#!/bin/bash
+# earc-scenario movingai: a benchmark map becomes a deterministic scenario
+# with the map's size; malformed maps are bad input (exit 2) naming the
+# file and the line.
+set -u
+BUILD=$1
+SRC=$2
+GEN="$BUILD/earc-scenario"
+[ -x "$GEN" ] || { echo "FAIL: earc-scenario not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+MAP="$SRC/datasets/movingai/random-32-32-10.map"
+
+"$GEN" movingai "$MAP" --robots 8 --seed 1 -o "$WORK/a.json" > /dev/null || fail "movingai exited $?"
+"$GEN" movingai "$MAP" --robots 8 --seed 1 -o "$WORK/b.json" > /dev/null || fail "second run exited $?"
+"$GEN" movingai "$MAP" --robots 8 --seed 2 -o "$WORK/c.json" > /dev/null || fail "seed 2 exited $?"
+cmp -s "$WORK/a.json" "$WORK/b.json" || fail "same seed, different files"
+cmp -s "$WORK/a.json" "$WORK/c.json" && fail "different seeds, same file"
+grep -q '"name": "movingai-random-32-32-10-8-s1"' "$WORK/a.json" || fail "unexpected scenario name"
+if [ -x /usr/bin/python3 ]; then
+  ws=$(/usr/bin/python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["workspace"]; print(w["min"]+w["max"])' "$WORK/a.json")
+  [ "$ws" = "[0.0, 0.0, 32.0, 32.0]" ] || [ "$ws" = "[0, 0, 32, 32]" ] || fail "workspace is $ws, not [0,32]x[0,32]"
+fi
+"$GEN" movingai "$MAP" --robots 4 --shape disc --radius 0.3 -o "$WORK/d.json" > /dev/null || fail "disc exited $?"
+
+printf 'type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n' > "$WORK/bad.map"
+"$GEN" movingai "$WORK/bad.map" --robots 1 -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
+[ $? -eq 2 ] || fail "a malformed map did not exit 2"
+grep -q "bad.map: line 6: column 2: unknown terrain character 'x'" "$WORK/err" || fail "unhelpful error: $(cat "$WORK/err")"
+"$GEN" movingai "$WORK/missing.map" --robots 1 -o "$WORK/x.json" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "a missing map did not exit 2"
+[ -e "$WORK/x.json" ] && fail "a failed run left an output file"
+echo "ok"
