@@ -1,0 +1,67 @@
+#!/bin/bash
+# earc-plan render: a scenario and a solution become well-formed SVG with
+# one group per robot and one panel per requested step; PNG output needs
+# rsvg-convert and says so when it is missing.
+set -u
+BUILD=$1
+SRC=$2
+PLAN="$BUILD/earc-plan"
+GEN="$BUILD/earc-scenario"
+PY=/usr/bin/python3
+[ -x "$PLAN" ] && [ -x "$GEN" ] || { echo "FAIL: earc-plan or earc-scenario not built in $BUILD"; exit 1; }
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+wellformed() { "$PY" -c 'import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])' "$1"; }
+count() { grep -o "$2" "$1" | wc -l; }
+
+"$GEN" generate --family mobile --robots 4 --obstacles --seed 2 -o "$WORK/s.json" > /dev/null || fail "generate exited $?"
+"$GEN" generate --family arms --robots 4 --seed 2 -o "$WORK/arms.json" > /dev/null || fail "generate arms exited $?"
+# A straight-line "solution" in 21 steps: render draws, it does not validate.
+for f in s arms; do
+  "$PY" - "$WORK/$f.json" "$WORK/$f.sol.json" <<'PYEOF' || fail "could not write a solution"
+import json, sys
+sc = json.load(open(sys.argv[1]))
+paths = [{"robot": r["name"],
+          "states": [[a + (b - a) * t / 20 for a, b in zip(r["start"], r["goal"])] for t in range(21)]}
+         for r in sc["robots"]]
+json.dump({"format": "earc.solution.v1", "scenario": sc["name"], "method": "line", "solved": True,
+           "paths": paths, "stats": {"planning_time_s": 0}}, open(sys.argv[2], "w"))
+PYEOF
+done
+
+"$PLAN" render "$WORK/s.json" -o "$WORK/scenario.svg" > /dev/null || fail "scenario render exited $?"
+wellformed "$WORK/scenario.svg" || fail "scenario SVG is not well-formed"
+[ "$(count "$WORK/scenario.svg" 'class="robot"')" -eq 4 ] || fail "scenario SVG does not have 4 robot groups"
+
+"$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/step.svg" --step 10 > /dev/null || fail "--step exited $?"
+wellformed "$WORK/step.svg" || fail "solution SVG is not well-formed"
+[ "$(count "$WORK/step.svg" 'class="path"')" -eq 4 ] || fail "solution SVG does not have 4 paths"
+grep -q "t = 10" "$WORK/step.svg" || fail "the step is not shown"
+
+"$PLAN" render "$WORK/arms.json" "$WORK/arms.sol.json" -o "$WORK/strip.svg" --strip 0,10,20 > /dev/null || fail "--strip exited $?"
+wellformed "$WORK/strip.svg" || fail "strip SVG is not well-formed"
+[ "$(count "$WORK/strip.svg" 'class="panel"')" -eq 3 ] || fail "strip does not have 3 panels"
+[ "$(count "$WORK/strip.svg" 'class="robot"')" -eq 12 ] || fail "strip does not have 4 robots in each panel"
+
+"$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --step 1 --strip 1,2 > /dev/null 2>&1 \
+  && fail "--step and --strip together accepted"
+"$PLAN" render "$WORK/s.json" -o "$WORK/x.svg" --step 1 > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--step without a solution is not bad input"
+echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
+"$PLAN" render "$WORK/bad.json" -o "$WORK/x.svg" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "a broken scenario is not bad input"
+"$PLAN" render "$WORK/s.json" "$WORK/arms.sol.json" -o "$WORK/x.svg" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "a solution of another scenario is not bad input"
+[ -e "$WORK/x.svg" ] && fail "a failed render left a picture"
+
+env PATH=/nonexistent "$PLAN" render "$WORK/s.json" -o "$WORK/x.png" > /dev/null 2> "$WORK/err"
+[ $? -eq 1 ] || fail "PNG without rsvg-convert did not exit 1"
+grep -q "librsvg2-bin" "$WORK/err" || fail "PNG error does not name librsvg2-bin: $(cat "$WORK/err")"
+[ -e "$WORK/x.png" ] && fail "a failed PNG render left a file"
+if command -v rsvg-convert > /dev/null; then
+  "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/ok.png" --step 5 > /dev/null || fail "PNG render exited $?"
+  head -c 8 "$WORK/ok.png" | grep -q PNG || fail "ok.png is not a PNG"
+fi
+echo "ok"

@@ -1,0 +1,78 @@
+// earc-plan render SCENARIO [SOLUTION] -o out.svg|out.png [--step T]
+//   [--strip T1,T2,...]
+// Draws a scenario, or a solution on its scenario (earc/render/svg.hpp).
+// A .png output goes through rsvg-convert (package librsvg2-bin).
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "earc/io/json_io.hpp"
+#include "earc/render/svg.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace {
+
+struct RenderOptions {
+  std::string scenario;
+  std::string solution;
+  std::string output;
+  std::vector<std::size_t> steps;  // --step T or --strip T1,T2,...
+  double width = 800.0;
+  bool no_labels = false;
+};
+
+// A path for a robot the scenario does not have means the two files do not
+// belong together.
+void requireKnownRobots(const earc::Scenario& sc, const earc::Solution& sol, const std::string& file) {
+  for (std::size_t k = 0; k < sol.robot_names.size(); ++k) {
+    bool known = false;
+    for (const auto& r : sc.robots) known = known || r.name == sol.robot_names[k];
+    if (!known)
+      throw earc::InputError(file, "$.paths[" + std::to_string(k) + "].robot",
+                             "robot '" + sol.robot_names[k] + "' is not in scenario '" + sc.name + "'");
+  }
+}
+
+void runRender(const RenderOptions& opt) {
+  // Structure only, no geometric check: a picture helps most when the
+  // scenario is broken.
+  const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
+  earc::render::SvgOptions o;
+  o.steps = opt.steps;
+  o.panel_width_px = opt.width;
+  o.labels = !opt.no_labels;
+  std::string svg;
+  if (opt.solution.empty()) {
+    if (!opt.steps.empty()) throw earc::InputError("", "--step/--strip", "a time step needs a SOLUTION file");
+    svg = earc::render::scenarioSvg(sc, o);
+  } else {
+    const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
+    requireKnownRobots(sc, sol, opt.solution);
+    svg = earc::render::solutionSvg(sc, sol, o);
+  }
+  earc::render::writeImage(opt.output, svg);
+  std::cout << opt.output << "\n";
+}
+
+void setupRender(CLI::App& app) {
+  auto opt = std::make_shared<RenderOptions>();
+  CLI::App* sub = app.add_subcommand("render", "Draw a scenario or a solution as SVG (or PNG with rsvg-convert)");
+  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
+  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)");
+  sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->required();
+  CLI::Option* step = sub->add_option_function<std::size_t>(
+      "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T");
+  sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")
+      ->delimiter(',')
+      ->excludes(step);
+  sub->add_option("--width", opt->width, "Width of one panel in pixels")
+      ->check(CLI::Range(100.0, 20000.0))
+      ->capture_default_str();
+  sub->add_flag("--no-labels", opt->no_labels, "Leave out the robot names");
+  sub->callback([opt] { runRender(*opt); });
+}
+
+}  // namespace
+
+static earc::cli::Registrar reg("earc-plan", "render", setupRender);
