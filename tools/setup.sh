@@ -3,7 +3,7 @@
 # Idempotent and quick when everything is present (one dpkg query).
 #   tools/setup.sh            build and run dependencies
 #   tools/setup.sh --tests    also what the tests use (python3-numpy for the
-#                             agreement tests, chromium for the viewer tests,
+#                             agreement tests, chromium and jq for the viewer tests,
 #                             clang for the fuzz targets)
 set -euo pipefail
 
@@ -15,7 +15,7 @@ packages=(
   python3 python3-numpy python3-matplotlib librsvg2-bin
 )
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(chromium clang libclang-rt-14-dev)
+  packages+=(chromium jq clang libclang-rt-14-dev)
 fi
 
 missing=()
