@@ -24,12 +24,18 @@ Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s
 
 Query sampleArmQuery(const RobotModel& a, const RobotModel& b, std::mt19937_64& rng, const QuerySampling& s) {
   Query q;
-  for (const RobotModel* arm : {&a, &b}) {
+  const RobotModel* arms[2] = {&a, &b};
+  for (int k = 0; k < 2; ++k) {
+    const RobotSpec& me = arms[k]->spec();
+    const geo::Vec2 to = arms[1 - k]->spec().base_position - me.base_position;
+    const double toward = std::atan2(to.y, to.x) - me.base_angle;
     std::vector<double> lo, hi;
-    arm->samplingBounds(geo::Aabb{}, lo, hi);
+    arms[k]->samplingBounds(geo::Aabb{}, lo, hi);
     std::vector<double> start(lo.size()), goal(lo.size());
     for (std::size_t j = 0; j < lo.size(); ++j) {
-      start[j] = uniform(rng, lo[j], hi[j]);
+      const double v = j == 0 ? geo::wrapAngle(toward + uniform(rng, -s.arm_toward_spread, s.arm_toward_spread))
+                              : uniform(rng, -s.arm_joint_spread, s.arm_joint_spread);
+      start[j] = std::clamp(v, lo[j], hi[j]);
       goal[j] = std::clamp(start[j] + uniform(rng, -s.max_joint_step, s.max_joint_step), lo[j], hi[j]);
     }
     q.starts.push_back(std::move(start));

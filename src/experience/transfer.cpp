@@ -35,21 +35,31 @@ json pathsToJson(const std::vector<Path>& paths) {
   return out;
 }
 
-// Collects bad rows so one error can name several of them.
+// Collects bad rows so one error (one line) names the first fully and the
+// next few by position.
 struct BadRows {
   std::string file;
-  std::vector<std::string> list;
+  std::string first_where, first_reason;
+  std::vector<std::string> others;
   std::size_t count = 0;
   void add(const std::string& where, const std::string& reason) {
-    if (list.size() < kListedBadRows) list.push_back(where + ": " + reason);
+    if (count == 0) {
+      first_where = where;
+      first_reason = reason;
+    } else if (others.size() < kListedBadRows) {
+      others.push_back(where);
+    }
     ++count;
   }
   void throwIfAny() const {
     if (count == 0) return;
-    std::string reason = std::to_string(count) + " bad row" + (count == 1 ? "" : "s") + "; nothing was imported";
-    for (const auto& s : list) reason += "\n  " + s;
-    if (count > list.size()) reason += "\n  ... and " + std::to_string(count - list.size()) + " more";
-    throw InputError(file, "", reason);
+    std::string reason = first_reason;
+    if (count > 1) {
+      reason += "; " + std::to_string(count - 1) + " more bad row" + (count == 2 ? "" : "s") + " (";
+      for (std::size_t i = 0; i < others.size(); ++i) reason += (i ? ", " : "") + others[i];
+      reason += count - 1 > others.size() ? ", ...)" : ")";
+    }
+    throw InputError(file, first_where, reason + "; nothing was imported");
   }
 };
 
@@ -98,7 +108,7 @@ std::vector<Experience> readJsonl(const std::string& path) {
   if (!header.is_object() || header.value("format", json()) != kExportFormat)
     throw InputError(path, "line 1", std::string("not an earc experience export (expected format \"") + kExportFormat + "\")");
   std::vector<Experience> rows;
-  BadRows bad{path, {}, 0};
+  BadRows bad{path, {}, {}, {}, 0};
   std::size_t number = 1;
   while (std::getline(in, line)) {
     ++number;
@@ -135,7 +145,7 @@ std::vector<Experience> readSqlite(const std::string& path) {
     if (table.int64At(0) != 1) throw InputError(path, "", "no experiences table");
     table.reset();
     std::vector<Experience> rows;
-    BadRows bad{path, {}, 0};
+    BadRows bad{path, {}, {}, {}, 0};
     Statement select = db.prepare(selectExperiencesSql(version) + " ORDER BY id");
     while (select.step()) {
       try {

@@ -1,0 +1,83 @@
+// Database construction (paper, "Database Construction"): random small
+// subproblems shaped like ARC's conflicts, each solved in isolation in its
+// composite space with solveCoupled, stored in canonical form.
+//
+// Mobile robots: 2, 3 and 4 robots (mix below) around a conflict point:
+// each start 0.4-1.5 units from it, each goal roughly across it, random
+// headings; the region is a box just around the query plus a margin.
+// Manipulators: 2 arms for every relative base transform class of a layout
+// (pairs whose reach discs overlap by kMinReachOverlap or more), start
+// joints reaching towards the other arm and goals a short joint distance
+// away.
+//
+// Queries whose straight composite motion is already valid are redrawn:
+// they are not conflicts. Deterministic per seed with any thread count:
+// problem i draws from splitSeed(seed, i) and rows are inserted in index
+// order (as long as the time limit is not what decides a problem).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "earc/experience/sampling.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/scene/scenario.hpp"
+#include "earc/util/progress.hpp"
+
+namespace earc::exp {
+
+// Default problem counts: what the 2-core reference machine builds within
+// the targets (mobile 10 s, arms 20 s) with 2 threads; see the report.
+inline constexpr int kDefaultMobileProblems = 1000;
+inline constexpr int kDefaultArmProblems = 400;
+
+struct BuildSettings {
+  RobotKind kind = RobotKind::Mobile;
+  int count = 0;  // problems; 0: kDefaultMobileProblems / kDefaultArmProblems
+  // Mobile: shares of problems with 2, 3 and 4 robots (ARC: conflicts of
+  // few robots are the most frequent).
+  std::vector<double> mobile_mix{0.5, 0.3, 0.2};
+  // Mobile footprints: problem i uses footprint i % size (equal signatures
+  // within one problem). Default: the generators' box robot.
+  std::vector<RobotSpec> mobile_robots;
+  // Manipulators: the arm layout whose pair classes are built (default:
+  // gen::generateArms with 4 arms: facing, neighbouring and diagonal pairs).
+  std::vector<RobotSpec> arms;
+  Resolution resolution;
+  double region_margin = 0.5;  // units around the mobile query (beyond the footprint)
+  double joint_margin = 0.6;   // radians around the arm query
+  QuerySampling sampling;
+  std::uint64_t seed = 1;
+  int threads = 2;
+  double time_per_problem_s = 0.5;
+  double near_duplicate_eps = 1e-3;
+};
+
+struct BuildReport {
+  int problems = 0;
+  int solved = 0;
+  int inserted = 0;
+  int duplicates = 0;
+  int unsolved = 0;          // solver gave up within the time limit
+  int no_query = 0;          // no conflicting valid query found
+  double seconds = 0.0;
+  std::map<std::string, int> inserted_per_class;  // ExperienceClass::label()
+};
+
+// Pairs whose reach discs overlap less cannot meet in any real conflict
+// worth storing: two arms of reach 2.55 at 5 units (the generated layout's
+// diagonal neighbours) touch only fully stretched towards each other, and
+// 1 in 10,000 query draws conflicts.
+inline constexpr double kMinReachOverlap = 0.25;
+
+// The relative base transform classes of an arm layout: one representative
+// pair (indices into arms) per class, in canonical order.
+std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution);
+
+// Builds into the store; progress (optional) ticks once per problem.
+// Throws std::invalid_argument for unusable settings.
+BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& settings, Progress* progress = nullptr);
+
+}  // namespace earc::exp

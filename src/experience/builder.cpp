@@ -1,0 +1,299 @@
+#include "earc/experience/builder.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/experience/keys.hpp"
+#include "earc/gen/generators.hpp"
+#include "earc/planning/composite.hpp"
+#include "earc/planning/coupled_solver.hpp"
+#include "earc/util/random.hpp"
+
+namespace earc::exp {
+
+namespace {
+
+// Query draws per problem before it is given up as "no query".
+constexpr int kQueryAttempts = 200;
+// Solved problems inserted per transaction: few transactions, and rows
+// become visible to other processes while the build runs.
+constexpr std::size_t kInsertBatch = 32;
+
+using Clock = std::chrono::steady_clock;
+
+enum class Outcome { Solved, Unsolved, NoQuery };
+
+struct ProblemResult {
+  Outcome outcome = Outcome::NoQuery;
+  Experience experience;
+};
+
+// One problem's robots, world and query, ready for solveCoupled.
+struct Problem {
+  Scenario scenario;
+  std::vector<std::shared_ptr<const RobotModel>> models;
+  CoupledQuery query;
+};
+
+std::vector<const RobotModel*> raw(const std::vector<std::shared_ptr<const RobotModel>>& models) {
+  std::vector<const RobotModel*> out;
+  for (const auto& m : models) out.push_back(m.get());
+  return out;
+}
+
+RobotSpec defaultMobileRobot() {
+  const gen::MobileFootprint f;
+  RobotSpec s;
+  s.name = "m";
+  s.kind = RobotKind::Mobile;
+  s.shape = f.shape;
+  s.box_size = f.box_size;
+  s.radius = f.radius;
+  return s;
+}
+
+std::vector<RobotSpec> defaultArms() {
+  gen::ArmSettings a;
+  a.robots = 4;
+  return gen::generateArms(a).robots;
+}
+
+int robotsForMix(const std::vector<double>& mix, double u) {
+  double total = 0;
+  for (double w : mix) total += w;
+  double acc = 0;
+  for (std::size_t i = 0; i < mix.size(); ++i) {
+    acc += mix[i] / total;
+    if (u < acc) return static_cast<int>(i) + 2;
+  }
+  return static_cast<int>(mix.size()) + 1;
+}
+
+bool conflicting(const CollisionWorld& world, const std::vector<const RobotModel*>& robots, const Query& q) {
+  const CompositeChecker checker(world, robots);
+  return checker.stateValid(q.starts) && checker.stateValid(q.goals) && !checker.motionValid(q.starts, q.goals);
+}
+
+// Mobile: a workspace just around the query, no obstacles.
+std::optional<Problem> mobileProblem(const BuildSettings& s, const RobotSpec& robot, int n, std::mt19937_64& rng) {
+  Problem p;
+  p.scenario.resolution = s.resolution;
+  p.scenario.robots.assign(static_cast<std::size_t>(n), robot);
+  p.models = makeRobotModels(p.scenario);
+  const auto robots = raw(p.models);
+  const double pad = p.models.front()->boundingRadius() + s.region_margin;
+  for (int attempt = 0; attempt < kQueryAttempts; ++attempt) {
+    Query q = sampleMobileQuery(n, rng, s.sampling);
+    geo::Aabb box;
+    for (const auto* v : {&q.starts, &q.goals})
+      for (const auto& c : *v) box.expand({{c[0], c[1]}, {c[0], c[1]}});
+    p.scenario.workspace = box.inflated(pad);
+    const CollisionWorld world(p.scenario);
+    if (!conflicting(world, robots, q)) continue;
+    p.query = {robots, q.starts, q.goals, {}};  // region: the whole (reduced) workspace
+    return p;
+  }
+  return std::nullopt;
+}
+
+// Arms: the pair's bases, a workspace around both reaches, a joint box
+// around the query.
+std::optional<Problem> armProblem(const BuildSettings& s, const RobotSpec& a, const RobotSpec& b, std::mt19937_64& rng) {
+  Problem p;
+  p.scenario.resolution = s.resolution;
+  p.scenario.robots = {a, b};
+  p.models = makeRobotModels(p.scenario);
+  const auto robots = raw(p.models);
+  geo::Aabb ws;
+  for (const auto& m : p.models) {
+    const geo::Vec2 c = m->spec().base_position;
+    ws.expand(geo::Aabb{c, c}.inflated(m->boundingRadius() + 1.0));
+  }
+  p.scenario.workspace = ws;
+  const CollisionWorld world(p.scenario);
+  for (int attempt = 0; attempt < kQueryAttempts; ++attempt) {
+    Query q = sampleArmQuery(*robots[0], *robots[1], rng, s.sampling);
+    if (!conflicting(world, robots, q)) continue;
+    std::vector<ConfigBox> region(2);
+    for (std::size_t r = 0; r < 2; ++r) {
+      std::vector<double> lo, hi;
+      robots[r]->samplingBounds(ws, lo, hi);
+      for (std::size_t j = 0; j < lo.size(); ++j) {
+        region[r].lo.push_back(std::max(lo[j], std::min(q.starts[r][j], q.goals[r][j]) - s.joint_margin));
+        region[r].hi.push_back(std::min(hi[j], std::max(q.starts[r][j], q.goals[r][j]) + s.joint_margin));
+      }
+    }
+    p.query = {robots, q.starts, q.goals, region};
+    return p;
+  }
+  return std::nullopt;
+}
+
+ProblemResult solveProblem(const BuildSettings& s, const std::vector<std::pair<int, int>>& arm_pairs,
+                           std::size_t index) {
+  std::mt19937_64 rng(splitSeed(s.seed, index));
+  std::optional<Problem> problem;
+  if (s.kind == RobotKind::Mobile) {
+    const RobotSpec& robot = s.mobile_robots[index % s.mobile_robots.size()];
+    problem = mobileProblem(s, robot, robotsForMix(s.mobile_mix, uniform(rng, 0.0, 1.0)), rng);
+  } else {
+    const auto [a, b] = arm_pairs[index % arm_pairs.size()];
+    problem = armProblem(s, s.arms[static_cast<std::size_t>(a)], s.arms[static_cast<std::size_t>(b)], rng);
+  }
+  ProblemResult result;
+  if (!problem) return result;
+  const CollisionWorld world(problem->scenario);
+  CoupledSettings cs;
+  cs.time_limit_s = s.time_per_problem_s;
+  const auto t0 = Clock::now();
+  auto solution = solveCoupled(world, problem->query, cs, splitSeed(s.seed ^ 0xb01dULL, index));
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!solution) {
+    result.outcome = Outcome::Unsolved;
+    return result;
+  }
+  result.outcome = Outcome::Solved;
+  result.experience =
+      canonicalExperience(canonicalize(problem->query.robots, problem->query.starts, problem->query.goals),
+                          solution->paths);
+  result.experience.source = Source::Build;
+  result.experience.solve_time_s = seconds;
+  return result;
+}
+
+BuildSettings withDefaults(BuildSettings s) {
+  if (s.count <= 0) s.count = s.kind == RobotKind::Mobile ? kDefaultMobileProblems : kDefaultArmProblems;
+  if (s.threads < 1) throw std::invalid_argument("build: threads must be at least 1");
+  if (s.time_per_problem_s <= 0) throw std::invalid_argument("build: time per problem must be positive");
+  if (s.kind == RobotKind::Mobile) {
+    if (s.mobile_robots.empty()) s.mobile_robots.push_back(defaultMobileRobot());
+    for (const RobotSpec& r : s.mobile_robots)
+      if (r.kind != RobotKind::Mobile) throw std::invalid_argument("build: mobile footprints must be mobile robots");
+    if (s.mobile_mix.empty() || std::any_of(s.mobile_mix.begin(), s.mobile_mix.end(), [](double w) { return w < 0; }))
+      throw std::invalid_argument("build: the robot-count mix needs non-negative shares");
+  } else {
+    if (s.arms.empty()) s.arms = defaultArms();
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution) {
+  std::vector<std::shared_ptr<const RobotModel>> models;
+  for (const RobotSpec& a : arms) {
+    if (a.kind != RobotKind::Manipulator) throw std::invalid_argument("build: the arm layout has a mobile robot");
+    models.push_back(makeRobotModel(a, resolution));
+  }
+  std::map<std::string, std::pair<int, int>> classes;  // label -> representative
+  for (std::size_t i = 0; i < models.size(); ++i)
+    for (std::size_t j = i + 1; j < models.size(); ++j) {
+      const double gap = geo::norm(arms[i].base_position - arms[j].base_position);
+      if (gap > models[i]->boundingRadius() + models[j]->boundingRadius() - kMinReachOverlap) continue;
+      std::vector<RobotTraits> pair{traitsOf(*models[i]), traitsOf(*models[j])};
+      if (!hasExperienceClass(pair)) continue;
+      std::vector<std::vector<double>> q{arms[i].start, arms[j].start};
+      for (std::size_t r = 0; r < 2; ++r) q[r].assign(static_cast<std::size_t>(pair[r].dim), 0.0);
+      const Canonical c = canonicalize(pair, q, q);
+      const int a = static_cast<int>(c.order[0] == 0 ? i : j), b = static_cast<int>(c.order[0] == 0 ? j : i);
+      classes.try_emplace(c.cls.label(), a, b);
+    }
+  std::vector<std::pair<int, int>> out;
+  for (const auto& [label, pair] : classes) out.push_back(pair);
+  return out;
+}
+
+BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested, Progress* progress) {
+  const BuildSettings s = withDefaults(requested);
+  const auto start = Clock::now();
+  std::vector<std::pair<int, int>> arm_pairs;
+  if (s.kind == RobotKind::Manipulator) {
+    arm_pairs = armPairClasses(s.arms, s.resolution);
+    if (arm_pairs.empty()) throw std::invalid_argument("build: no two arms of the layout can reach each other");
+  }
+  const std::size_t n = static_cast<std::size_t>(s.count);
+  std::vector<std::optional<ProblemResult>> results(n);
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+  auto worker = [&] {
+    try {
+      for (std::size_t i; !stop && (i = next++) < n;) {
+        ProblemResult r = solveProblem(s, arm_pairs, i);
+        {
+          std::lock_guard lock(mutex);
+          results[i] = std::move(r);
+        }
+        ready.notify_all();
+        if (progress) progress->tick();
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!failure) failure = std::current_exception();
+      stop = true;
+      ready.notify_all();
+    }
+  };
+  std::vector<std::jthread> workers;
+  for (int t = 0; t < std::min<int>(s.threads, s.count); ++t) workers.emplace_back(worker);
+
+  // Insert in index order, in batches, as results arrive.
+  BuildReport report;
+  report.problems = s.count;
+  std::vector<Experience> batch;
+  auto flushBatch = [&] {
+    if (batch.empty()) return;
+    auto ids = store.insertAll(batch, s.near_duplicate_eps);
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      if (ids[k]) {
+        ++report.inserted;
+        ++report.inserted_per_class[batch[k].cls.label()];
+      } else {
+        ++report.duplicates;
+      }
+    }
+    batch.clear();
+  };
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      ProblemResult r;
+      {
+        std::unique_lock lock(mutex);
+        ready.wait(lock, [&] { return results[i].has_value() || failure; });
+        if (failure) break;
+        r = std::move(*results[i]);
+        results[i].reset();
+      }
+      switch (r.outcome) {
+        case Outcome::Solved:
+          ++report.solved;
+          batch.push_back(std::move(r.experience));
+          break;
+        case Outcome::Unsolved: ++report.unsolved; break;
+        case Outcome::NoQuery: ++report.no_query; break;
+      }
+      if (batch.size() >= kInsertBatch) flushBatch();
+    }
+    flushBatch();
+  } catch (...) {
+    stop = true;
+    throw;  // jthreads join on the way out
+  }
+  workers.clear();
+  if (failure) std::rethrow_exception(failure);
+  if (progress) progress->finish();
+  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return report;
+}
+
+}  // namespace earc::exp

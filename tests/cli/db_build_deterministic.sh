@@ -1,0 +1,54 @@
+#!/bin/bash
+# earc-db build: the same seed gives the same rows with 1 or 2 threads, for
+# mobile robots (2-4 per problem) and for arm pairs of every class of the
+# default layout; the result verifies and inspect lists its classes.
+# Skipped (77) without /usr/bin/python3.
+set -u
+BUILD=$1
+DB="$BUILD/earc-db"
+PY=/usr/bin/python3
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+[ -x "$DB" ] || { echo "FAIL: earc-db not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+# Rows without what legitimately differs between runs (clock readings).
+rows() {
+  "$PY" - "$1" <<'PY'
+import json, sys
+lines = open(sys.argv[1]).read().splitlines()
+for l in lines[1:]:
+    r = json.loads(l)
+    for k in ("created_at", "solve_time_s"):
+        r.pop(k)
+    print(json.dumps(r, sort_keys=True))
+PY
+}
+
+for kind in mobile arms; do
+  "$DB" build --db "$WORK/$kind-1.db" --kind $kind --count 40 --seed 7 --threads 1 > "$WORK/$kind-1.out" 2>&1 \
+    || fail "$kind build with 1 thread exited $?: $(cat "$WORK/$kind-1.out")"
+  "$DB" build --db "$WORK/$kind-2.db" --kind $kind --count 40 --seed 7 --threads 2 > "$WORK/$kind-2.out" 2>&1 \
+    || fail "$kind build with 2 threads exited $?"
+  grep -q "built .*: [1-9][0-9]* entries from 40 problems" "$WORK/$kind-2.out" || fail "no build summary: $(cat "$WORK/$kind-2.out")"
+  for t in 1 2; do "$DB" export --db "$WORK/$kind-$t.db" -o "$WORK/$kind-$t.jsonl" > /dev/null || fail "export"; done
+  rows "$WORK/$kind-1.jsonl" > "$WORK/$kind-1.rows"
+  rows "$WORK/$kind-2.jsonl" > "$WORK/$kind-2.rows"
+  [ -s "$WORK/$kind-1.rows" ] || fail "$kind build stored nothing"
+  cmp -s "$WORK/$kind-1.rows" "$WORK/$kind-2.rows" || fail "$kind rows differ between 1 and 2 threads"
+  "$DB" verify --db "$WORK/$kind-2.db" > "$WORK/verify.out" || fail "$kind database does not verify: $(cat "$WORK/verify.out")"
+done
+
+# Every robot count of the mobile mix and both arm classes of the default layout.
+"$DB" inspect --db "$WORK/mobile-2.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+for n in 2 3 4; do grep -Eq "^mobile +$n " "$WORK/inspect.out" || fail "no mobile x$n class: $(cat "$WORK/inspect.out")"; done
+"$DB" inspect --db "$WORK/arms-2.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+grep -q "dx=4.000,dy=0.000,dth=3.142" "$WORK/inspect.out" || fail "no facing-pair class: $(cat "$WORK/inspect.out")"
+grep -q "dx=0.000,dy=-3.000,dth=0.000" "$WORK/inspect.out" || fail "no neighbour class: $(cat "$WORK/inspect.out")"
+
+# A different seed gives different rows.
+"$DB" build --db "$WORK/other.db" --count 40 --seed 8 > /dev/null 2>&1 || fail "build --seed 8"
+"$DB" export --db "$WORK/other.db" -o "$WORK/other.jsonl" > /dev/null || fail "export"
+rows "$WORK/other.jsonl" > "$WORK/other.rows"
+cmp -s "$WORK/mobile-1.rows" "$WORK/other.rows" && fail "seeds 7 and 8 gave the same rows"
+echo "ok"

@@ -1,0 +1,49 @@
+#!/bin/bash
+# Files earc-db must not use: a foreign SQLite file and a newer-schema file
+# are refused with one clear line (exit 2) and left untouched; verify
+# names damaged rows (exit 1) and passes a sound file (exit 0).
+set -u
+BUILD=$1
+DB="$BUILD/earc-db"
+PY=/usr/bin/python3
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+[ -x "$DB" ] || { echo "FAIL: earc-db not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+sql() { "$PY" -c 'import sqlite3,sys
+c = sqlite3.connect(sys.argv[1])
+for s in sys.argv[2:]: c.execute(s)
+c.commit()' "$@"; }
+
+sql "$WORK/foreign.db" "create table photos (id integer primary key)"
+before=$(md5sum < "$WORK/foreign.db")
+for cmd in inspect build export; do
+  extra=""; [ $cmd = export ] && extra="-o $WORK/x.jsonl"
+  "$DB" $cmd --db "$WORK/foreign.db" $extra > "$WORK/out" 2> "$WORK/err"
+  code=$?
+  [ $code -eq 2 ] || fail "$cmd on a foreign file exited $code"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "$cmd: not one line: $(cat "$WORK/err")"
+  grep -q "not an earc experience database (application_id 0x00000000, expected 0x45415243" "$WORK/err" \
+    || fail "$cmd: unclear message: $(cat "$WORK/err")"
+done
+[ "$(md5sum < "$WORK/foreign.db")" = "$before" ] || fail "the foreign file was modified"
+
+"$DB" build --db "$WORK/new.db" --count 5 > /dev/null 2>&1 || fail "build"
+sql "$WORK/new.db" "pragma user_version = 99"
+"$DB" inspect --db "$WORK/new.db" > "$WORK/out" 2> "$WORK/err"
+[ $? -eq 2 ] || fail "a newer file was not refused with exit 2"
+grep -q "schema version 99 is newer than this program's version" "$WORK/err" || fail "unclear: $(cat "$WORK/err")"
+
+"$DB" build --db "$WORK/ok.db" --count 10 > /dev/null 2>&1 || fail "build"
+"$DB" verify --db "$WORK/ok.db" > "$WORK/out" || fail "verify of a sound file exited $?: $(cat "$WORK/out")"
+grep -q "^OK: 10 rows" "$WORK/out" || fail "verify summary: $(cat "$WORK/out")"
+sql "$WORK/ok.db" "update experiences set paths = x'00' where id = 3" "update experiences set key = x'0102' where id = 7"
+"$DB" verify --db "$WORK/ok.db" > "$WORK/out"
+[ $? -eq 1 ] || fail "verify of a damaged file did not exit 1"
+grep -q "row 3: path blob" "$WORK/out" || fail "row 3 not named: $(cat "$WORK/out")"
+grep -q "row 7: key blob" "$WORK/out" || fail "row 7 not named: $(cat "$WORK/out")"
+
+"$DB" verify --db "$WORK/missing.db" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "verify of a missing file did not exit 2"
+echo "ok"

@@ -1,0 +1,109 @@
+// The database builder stores what it promises: valid solutions of small
+// conflicting subproblems, for every class of the layout.
+#include <doctest/doctest.h>
+
+#include "earc/experience/builder.hpp"
+#include "earc/experience/rows.hpp"
+#include "earc/experience/scratch.hpp"
+#include "earc/gen/generators.hpp"
+#include "earc/validate/validator.hpp"
+
+using namespace earc;
+using namespace earc::exp;
+
+namespace {
+
+std::vector<Experience> allRows(ExperienceStore& store) {
+  Statement s = store.connection().prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
+  std::vector<Experience> out;
+  while (s.step()) out.push_back(readExperience(s));
+  return out;
+}
+
+// The stored paths as a solution of the canonical subproblem they solve.
+ValidationReport validateStored(const Experience& e, std::vector<RobotSpec> robots, geo::Aabb workspace) {
+  Scenario sc;
+  sc.name = "stored";
+  sc.workspace = workspace;
+  Solution sol;
+  sol.scenario = sc.name;
+  sol.solved = true;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const Path& p = e.paths[r];
+    robots[r].name = "r" + std::to_string(r);
+    robots[r].start.assign(p.at(0), p.at(0) + p.dim());
+    robots[r].goal.assign(p.back(), p.back() + p.dim());
+    sol.paths.push_back(p);
+  }
+  sc.robots = robots;
+  return validateSolution(sc, sol);
+}
+
+std::vector<RobotSpec> generatedArms() {
+  gen::ArmSettings a;
+  a.robots = 4;
+  return gen::generateArms(a).robots;
+}
+
+}  // namespace
+
+TEST_CASE("the generated arm layout yields the facing and neighbouring classes, not far diagonals") {
+  auto pairs = armPairClasses(generatedArms(), Resolution{});
+  CHECK(pairs.size() == 2);
+}
+
+TEST_CASE("built mobile experiences are valid solutions of conflicting subproblems") {
+  ScratchDirectory dir("builder");
+  ExperienceStore store(dir.file("m.db"));
+  BuildSettings s;
+  s.count = 12;
+  s.seed = 4;
+  BuildReport r = buildDatabase(store, s);
+  CHECK(r.problems == 12);
+  CHECK(r.inserted == r.solved - r.duplicates);
+  CHECK(r.inserted >= 10);
+  for (const Experience& e : allRows(store)) {
+    CAPTURE(e.id);
+    geo::Aabb box;
+    for (const Path& p : e.paths)
+      for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
+    RobotSpec robot;
+    robot.shape = MobileShape::Box;
+    robot.box_size = gen::MobileFootprint{}.box_size;
+    auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), robot), box.inflated(1.0));
+    CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+    CHECK(e.source == Source::Build);
+    CHECK(e.solve_time_s > 0);
+    // A conflict: the straight motion was not already valid, so the paths
+    // are not two straight lines of equal length... at least one bends or waits.
+    CHECK(e.paths.front().size() > 2);
+  }
+}
+
+TEST_CASE("built arm experiences are valid solutions for their base transform class") {
+  ScratchDirectory dir("builder");
+  ExperienceStore store(dir.file("a.db"));
+  BuildSettings s;
+  s.kind = RobotKind::Manipulator;
+  s.count = 8;
+  BuildReport r = buildDatabase(store, s);
+  CHECK(r.inserted_per_class.size() == 2);
+  const auto arms = generatedArms();
+  const auto pairs = armPairClasses(arms, Resolution{});
+  gen::ArmSettings a;
+  a.robots = 4;
+  const geo::Aabb workspace = gen::generateArms(a).workspace;
+  int checked = 0;
+  for (const Experience& e : allRows(store)) {
+    for (auto [i, j] : pairs) {
+      std::vector<RobotSpec> pair{arms[static_cast<std::size_t>(i)], arms[static_cast<std::size_t>(j)]};
+      auto models = makeRobotModels(Scenario{"", workspace, {}, {}, pair});
+      RelativeTransform t = relativeBaseTransform(traitsOf(*models[0]), traitsOf(*models[1]));
+      if (baseClassString(t.dx, t.dy, t.dtheta) != e.cls.base_class) continue;
+      auto report = validateStored(e, pair, workspace);
+      CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+      ++checked;
+    }
+  }
+  CHECK(checked == r.inserted);
+}

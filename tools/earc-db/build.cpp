@@ -1,0 +1,134 @@
+// earc-db build --db FILE [--kind mobile|arms] [--count N] [--scenario FILE]
+// [--shape box|disc --size LxW --radius R] [--seed S] [--threads T]
+// [--time-per-problem S]: fills a database with solved random subproblems
+// (paper, "Database Construction"); see earc/experience/builder.hpp.
+#include <cstdio>
+#include <iostream>
+#include <set>
+
+#include "earc/experience/builder.hpp"
+#include "earc/experience/keys.hpp"
+#include "earc/experience/maintenance.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace {
+
+struct BuildOptions {
+  std::string db;
+  std::string kind = "mobile";
+  int count = 0;
+  std::string scenario;
+  std::string shape;
+  std::string size;
+  double radius = 0.0;
+  std::uint64_t seed = 1;
+  int threads = 2;
+  double time_per_problem = 0.5;
+  double dedupe = 1e-3;
+};
+
+// "0.6x0.4" -> (0.6, 0.4).
+earc::geo::Vec2 parseSize(const std::string& text) {
+  double l = 0, w = 0;
+  char x = 0, tail = 0;
+  if (std::sscanf(text.c_str(), "%lf%c%lf%c", &l, &x, &w, &tail) != 3 || (x != 'x' && x != 'X') || !(l > 0) ||
+      !(w > 0))
+    throw earc::InputError("", "--size", "expected LENGTHxWIDTH with positive numbers, e.g. 0.6x0.4");
+  return {l, w};
+}
+
+// The footprints to build for: the scenario's distinct mobile robots, or
+// the one given by --shape/--size/--radius, or the builder's default.
+std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::Scenario* scenario) {
+  std::vector<earc::RobotSpec> out;
+  if (scenario && opt.shape.empty()) {
+    std::set<std::string> seen;
+    for (const auto& r : scenario->robots)
+      if (r.kind == earc::RobotKind::Mobile &&
+          seen.insert(earc::makeRobotModel(r, scenario->resolution)->geometrySignature()).second)
+        out.push_back(r);
+    if (out.empty()) throw earc::InputError(opt.scenario, "$.robots", "no mobile robot to build for");
+    return out;
+  }
+  if (opt.shape.empty()) return out;  // builder default
+  earc::RobotSpec r;
+  r.kind = earc::RobotKind::Mobile;
+  if (opt.shape == "disc") {
+    if (!(opt.radius > 0)) throw earc::InputError("", "--radius", "a disc needs a positive radius");
+    r.shape = earc::MobileShape::Disc;
+    r.radius = opt.radius;
+  } else {
+    r.shape = earc::MobileShape::Box;
+    r.box_size = parseSize(opt.size.empty() ? "0.6x0.4" : opt.size);
+  }
+  out.push_back(r);
+  return out;
+}
+
+void runBuild(const BuildOptions& opt, std::ostream& out) {
+  earc::exp::BuildSettings s;
+  s.kind = opt.kind == "arms" ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
+  s.count = opt.count;
+  s.seed = opt.seed;
+  s.threads = opt.threads;
+  s.time_per_problem_s = opt.time_per_problem;
+  s.near_duplicate_eps = opt.dedupe;
+  std::optional<earc::Scenario> scenario;
+  if (!opt.scenario.empty()) {
+    scenario = earc::loadScenario(opt.scenario);
+    s.resolution = scenario->resolution;
+  }
+  if (s.kind == earc::RobotKind::Mobile) {
+    s.mobile_robots = mobileRobots(opt, scenario ? &*scenario : nullptr);
+  } else if (scenario) {
+    for (const auto& r : scenario->robots)
+      if (r.kind == earc::RobotKind::Manipulator) s.arms.push_back(r);
+    if (s.arms.size() < 2) throw earc::InputError(opt.scenario, "$.robots", "fewer than two arms to build for");
+  }
+  const int count = s.count > 0 ? s.count
+                                : (s.kind == earc::RobotKind::Mobile ? earc::exp::kDefaultMobileProblems
+                                                                     : earc::exp::kDefaultArmProblems);
+  const auto report = earc::exp::withInputErrors(opt.db, [&] {
+    earc::exp::StoreOptions options;
+    options.new_session = false;  // building is not a planning session
+    earc::exp::ExperienceStore store(opt.db, options);
+    earc::Progress progress("build", static_cast<std::size_t>(count));
+    return earc::exp::buildDatabase(store, s, &progress);
+  });
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "built %s: %d entries from %d problems in %.2f s (%d solved, %d unsolved in %.2g s, %d without a "
+                "conflicting query, %d near-duplicates)\n",
+                opt.db.c_str(), report.inserted, report.problems, report.seconds, report.solved, report.unsolved,
+                s.time_per_problem_s, report.no_query, report.duplicates);
+  out << line;
+  for (const auto& [label, n] : report.inserted_per_class) out << "  " << n << "  " << label << "\n";
+}
+
+void setupBuild(CLI::App& app) {
+  auto opt = std::make_shared<BuildOptions>();
+  CLI::App* sub = app.add_subcommand("build", "Fill a database with solved random subproblems");
+  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
+  sub->add_option("--kind", opt->kind, "Robot kind")->check(CLI::IsMember({"mobile", "arms"}));
+  sub->add_option("--count", opt->count,
+                  "Problems to solve (default " + std::to_string(earc::exp::kDefaultMobileProblems) + " mobile, " +
+                      std::to_string(earc::exp::kDefaultArmProblems) + " arms)")
+      ->check(CLI::Range(1, 10000000));
+  sub->add_option("--scenario", opt->scenario,
+                  "Take robot geometry (mobile footprints or the arm layout) and resolution from this scenario")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--shape", opt->shape, "Mobile footprint (default: box 0.6x0.4)")->check(CLI::IsMember({"box", "disc"}));
+  sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH");
+  sub->add_option("--radius", opt->radius, "Disc footprint radius");
+  sub->add_option("--seed", opt->seed, "Random seed (the result depends only on it)");
+  sub->add_option("--threads", opt->threads, "Solver threads")->check(CLI::Range(1, 256));
+  sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)");
+  sub->callback([opt] { runBuild(*opt, std::cout); });
+}
+
+}  // namespace
+
+static earc::cli::Registrar reg("earc-db", "build", setupBuild);
