@@ -92,6 +92,10 @@ void splitParseError(const std::string& what, std::string& where, std::string& r
 }  // namespace
 
 json parseJsonText(const std::string& text, const std::string& file) {
+  // nlohmann would skip it; JSON text must not start with one (RFC 8259)
+  // and the independent checker refuses it, so refuse it too.
+  if (text.starts_with("\xEF\xBB\xBF"))
+    throw InputError(file, "line 1, column 1", "malformed JSON: starts with a UTF-8 byte order mark");
   PathTracker tracker(file);
   try {
     json doc = json::parse(text, std::ref(tracker));

@@ -26,7 +26,7 @@ PI = math.pi
 def write(rel, doc):
     path = os.path.join(HERE, rel)
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
+    with open(path, "w", encoding="utf-8") as f:
         json.dump(doc, f, indent=1)
         f.write("\n")
 
@@ -34,7 +34,7 @@ def write(rel, doc):
 def write_text(rel, text):
     path = os.path.join(HERE, rel)
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
+    with open(path, "w", encoding="utf-8") as f:
         f.write(text)
 
 
@@ -177,6 +177,7 @@ write_text("bad/nan.json",
            '{"format": "earc.scenario.v1", "workspace": {"min": [0, 0], "max": [10, 10]},\n'
            ' "robots": [{"name": "m0", "type": "mobile", "shape": {"type": "disc", "radius": 0.3},\n'
            '   "start": [1, NaN, 0], "goal": [3, 3, 0]}]}\n')
+write_text("bad/byte-order-mark.json", "\ufeff" + json.dumps(SWAP))
 write_text("bad/duplicate-key.json",
            '{"format": "earc.scenario.v1", "workspace": {"min": [0, 0], "max": [10, 10]},\n'
            ' "robots": [{"name": "m0", "type": "mobile", "shape": {"type": "disc", "radius": 0.3},\n'

@@ -159,6 +159,7 @@ TEST_CASE("malformed JSON is reported with its line and column") {
   CHECK(has(m, "$.a[2]"));
   CHECK(has(m, "malformed JSON"));
   CHECK(has(parseError(""), "malformed JSON"));
+  CHECK_ERROR(parseError("\xEF\xBB\xBF{}"), "line 1, column 1", "byte order mark");
 }
 
 TEST_CASE("NaN, Infinity and overflowing numbers are refused by the parser") {
