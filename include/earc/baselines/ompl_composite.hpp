@@ -1,0 +1,75 @@
+// The composite configuration space of a set of robots as an OMPL space,
+// for baselines that run OMPL's own planning frameworks (Lightning) over
+// the whole problem: one SE2StateSpace per mobile robot and one
+// RealVectorStateSpace per arm, validity and motion checking delegated to
+// our CompositeChecker, sampling from our own seeded engine.
+#pragma once
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateSpace.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/composite.hpp"
+#include "earc/scene/robot_model.hpp"
+
+namespace earc::baselines {
+
+class OmplComposite {
+ public:
+  // The robots' whole sampling ranges (RobotModel::samplingBounds) widened
+  // to contain the given starts and goals. The checker must outlive this.
+  OmplComposite(const CollisionWorld& world, const CompositeChecker& checker,
+                const std::vector<CompositeState>& must_contain);
+
+  const ompl::base::StateSpacePtr& space() const { return space_; }
+  // Space information with our state validity checker and motion validator
+  // (CompositeChecker::stateValid / motionValid, so motions are checked at
+  // the instants at which timeStampComposite places the robots). Set up.
+  const ompl::base::SpaceInformationPtr& spaceInformation() const { return si_; }
+
+  // OMPL state <-> per-robot configurations. Headings are wrapped into
+  // [-pi, pi) on the way in: OMPL's SE(2) bounds reject others silently.
+  void toComposite(const ompl::base::State* s, CompositeState& out) const;
+  void fromComposite(const CompositeState& q, ompl::base::State* s) const;
+
+  // Samplers allocated while `stream` is current in this thread draw from
+  // splitSeed(seed, stream); samplers allocated elsewhere draw from a
+  // per-allocation stream of seed. See SeededPlanningStream.
+  void setSeed(std::uint64_t seed) { seed_ = seed; }
+  std::uint64_t seed() const { return seed_; }
+
+  std::size_t robotCount() const { return checker_.robots().size(); }
+  const CompositeChecker& checker() const { return checker_; }
+
+ private:
+  struct Bounds {
+    std::vector<double> lo, hi;
+  };
+  const CompositeChecker& checker_;
+  std::vector<Bounds> bounds_;
+  ompl::base::StateSpacePtr space_;
+  ompl::base::SpaceInformationPtr si_;
+  std::uint64_t seed_ = 1;
+  friend class CompositeSampler;
+};
+
+// While alive, state samplers allocated by this thread (OMPL planners
+// allocate theirs at the start of solve()) are seeded from `stream`. OMPL
+// runs Lightning's planners in threads of its own, so the stream has to be
+// set by the planner itself on the thread that samples.
+class SeededPlanningStream {
+ public:
+  explicit SeededPlanningStream(std::uint64_t stream);
+  ~SeededPlanningStream();
+  SeededPlanningStream(const SeededPlanningStream&) = delete;
+  SeededPlanningStream& operator=(const SeededPlanningStream&) = delete;
+
+ private:
+  bool had_previous_;
+  std::uint64_t previous_;
+};
+
+}  // namespace earc::baselines

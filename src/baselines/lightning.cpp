@@ -1,0 +1,320 @@
+// Lightning over the composite space of all robots (see lightning.hpp).
+#include "earc/baselines/lightning.hpp"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/tools/lightning/Lightning.h>
+#include <ompl/tools/lightning/LightningDB.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <unistd.h>
+
+#include "earc/baselines/ompl_composite.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/planning/coupled_solver.hpp"
+#include "earc/planning/methods.hpp"
+#include "earc/util/deadline.hpp"
+#include "earc/util/random.hpp"
+#include "earc/validate/validator.hpp"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+namespace ot = ompl::tools;
+
+namespace earc {
+
+namespace {
+
+// Sampler streams (splitSeed of the planner seed) of the planners Lightning
+// runs: each draws from its own, whichever thread runs it.
+constexpr std::uint64_t kScratchStream = 1;
+constexpr std::uint64_t kRepairStream = 2;
+// Stream of the seed given to OMPL's global generator (its path simplifiers).
+constexpr std::uint64_t kOmplGlobalStream = 3;
+
+// RRT-Connect whose samplers draw from a stream of ours: one stream per
+// solve() call, numbered in call order, so that the repair planner (one
+// solve per repaired stretch) does not replay the same samples.
+class StreamedRRTConnect : public og::RRTConnect {
+ public:
+  StreamedRRTConnect(const ob::SpaceInformationPtr& si, std::uint64_t stream) : og::RRTConnect(si), stream_(stream) {}
+  ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
+    baselines::SeededPlanningStream seeded(splitSeed(stream_, solves_++));
+    return og::RRTConnect::solve(ptc);
+  }
+
+ private:
+  std::uint64_t stream_;
+  std::uint64_t solves_ = 0;
+};
+
+// OMPL's Lightning database with the two edits it lacks: adding paths
+// that are already PlannerData (from another file) and taking paths out
+// again (planning without learning).
+class EditableLightningDB : public ot::LightningDB {
+ public:
+  using ot::LightningDB::LightningDB;
+  void addLoaded(const ob::PlannerDataPtr& path) { nn_->add(path); }
+  // Removes every path not in `keep`; returns how many went.
+  std::size_t keepOnly(const std::set<const ob::PlannerData*>& keep) {
+    std::vector<ob::PlannerDataPtr> all;
+    nn_->list(all);
+    std::size_t removed = 0;
+    for (const auto& p : all)
+      if (!keep.count(p.get()) && nn_->remove(p)) ++removed;
+    numUnsavedPaths_ = std::max(0, numUnsavedPaths_ - static_cast<int>(removed));
+    return removed;
+  }
+  std::set<const ob::PlannerData*> snapshot() const {
+    std::vector<ob::PlannerDataPtr> all;
+    nn_->list(all);
+    std::set<const ob::PlannerData*> ids;
+    for (const auto& p : all) ids.insert(p.get());
+    return ids;
+  }
+};
+
+// OMPL's Lightning with its experience database swapped for one we keep
+// across problems (the protected member is the only way in).
+class SharedDbLightning : public ot::Lightning {
+ public:
+  SharedDbLightning(const ob::SpaceInformationPtr& si, const ot::LightningDBPtr& db) : ot::Lightning(si) {
+    experienceDB_ = db;
+    getLightningRetrieveRepairPlanner().setLightningDB(db);
+  }
+};
+
+// The robots of a scenario as models, in the scenario's order.
+struct Robots {
+  std::vector<std::shared_ptr<const RobotModel>> owned;
+  std::vector<const RobotModel*> models;
+  explicit Robots(const Scenario& s) : owned(makeRobotModels(s)) {
+    for (const auto& m : owned) models.push_back(m.get());
+  }
+};
+
+CompositeState starts(const Scenario& s) {
+  CompositeState q;
+  for (const auto& r : s.robots) q.push_back(r.start);
+  return q;
+}
+
+CompositeState goals(const Scenario& s) {
+  CompositeState q;
+  for (const auto& r : s.robots) q.push_back(r.goal);
+  return q;
+}
+
+// Kinds and count of robots, the part of a scenario the state space (and so
+// a database file) depends on: "4 robots: mobile x4".
+std::string spaceDescription(const Scenario& s) {
+  int mobile = 0, arms = 0;
+  for (const auto& r : s.robots) (r.kind == RobotKind::Mobile ? mobile : arms)++;
+  std::string d = std::to_string(s.robots.size()) + " robots (";
+  if (mobile) d += std::to_string(mobile) + " mobile";
+  if (mobile && arms) d += ", ";
+  if (arms) d += std::to_string(arms) + " arms";
+  return d + ")";
+}
+
+bool sameSpace(const Scenario& a, const Scenario& b) {
+  if (a.robots.size() != b.robots.size()) return false;
+  for (std::size_t r = 0; r < a.robots.size(); ++r)
+    if (a.robots[r].kind != b.robots[r].kind || a.robots[r].dim() != b.robots[r].dim()) return false;
+  return true;
+}
+
+}  // namespace
+
+struct LightningDatabase::Impl {
+  Scenario prototype;
+  Robots robots;
+  CollisionWorld world;
+  CompositeChecker checker;
+  baselines::OmplComposite composite;
+  std::shared_ptr<EditableLightningDB> db;
+
+  explicit Impl(const Scenario& s)
+      : prototype(s),
+        robots(s),
+        world(s),
+        checker(world, robots.models),
+        composite(world, checker, {starts(s), goals(s)}),
+        db(std::make_shared<EditableLightningDB>(composite.space())) {}
+};
+
+LightningDatabase::LightningDatabase(const Scenario& prototype) : impl_(std::make_unique<Impl>(prototype)) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+}
+
+LightningDatabase::~LightningDatabase() = default;
+
+void LightningDatabase::load(const std::string& path) {
+  const std::string refusal = "not a Lightning database of " + spaceDescription(impl_->prototype) +
+                              " (build one with earc-bench lightning-db)";
+  // OMPL's loader trusts the file: a path count first, then the paths. A
+  // file of another state space loads as empty paths, so read the count
+  // ourselves and check every path that comes back.
+  double declared = -1;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot read the Lightning database");
+    in >> declared;
+    if (!in || declared < 0 || declared != static_cast<double>(static_cast<std::size_t>(declared)))
+      throw InputError(path, "", refusal);
+  }
+  ot::LightningDB fresh(impl_->composite.space());
+  if (!fresh.load(path)) throw InputError(path, "", refusal);
+  std::vector<ob::PlannerDataPtr> paths;
+  fresh.getAllPlannerDatas(paths);
+  if (paths.size() != static_cast<std::size_t>(declared)) throw InputError(path, "", refusal);
+  for (const auto& p : paths)
+    if (p->numVertices() < 2) throw InputError(path, "", refusal);
+  // The paths keep their own SpaceInformation (shared), so they outlive
+  // the loader.
+  for (const auto& p : paths) impl_->db->addLoaded(p);
+}
+
+void LightningDatabase::save(const std::string& path) const {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  if (!impl_->db->save(tmp)) throw std::runtime_error(path + ": cannot write the Lightning database");
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp);
+    throw std::runtime_error(path + ": cannot write the Lightning database: " + ec.message());
+  }
+}
+
+std::size_t LightningDatabase::entries() const { return impl_->db->getExperiencesCount(); }
+std::size_t LightningDatabase::states() const { return impl_->db->getStatesCount(); }
+
+PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettings& settings,
+                                   const LightningSettings& lightning) {
+  Stopwatch clock;
+  PlanResult result;
+  result.solution.scenario = scenario.name;
+  if (!sameSpace(scenario, impl_->prototype))
+    throw std::invalid_argument("Lightning database of " + spaceDescription(impl_->prototype) + " used for " +
+                                spaceDescription(scenario));
+  Robots robots(scenario);
+  CollisionWorld world(scenario);
+  CompositeChecker checker(world, robots.models);
+  const CompositeState start = starts(scenario), goal = goals(scenario);
+  baselines::OmplComposite composite(world, checker, {start, goal});
+  composite.setSeed(settings.seed);
+  // OMPL seeds the generators of its path simplifiers from a global one;
+  // reset it (OMPL complains once generators exist, but does reseed).
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(splitSeed(settings.seed, kOmplGlobalStream) % 2147483647 + 1));
+
+  const std::size_t entries_before = impl_->db->getExperiencesCount();
+  const auto known = lightning.learn ? std::set<const ob::PlannerData*>{} : impl_->db->snapshot();
+  auto& st = result.stats;
+  st["lightning_db_entries"] = entries_before;
+  if (!checker.stateValid(start) || !checker.stateValid(goal)) {
+    result.failures.insert(FailureCause::InvalidInput);
+    st["planning_time_s"] = clock.seconds();
+    return result;
+  }
+
+  const ob::SpaceInformationPtr& si = composite.spaceInformation();
+  SharedDbLightning lightning_setup(si, impl_->db);
+  lightning_setup.setPlannerAllocator(
+      [](const ob::SpaceInformationPtr& s) { return std::make_shared<StreamedRRTConnect>(s, kScratchStream); });
+  lightning_setup.setRepairPlanner(std::make_shared<StreamedRRTConnect>(si, kRepairStream));
+  lightning_setup.getLightningRetrieveRepairPlanner().setNumNearestSolutions(lightning.recall_k);
+  ob::ScopedState<> s0(composite.space()), s1(composite.space());
+  composite.fromComposite(start, s0.get());
+  composite.fromComposite(goal, s1.get());
+  lightning_setup.setStartAndGoalStates(s0, s1);
+  lightning_setup.setup();
+
+  const double remaining = settings.time_limit_s - clock.seconds();
+  ob::PlannerStatus status = remaining > 0 ? lightning_setup.solve(remaining) : ob::PlannerStatus(ob::PlannerStatus::TIMEOUT);
+  const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION && lightning_setup.haveExactSolutionPath();
+  if (exact) {
+    const std::string winner = lightning_setup.getSolutionPlannerName();
+    const bool from_recall = winner == lightning_setup.getLightningRetrieveRepairPlanner().getName();
+    st["lightning_source"] = from_recall ? "recall" : "scratch";
+    st["db_hits"] = from_recall ? 1 : 0;
+    const og::PathGeometric& path = lightning_setup.getSolutionPath();
+    std::vector<CompositeState> waypoints(path.getStateCount());
+    for (std::size_t i = 0; i < waypoints.size(); ++i) composite.toComposite(path.getState(i), waypoints[i]);
+    // OMPL holds wrapped headings; put back the exact endpoints (equal
+    // modulo 2 pi, so every motion is unchanged).
+    waypoints.front() = start;
+    waypoints.back() = goal;
+    bool motions_valid = true;
+    for (std::size_t i = 1; i < waypoints.size() && motions_valid; ++i)
+      motions_valid = checker.motionValid(waypoints[i - 1], waypoints[i]);
+    if (motions_valid) {
+      result.solution.solved = true;
+      result.solution.paths = timeStampComposite(robots.models, waypoints).paths;
+    } else {
+      result.failures.insert(FailureCause::InvalidResult);
+    }
+  } else {
+    result.failures.insert(FailureCause::TimeLimit);
+  }
+  st["planning_time_s"] = clock.seconds();
+  // Lightning adds what it found to the database itself; without learning
+  // take it out again.
+  if (!lightning.learn) impl_->db->keepOnly(known);
+  st["lightning_db_added"] = impl_->db->getExperiencesCount() - entries_before;
+  return result;
+}
+
+// plan()'s Lightning: no database file, so it starts empty and RRT-Connect
+// from scratch wins (use the overload or `earc-bench lightning-plan` for a
+// database).
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings) {
+  return planLightning(scenario, settings, LightningSettings{});
+}
+
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
+                         const LightningSettings& lightning) {
+  LightningDatabase db(scenario);
+  const bool file = !lightning.db_path.empty();
+  if (file && std::filesystem::exists(lightning.db_path)) db.load(lightning.db_path);
+  const std::size_t before = db.entries();
+  PlanResult result = db.plan(scenario, settings, lightning);
+  if (file && lightning.learn && lightning.save && db.entries() != before) db.save(lightning.db_path);
+  return result;
+}
+
+PlanResult planLightningChecked(const Scenario& scenario, const PlannerSettings& settings,
+                                const LightningSettings& lightning) {
+  PlanResult result = planLightning(scenario, settings, lightning);
+  Solution& sol = result.solution;
+  sol.method = methodName(Method::Lightning);
+  sol.scenario = scenario.name;
+  if (sol.solved) {
+    sol.nameRobots(scenario);
+    ValidationReport report = validateSolution(scenario, sol);
+    sol.solved = report.valid;
+    if (report.valid) {
+      result.stats["makespan"] = report.makespan;
+      result.stats["sum_of_costs"] = report.sum_of_costs;
+    } else {
+      result.failures.insert(FailureCause::InvalidResult);
+      result.stats["invalid_result"] = report.violations.empty() ? "" : report.violations.front().detail;
+    }
+  }
+  if (!sol.solved) {
+    nlohmann::json why = nlohmann::json::array();
+    for (FailureCause c : result.failures) why.push_back(failureCauseName(c));
+    result.stats["failure"] = why;
+  }
+  result.stats["method"] = sol.method;
+  result.stats["seed"] = settings.seed;
+  sol.stats = result.stats;
+  return result;
+}
+
+}  // namespace earc

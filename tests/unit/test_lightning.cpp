@@ -1,0 +1,150 @@
+// The Lightning baseline: whole-problem plans that validate, its database
+// growing, saving, reloading, and refusing files of another space.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "earc/baselines/lightning.hpp"
+#include "earc/gen/generators.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/validate/validator.hpp"
+
+using namespace earc;
+
+namespace {
+
+Scenario twoMobile(std::uint64_t seed, int obstacles = 4) {
+  gen::MobileSettings s;
+  s.robots = 2;
+  s.obstacles = obstacles;
+  s.workspace = 8.0;
+  s.seed = seed;
+  return gen::generateMobile(s);
+}
+
+Scenario twoArms(std::uint64_t seed) {
+  gen::ArmSettings s;
+  s.robots = 2;
+  s.seed = seed;
+  return gen::generateArms(s);
+}
+
+PlannerSettings settings(std::uint64_t seed) {
+  PlannerSettings s;
+  s.method = Method::Lightning;
+  s.time_limit_s = 20.0;
+  s.seed = seed;
+  return s;
+}
+
+struct TempFile {
+  std::string path;
+  explicit TempFile(const std::string& name)
+      : path((std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()))).string()) {
+    std::filesystem::remove(path);
+  }
+  ~TempFile() { std::filesystem::remove(path); }
+};
+
+}  // namespace
+
+TEST_CASE("Lightning solves a two-robot mobile scenario with a solution the validator accepts") {
+  const Scenario s = twoMobile(3);
+  PlanResult r = planLightningChecked(s, settings(1), LightningSettings{});
+  REQUIRE(r.solution.solved);
+  CHECK(r.failures.empty());
+  CHECK(validateSolution(s, r.solution).valid);
+  CHECK(r.stats.value("lightning_source", "") == "scratch");  // the database was empty
+  CHECK(r.stats.contains("makespan"));
+  CHECK(r.stats.value("planning_time_s", 1e9) <= 20.0);
+}
+
+TEST_CASE("plan() dispatches to Lightning and validates its solution") {
+  const Scenario s = twoMobile(5);
+  PlanResult r = plan(s, settings(2));
+  REQUIRE(r.solution.solved);
+  CHECK(r.solution.method == "lightning");
+}
+
+TEST_CASE("Lightning plans two facing arms") {
+  const Scenario s = twoArms(4);
+  PlanResult r = planLightningChecked(s, settings(3), LightningSettings{});
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(s, r.solution).valid);
+}
+
+TEST_CASE("a Lightning database grows by the first solution, survives a save and reload, and serves recall") {
+  TempFile file("earc-lightning-db");
+  const Scenario s = twoMobile(7);
+  {
+    LightningDatabase db(s);
+    CHECK(db.entries() == 0);
+    PlanResult r = db.plan(s, settings(1), LightningSettings{});
+    REQUIRE(r.solution.solved);
+    CHECK(db.entries() == 1);
+    CHECK(r.stats.value("lightning_db_added", 0) == 1);
+    db.save(file.path);
+  }
+  LightningDatabase again(s);
+  again.load(file.path);
+  CHECK(again.entries() == 1);
+  CHECK(again.states() >= 2);
+  // The same problem again: either thread may win the race, but the plan
+  // must be valid whichever did.
+  LightningSettings no_learn;
+  no_learn.learn = false;
+  PlanResult r = planLightningChecked(s, settings(9), [&] {
+    LightningSettings ls = no_learn;
+    ls.db_path = file.path;
+    return ls;
+  }());
+  REQUIRE(r.solution.solved);
+  CHECK(r.stats.value("lightning_db_entries", 0) == 1);
+}
+
+TEST_CASE("planning without learning leaves a Lightning database as it was") {
+  const Scenario s = twoMobile(11);
+  LightningDatabase db(s);
+  LightningSettings ls;
+  ls.learn = false;
+  PlanResult r = db.plan(s, settings(1), ls);
+  REQUIRE(r.solution.solved);
+  CHECK(db.entries() == 0);
+  CHECK(r.stats.value("lightning_db_added", 1) == 0);
+}
+
+TEST_CASE("a Lightning database of another state space is refused with a message naming the file") {
+  TempFile file("earc-lightning-foreign");
+  const Scenario mobile = twoMobile(13);
+  {
+    LightningDatabase db(mobile);
+    REQUIRE(db.plan(mobile, settings(1), LightningSettings{}).solution.solved);
+    db.save(file.path);
+  }
+  LightningDatabase arms(twoArms(2));
+  CHECK_THROWS_AS(arms.load(file.path), InputError);
+  try {
+    arms.load(file.path);
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find(file.path) != std::string::npos);
+    CHECK(std::string(e.what()).find("2 robots (2 arms)") != std::string::npos);
+  }
+  std::ofstream(file.path) << "not a database\n";
+  LightningDatabase m(mobile);
+  CHECK_THROWS_AS(m.load(file.path), InputError);
+}
+
+TEST_CASE("a Lightning database file is created when missing, and only then") {
+  TempFile file("earc-lightning-create");
+  const Scenario s = twoMobile(17);
+  LightningSettings ls;
+  ls.db_path = file.path;
+  PlanResult r = planLightning(s, settings(1), ls);
+  REQUIRE(r.solution.solved);
+  CHECK(std::filesystem::exists(file.path));
+  LightningDatabase db(s);
+  db.load(file.path);
+  CHECK(db.entries() == 1);
+}
