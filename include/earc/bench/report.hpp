@@ -1,0 +1,64 @@
+// Reading results back: summary statistics per cell, the markdown table,
+// CSV, and OMPL benchmark logs (the text format of
+// ompl::tools::Benchmark::saveResultsToStream, which
+// ompl_benchmark_statistics.py and Planner Arena read).
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "earc/bench/results_db.hpp"
+
+namespace earc::bench {
+
+// Quantile q in [0, 1] of values, linear between order statistics (numpy's
+// default); nullopt for no values.
+std::optional<double> quantile(std::vector<double> values, double q);
+
+struct TrialFilter {
+  std::optional<std::uint64_t> seed;
+  std::optional<double> time_limit_s;
+  bool matches(const TrialRecord& t) const;
+  std::vector<TrialRecord> apply(std::vector<TrialRecord> trials) const;
+};
+
+// One (suite, robots, method) cell.
+struct CellSummary {
+  std::string suite;
+  int robots = 0;
+  std::string method;
+  int trials = 0;
+  int solved = 0;
+  std::optional<double> median_s, q1_s, q3_s;  // planning time of solved trials
+};
+
+// Cells in suite order (allSuites), then robots, then method (allMethods);
+// unknown suites and methods after the known ones, alphabetically.
+std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials);
+
+// Median over the scenarios both methods solved of time(a) / time(b), pairs
+// being the same (suite, robots, trial, seed, time limit).
+struct PairedRatio {
+  int pairs = 0;
+  std::optional<double> median;
+};
+PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
+                        const std::string& a, const std::string& b);
+
+// Markdown: per suite a table of success rate and median planning time
+// (IQR) per robot count and method, the E-ARC/ARC paired ratio, then the
+// databases.
+std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
+
+// One row per trial, RFC 4180 quoting, a header line first.
+void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
+void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
+
+// One log per (suite, robots, time limit) experiment, planners = methods,
+// into dir (created). Returns the files written.
+std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir);
+
+}  // namespace earc::bench

@@ -1,0 +1,103 @@
+// The benchmark's results: an SQLite file (application_id "EBNC",
+// user_version 1, WAL) that trials are appended to as they finish, each in
+// its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
+// the trials that were running and resumes by skipping the finished ones.
+//
+// Schema (version 1):
+//   trials(id, suite, robots, method, trial, seed, time_limit_s,
+//          scenario_seed, planner_seed, success, planning_time_s,
+//          wall_time_s, makespan, sum_of_costs, conflicts, db_hits,
+//          peak_memory_kb, exit_status, term_signal, failure, finished_at)
+//     UNIQUE (suite, robots, method, trial, seed, time_limit_s): the key a
+//     resumed run skips on. Seeds are decimal TEXT (64-bit unsigned).
+//     success is 1 only for a solution that `earc-plan validate` accepted
+//     within the time limit; failure says why not (NULL on success).
+//     planning_time_s is the planner's own figure (stats.planning_time_s),
+//     NULL when the process died before reporting one.
+//   databases(id, method, suite, robots, path, construction_time_s,
+//             entries, size_bytes, problems, seed, recorded_at)
+//     robots = 0 for a database that serves every robot count (E-ARC's).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace earc::bench {
+
+inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
+inline constexpr int kResultsSchemaVersion = 1;
+
+struct TrialRecord {
+  std::string suite;
+  int robots = 0;
+  std::string method;
+  int trial = 0;
+  std::uint64_t seed = 0;  // the run's --seed
+  double time_limit_s = 0;
+  std::uint64_t scenario_seed = 0;
+  std::uint64_t planner_seed = 0;
+  bool success = false;
+  std::optional<double> planning_time_s;
+  double wall_time_s = 0;
+  std::optional<std::int64_t> makespan, sum_of_costs, conflicts, db_hits;
+  std::optional<std::int64_t> peak_memory_kb;
+  std::optional<int> exit_status;  // the planner process's exit code
+  std::optional<int> term_signal;  // the signal that ended it
+  std::string failure;             // empty on success
+  std::string finished_at;         // ISO 8601 UTC
+};
+
+struct DatabaseRecord {
+  std::string method;
+  std::string suite;
+  int robots = 0;  // 0: every robot count
+  std::string path;
+  std::optional<double> construction_time_s;
+  std::optional<std::int64_t> entries;
+  std::optional<std::int64_t> size_bytes;
+  std::optional<std::int64_t> problems;
+  std::optional<std::uint64_t> seed;
+  std::string recorded_at;
+};
+
+// (suite, robots, method, trial) of the finished trials of one seed and
+// time limit.
+using TrialKey = std::tuple<std::string, int, std::string, int>;
+
+class ResultsDb {
+ public:
+  // Opens or creates the file. Throws InputError naming the file when it is
+  // not a results database of this program (another application_id, or a
+  // newer schema version: the message names both versions).
+  explicit ResultsDb(const std::string& path, bool read_only = false);
+  ~ResultsDb();
+  ResultsDb(const ResultsDb&) = delete;
+  ResultsDb& operator=(const ResultsDb&) = delete;
+
+  // Appends a trial in its own transaction; a trial already recorded under
+  // the same key is left as it is (returns false). Not thread-safe: callers
+  // serialize.
+  bool addTrial(const TrialRecord& t);
+  void addDatabase(const DatabaseRecord& d);
+
+  std::set<TrialKey> finishedTrials(std::uint64_t seed, double time_limit_s) const;
+  std::vector<TrialRecord> trials() const;
+  std::vector<DatabaseRecord> databases() const;
+  bool hasDatabase(const std::string& method, const std::string& path) const;
+
+  const std::string& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Now as "YYYY-MM-DDTHH:MM:SSZ".
+std::string utcNow();
+
+}  // namespace earc::bench

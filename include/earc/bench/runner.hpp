@@ -1,0 +1,60 @@
+// `earc-bench run`: trials of every (suite, robot count, method) cell, each
+// planned by its own child process under a wall-clock and a memory limit,
+// validated by another (`earc-plan validate`), and appended to a results
+// database as it finishes. A re-run with the same seed and time limit
+// skips the trials already recorded.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace earc::bench {
+
+struct RunOptions {
+  std::vector<std::string> suites = {"mobile-obst", "arms"};
+  std::vector<int> robots = {2, 4, 8};  // empty: every count of each suite
+  std::vector<std::string> methods = {"earc", "arc", "lightning", "prioritized"};
+  int trials = 2;
+  double time_limit_s = 60.0;
+  std::uint64_t seed = 1;
+  std::string results = "bench-results.sqlite";
+  std::string work_dir;                  // empty: <results>.work
+  std::string db_mobile, db_arms;        // E-ARC databases (earc-plan --db)
+  std::string lightning_dir;             // empty: <work_dir>/lightning
+  // Lightning databases built when missing: problems = per_robot x robots
+  // (the paper grows the database with the robot count), each planned for
+  // at most problem_time_limit_s.
+  int lightning_problems_per_robot = 4;
+  int lightning_problems = 0;            // > 0: this many, whatever the count
+  double lightning_problem_time_limit_s = 10.0;
+  int jobs = 1;                          // trials at once (1: undisturbed timings)
+  std::size_t memory_limit_mb = 4096;    // RLIMIT_AS of each child
+  bool learn = false;                    // let database methods learn during trials
+  bool keep_solutions = false;           // keep solved trials' solution files
+  bool verbose = false;                  // one line per trial on stdout
+  double wall_margin_s = -1;             // < 0: wallMargin(time_limit_s)
+  std::string plan_program;              // empty: earc-plan next to this program
+  std::string bench_program;             // empty: this program
+};
+
+// Seconds a trial's process may run beyond its time limit (start-up,
+// loading, the planner's own validation) before it is killed.
+double wallMargin(double time_limit_s);
+
+struct RunSummary {
+  std::size_t cells_total = 0;  // trials the options ask for
+  std::size_t skipped = 0;      // already in the results database
+  std::size_t run = 0;
+  std::size_t solved = 0;
+  std::size_t invalid = 0;      // solutions the validator rejected
+  bool interrupted = false;
+};
+
+// Runs what is missing; progress on a terminal, `log` gets per-trial lines
+// (verbose) and the table of this run's cells at the end.
+RunSummary runBenchmark(const RunOptions& options, std::ostream& log);
+
+}  // namespace earc::bench

@@ -1,0 +1,51 @@
+// The experiment suites of the E-ARC paper ("Experiments"): mobile robots
+// and facing pairs of 5-DOF arms, each without and with random obstacles
+// that move from trial to trial, at growing robot counts. A trial's
+// scenario is a pure function of (suite, robots, trial, run seed): every
+// method sees the same scenarios, so results are paired by seed.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "earc/scene/scenario.hpp"
+
+namespace earc::bench {
+
+struct Suite {
+  std::string name;         // "mobile", "mobile-obst", "arms", "arms-obst"
+  std::string family;       // "mobile" or "arms"
+  bool obstacles = false;
+  std::vector<int> robots;  // the robot counts of the paper
+};
+
+const std::vector<Suite>& allSuites();
+// Throws InputError naming the option for an unknown name.
+const Suite& suiteByName(const std::string& name);
+
+// The methods of the comparison, in the order tables list them.
+const std::vector<std::string>& allMethods();
+
+// Seeds of one trial: the scenario's, and the planner's (one for every
+// method, so that a method's randomness is paired too).
+struct TrialSeeds {
+  std::uint64_t scenario = 0;
+  std::uint64_t planner = 0;
+};
+TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
+
+// The scenario of a trial, named "<suite>-<robots>-t<trial>". Generation
+// that fails (too crowded) is retried with seeds derived from the first,
+// so the result is still a function of the arguments.
+Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
+
+// The scenario of problem `index` for growing a database of this suite's
+// kind: drawn from a stream of `seed` disjoint from trialSeeds(), so that a
+// database built with the benchmark's seed never holds its test problems.
+Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_t seed);
+
+// Splits "a,b,c" (empty items dropped).
+std::vector<std::string> splitList(const std::string& list);
+
+}  // namespace earc::bench

@@ -1,0 +1,302 @@
+#include "earc/bench/report.hpp"
+
+#include <ompl/base/PlannerStatus.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <ostream>
+#include <sstream>
+
+#include "earc/bench/suites.hpp"
+#include "earc/io/json_io.hpp"
+
+namespace earc::bench {
+
+namespace {
+
+int suiteRank(const std::string& s) {
+  const auto& all = allSuites();
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (all[i].name == s) return static_cast<int>(i);
+  return static_cast<int>(all.size());
+}
+
+int methodRank(const std::string& m) {
+  const auto& all = allMethods();
+  auto it = std::find(all.begin(), all.end(), m);
+  return static_cast<int>(it - all.begin());
+}
+
+bool cellLess(const std::string& sa, int ra, const std::string& ma, const std::string& sb, int rb,
+              const std::string& mb) {
+  auto ka = std::make_tuple(suiteRank(sa), sa, ra, methodRank(ma), ma);
+  auto kb = std::make_tuple(suiteRank(sb), sb, rb, methodRank(mb), mb);
+  return ka < kb;
+}
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// Seconds with three significant digits, but never in exponent form.
+std::string secs(double s) {
+  if (s >= 100) return fmt("%.0f", s);
+  if (s >= 10) return fmt("%.1f", s);
+  if (s >= 1) return fmt("%.2f", s);
+  return fmt("%.3f", s);
+}
+
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+template <class T>
+std::string opt(const std::optional<T>& v) {
+  if (!v) return "";
+  std::ostringstream s;
+  s.precision(10);
+  s << *v;
+  return s.str();
+}
+
+// OMPL's PlannerStatus for a trial: what ompl_benchmark_statistics.py
+// tabulates as the "status" enum.
+int omplStatus(const TrialRecord& t) {
+  using S = ompl::base::PlannerStatus;
+  if (t.success) return S::EXACT_SOLUTION;
+  if (t.term_signal && t.failure.rfind("killed at", 0) != 0) return S::CRASH;
+  if (t.failure.find("time_limit") != std::string::npos || t.failure.rfind("killed at", 0) == 0 ||
+      t.failure.rfind("solved after", 0) == 0)
+    return S::TIMEOUT;
+  if (t.failure.find("invalid_input") != std::string::npos) return S::INVALID_START;
+  return S::ABORT;
+}
+
+std::string hostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "UNKNOWN";
+  return buf;
+}
+
+}  // namespace
+
+std::optional<double> quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nullopt;
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+bool TrialFilter::matches(const TrialRecord& t) const {
+  return (!seed || t.seed == *seed) && (!time_limit_s || t.time_limit_s == *time_limit_s);
+}
+
+std::vector<TrialRecord> TrialFilter::apply(std::vector<TrialRecord> trials) const {
+  std::erase_if(trials, [this](const TrialRecord& t) { return !matches(t); });
+  return trials;
+}
+
+std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials) {
+  std::map<std::tuple<std::string, int, std::string>, std::vector<const TrialRecord*>> cells;
+  for (const auto& t : trials) cells[{t.suite, t.robots, t.method}].push_back(&t);
+  std::vector<CellSummary> out;
+  for (const auto& [key, list] : cells) {
+    CellSummary c;
+    std::tie(c.suite, c.robots, c.method) = key;
+    std::vector<double> times;
+    for (const TrialRecord* t : list) {
+      ++c.trials;
+      if (t->success) {
+        ++c.solved;
+        if (t->planning_time_s) times.push_back(*t->planning_time_s);
+      }
+    }
+    c.median_s = quantile(times, 0.5);
+    c.q1_s = quantile(times, 0.25);
+    c.q3_s = quantile(times, 0.75);
+    out.push_back(std::move(c));
+  }
+  std::sort(out.begin(), out.end(), [](const CellSummary& a, const CellSummary& b) {
+    return cellLess(a.suite, a.robots, a.method, b.suite, b.robots, b.method);
+  });
+  return out;
+}
+
+PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
+                        const std::string& a, const std::string& b) {
+  using Key = std::tuple<int, std::uint64_t, double>;
+  std::map<Key, double> ta, tb;
+  for (const auto& t : trials) {
+    if (t.suite != suite || t.robots != robots || !t.success || !t.planning_time_s) continue;
+    if (t.method == a) ta[{t.trial, t.seed, t.time_limit_s}] = *t.planning_time_s;
+    if (t.method == b) tb[{t.trial, t.seed, t.time_limit_s}] = *t.planning_time_s;
+  }
+  std::vector<double> ratios;
+  for (const auto& [k, va] : ta) {
+    auto it = tb.find(k);
+    if (it != tb.end() && it->second > 0) ratios.push_back(va / it->second);
+  }
+  return {static_cast<int>(ratios.size()), quantile(ratios, 0.5)};
+}
+
+std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases) {
+  std::ostringstream out;
+  const auto cells = summarize(trials);
+  std::string suite;
+  for (const CellSummary& c : cells) {
+    if (c.suite != suite) {
+      suite = c.suite;
+      out << (out.tellp() > 0 ? "\n" : "") << "### " << suite << "\n\n"
+          << "| robots | method | solved | median time (s) | IQR (s) |\n"
+          << "|---:|:---|---:|---:|:---|\n";
+    }
+    out << "| " << c.robots << " | " << c.method << " | " << c.solved << "/" << c.trials << " ("
+        << fmt("%.0f", 100.0 * c.solved / std::max(1, c.trials)) << "%) | "
+        << (c.median_s ? secs(*c.median_s) : "-") << " | "
+        << (c.q1_s ? secs(*c.q1_s) + " - " + secs(*c.q3_s) : "-") << " |\n";
+  }
+  // E-ARC against ARC on the very same scenarios.
+  std::vector<std::string> ratio_rows;
+  std::set<std::pair<std::string, int>> seen;
+  for (const CellSummary& c : cells) {
+    if (!seen.insert({c.suite, c.robots}).second) continue;
+    PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
+    if (r.pairs == 0) continue;
+    ratio_rows.push_back("| " + c.suite + " | " + std::to_string(c.robots) + " | " + std::to_string(r.pairs) +
+                         " | " + fmt("%.3f", *r.median) + " |");
+  }
+  if (!ratio_rows.empty()) {
+    out << "\n### E-ARC / ARC planning time, paired by seed\n\n"
+        << "| suite | robots | pairs solved by both | median ratio |\n|:---|---:|---:|---:|\n";
+    for (const auto& row : ratio_rows) out << row << "\n";
+  }
+  if (!databases.empty()) {
+    out << "\n### Databases\n\n| method | suite | robots | construction (s) | entries | size (KiB) | problems |\n"
+        << "|:---|:---|---:|---:|---:|---:|---:|\n";
+    for (const auto& d : databases)
+      out << "| " << d.method << " | " << d.suite << " | " << (d.robots ? std::to_string(d.robots) : "all") << " | "
+          << (d.construction_time_s ? secs(*d.construction_time_s) : "-") << " | " << (d.entries ? opt(d.entries) : "-")
+          << " | " << (d.size_bytes ? fmt("%.1f", static_cast<double>(*d.size_bytes) / 1024.0) : "-") << " | "
+          << (d.problems ? opt(d.problems) : "-") << " |\n";
+  }
+  if (cells.empty()) out << "(no trials)\n";
+  return out.str();
+}
+
+void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
+  out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
+         "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
+         "finished_at\n";
+  for (const auto& t : trials) {
+    out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
+        << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
+        << ',' << (t.success ? 1 : 0) << ',' << opt(t.planning_time_s) << ','
+        << opt(std::optional<double>(t.wall_time_s)) << ',' << opt(t.makespan) << ',' << opt(t.sum_of_costs) << ','
+        << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
+        << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << "\n";
+  }
+}
+
+void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out) {
+  out << "method,suite,robots,path,construction_time_s,entries,size_bytes,problems,seed,recorded_at\n";
+  for (const auto& d : databases)
+    out << csvField(d.method) << ',' << csvField(d.suite) << ',' << d.robots << ',' << csvField(d.path) << ','
+        << opt(d.construction_time_s) << ',' << opt(d.entries) << ',' << opt(d.size_bytes) << ',' << opt(d.problems)
+        << ',' << opt(d.seed) << ',' << d.recorded_at << "\n";
+}
+
+std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  using Experiment = std::tuple<int, std::string, int, double>;
+  std::map<Experiment, std::vector<const TrialRecord*>> experiments;
+  std::map<std::pair<std::string, int>, std::set<double>> limits;
+  for (const auto& t : trials) {
+    experiments[{suiteRank(t.suite), t.suite, t.robots, t.time_limit_s}].push_back(&t);
+    limits[{t.suite, t.robots}].insert(t.time_limit_s);
+  }
+  // Run properties: "name TYPE", as Benchmark::saveResultsToStream writes
+  // them, in sorted order.
+  const std::vector<std::string> props = {
+      "conflicts INTEGER", "database hits INTEGER", "makespan INTEGER", "memory REAL",   "solved BOOLEAN",
+      "status ENUM",       "sum of costs INTEGER",  "time REAL",        "trial INTEGER", "wall time REAL"};
+  std::vector<std::string> files;
+  for (const auto& [key, runs] : experiments) {
+    const auto& [rank, suite, robots, limit] = key;
+    std::string name = suite + "-" + std::to_string(robots);
+    if (limits[{suite, robots}].size() > 1) name += "-tl" + fmt("%g", limit);
+    const std::string path = dir + "/" + name + ".log";
+    std::map<std::string, std::vector<const TrialRecord*>> by_method;
+    std::set<std::uint64_t> seeds;
+    double total = 0, memory_mb = 0;
+    std::string first;
+    for (const TrialRecord* t : runs) {
+      by_method[t->method].push_back(t);
+      seeds.insert(t->seed);
+      total += t->wall_time_s;
+      if (first.empty() || t->finished_at < first) first = t->finished_at;
+    }
+    std::size_t most = 0;
+    for (const auto& [m, list] : by_method) most = std::max(most, list.size());
+    std::vector<std::string> methods;
+    for (const auto& [m, list] : by_method) methods.push_back(m);
+    std::sort(methods.begin(), methods.end(),
+              [](const std::string& a, const std::string& b) { return std::make_pair(methodRank(a), a) < std::make_pair(methodRank(b), b); });
+    std::ostringstream o;
+    o << "earc-bench version 1\n";
+    o << "Experiment " << name << "\n";
+    o << "3 experiment properties\n";
+    o << "suite TEXT = " << suite << "\n";
+    o << "robots INTEGER = " << robots << "\n";
+    o << "run_seeds TEXT = ";
+    for (auto it = seeds.begin(); it != seeds.end(); ++it) o << (it == seeds.begin() ? "" : "+") << *it;
+    o << "\n";
+    o << "Running on " << hostName() << "\n";
+    o << "Starting at " << (first.empty() ? "UNKNOWN" : first) << "\n";
+    o << "<<<|\nearc-bench: scenarios of suite " << suite << " with " << robots
+      << " robots; each method planned each scenario once in its own process\n|>>>\n";
+    o << "<<<|\n|>>>\n";
+    o << (seeds.empty() ? 0 : *seeds.begin()) << " is the random seed\n";
+    o << limit << " seconds per run\n";
+    o << memory_mb << " MB per run\n";
+    o << most << " runs per planner\n";
+    o << total << " seconds spent to collect the data\n";
+    o << "1 enum type\nstatus";
+    for (int i = 0; i < ompl::base::PlannerStatus::TYPE_COUNT; ++i)
+      o << '|' << ompl::base::PlannerStatus(static_cast<ompl::base::PlannerStatus::StatusType>(i)).asString();
+    o << "\n" << methods.size() << " planners\n";
+    for (const std::string& m : methods) {
+      o << m << "\n0 common properties\n" << props.size() << " properties for each run\n";
+      for (const auto& p : props) o << p << "\n";
+      auto list = by_method[m];
+      std::sort(list.begin(), list.end(), [](const TrialRecord* a, const TrialRecord* b) { return a->trial < b->trial; });
+      o << list.size() << " runs\n";
+      for (const TrialRecord* t : list) {
+        const double time = t->planning_time_s ? *t->planning_time_s : t->wall_time_s;
+        const std::string mem = t->peak_memory_kb ? fmt("%.3f", static_cast<double>(*t->peak_memory_kb) / 1024.0) : "";
+        o << opt(t->conflicts) << "; " << opt(t->db_hits) << "; " << opt(t->makespan) << "; " << mem << "; "
+          << (t->success ? 1 : 0) << "; " << omplStatus(*t) << "; " << opt(t->sum_of_costs) << "; "
+          << opt(std::optional<double>(time)) << "; " << t->trial << "; " << opt(std::optional<double>(t->wall_time_s))
+          << "; \n";
+      }
+      o << ".\n";
+    }
+    writeTextFileAtomic(path, o.str());
+    files.push_back(path);
+  }
+  return files;
+}
+
+}  // namespace earc::bench

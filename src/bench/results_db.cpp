@@ -1,0 +1,254 @@
+#include "earc/bench/results_db.hpp"
+
+#include <ctime>
+#include <string_view>
+
+#include "earc/experience/sqlite.hpp"
+#include "earc/io/input_error.hpp"
+
+namespace earc::bench {
+
+namespace {
+
+using exp::Connection;
+using exp::OpenMode;
+using exp::Statement;
+
+constexpr std::string_view kSchemaV1 = R"sql(
+CREATE TABLE trials (
+  id INTEGER PRIMARY KEY,
+  suite TEXT NOT NULL,
+  robots INTEGER NOT NULL,
+  method TEXT NOT NULL,
+  trial INTEGER NOT NULL,
+  seed TEXT NOT NULL,
+  time_limit_s REAL NOT NULL,
+  scenario_seed TEXT NOT NULL,
+  planner_seed TEXT NOT NULL,
+  success INTEGER NOT NULL CHECK (success IN (0, 1)),
+  planning_time_s REAL,
+  wall_time_s REAL NOT NULL,
+  makespan INTEGER,
+  sum_of_costs INTEGER,
+  conflicts INTEGER,
+  db_hits INTEGER,
+  peak_memory_kb INTEGER,
+  exit_status INTEGER,
+  term_signal INTEGER,
+  failure TEXT,
+  finished_at TEXT NOT NULL,
+  UNIQUE (suite, robots, method, trial, seed, time_limit_s)
+);
+CREATE TABLE databases (
+  id INTEGER PRIMARY KEY,
+  method TEXT NOT NULL,
+  suite TEXT NOT NULL,
+  robots INTEGER NOT NULL,
+  path TEXT NOT NULL,
+  construction_time_s REAL,
+  entries INTEGER,
+  size_bytes INTEGER,
+  problems INTEGER,
+  seed TEXT,
+  recorded_at TEXT NOT NULL
+);
+)sql";
+
+// Optional values are bound as '' and turned into NULL by NULLIF in SQL:
+// the statement wrapper has no bind for NULL.
+void bindOpt(Statement& s, int i, const std::optional<double>& v) {
+  if (v) s.bind(i, *v); else s.bind(i, std::string_view(""));
+}
+void bindOpt(Statement& s, int i, const std::optional<std::int64_t>& v) {
+  if (v) s.bind(i, *v); else s.bind(i, std::string_view(""));
+}
+void bindOpt(Statement& s, int i, const std::optional<int>& v) {
+  if (v) s.bind(i, static_cast<std::int64_t>(*v)); else s.bind(i, std::string_view(""));
+}
+
+std::optional<double> doubleOpt(const Statement& s, int c) {
+  if (s.columnType(c) == SQLITE_NULL) return std::nullopt;
+  return s.doubleAt(c);
+}
+std::optional<std::int64_t> intOpt(const Statement& s, int c) {
+  if (s.columnType(c) == SQLITE_NULL) return std::nullopt;
+  return s.int64At(c);
+}
+
+std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std::stoull(text); }
+
+}  // namespace
+
+struct ResultsDb::Impl {
+  std::string path;
+  Connection conn;
+  Impl(const std::string& p, bool read_only) : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite) {}
+};
+
+ResultsDb::ResultsDb(const std::string& path, bool read_only) {
+  try {
+    impl_ = std::make_unique<Impl>(path, read_only);
+  } catch (const exp::StoreError& e) {
+    throw InputError(path, "", std::string("cannot open the results database: ") + e.what());
+  }
+  Connection& c = impl_->conn;
+  std::int64_t app = 0, version = 0, tables = 0;
+  try {
+    app = c.pragmaInt("application_id");
+    version = c.pragmaInt("user_version");
+    Statement count = c.prepare("SELECT count(*) FROM sqlite_master");
+    if (count.step()) tables = count.int64At(0);
+  } catch (const exp::StoreError&) {
+    throw InputError(path, "", "not an SQLite file (expected an earc-bench results database)");
+  }
+  if (app == 0 && version == 0 && tables == 0) {
+    if (read_only) throw InputError(path, "", "empty file, not an earc-bench results database");
+    c.enableWal();
+    c.write([&] {
+      c.exec(kSchemaV1);
+      c.exec("PRAGMA application_id = " + std::to_string(kResultsApplicationId));
+      c.exec("PRAGMA user_version = " + std::to_string(kResultsSchemaVersion));
+    });
+    return;
+  }
+  if (app != kResultsApplicationId)
+    throw InputError(path, "", "not an earc-bench results database (application_id " + std::to_string(app) + ")");
+  if (version > kResultsSchemaVersion)
+    throw InputError(path, "", "results schema version " + std::to_string(version) + " is newer than this program's " +
+                                   std::to_string(kResultsSchemaVersion) + "; use a newer earc-bench");
+  if (version < 1) throw InputError(path, "", "results database without a schema version");
+  if (!read_only) c.enableWal();
+}
+
+ResultsDb::~ResultsDb() = default;
+
+const std::string& ResultsDb::path() const { return impl_->path; }
+
+bool ResultsDb::addTrial(const TrialRecord& t) {
+  Connection& c = impl_->conn;
+  return c.write([&] {
+    Statement s = c.prepare(
+        "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
+        " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
+        " term_signal, failure, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
+        " NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''),"
+        " NULLIF(?18, ''), NULLIF(?19, ''), ?20) ON CONFLICT DO NOTHING");
+    s.bind(1, t.suite).bind(2, t.robots).bind(3, t.method).bind(4, t.trial);
+    s.bind(5, std::to_string(t.seed)).bind(6, t.time_limit_s);
+    s.bind(7, std::to_string(t.scenario_seed)).bind(8, std::to_string(t.planner_seed));
+    s.bind(9, t.success ? 1 : 0);
+    bindOpt(s, 10, t.planning_time_s);
+    s.bind(11, t.wall_time_s);
+    bindOpt(s, 12, t.makespan);
+    bindOpt(s, 13, t.sum_of_costs);
+    bindOpt(s, 14, t.conflicts);
+    bindOpt(s, 15, t.db_hits);
+    bindOpt(s, 16, t.peak_memory_kb);
+    bindOpt(s, 17, t.exit_status);
+    bindOpt(s, 18, t.term_signal);
+    s.bind(19, std::string_view(t.failure));
+    s.bind(20, t.finished_at.empty() ? utcNow() : t.finished_at);
+    s.run();
+    return sqlite3_changes(c.handle()) > 0;
+  });
+}
+
+void ResultsDb::addDatabase(const DatabaseRecord& d) {
+  Connection& c = impl_->conn;
+  c.write([&] {
+    Statement s = c.prepare(
+        "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
+        " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
+        " NULLIF(?8, ''), NULLIF(?9, ''), ?10)");
+    s.bind(1, d.method).bind(2, d.suite).bind(3, d.robots).bind(4, d.path);
+    bindOpt(s, 5, d.construction_time_s);
+    bindOpt(s, 6, d.entries);
+    bindOpt(s, 7, d.size_bytes);
+    bindOpt(s, 8, d.problems);
+    s.bind(9, d.seed ? std::to_string(*d.seed) : std::string());
+    s.bind(10, d.recorded_at.empty() ? utcNow() : d.recorded_at);
+    s.run();
+  });
+}
+
+std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_limit_s) const {
+  Statement s = impl_->conn.prepare(
+      "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2");
+  s.bind(1, std::to_string(seed)).bind(2, time_limit_s);
+  std::set<TrialKey> keys;
+  while (s.step())
+    keys.emplace(s.textAt(0), static_cast<int>(s.int64At(1)), s.textAt(2), static_cast<int>(s.int64At(3)));
+  return keys;
+}
+
+std::vector<TrialRecord> ResultsDb::trials() const {
+  Statement s = impl_->conn.prepare(
+      "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
+      " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
+      " term_signal, failure, finished_at FROM trials ORDER BY id");
+  std::vector<TrialRecord> out;
+  while (s.step()) {
+    TrialRecord t;
+    t.suite = s.textAt(0);
+    t.robots = static_cast<int>(s.int64At(1));
+    t.method = s.textAt(2);
+    t.trial = static_cast<int>(s.int64At(3));
+    t.seed = seedFrom(s.textAt(4));
+    t.time_limit_s = s.doubleAt(5);
+    t.scenario_seed = seedFrom(s.textAt(6));
+    t.planner_seed = seedFrom(s.textAt(7));
+    t.success = s.int64At(8) != 0;
+    t.planning_time_s = doubleOpt(s, 9);
+    t.wall_time_s = s.doubleAt(10);
+    t.makespan = intOpt(s, 11);
+    t.sum_of_costs = intOpt(s, 12);
+    t.conflicts = intOpt(s, 13);
+    t.db_hits = intOpt(s, 14);
+    t.peak_memory_kb = intOpt(s, 15);
+    if (auto v = intOpt(s, 16)) t.exit_status = static_cast<int>(*v);
+    if (auto v = intOpt(s, 17)) t.term_signal = static_cast<int>(*v);
+    if (s.columnType(18) != SQLITE_NULL) t.failure = s.textAt(18);
+    t.finished_at = s.textAt(19);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::vector<DatabaseRecord> ResultsDb::databases() const {
+  Statement s = impl_->conn.prepare(
+      "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
+      " FROM databases ORDER BY id");
+  std::vector<DatabaseRecord> out;
+  while (s.step()) {
+    DatabaseRecord d;
+    d.method = s.textAt(0);
+    d.suite = s.textAt(1);
+    d.robots = static_cast<int>(s.int64At(2));
+    d.path = s.textAt(3);
+    d.construction_time_s = doubleOpt(s, 4);
+    d.entries = intOpt(s, 5);
+    d.size_bytes = intOpt(s, 6);
+    d.problems = intOpt(s, 7);
+    if (s.columnType(8) != SQLITE_NULL) d.seed = seedFrom(s.textAt(8));
+    d.recorded_at = s.textAt(9);
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) const {
+  Statement s = impl_->conn.prepare("SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1");
+  s.bind(1, method).bind(2, path);
+  return s.step();
+}
+
+std::string utcNow() {
+  std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace earc::bench

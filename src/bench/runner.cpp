@@ -1,0 +1,491 @@
+#include "earc/bench/runner.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "earc/bench/child.hpp"
+#include "earc/bench/report.hpp"
+#include "earc/bench/results_db.hpp"
+#include "earc/bench/suites.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/util/progress.hpp"
+
+namespace fs = std::filesystem;
+
+namespace earc::bench {
+
+namespace {
+
+// A solution may report a planning time this much over the limit (the
+// planners poll their deadline) and still count.
+constexpr double kTimeLimitSlack = 1.01;
+// Wall-clock limit of one `earc-plan validate` (a 32-robot solution with a
+// long makespan takes seconds; a hang must not stop the run).
+constexpr double kValidateWallLimitS = 300.0;
+
+std::atomic<bool> g_interrupted{false};
+
+void onSignal(int) { g_interrupted.store(true); }
+
+// SIGINT / SIGTERM stop the run between trials and kill running children;
+// the previous handlers come back when the run ends.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    g_interrupted.store(false);
+    struct sigaction sa{};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~InterruptGuard() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+
+ private:
+  struct sigaction old_int_{}, old_term_{};
+};
+
+struct Cell {
+  const Suite* suite;
+  int robots;
+  int trial;
+  std::string method;
+};
+
+const char* signalName(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGKILL: return "SIGKILL";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGXCPU: return "SIGXCPU";
+    default: return "signal";
+  }
+}
+
+// EARC_BENCH_FAULT=METHOD:crash|hang (test only): the plan child of that
+// method commits the fault instead of planning.
+ChildFault faultFor(const std::string& method) {
+  const char* env = std::getenv("EARC_BENCH_FAULT");
+  if (!env) return ChildFault::None;
+  const std::string spec = env;
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos || spec.substr(0, colon) != method) return ChildFault::None;
+  const std::string what = spec.substr(colon + 1);
+  if (what == "crash") return ChildFault::Crash;
+  if (what == "hang") return ChildFault::Hang;
+  return ChildFault::None;
+}
+
+std::string fmtSeconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", s);
+  return buf;
+}
+
+std::int64_t fileSize(const std::string& path) {
+  std::error_code ec;
+  auto n = fs::file_size(path, ec);
+  return ec ? -1 : static_cast<std::int64_t>(n);
+}
+
+class Runner {
+ public:
+  Runner(const RunOptions& o, std::ostream& log) : o_(o), log_(log), db_(o.results) {
+    work_ = o.work_dir.empty() ? o.results + ".work" : o.work_dir;
+    lightning_dir_ = o.lightning_dir.empty() ? work_ + "/lightning" : o.lightning_dir;
+    const std::string here = executableDir();
+    plan_ = o.plan_program.empty() ? here + "/earc-plan" : o.plan_program;
+    bench_ = o.bench_program.empty() ? here + "/earc-bench" : o.bench_program;
+    for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
+  }
+
+  RunSummary run() {
+    const auto cells = pending();
+    if (cells.empty()) {
+      log_ << "nothing to run: all " << summary_.cells_total << " trials are in " << o_.results << "\n";
+      printTable();
+      return summary_;
+    }
+    log_ << "earc-bench run: " << cells.size() << (cells.size() == 1 ? " trial" : " trials") << " to run (" << summary_.skipped
+         << " already recorded), time limit " << fmtSeconds(o_.time_limit_s) << " s, " << o_.jobs
+         << (o_.jobs == 1 ? " job" : " jobs") << ", results " << o_.results << "\n";
+    prepareDatabases(cells);
+    if (g_interrupted.load()) return finishInterrupted();
+    Progress progress("bench", cells.size());
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (;;) {
+        if (g_interrupted.load()) return;
+        const std::size_t i = next.fetch_add(1);
+        if (i >= cells.size()) return;
+        const Cell& c = cells[i];
+        progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
+                           std::to_string(c.trial));
+        TrialRecord t = runTrial(c);
+        if (g_interrupted.load() && !t.success && t.failure.rfind("interrupted", 0) == 0) return;
+        record(t);
+        progress.tick();
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int j = 1; j < std::max(1, o_.jobs); ++j) threads.emplace_back(worker);
+    worker();
+    for (auto& t : threads) t.join();
+    progress.finish();
+    if (g_interrupted.load()) return finishInterrupted();
+    log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
+    if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
+    log_ << "\n";
+    printTable();
+    return summary_;
+  }
+
+ private:
+  RunSummary finishInterrupted() {
+    summary_.interrupted = true;
+    log_ << "interrupted: " << summary_.run << " trials recorded in " << o_.results
+         << "; run the same command again to resume\n";
+    return summary_;
+  }
+
+  std::vector<Cell> pending() {
+    const auto done = db_.finishedTrials(o_.seed, o_.time_limit_s);
+    std::vector<Cell> cells;
+    for (const std::string& name : o_.suites) {
+      const Suite& s = suiteByName(name);
+      for (int n : s.robots) {
+        if (!o_.robots.empty() && std::find(o_.robots.begin(), o_.robots.end(), n) == o_.robots.end()) continue;
+        for (int trial = 0; trial < o_.trials; ++trial)
+          for (const std::string& m : o_.methods) {
+            ++summary_.cells_total;
+            if (done.count({s.name, n, m, trial})) {
+              ++summary_.skipped;
+              continue;
+            }
+            cells.push_back({&s, n, trial, m});
+          }
+      }
+    }
+    return cells;
+  }
+
+  std::string lightningDb(const Suite& s, int robots) const {
+    return lightning_dir_ + "/" + s.name + "-" + std::to_string(robots) + ".lightning";
+  }
+
+  const std::string& earcDb(const Suite& s) const { return s.family == "arms" ? o_.db_arms : o_.db_mobile; }
+
+  // Lightning databases are built (in a child, timed) when missing; E-ARC
+  // databases are given and only described in the results.
+  void prepareDatabases(const std::vector<Cell>& cells) {
+    std::set<std::pair<const Suite*, int>> lightning;
+    std::set<std::string> families;
+    for (const Cell& c : cells) {
+      if (c.method == "lightning") lightning.insert({c.suite, c.robots});
+      if (c.method == "earc") families.insert(c.suite->family);
+    }
+    for (const auto& [suite, robots] : lightning) {
+      if (g_interrupted.load()) return;
+      const std::string path = lightningDb(*suite, robots);
+      if (fs::exists(path)) continue;
+      fs::create_directories(lightning_dir_);
+      const int problems = o_.lightning_problems > 0 ? o_.lightning_problems : o_.lightning_problems_per_robot * robots;
+      log_ << "building Lightning database " << path << " from " << problems << " problems\n";
+      std::vector<std::string> argv = {bench_, "lightning-db", "--suite", suite->name, "--robots",
+                                       std::to_string(robots), "--count", std::to_string(problems), "--seed",
+                                       std::to_string(o_.seed), "--problem-time-limit",
+                                       std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
+                                       "--results", o_.results};
+      const std::string stem = work_ + "/logs/lightning-db-" + suite->name + "-" + std::to_string(robots);
+      ChildSpec spec;
+      spec.argv = argv;
+      spec.stdout_path = stem + ".out";
+      spec.stderr_path = stem + ".err";
+      spec.wall_limit_s =
+          problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
+      spec.memory_limit_mb = o_.memory_limit_mb;
+      ChildOutcome out = runChild(spec, &g_interrupted);
+      if (out.exit_code != 0)
+        std::cerr << "earc-bench: building " << path << " failed ("
+                  << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
+                  << "): " << lastLine(stem + ".err") << "; its Lightning trials will fail\n";
+    }
+    for (const std::string& family : families) {
+      const std::string& path = family == "arms" ? o_.db_arms : o_.db_mobile;
+      if (path.empty() || !fs::exists(path) || db_.hasDatabase("earc", path)) continue;
+      DatabaseRecord d;
+      d.method = "earc";
+      d.suite = family;
+      d.robots = 0;
+      d.path = path;
+      d.size_bytes = fileSize(path);
+      try {
+        exp::StoreOptions so;
+        so.read_only = true;
+        so.new_session = false;
+        exp::ExperienceStore store(path, so);
+        d.entries = static_cast<std::int64_t>(store.size());
+      } catch (const std::exception& e) {
+        std::cerr << "earc-bench: cannot read E-ARC database " << path << ": " << e.what() << "\n";
+      }
+      db_.addDatabase(d);
+    }
+  }
+
+  std::string scenarioFile(const Cell& c, const TrialSeeds& seeds) {
+    char hex[20];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(seeds.scenario));
+    const std::string path = work_ + "/scenarios/" + c.suite->name + "-" + std::to_string(c.robots) + "-t" +
+                             std::to_string(c.trial) + "-" + hex + ".json";
+    std::lock_guard lock(scenario_mutex_);
+    if (!fs::exists(path))
+      writeTextFileAtomic(path, scenarioToJson(trialScenario(*c.suite, c.robots, c.trial, o_.seed)).dump(1) + "\n");
+    return path;
+  }
+
+  std::vector<std::string> planArgv(const Cell& c, const std::string& scenario, const std::string& solution,
+                                    std::uint64_t seed) const {
+    const std::string limit = std::to_string(o_.time_limit_s), s = std::to_string(seed);
+    if (c.method == "lightning") {
+      std::vector<std::string> a = {bench_, "lightning-plan", scenario, "-o", solution, "--time-limit", limit,
+                                    "--seed", s, "--db", lightningDb(*c.suite, c.robots), "-q"};
+      if (!o_.learn) a.push_back("--no-learn");
+      return a;
+    }
+    std::vector<std::string> a = {plan_, "plan", scenario, "-o", solution, "--method", c.method,
+                                  "--time-limit", limit, "--seed", s, "-q"};
+    if (c.method == "earc") {
+      if (!earcDb(*c.suite).empty()) {
+        a.push_back("--db");
+        a.push_back(earcDb(*c.suite));
+      }
+      if (!o_.learn) a.push_back("--no-learn");
+    }
+    return a;
+  }
+
+  // Reads what the planner reported into t; false when the file is unusable.
+  static bool readStats(const std::string& solution, TrialRecord& t, bool& solved) {
+    const bool database_method = t.method == "earc" || t.method == "lightning";
+    nlohmann::json doc;
+    try {
+      doc = readJsonFile(solution);
+    } catch (const std::exception&) {
+      return false;
+    }
+    solved = doc.value("solved", false);
+    const nlohmann::json st = doc.value("stats", nlohmann::json::object());
+    auto num = [&](const char* key) -> std::optional<std::int64_t> {
+      if (st.contains(key) && st[key].is_number()) return st[key].get<std::int64_t>();
+      return std::nullopt;
+    };
+    if (st.contains("planning_time_s") && st["planning_time_s"].is_number())
+      t.planning_time_s = st["planning_time_s"].get<double>();
+    t.makespan = num("makespan");
+    t.sum_of_costs = num("sum_of_costs");
+    t.conflicts = num("conflicts");
+    if (database_method) t.db_hits = num("db_hits");
+    // E-ARC counts database hits per solver: retrieved as is, or repaired.
+    if (database_method && !t.db_hits && st.contains("subproblems_by_solver") && st["subproblems_by_solver"].is_object()) {
+      const auto& by = st["subproblems_by_solver"];
+      std::int64_t hits = 0;
+      for (const char* k : {"database", "repair"})
+        if (by.contains(k) && by[k].is_number()) hits += by[k].get<std::int64_t>();
+      t.db_hits = hits;
+    }
+    if (!solved && st.contains("failure")) {
+      const auto& f = st["failure"];
+      if (f.is_array()) {
+        std::string why;
+        for (const auto& x : f) why += (why.empty() ? "" : ",") + (x.is_string() ? x.get<std::string>() : x.dump());
+        t.failure = "not solved: " + (why.empty() ? std::string("no reason given") : why);
+      } else {
+        t.failure = "not solved: " + (f.is_string() ? f.get<std::string>() : f.dump());
+      }
+    }
+    return true;
+  }
+
+  TrialRecord runTrial(const Cell& c) {
+    TrialRecord t;
+    t.suite = c.suite->name;
+    t.robots = c.robots;
+    t.method = c.method;
+    t.trial = c.trial;
+    t.seed = o_.seed;
+    t.time_limit_s = o_.time_limit_s;
+    const TrialSeeds seeds = trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
+    t.scenario_seed = seeds.scenario;
+    t.planner_seed = seeds.planner;
+    std::string scenario;
+    try {
+      scenario = scenarioFile(c, seeds);
+    } catch (const std::exception& e) {
+      t.failure = std::string("scenario generation failed: ") + e.what();
+      return t;
+    }
+    const std::string stem = c.suite->name + "-" + std::to_string(c.robots) + "-t" + std::to_string(c.trial) + "-" + c.method;
+    const std::string solution = work_ + "/solutions/" + stem + ".json";
+    const std::string out = work_ + "/logs/" + stem + ".out", err = work_ + "/logs/" + stem + ".err";
+    fs::remove(solution);
+    ChildSpec spec;
+    spec.argv = planArgv(c, scenario, solution, seeds.planner);
+    spec.stdout_path = out;
+    spec.stderr_path = err;
+    spec.wall_limit_s = o_.time_limit_s + (o_.wall_margin_s >= 0 ? o_.wall_margin_s : wallMargin(o_.time_limit_s));
+    spec.memory_limit_mb = o_.memory_limit_mb;
+    spec.fault = faultFor(c.method);
+    ChildOutcome run = runChild(spec, &g_interrupted);
+    t.wall_time_s = run.wall_s;
+    t.peak_memory_kb = run.peak_rss_kb;
+    t.exit_status = run.exit_code;
+    t.term_signal = run.signal;
+    if (run.cancelled) {
+      t.failure = "interrupted";
+      return t;
+    }
+    if (!run.started) {
+      t.failure = run.error;
+      return t;
+    }
+    if (run.killed_at_limit) {
+      t.failure = "killed at the wall-clock limit (" + fmtSeconds(spec.wall_limit_s) + " s)";
+    } else if (run.signal) {
+      t.failure = std::string("crashed: ") + signalName(*run.signal) + " (" + std::to_string(*run.signal) + ")";
+    } else if (run.exit_code == 0 || run.exit_code == 1) {
+      bool solved = false;
+      if (!readStats(solution, t, solved)) {
+        t.failure = "exit " + std::to_string(*run.exit_code) + " without a readable solution: " + lastLine(err);
+      } else if (solved != (run.exit_code == 0)) {
+        t.failure = "exit status " + std::to_string(*run.exit_code) + " disagrees with the solution's solved flag";
+      } else if (solved) {
+        validate(c, scenario, solution, stem, t);
+      } else if (t.failure.empty()) {
+        t.failure = "not solved";
+      }
+    } else {
+      const std::string why = lastLine(err);
+      t.failure = "exit " + std::to_string(run.exit_code.value_or(-1)) + (why.empty() ? "" : ": " + why);
+    }
+    if (t.success) {
+      if (!o_.keep_solutions) fs::remove(solution);
+      fs::remove(out);
+      fs::remove(err);
+    }
+    return t;
+  }
+
+  void validate(const Cell& c, const std::string& scenario, const std::string& solution, const std::string& stem,
+                TrialRecord& t) {
+    const std::string out = work_ + "/logs/" + stem + ".validate.out";
+    const std::string err = work_ + "/logs/" + stem + ".validate.err";
+    ChildSpec spec;
+    spec.argv = {plan_, "validate", scenario, solution};
+    spec.stdout_path = out;
+    spec.stderr_path = err;
+    spec.wall_limit_s = kValidateWallLimitS;
+    spec.memory_limit_mb = o_.memory_limit_mb;
+    ChildOutcome v = runChild(spec, &g_interrupted);
+    if (v.cancelled) {
+      t.failure = "interrupted";
+      return;
+    }
+    if (v.exit_code == 0) {
+      fs::remove(out);
+      fs::remove(err);
+      if (t.planning_time_s && *t.planning_time_s > o_.time_limit_s * kTimeLimitSlack) {
+        t.failure = "solved after the time limit (" + fmtSeconds(*t.planning_time_s) + " s)";
+        return;
+      }
+      t.success = true;
+      return;
+    }
+    std::string why;
+    if (v.exit_code == 1)
+      why = firstLine(out);
+    else if (v.signal)
+      why = std::string("the validator crashed: ") + signalName(*v.signal);
+    else if (v.killed_at_limit)
+      why = "the validator did not finish in " + fmtSeconds(kValidateWallLimitS) + " s";
+    else
+      why = "malformed solution: " + lastLine(err);
+    t.failure = "invalid solution: " + why;
+    {
+      std::lock_guard lock(record_mutex_);
+      ++summary_.invalid;
+    }
+    std::cerr << "INVALID SOLUTION: " << c.suite->name << ", " << c.robots << " robots, method " << c.method
+              << ", trial " << c.trial << ": " << why << " (scenario " << scenario << ", solution " << solution
+              << ")\n";
+  }
+
+  void record(const TrialRecord& t) {
+    std::lock_guard lock(record_mutex_);
+    db_.addTrial(t);
+    ++summary_.run;
+    if (t.success) ++summary_.solved;
+    if (o_.verbose) {
+      log_ << t.suite << " " << t.robots << " " << t.method << " #" << t.trial << ": "
+           << (t.success ? "solved in " + fmtSeconds(t.planning_time_s.value_or(0)) + " s" : t.failure) << "\n";
+      log_.flush();
+    }
+  }
+
+  void printTable() {
+    TrialFilter f{o_.seed, o_.time_limit_s};
+    std::set<std::string> suites(o_.suites.begin(), o_.suites.end());
+    std::set<std::string> methods(o_.methods.begin(), o_.methods.end());
+    std::vector<TrialRecord> mine;
+    for (TrialRecord& t : db_.trials())
+      if (f.matches(t) && suites.count(t.suite) && methods.count(t.method) &&
+          (o_.robots.empty() || std::count(o_.robots.begin(), o_.robots.end(), t.robots)) && t.trial < o_.trials)
+        mine.push_back(std::move(t));
+    log_ << "\n" << markdownTable(mine, db_.databases());
+  }
+
+  const RunOptions& o_;
+  std::ostream& log_;
+  ResultsDb db_;
+  std::string work_, lightning_dir_, plan_, bench_;
+  RunSummary summary_;
+  std::mutex record_mutex_, scenario_mutex_;
+};
+
+}  // namespace
+
+double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
+
+RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
+  if (options.trials < 1) throw InputError("", "--trials", "must be at least 1");
+  if (!(options.time_limit_s > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
+  if (options.jobs < 1) throw InputError("", "--jobs", "must be at least 1");
+  for (const std::string& s : options.suites) suiteByName(s);
+  for (const std::string& m : options.methods)
+    if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
+      throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
+  InterruptGuard guard;
+  Runner runner(options, log);
+  return runner.run();
+}
+
+}  // namespace earc::bench

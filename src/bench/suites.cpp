@@ -1,0 +1,111 @@
+#include "earc/bench/suites.hpp"
+
+#include <stdexcept>
+
+#include "earc/gen/generators.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/util/random.hpp"
+
+namespace earc::bench {
+
+namespace {
+
+// Generation attempts before a crowded layout is reported as an error.
+constexpr int kGenerationAttempts = 8;
+// Stream tags that keep trial seeds and database seeds apart.
+constexpr std::uint64_t kTrialStream = 0x7419;
+constexpr std::uint64_t kDatabaseStream = 0xdb;
+
+// A stable 64-bit hash (FNV-1a) of a suite name: seeds must not depend on
+// the order suites are listed in.
+std::uint64_t nameHash(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+Scenario generate(const Suite& suite, int robots, std::uint64_t seed) {
+  if (suite.family == "arms") {
+    gen::ArmSettings s;
+    s.robots = robots;
+    s.obstacles = suite.obstacles ? gen::defaultArmObstacles(robots) : 0;
+    s.seed = seed;
+    return gen::generateArms(s);
+  }
+  gen::MobileSettings s;
+  s.robots = robots;
+  s.obstacles = suite.obstacles ? gen::kDefaultMobileObstacles : 0;
+  s.seed = seed;
+  return gen::generateMobile(s);
+}
+
+Scenario generateRetrying(const Suite& suite, int robots, std::uint64_t seed) {
+  std::string last;
+  for (int attempt = 0; attempt < kGenerationAttempts; ++attempt) {
+    try {
+      return generate(suite, robots, attempt == 0 ? seed : splitSeed(seed, static_cast<std::uint64_t>(attempt)));
+    } catch (const std::runtime_error& e) {
+      last = e.what();
+    }
+  }
+  throw std::runtime_error("no valid " + suite.name + " scenario with " + std::to_string(robots) +
+                           " robots after " + std::to_string(kGenerationAttempts) + " attempts: " + last);
+}
+
+}  // namespace
+
+const std::vector<Suite>& allSuites() {
+  static const std::vector<Suite> suites = {
+      {"mobile", "mobile", false, {2, 4, 8, 16, 32}},
+      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}},
+      {"arms", "arms", false, {2, 4, 8, 16}},
+      {"arms-obst", "arms", true, {2, 4, 8, 16}},
+  };
+  return suites;
+}
+
+const Suite& suiteByName(const std::string& name) {
+  for (const Suite& s : allSuites())
+    if (s.name == name) return s;
+  throw InputError("", "--suites", "unknown suite '" + name + "' (mobile, mobile-obst, arms, arms-obst)");
+}
+
+const std::vector<std::string>& allMethods() {
+  static const std::vector<std::string> methods = {"earc", "arc", "lightning", "prioritized", "coupled"};
+  return methods;
+}
+
+TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t run_seed) {
+  std::uint64_t cell = splitSeed(splitSeed(run_seed, kTrialStream) ^ nameHash(suite.name),
+                                 static_cast<std::uint64_t>(robots));
+  std::uint64_t scenario = splitSeed(cell, static_cast<std::uint64_t>(trial));
+  return {scenario, splitSeed(scenario, 1)};
+}
+
+Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed) {
+  Scenario s = generateRetrying(suite, robots, trialSeeds(suite, robots, trial, run_seed).scenario);
+  s.name = suite.name + "-" + std::to_string(robots) + "-t" + std::to_string(trial);
+  return s;
+}
+
+Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_t seed) {
+  std::uint64_t cell = splitSeed(splitSeed(seed, kDatabaseStream) ^ nameHash(suite.name),
+                                 static_cast<std::uint64_t>(robots));
+  Scenario s = generateRetrying(suite, robots, splitSeed(cell, static_cast<std::uint64_t>(index)));
+  s.name = suite.name + "-" + std::to_string(robots) + "-db" + std::to_string(index);
+  return s;
+}
+
+std::vector<std::string> splitList(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from <= list.size()) {
+    std::size_t comma = list.find(',', from);
+    if (comma == std::string::npos) comma = list.size();
+    if (comma > from) out.push_back(list.substr(from, comma - from));
+    from = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace earc::bench

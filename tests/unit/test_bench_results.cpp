@@ -1,0 +1,215 @@
+// The benchmark's results database and its reports: schema and resumption
+// keys, statistics, pairing by seed, CSV and OMPL benchmark logs.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "earc/bench/report.hpp"
+#include "earc/bench/results_db.hpp"
+#include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
+
+using namespace earc;
+using namespace earc::bench;
+
+namespace {
+
+struct TempPath {
+  std::string path;
+  explicit TempPath(const std::string& name)
+      : path((std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()))).string()) {
+    std::filesystem::remove_all(path);
+  }
+  ~TempPath() {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove_all(path + suffix);
+  }
+};
+
+TrialRecord trial(const std::string& method, int t, bool ok, double secs, const std::string& suite = "mobile",
+                  int robots = 4) {
+  TrialRecord r;
+  r.suite = suite;
+  r.robots = robots;
+  r.method = method;
+  r.trial = t;
+  r.seed = 1;
+  r.time_limit_s = 60;
+  r.scenario_seed = 0xffffffffffffffffULL - static_cast<std::uint64_t>(t);
+  r.planner_seed = 42;
+  r.success = ok;
+  r.planning_time_s = secs;
+  r.wall_time_s = secs + 0.1;
+  if (ok) {
+    r.makespan = 100;
+    r.sum_of_costs = 300;
+  } else {
+    r.failure = "not solved: time_limit";
+  }
+  r.peak_memory_kb = 20480;
+  r.exit_status = ok ? 0 : 1;
+  return r;
+}
+
+// The lines of a text file.
+std::vector<std::string> lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a results database records a trial once per key and reports it as finished") {
+  TempPath file("earc-results");
+  {
+    ResultsDb db(file.path);
+    CHECK(db.addTrial(trial("arc", 0, true, 1.5)));
+    CHECK_FALSE(db.addTrial(trial("arc", 0, false, 9.0)));  // same key: kept as it was
+    CHECK(db.addTrial(trial("earc", 0, true, 1.0)));
+  }
+  ResultsDb db(file.path, true);
+  const auto all = db.trials();
+  REQUIRE(all.size() == 2);
+  CHECK(all[0].success);
+  CHECK(all[0].planning_time_s == doctest::Approx(1.5));
+  CHECK(all[0].scenario_seed == 0xffffffffffffffffULL);  // 64-bit seeds survive
+  CHECK(all[0].failure.empty());
+  CHECK_FALSE(all[0].conflicts.has_value());  // NULL stays NULL
+  const auto done = db.finishedTrials(1, 60);
+  CHECK(done.count({"mobile", 4, "arc", 0}) == 1);
+  CHECK(db.finishedTrials(2, 60).empty());   // another seed
+  CHECK(db.finishedTrials(1, 30).empty());   // another time limit
+}
+
+TEST_CASE("a results database refuses files of other applications and newer schemas") {
+  TempPath file("earc-results-foreign");
+  std::ofstream(file.path) << "plain text, not SQLite at all, long enough to have a header of its own........";
+  CHECK_THROWS_AS(ResultsDb(file.path), InputError);
+}
+
+TEST_CASE("databases are recorded with their construction time, entries and size") {
+  TempPath file("earc-results-dbs");
+  ResultsDb db(file.path);
+  DatabaseRecord d;
+  d.method = "lightning";
+  d.suite = "mobile";
+  d.robots = 4;
+  d.path = "/tmp/x.lightning";
+  d.construction_time_s = 12.5;
+  d.entries = 16;
+  d.size_bytes = 4096;
+  db.addDatabase(d);
+  CHECK(db.hasDatabase("lightning", "/tmp/x.lightning"));
+  CHECK_FALSE(db.hasDatabase("earc", "/tmp/x.lightning"));
+  const auto all = db.databases();
+  REQUIRE(all.size() == 1);
+  CHECK(all[0].entries == 16);
+  CHECK_FALSE(all[0].problems.has_value());
+}
+
+TEST_CASE("quantiles interpolate between order statistics like numpy") {
+  CHECK_FALSE(quantile({}, 0.5).has_value());
+  CHECK(*quantile({3, 1, 2}, 0.5) == doctest::Approx(2));
+  CHECK(*quantile({1, 2, 3, 4}, 0.5) == doctest::Approx(2.5));
+  CHECK(*quantile({1, 2, 3, 4}, 0.25) == doctest::Approx(1.75));
+  CHECK(*quantile({7}, 0.75) == doctest::Approx(7));
+}
+
+TEST_CASE("cells count every trial but time only the solved ones") {
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 1), trial("arc", 1, true, 3), trial("arc", 2, false, 60)};
+  const auto cells = summarize(t);
+  REQUIRE(cells.size() == 1);
+  CHECK(cells[0].trials == 3);
+  CHECK(cells[0].solved == 2);
+  CHECK(*cells[0].median_s == doctest::Approx(2));
+}
+
+TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones") {
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 2), trial("earc", 0, true, 1),   // 0.5
+                                trial("arc", 1, true, 4), trial("earc", 1, true, 3),   // 0.75
+                                trial("arc", 2, true, 4), trial("earc", 2, false, 60),  // unpaired
+                                trial("earc", 3, true, 1)};
+  PairedRatio r = pairedRatio(t, "mobile", 4, "earc", "arc");
+  CHECK(r.pairs == 2);
+  CHECK(*r.median == doctest::Approx(0.625));
+  const std::string md = markdownTable(t, {});
+  CHECK(md.find("### mobile") != std::string::npos);
+  CHECK(md.find("| 4 | earc | 3/4 (75%) |") != std::string::npos);
+  CHECK(md.find("| mobile | 4 | 2 | 0.625 |") != std::string::npos);
+}
+
+TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {
+  TrialRecord t = trial("arc", 0, false, 1);
+  t.failure = "exit 2: bad \"input\", really";
+  std::ostringstream out;
+  writeCsv({t}, out);
+  std::istringstream in(out.str());
+  std::string header, row, extra;
+  std::getline(in, header);
+  std::getline(in, row);
+  CHECK_FALSE(std::getline(in, extra));
+  CHECK(header.rfind("suite,robots,method,trial,seed,", 0) == 0);
+  CHECK(row.find("\"exit 2: bad \"\"input\"\", really\"") != std::string::npos);
+}
+
+TEST_CASE("OMPL benchmark logs follow Benchmark::saveResultsToStream's layout") {
+  TempPath dir("earc-ompl-logs");
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 2), trial("earc", 0, true, 1), trial("arc", 1, false, 60),
+                                trial("arc", 0, true, 5, "arms", 2)};
+  const auto files = writeOmplLogs(t, dir.path);
+  REQUIRE(files.size() == 2);
+  const auto l = lines(dir.path + "/mobile-4.log");
+  REQUIRE(l.size() > 20);
+  CHECK(l[0] == "earc-bench version 1");
+  CHECK(l[1] == "Experiment mobile-4");
+  CHECK(l[2] == "3 experiment properties");
+  CHECK(l[6].rfind("Running on ", 0) == 0);
+  CHECK(l[7].rfind("Starting at ", 0) == 0);
+  CHECK(l[8] == "<<<|");
+  std::size_t i = 9;
+  while (l[i] != "|>>>") ++i;
+  CHECK(l[++i] == "<<<|");
+  CHECK(l[++i] == "|>>>");
+  CHECK(l[++i] == "1 is the random seed");
+  CHECK(l[++i] == "60 seconds per run");
+  CHECK(l[++i].find(" MB per run") != std::string::npos);
+  CHECK(l[++i] == "2 runs per planner");
+  CHECK(l[++i].find(" seconds spent to collect the data") != std::string::npos);
+  CHECK(l[++i] == "1 enum type");
+  CHECK(l[++i].rfind("status|", 0) == 0);
+  CHECK(l[++i] == "2 planners");
+  CHECK(l[++i] == "earc");  // methods in the tables' order
+  CHECK(l[++i] == "0 common properties");
+  CHECK(l[++i] == "10 properties for each run");
+  const std::size_t props = i + 1;
+  CHECK(l[props + 7] == "time REAL");
+  CHECK(l[props + 4] == "solved BOOLEAN");
+  i = props + 10;
+  CHECK(l[i] == "1 runs");
+  // Every value followed by "; ", the time where "time REAL" says.
+  const std::string run = l[++i];
+  CHECK(run.substr(run.size() - 2) == "; ");
+  CHECK(std::count(run.begin(), run.end(), ';') == 10);
+  CHECK(l[++i] == ".");
+  CHECK(l[++i] == "arc");
+}
+
+TEST_CASE("a trial's scenario is a function of suite, robots, trial and seed, and databases never hold it") {
+  const Suite& s = suiteByName("mobile-obst");
+  CHECK(trialSeeds(s, 4, 0, 1).scenario == trialSeeds(s, 4, 0, 1).scenario);
+  CHECK(trialSeeds(s, 4, 0, 1).scenario != trialSeeds(s, 4, 1, 1).scenario);
+  CHECK(trialSeeds(s, 4, 0, 1).scenario != trialSeeds(suiteByName("mobile"), 4, 0, 1).scenario);
+  const Scenario a = trialScenario(s, 4, 0, 1), b = trialScenario(s, 4, 0, 1);
+  CHECK(a.name == "mobile-obst-4-t0");
+  CHECK(a.robots.size() == 4);
+  CHECK(a.obstacles.size() > 0);
+  CHECK(a.robots[0].start == b.robots[0].start);
+  const Scenario d = databaseProblem(s, 4, 0, 1);
+  CHECK(d.robots[0].start != a.robots[0].start);
+  CHECK_THROWS_AS(suiteByName("boats"), InputError);
+  CHECK(splitList("a,,b,") == std::vector<std::string>{"a", "b"});
+}
