@@ -1,0 +1,69 @@
+// earc-bench export: results as CSV and as OMPL benchmark logs.
+//
+//   earc-bench export --results FILE [--csv OUT.csv] [--databases-csv OUT.csv]
+//     [--ompl-log DIR] [--seed S] [--time-limit S]
+//
+// The OMPL logs (one per suite, robot count and time limit; planners are the
+// methods) load with ompl_benchmark_statistics.py DIR/*.log -d OUT.db and
+// so into Planner Arena.
+#include <fstream>
+#include <iostream>
+
+#include "earc/bench/report.hpp"
+#include "earc/bench/results_db.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace earc {
+namespace {
+
+struct ExportOptions {
+  std::string results;
+  std::string csv, databases_csv, ompl_dir;
+  std::uint64_t seed = 0;
+  double time_limit = 0;
+};
+
+std::ofstream openOut(const std::string& path, const char* option) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, option, "cannot write");
+  return out;
+}
+
+void setupExport(CLI::App& app) {
+  auto o = std::make_shared<ExportOptions>();
+  auto* cmd = app.add_subcommand("export", "Write results as CSV and as OMPL benchmark logs");
+  cmd->add_option("--results", o->results, "Results database")->required();
+  cmd->add_option("--csv", o->csv, "One row per trial");
+  cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
+  cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");
+  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed");
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  cmd->callback([o, seed, limit] {
+    if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())
+      throw InputError("", "--csv/--databases-csv/--ompl-log", "nothing to export: give at least one");
+    bench::ResultsDb db(o->results, true);
+    bench::TrialFilter f;
+    if (seed->count()) f.seed = o->seed;
+    if (limit->count()) f.time_limit_s = o->time_limit;
+    const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
+    if (!o->csv.empty()) {
+      auto out = openOut(o->csv, "--csv");
+      bench::writeCsv(trials, out);
+      std::cout << o->csv << ": " << trials.size() << " trials\n";
+    }
+    if (!o->databases_csv.empty()) {
+      auto out = openOut(o->databases_csv, "--databases-csv");
+      const auto dbs = db.databases();
+      bench::writeDatabasesCsv(dbs, out);
+      std::cout << o->databases_csv << ": " << dbs.size() << " databases\n";
+    }
+    if (!o->ompl_dir.empty())
+      for (const std::string& f : bench::writeOmplLogs(trials, o->ompl_dir)) std::cout << f << "\n";
+  });
+}
+
+cli::Registrar reg("earc-bench", "export", setupExport);
+
+}  // namespace
+}  // namespace earc

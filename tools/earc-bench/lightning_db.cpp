@@ -1,0 +1,116 @@
+// earc-bench lightning-db: grow a Lightning database (OMPL's file) from
+// random problems of one suite and robot count, timing the construction.
+//
+//   earc-bench lightning-db --robots N --family mobile|arms [--obstacles]
+//     --count M [--seed S] [--problem-time-limit S] -o FILE [--append]
+//     [--results FILE.sqlite]
+//
+// The problems are generated like the suites' trials but from a stream of
+// the seed that trials never use (bench::databaseProblem). Construction
+// time is the wall time of planning all M problems, solved or not: what
+// growing the database costs.
+#include <filesystem>
+#include <iostream>
+
+#include "earc/baselines/lightning.hpp"
+#include "earc/bench/results_db.hpp"
+#include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/util/deadline.hpp"
+#include "earc/util/progress.hpp"
+#include "earc/util/random.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace earc {
+namespace {
+
+struct LightningDbOptions {
+  std::string suite;
+  std::string family = "mobile";
+  bool obstacles = false;
+  int robots = 2;
+  int count = 10;
+  std::uint64_t seed = 1;
+  double problem_time_limit = 10.0;
+  std::string output;
+  bool append = false;
+  std::string results;
+};
+
+const bench::Suite& chooseSuite(const LightningDbOptions& o) {
+  if (!o.suite.empty()) return bench::suiteByName(o.suite);
+  return bench::suiteByName(o.family + (o.obstacles ? "-obst" : ""));
+}
+
+void runLightningDb(const LightningDbOptions& o) {
+  const bench::Suite& suite = chooseSuite(o);
+  if (o.count < 1) throw InputError("", "--count", "must be at least 1");
+  if (!(o.problem_time_limit > 0)) throw InputError("", "--problem-time-limit", "must be positive");
+  const bool exists = std::filesystem::exists(o.output);
+  if (exists && !o.append) throw InputError(o.output, "-o", "exists; pass --append to grow it");
+
+  Scenario first = bench::databaseProblem(suite, o.robots, 0, o.seed);
+  LightningDatabase db(first);
+  if (exists) db.load(o.output);
+  const std::size_t before = db.entries();
+  LightningSettings ls;
+  ls.learn = true;
+  Progress progress("lightning-db", static_cast<std::size_t>(o.count));
+  int solved = 0, recalled = 0;
+  Stopwatch clock;
+  for (int i = 0; i < o.count; ++i) {
+    Scenario s = i == 0 ? first : bench::databaseProblem(suite, o.robots, i, o.seed);
+    PlannerSettings ps;
+    ps.method = Method::Lightning;
+    ps.time_limit_s = o.problem_time_limit;
+    ps.seed = splitSeed(o.seed, static_cast<std::uint64_t>(i));
+    PlanResult r = db.plan(s, ps, ls);
+    if (r.solution.solved) ++solved;
+    if (r.stats.value("lightning_source", "") == "recall") ++recalled;
+    progress.setStatus(std::to_string(db.entries()) + " entries");
+    progress.tick();
+  }
+  const double construction = clock.seconds();
+  progress.finish();
+  db.save(o.output);
+  const auto size = static_cast<std::int64_t>(std::filesystem::file_size(o.output));
+  std::cout << o.output << ": " << db.entries() << " entries (" << db.entries() - before << " new, " << db.states()
+            << " states), " << size << " bytes; " << o.count << " problems of " << suite.name << " with " << o.robots
+            << " robots, " << solved << " solved (" << recalled << " from recall); construction " << construction
+            << " s\n";
+  if (!o.results.empty()) {
+    bench::ResultsDb results(o.results);
+    bench::DatabaseRecord d;
+    d.method = "lightning";
+    d.suite = suite.name;
+    d.robots = o.robots;
+    d.path = o.output;
+    d.construction_time_s = construction;
+    d.entries = static_cast<std::int64_t>(db.entries());
+    d.size_bytes = size;
+    d.problems = o.count;
+    d.seed = o.seed;
+    results.addDatabase(d);
+  }
+}
+
+void setupLightningDb(CLI::App& app) {
+  auto o = std::make_shared<LightningDbOptions>();
+  auto* cmd = app.add_subcommand("lightning-db", "Grow a Lightning database from random problems of one size, timed");
+  cmd->add_option("--robots,-n", o->robots, "Robots per problem")->check(CLI::Range(2, 128))->capture_default_str();
+  cmd->add_option("--family", o->family, "mobile or arms")->check(CLI::IsMember({"mobile", "arms"}))->capture_default_str();
+  cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
+  cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");
+  cmd->add_option("--count", o->count, "Problems to plan")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the problems and the planners")->capture_default_str();
+  cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->required();
+  cmd->add_flag("--append", o->append, "Grow an existing database");
+  cmd->add_option("--results", o->results, "Record construction time, entries and size in this results database");
+  cmd->callback([o] { runLightningDb(*o); });
+}
+
+cli::Registrar reg("earc-bench", "lightning-db", setupLightningDb);
+
+}  // namespace
+}  // namespace earc

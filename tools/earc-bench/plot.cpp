@@ -1,0 +1,48 @@
+// earc-bench plot: figures from a results database, drawn by
+// tools/plots/plot_results.py (matplotlib) run with /usr/bin/python3.
+//
+//   earc-bench plot --results FILE -o DIR [--python PATH] [--script PATH]
+#include <filesystem>
+#include <iostream>
+
+#include "earc/bench/child.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace earc {
+namespace {
+
+// Drawing a few dozen figures takes seconds; ten minutes is a hang.
+constexpr double kPlotWallLimitS = 600.0;
+
+struct PlotOptions {
+  std::string results;
+  std::string output;
+  std::string python = "/usr/bin/python3";
+  std::string script = std::string(EARC_SOURCE_DIR) + "/tools/plots/plot_results.py";
+};
+
+void setupPlot(CLI::App& app) {
+  auto o = std::make_shared<PlotOptions>();
+  auto* cmd = app.add_subcommand("plot", "Plot results (PNG and SVG) with tools/plots/plot_results.py");
+  cmd->add_option("--results", o->results, "Results database")->required();
+  cmd->add_option("-o,--output", o->output, "Directory for the figures")->required();
+  cmd->add_option("--python", o->python, "Python with matplotlib and numpy")->capture_default_str();
+  cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
+  cmd->callback([o] {
+    if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
+    if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
+    bench::ChildSpec spec;
+    spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
+    spec.wall_limit_s = kPlotWallLimitS;
+    spec.inherit_output = true;
+    bench::ChildOutcome out = bench::runChild(spec);
+    if (out.exit_code == 2) cli::setExitCode(2);
+    else if (out.exit_code != 0) throw std::runtime_error("the plotting script failed");
+  });
+}
+
+cli::Registrar reg("earc-bench", "plot", setupPlot);
+
+}  // namespace
+}  // namespace earc

@@ -1,0 +1,102 @@
+// earc-bench run: the E-ARC paper's experiments (see earc/bench/runner.hpp).
+//
+//   earc-bench run [--suites mobile,mobile-obst,arms,arms-obst] [--robots 2,4,8]
+//     [--methods earc,arc,lightning,prioritized,coupled] [--trials N]
+//     [--time-limit S] [--seed S] [--results FILE.sqlite] [--db-mobile FILE]
+//     [--db-arms FILE] [--lightning-dir DIR] [--jobs N] [--full]
+//
+// Exit status 0 when the run finished (failed trials are results, not
+// errors), 1 when some solution was INVALID, 2 for bad options, 130 when
+// interrupted (run the same command again to resume).
+#include <iostream>
+
+#include "earc/bench/runner.hpp"
+#include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace earc {
+namespace {
+
+// --full: every suite, robot count and method, 20 trials per cell.
+constexpr int kFullTrials = 20;
+
+struct RunCli {
+  bench::RunOptions run;
+  std::string suites, robots, methods;
+  bool full = false;
+};
+
+std::vector<int> parseCounts(const std::string& list) {
+  std::vector<int> out;
+  for (const std::string& item : bench::splitList(list)) {
+    try {
+      std::size_t used = 0;
+      int n = std::stoi(item, &used);
+      if (used != item.size() || n < 2) throw std::invalid_argument(item);
+      out.push_back(n);
+    } catch (const std::exception&) {
+      throw InputError("", "--robots", "'" + item + "' is not a robot count (2 or more)");
+    }
+  }
+  return out;
+}
+
+void setupRun(CLI::App& app) {
+  auto o = std::make_shared<RunCli>();
+  bench::RunOptions& r = o->run;
+  auto* cmd = app.add_subcommand(
+      "run", "Run the paper's experiments: trials per (suite, robots, method), each in its own process; resumable");
+  auto* suites = cmd->add_option("--suites", o->suites, "Suites: mobile, mobile-obst, arms, arms-obst (default mobile-obst,arms)");
+  auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full every count of the suite)");
+  auto* methods = cmd->add_option("--methods", o->methods,
+                                  "Methods: earc, arc, lightning, prioritized, coupled (default earc,arc,lightning,prioritized)");
+  auto* trials = cmd->add_option("--trials", r.trials, "Trials per cell (default 2; --full: 20)");
+  cmd->add_option("--time-limit", r.time_limit_s, "Planning time limit per trial, seconds")->capture_default_str();
+  cmd->add_option("--seed", r.seed, "Seed of the run: scenarios and planner seeds derive from it")->capture_default_str();
+  cmd->add_option("--results", r.results, "Results database (SQLite), appended to and resumed from")->capture_default_str();
+  cmd->add_option("--work-dir", r.work_dir, "Scenarios, failed trials' solutions and logs (default RESULTS.work)");
+  cmd->add_option("--db-mobile", r.db_mobile, "E-ARC database for the mobile suites (earc-plan --db)");
+  cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites");
+  cmd->add_option("--lightning-dir", r.lightning_dir,
+                  "Lightning databases SUITE-ROBOTS.lightning, built here when missing (default WORK/lightning)");
+  cmd->add_option("--lightning-problems", r.lightning_problems, "Problems per Lightning database (default 4 x robots)");
+  cmd->add_option("--lightning-problems-per-robot", r.lightning_problems_per_robot,
+                  "Problems per robot for a Lightning database")->capture_default_str();
+  cmd->add_option("--lightning-problem-time-limit", r.lightning_problem_time_limit_s,
+                  "Time limit per problem while building a Lightning database")->capture_default_str();
+  cmd->add_option("--jobs", r.jobs,
+                  "Trials run at once. Default 1: concurrent trials share cores and memory bandwidth and disturb "
+                  "each other's timings")->capture_default_str();
+  cmd->add_option("--memory-limit-mb", r.memory_limit_mb, "Address-space limit of each trial's process (MiB)")
+      ->capture_default_str();
+  cmd->add_option("--wall-margin", r.wall_margin_s,
+                  "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)");
+  cmd->add_option("--plan-program", r.plan_program, "The earc-plan to run (default: the one next to earc-bench)");
+  cmd->add_flag("--full", o->full, "Everything: all suites, robot counts and methods, 20 trials per cell");
+  cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
+  cmd->add_flag("--keep-solutions", r.keep_solutions, "Keep the solution files of solved trials");
+  cmd->add_flag("-v,--verbose", r.verbose, "One line per finished trial");
+  cmd->callback([o, suites, robots, methods, trials] {
+    bench::RunOptions& r = o->run;
+    if (o->full) {
+      r.suites.clear();
+      for (const auto& s : bench::allSuites()) r.suites.push_back(s.name);
+      r.robots.clear();
+      r.methods = bench::allMethods();
+      if (!trials->count()) r.trials = kFullTrials;
+    }
+    if (suites->count()) r.suites = bench::splitList(o->suites);
+    if (robots->count()) r.robots = parseCounts(o->robots);
+    if (methods->count()) r.methods = bench::splitList(o->methods);
+    if (r.suites.empty()) throw InputError("", "--suites", "no suite given");
+    if (r.methods.empty()) throw InputError("", "--methods", "no method given");
+    bench::RunSummary s = bench::runBenchmark(r, std::cout);
+    cli::setExitCode(s.interrupted ? 130 : s.invalid ? 1 : 0);
+  });
+}
+
+cli::Registrar reg("earc-bench", "run", setupRun);
+
+}  // namespace
+}  // namespace earc

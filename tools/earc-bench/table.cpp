@@ -1,0 +1,40 @@
+// earc-bench table: the results as markdown: success rate and median
+// planning time (IQR) per suite, robot count and method, the E-ARC/ARC
+// ratio paired by seed, and the databases.
+//
+//   earc-bench table --results FILE [--seed S] [--time-limit S]
+#include <iostream>
+
+#include "earc/bench/report.hpp"
+#include "earc/bench/results_db.hpp"
+#include "earc/util/subcommands.hpp"
+
+namespace earc {
+namespace {
+
+struct TableOptions {
+  std::string results;
+  std::uint64_t seed = 0;
+  double time_limit = 0;
+};
+
+void setupTable(CLI::App& app) {
+  auto o = std::make_shared<TableOptions>();
+  auto* cmd = app.add_subcommand("table", "Print the results as a markdown table");
+  cmd->add_option("--results", o->results, "Results database")->required();
+  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed");
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  cmd->callback([o, seed, limit] {
+    bench::ResultsDb db(o->results, true);
+    bench::TrialFilter f;
+    if (seed->count()) f.seed = o->seed;
+    if (limit->count()) f.time_limit_s = o->time_limit;
+    const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
+    std::cout << bench::markdownTable(trials, db.databases());
+  });
+}
+
+cli::Registrar reg("earc-bench", "table", setupTable);
+
+}  // namespace
+}  // namespace earc
