@@ -1,0 +1,115 @@
+#!/bin/bash
+# A quick benchmark end to end: mobile robots, 2 and 4 of them, methods arc,
+# prioritized and lightning, 2 trials per cell under a short limit (the
+# Lightning databases are built on the way); then the table, the CSV and
+# the OMPL benchmark logs must be well formed, and a second run must find
+# nothing left to do. Skipped (77) without /usr/bin/python3.
+set -u
+BUILD=$1
+SRC=$2
+BENCH="$BUILD/earc-bench"
+PY=/usr/bin/python3
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; sed 's/^/  run: /' "$WORK/run.out" "$WORK/run.err" 2>/dev/null | tail -40; exit 1; }
+
+RUN=(run --suites mobile --robots 2,4 --methods arc,prioritized,lightning --trials 2 --time-limit 10 --seed 7
+     --results "$WORK/r.sqlite" --lightning-problems 3 --lightning-problem-time-limit 5)
+"$BENCH" "${RUN[@]}" > "$WORK/run.out" 2> "$WORK/run.err" || fail "earc-bench run exited $?"
+grep -q "INVALID SOLUTION" "$WORK/run.err" && fail "a planner produced an invalid solution"
+grep -q "^### mobile" "$WORK/run.out" || fail "no table after the run"
+
+"$PY" - "$WORK/r.sqlite" <<'PYEOF' || fail "results database"
+import sqlite3, sys
+con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
+assert con.execute("PRAGMA application_id").fetchone()[0] == 0x45424E43
+assert con.execute("PRAGMA user_version").fetchone()[0] == 1
+assert con.execute("PRAGMA journal_mode").fetchone()[0] == "wal"
+rows = con.execute("SELECT robots, method, trial, success, planning_time_s, failure, peak_memory_kb FROM trials").fetchall()
+assert len(rows) == 12, rows
+assert len({(r[0], r[1], r[2]) for r in rows}) == 12, "a cell ran twice"
+for robots, method, trial, success, t, failure, mem in rows:
+    assert (success == 1) == (failure is None), (method, failure)
+    assert mem is not None and mem > 0
+    if success:
+        assert t is not None and 0 <= t <= 10.1, t
+solved = sum(r[3] for r in rows)
+assert solved >= 6, "only %d of 12 trials solved: %s" % (solved, rows)
+dbs = con.execute("SELECT method, suite, robots, construction_time_s, entries, size_bytes, problems FROM databases").fetchall()
+assert sorted(d[2] for d in dbs) == [2, 4], dbs
+for d in dbs:
+    assert d[0] == "lightning" and d[1] == "mobile" and d[3] > 0 and d[5] > 0 and d[6] == 3, d
+PYEOF
+
+"$BENCH" table --results "$WORK/r.sqlite" > "$WORK/table.md" || fail "table exited $?"
+grep -q "| 4 | lightning | ./2 " "$WORK/table.md" || fail "no lightning row for 4 robots: $(cat "$WORK/table.md")"
+grep -q "^### Databases" "$WORK/table.md" || fail "no database table"
+
+"$BENCH" export --results "$WORK/r.sqlite" --csv "$WORK/r.csv" --databases-csv "$WORK/dbs.csv" \
+  --ompl-log "$WORK/logs" > /dev/null || fail "export exited $?"
+"$PY" - "$WORK/r.csv" "$WORK/dbs.csv" "$WORK/logs" <<'PYEOF' || fail "exports are malformed"
+import csv, glob, os, sys
+with open(sys.argv[1], newline="") as f:
+    rows = list(csv.reader(f))
+assert rows[0][:4] == ["suite", "robots", "method", "trial"], rows[0]
+assert len(rows) == 13 and all(len(r) == len(rows[0]) for r in rows), [len(r) for r in rows]
+with open(sys.argv[2], newline="") as f:
+    assert len(list(csv.reader(f))) == 3
+
+# The reading side of OMPL's benchmark log format, as
+# ompl_benchmark_statistics.py walks it.
+def read_log(path):
+    lines = open(path).read().split("\n")
+    i = 0
+    def take():
+        nonlocal i
+        i += 1
+        return lines[i - 1]
+    assert take().split()[1] == "version"
+    name = take().split()[-1]
+    for _ in range(int(take().split()[0])):
+        assert " = " in take()
+    assert take().startswith("Running on ")
+    assert take().startswith("Starting at ")
+    for _ in range(2):
+        assert take() == "<<<|"
+        while take() != "|>>>":
+            pass
+    assert take().split()[-2:] == ["random", "seed"]
+    limit = float(take().split()[0])
+    assert take().split()[-3:] == ["MB", "per", "run"]
+    assert take().split()[-3:] == ["runs", "per", "planner"]
+    assert take().split()[-3:] == ["collect", "the", "data"]
+    for _ in range(int(take().split()[0])):
+        assert take().startswith("status|")
+    planners = {}
+    for _ in range(int(take().split()[0])):
+        planner = take()
+        for _ in range(int(take().split()[0])):
+            take()
+        props = ["_".join(take().split()[:-1]) for _ in range(int(take().split()[0]))]
+        runs = []
+        for _ in range(int(take().split()[0])):
+            values = take().split("; ")[:-1]
+            assert len(values) == len(props), (values, props)
+            runs.append(dict(zip(props, values)))
+        assert take() == "."
+        planners[planner] = runs
+    return name, limit, planners
+
+logs = sorted(glob.glob(os.path.join(sys.argv[3], "*.log")))
+assert [os.path.basename(p) for p in logs] == ["mobile-2.log", "mobile-4.log"], logs
+for p in logs:
+    name, limit, planners = read_log(p)
+    assert limit == 10 and sorted(planners) == ["arc", "lightning", "prioritized"], (name, planners.keys())
+    for runs in planners.values():
+        assert len(runs) == 2
+        for r in runs:
+            assert r["solved"] in ("0", "1") and float(r["time"]) >= 0
+PYEOF
+
+"$BENCH" "${RUN[@]}" > "$WORK/again.out" 2>&1 || fail "second run exited $?"
+grep -q "nothing to run" "$WORK/again.out" || fail "second run did not skip the finished trials: $(head -3 "$WORK/again.out")"
+echo "ok: quick benchmark, table, CSV and OMPL logs"
