@@ -65,7 +65,7 @@ TEST_CASE("a .map file parses into free and blocked cells with row 0 at the top"
   for (int c = 0; c < 3; ++c) CHECK(m.isBlocked(c, 2));
 }
 
-TEST_CASE("blocked cell (col, row) becomes the box x in [col, col+1], y in [H-1-row, H-row]") {
+TEST_CASE("blocked cell (col, row) becomes the box from (col, H-1-row) to (col+1, H-row)") {
   const GridMap m = parseMovingAiMap(mapText(4, {"....", "..@.", "...."}), "m.map");
   const auto rects = mergeBlockedCells(m);
   REQUIRE(rects.size() == 1);

@@ -45,7 +45,7 @@ TEST_CASE("a wall across the workspace splits the free space into two components
   CHECK(grid.componentOf({0.1, 5}) == -1);  // the disc would leave the workspace
 }
 
-TEST_CASE("a gap narrower than the disc keeps the two sides apart; a wide one joins them") {
+TEST_CASE("a gap narrower than the disc keeps the two sides apart, a wide one joins them") {
   for (double gap : {0.6, 1.2}) {
     Scenario s = walledScenario(0);
     s.obstacles[0].size = {1, 10 - gap};

@@ -16,7 +16,7 @@ TEST_CASE("gen::Random turns mt19937_64 output into uniforms by its own fixed ru
   CHECK(rng.uniform() == static_cast<double>(first >> 11) * 0x1.0p-53);
 }
 
-TEST_CASE("gen::Random uniform(lo, hi) stays in [lo, hi) and depends only on the seed") {
+TEST_CASE("gen::Random uniform(lo, hi) stays at or above lo and below hi and depends only on the seed") {
   Random a(7), b(7), c(8);
   bool differs = false;
   for (int k = 0; k < 1000; ++k) {

@@ -139,7 +139,7 @@ TEST_CASE("excess outside is how far the body's box sticks out, negative inside"
   CHECK(excessOutside(Body::disc({5, 5}, 1.0), ws) == doctest::Approx(-4.0));
 }
 
-TEST_CASE("wrapAngle maps to [-pi, pi) and angleDiff takes the shortest arc") {
+TEST_CASE("wrapAngle maps from -pi inclusive to pi exclusive and angleDiff takes the shortest arc") {
   const double pi = std::numbers::pi;
   CHECK(earc::geo::wrapAngle(pi) == doctest::Approx(-pi));
   CHECK(earc::geo::wrapAngle(3 * pi + 0.5) == doctest::Approx(-pi + 0.5));

@@ -144,7 +144,7 @@ TEST_CASE("adjacent links overlapping at a sharp bend are no self-collision") {
   CHECK_FALSE(m->selfCollides(q));
 }
 
-TEST_CASE("joint limits default to [-pi, pi] with the contract's 1e-6 slack") {
+TEST_CASE("joint limits default to -pi..pi with the contract's 1e-6 slack") {
   auto m = makeRobotModel(armSpec({1, 1}, 0.05), kRes);
   const double inside[] = {kPi + 5e-7, -kPi};
   const double outside[] = {0, -kPi - 2e-6};

@@ -166,7 +166,7 @@ TEST_CASE("a store reloads its index after another connection deleted rows") {
   CHECK(a.nearest(e1.cls, e1.key, 5).size() == 1);
 }
 
-TEST_CASE("every read-write open counts one session; read-only opens do not") {
+TEST_CASE("every read-write open counts one session, read-only opens do not") {
   ScratchDirectory dir("store");
   const std::string path = dir.file("e.db");
   { ExperienceStore s(path); }
