@@ -30,8 +30,8 @@ namespace earc::exp {
 
 // Default problem counts: what the 2-core reference machine builds within
 // the targets (mobile 10 s, arms 20 s) with 2 threads; see the report.
-inline constexpr int kDefaultMobileProblems = 1000;
-inline constexpr int kDefaultArmProblems = 400;
+inline constexpr int kDefaultMobileProblems = 5000;
+inline constexpr int kDefaultArmProblems = 4000;
 
 struct BuildSettings {
   RobotKind kind = RobotKind::Mobile;

@@ -55,7 +55,20 @@ inline constexpr double kBaseClassQuantum = 1e-3;
 inline constexpr double kOrderQuantum = 1e-6;
 // Joints of each arm that enter the key (from the base outwards).
 //
-// MEASUREMENT PENDING
+//
+// Measured on 100,000 keys of one facing-pair class drawn like the
+// builder's queries (sampleArmQuery), k = 10, 500 queries, Release build,
+// 2-core machine under a load average of ~7.7 (absolute times are inflated;
+// the ratios are what matter):
+//   5 joints (20 dims): k-d tree median 2,241 us, brute force 1,781 us
+//   4 joints (16 dims): k-d tree median   631 us, brute force   969 us
+//   3 joints (12 dims): k-d tree median   214 us, brute force   608 us
+//   2 joints  (8 dims): k-d tree median    59 us, brute force   392 us
+// With all 20 dimensions the tree visits nearly every leaf and loses to a
+// linear scan. The joints near the base decide where the arm is (joint 1
+// swings all 2.5 units of it, joint 5 the last 0.5), so the first three
+// keep most of what "close" should mean while the tree is 3x faster than
+// a scan; every candidate is validated (and repaired) by the planner anyway.
 inline constexpr int kArmKeyJoints = 3;
 
 // Key dimension of a class: 4 per mobile robot; 2 x min(dim, kArmKeyJoints)

@@ -131,7 +131,7 @@ inline constexpr int kPageCacheKiB = 32 * 1024;
 // becomes a memory access instead of a system call. Measured on 100,000
 // 2-robot rows, 10 random rows not in the page cache: 69 us with pread,
 // 47 us mapped.
-inline constexpr std::int64_t kMmapBytes = 256ll << 20;
+inline constexpr std::int64_t kMmapBytes = 1ll << 30;
 // Largest string or blob a hostile file may hand us (bytes): a path blob of
 // 4 robots x 5 joints x 100,000 steps is 16 MB.
 inline constexpr int kHostileMaxLength = 64 << 20;
