@@ -134,7 +134,9 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   }
   result.solution.method = methodName(settings.method);
   result.solution.scenario = scenario.name;
-  if (result.solution.solved) result.solution.nameRobots(scenario);
+  // An unsolved result may still carry paths (an invalid one is kept for
+  // inspection): name them so that it can be written too.
+  if (!result.solution.paths.empty()) result.solution.nameRobots(scenario);
   // A fast wrong answer is a wrong answer: nothing is reported solved
   // unless the validator agrees.
   if (result.solution.solved) {
