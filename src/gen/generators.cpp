@@ -55,7 +55,8 @@ Obstacle randomBox(Random& rng, const geo::Aabb& area, double min_side, double m
   o.size = {roundCoordinate(rng.uniform(min_side, max_side)), roundCoordinate(rng.uniform(min_side, max_side))};
   o.angle = rotated ? roundCoordinate(rng.uniform(0.0, std::numbers::pi)) : 0.0;
   const double c = std::abs(std::cos(o.angle)), s = std::abs(std::sin(o.angle));
-  const double hx = 0.5 * (o.size.x * c + o.size.y * s), hy = 0.5 * (o.size.x * s + o.size.y * c);
+  // Half extents plus 1e-4, so that rounding the centre keeps the box inside.
+  const double hx = 0.5 * (o.size.x * c + o.size.y * s) + 1e-4, hy = 0.5 * (o.size.x * s + o.size.y * c) + 1e-4;
   o.center = {roundCoordinate(rng.uniform(area.lo.x + hx, std::max(area.lo.x + hx, area.hi.x - hx))),
               roundCoordinate(rng.uniform(area.lo.y + hy, std::max(area.lo.y + hy, area.hi.y - hy)))};
   return o;
