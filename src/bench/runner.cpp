@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -35,6 +36,9 @@ constexpr double kTimeLimitSlack = 1.01;
 // Wall-clock limit of one `earc-plan validate` (a 32-robot solution with a
 // long makespan takes seconds; a hang must not stop the run).
 constexpr double kValidateWallLimitS = 300.0;
+// Wall-clock limit of `earc-db build` (its default problem counts take
+// minutes; a build that runs for hours has hung).
+constexpr double kEarcDbWallLimitS = 4 * 3600.0;
 
 std::atomic<bool> g_interrupted{false};
 
@@ -193,10 +197,14 @@ class Runner {
     return lightning_dir_ + "/" + s.name + "-" + std::to_string(robots) + ".lightning";
   }
 
-  const std::string& earcDb(const Suite& s) const { return s.family == "arms" ? o_.db_arms : o_.db_mobile; }
+  std::string earcDb(const std::string& family) const {
+    const std::string& given = family == "arms" ? o_.db_arms : o_.db_mobile;
+    return given.empty() ? work_ + "/earc-" + family + ".sqlite" : given;
+  }
 
-  // Lightning databases are built (in a child, timed) when missing; E-ARC
-  // databases are given and only described in the results.
+  // Databases are built (in a child, timed) when missing and recorded in
+  // the results with their construction time; a database that was given
+  // is recorded without one.
   void prepareDatabases(const std::vector<Cell>& cells) {
     std::set<std::pair<const Suite*, int>> lightning;
     std::set<std::string> families;
@@ -231,14 +239,26 @@ class Runner {
                   << "): " << lastLine(stem + ".err") << "; its Lightning trials will fail\n";
     }
     for (const std::string& family : families) {
-      const std::string& path = family == "arms" ? o_.db_arms : o_.db_mobile;
-      if (path.empty() || !fs::exists(path) || db_.hasDatabase("earc", path)) continue;
+      if (g_interrupted.load()) return;
+      const std::string path = earcDb(family);
+      std::optional<double> construction;
+      if (!fs::exists(path)) {
+        construction = buildEarcDb(family, path);
+        if (!construction) continue;
+      } else if (db_.hasDatabase("earc", path)) {
+        continue;
+      }
       DatabaseRecord d;
       d.method = "earc";
       d.suite = family;
       d.robots = 0;
       d.path = path;
-      d.size_bytes = fileSize(path);
+      d.construction_time_s = construction;
+      d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(path + "-wal"));
+      if (construction) {
+        d.seed = o_.seed;
+        if (o_.earc_db_count > 0) d.problems = o_.earc_db_count;
+      }
       try {
         exp::StoreOptions so;
         so.read_only = true;
@@ -250,6 +270,34 @@ class Runner {
       }
       db_.addDatabase(d);
     }
+  }
+
+  // Runs `earc-db build` for one family; its wall time is the construction
+  // time (nullopt when it failed: the earc trials then fail with
+  // earc-plan's own message about the database).
+  std::optional<double> buildEarcDb(const std::string& family, const std::string& path) {
+    const std::string program = o_.earc_db_program.empty() ? executableDir() + "/earc-db" : o_.earc_db_program;
+    log_ << "building E-ARC database " << path << " (earc-db build --kind " << family << ")\n";
+    log_.flush();
+    ChildSpec spec;
+    spec.argv = {program, "build", "--db", path, "--kind", family, "--seed", std::to_string(o_.seed)};
+    if (o_.earc_db_count > 0) {
+      spec.argv.push_back("--count");
+      spec.argv.push_back(std::to_string(o_.earc_db_count));
+    }
+    const std::string stem = work_ + "/logs/earc-db-" + family;
+    spec.stdout_path = stem + ".out";
+    spec.stderr_path = stem + ".err";
+    spec.wall_limit_s = kEarcDbWallLimitS;
+    spec.memory_limit_mb = o_.memory_limit_mb;
+    ChildOutcome out = runChild(spec, &g_interrupted);
+    if (out.exit_code == 0) return out.wall_s;
+    std::cerr << "earc-bench: building " << path << " failed ("
+              << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
+              << "): " << lastLine(stem + ".err") << "; its earc trials will fail\n";
+    std::error_code ec;
+    fs::remove(path, ec);  // a half-built database must not pass for a built one
+    return std::nullopt;
   }
 
   std::string scenarioFile(const Cell& c, const TrialSeeds& seeds) {
@@ -275,10 +323,8 @@ class Runner {
     std::vector<std::string> a = {plan_, "plan", scenario, "-o", solution, "--method", c.method,
                                   "--time-limit", limit, "--seed", s, "-q"};
     if (c.method == "earc") {
-      if (!earcDb(*c.suite).empty()) {
-        a.push_back("--db");
-        a.push_back(earcDb(*c.suite));
-      }
+      a.push_back("--db");
+      a.push_back(earcDb(c.suite->family));
       if (!o_.learn) a.push_back("--no-learn");
     }
     return a;

@@ -56,8 +56,11 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--seed", r.seed, "Seed of the run: scenarios and planner seeds derive from it")->capture_default_str();
   cmd->add_option("--results", r.results, "Results database (SQLite), appended to and resumed from")->capture_default_str();
   cmd->add_option("--work-dir", r.work_dir, "Scenarios, failed trials' solutions and logs (default RESULTS.work)");
-  cmd->add_option("--db-mobile", r.db_mobile, "E-ARC database for the mobile suites (earc-plan --db)");
-  cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites");
+  cmd->add_option("--db-mobile", r.db_mobile,
+                  "E-ARC database for the mobile suites (earc-plan --db); built with earc-db build when missing "
+                  "(default WORK/earc-mobile.sqlite)");
+  cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites (default WORK/earc-arms.sqlite)");
+  cmd->add_option("--earc-db-count", r.earc_db_count, "Problems for an E-ARC database built here (default: earc-db's)");
   cmd->add_option("--lightning-dir", r.lightning_dir,
                   "Lightning databases SUITE-ROBOTS.lightning, built here when missing (default WORK/lightning)");
   cmd->add_option("--lightning-problems", r.lightning_problems, "Problems per Lightning database (default 4 x robots)");

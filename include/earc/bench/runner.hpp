@@ -22,7 +22,11 @@ struct RunOptions {
   std::uint64_t seed = 1;
   std::string results = "bench-results.sqlite";
   std::string work_dir;                  // empty: <results>.work
-  std::string db_mobile, db_arms;        // E-ARC databases (earc-plan --db)
+  // E-ARC databases (earc-plan --db); empty: <work_dir>/earc-FAMILY.sqlite.
+  // Built with `earc-db build --kind FAMILY` (timed) when missing.
+  std::string db_mobile, db_arms;
+  int earc_db_count = 0;                 // > 0: earc-db build --count
+  std::string earc_db_program;           // empty: earc-db next to this program
   std::string lightning_dir;             // empty: <work_dir>/lightning
   // Lightning databases built when missing: problems = per_robot x robots
   // (the paper grows the database with the robot count), each planned for

@@ -1,0 +1,33 @@
+#!/bin/bash
+# E-ARC through the benchmark: missing E-ARC databases are built with
+# `earc-db build` (timed and recorded), and the earc trials plan with them,
+# paired with ARC's trials by seed. Skipped (77) without earc-db or
+# /usr/bin/python3.
+set -u
+BUILD=$1
+SRC=$2
+BENCH="$BUILD/earc-bench"
+PY=/usr/bin/python3
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+[ -x "$BUILD/earc-db" ] || { echo "skipped: earc-db not built in $BUILD"; exit 77; }
+[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; tail -20 "$WORK/run.out" "$WORK/run.err"; exit 1; }
+
+"$BENCH" run --suites mobile,arms --robots 2 --methods earc,arc --trials 2 --time-limit 10 --seed 9 \
+  --earc-db-count 30 --results "$WORK/r.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" || fail "run exited $?"
+grep -q "^### E-ARC / ARC planning time, paired by seed" "$WORK/run.out" || fail "no paired ratio in the table"
+"$PY" - "$WORK/r.sqlite" <<'PYEOF' || fail "results"
+import sqlite3, sys
+con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
+rows = con.execute("SELECT suite, method, success, db_hits, failure FROM trials").fetchall()
+assert len(rows) == 8, rows
+for suite, method, success, hits, failure in rows:
+    assert success == 1, (suite, method, failure)
+    assert (hits is not None) == (method == "earc"), (method, hits)
+dbs = con.execute("SELECT method, suite, robots, construction_time_s, entries, problems FROM databases ORDER BY suite").fetchall()
+assert [(d[0], d[1], d[2]) for d in dbs] == [("earc", "arms", 0), ("earc", "mobile", 0)], dbs
+assert all(d[3] > 0 and d[4] > 0 and d[5] == 30 for d in dbs), dbs
+PYEOF
+echo "ok: E-ARC databases built and used"
