@@ -9,6 +9,7 @@
 #include "earc/baselines/lightning.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/planning/methods.hpp"
 #include "earc/validate/validator.hpp"
 
 using namespace earc;
@@ -147,4 +148,15 @@ TEST_CASE("a Lightning database file is created when missing, and only then") {
   LightningDatabase db(s);
   db.load(file.path);
   CHECK(db.entries() == 1);
+}
+
+TEST_CASE("with an empty database Lightning is RRT-Connect alone and repeats itself for one seed") {
+  // Retrieve-and-repair gives up at once on an empty database, so no race
+  // decides the result: the same seed must give the same solution.
+  const Scenario s = twoMobile(19);
+  PlanResult a = planLightning(s, settings(4)), b = planLightning(s, settings(4));
+  REQUIRE(a.solution.solved);
+  REQUIRE(b.solution.solved);
+  REQUIRE(a.solution.paths.size() == b.solution.paths.size());
+  for (std::size_t r = 0; r < a.solution.paths.size(); ++r) CHECK(a.solution.paths[r] == b.solution.paths[r]);
 }
