@@ -27,6 +27,9 @@ SUITES = ["mobile", "mobile-obst", "arms", "arms-obst"]
 METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
           "coupled": "Coupled RRT-Connect"}
+# Line style and marker per suite: databases of one method for several
+# suites share its colour.
+SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", "s"), "arms-obst": ("-.", "D")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
           "coupled": "tab:orange"}
 
@@ -109,6 +112,10 @@ def plot_success(trials, suite, out):
             rates.append(100.0 * sum(t[3] for t in cell) / len(cell) if cell else np.nan)
         xs = np.arange(len(counts)) + (i - (len(methods) - 1) / 2) * width
         ax.bar(xs, rates, width, label=LABELS.get(method, method), color=COLORS.get(method))
+        # A bar of height 0 is invisible: mark trials that all failed.
+        for x, rate in zip(xs, rates):
+            if rate == 0:
+                ax.text(x, 1, "0", ha="center", va="bottom", fontsize="x-small", color=COLORS.get(method))
     ax.set_xticks(np.arange(len(counts)))
     ax.set_xticklabels([str(n) for n in counts])
     ax.set_ylim(0, 105)
@@ -116,7 +123,7 @@ def plot_success(trials, suite, out):
     ax.set_ylabel("solved (%)")
     ax.set_title("%s: success rate" % suite)
     if methods:
-        ax.legend(fontsize="small")
+        ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.0, 1.0))
     return save(fig, out, "success_%s" % suite)
 
 
@@ -129,12 +136,13 @@ def plot_databases(dbs, out):
         series = sorted((d[2], d[3]) for d in built if d[0] == method and d[1] == suite)
         label = "%s (%s)" % (LABELS.get(method, method), suite)
         color = COLORS.get(method)
+        line, marker = SUITE_STYLES.get(suite, ("-", "o"))
         if all(n == 0 for n, _ in series):
             ax.hlines(series[-1][1], min(counts), max(counts), label=label + ", all sizes", colors=color,
-                      linestyles="dashed")
+                      linestyles=line)
         else:
-            ax.plot([n for n, _ in series if n > 0], [max(s, 1e-3) for n, s in series if n > 0], marker="o",
-                    label=label, color=color)
+            ax.plot([n for n, _ in series if n > 0], [max(s, 1e-3) for n, s in series if n > 0], marker=marker,
+                    linestyle=line, label=label, color=color)
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xticks(counts)
