@@ -15,8 +15,16 @@ std::string hex32(std::int64_t v) {
 }  // namespace
 
 int checkIdentity(Connection& db) {
-  const std::int64_t app = db.pragmaInt("application_id");  // NOTADB -> ForeignDatabaseError
-  const int version = static_cast<int>(db.pragmaInt("user_version"));
+  // One statement, one snapshot: another process may be creating the file
+  // right now, and separate reads could mix its before and after.
+  Statement s = db.prepare(
+      "SELECT (SELECT application_id FROM pragma_application_id), (SELECT user_version FROM pragma_user_version), "
+      "(SELECT count(*) FROM sqlite_schema)");
+  s.step();  // NOTADB -> ForeignDatabaseError
+  const std::int64_t app = s.int64At(0);
+  const int version = static_cast<int>(s.int64At(1));
+  const std::int64_t objects = s.int64At(2);
+  s.reset();
   const int program = currentSchemaVersion();
   if (app == kApplicationId) {
     if (version > program)
@@ -29,10 +37,6 @@ int checkIdentity(Connection& db) {
                                  std::to_string(version) + "; the file was not created by earc");
     return version;
   }
-  Statement tables = db.prepare("SELECT count(*) FROM sqlite_schema");
-  tables.step();
-  const std::int64_t objects = tables.int64At(0);
-  tables.reset();
   if (app == 0 && version == 0 && objects == 0) return 0;  // empty or new file
   throw ForeignDatabaseError(db.path() + ": not an earc experience database (application_id " + hex32(app) +
                              ", expected " + hex32(kApplicationId) + " \"EARC\"; " + std::to_string(objects) +

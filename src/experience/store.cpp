@@ -58,11 +58,12 @@ void ExperienceStore::openLocked() {
   const OpenMode mode = options_.read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite;
   conn_ = std::make_unique<Connection>(path_, mode, options_.connection);
   // Identity first: never switch a foreign file to WAL or write to it.
-  version_ = checkIdentity(*conn_);
+  // Another process creating the same file may make these steps busy.
+  version_ = conn_->retryWhileBusy([&] { return checkIdentity(*conn_); });
   if (options_.read_only) {
     if (version_ == 0) throw ForeignDatabaseError(path_ + ": empty file, not an earc experience database");
   } else {
-    conn_->enableWal();
+    conn_->retryWhileBusy([&] { conn_->enableWal(); });
     version_ = migrate(*conn_);
   }
   if (!options_.read_only && options_.new_session) {

@@ -30,7 +30,7 @@ ValidationReport validateStored(const Experience& e, std::vector<RobotSpec> robo
   sol.solved = true;
   for (std::size_t r = 0; r < robots.size(); ++r) {
     const Path& p = e.paths[r];
-    robots[r].name = "r" + std::to_string(r);
+    robots[r].name = std::to_string(r) + "-robot";
     robots[r].start.assign(p.at(0), p.at(0) + p.dim());
     robots[r].goal.assign(p.back(), p.back() + p.dim());
     sol.paths.push_back(p);

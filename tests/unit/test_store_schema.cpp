@@ -160,7 +160,7 @@ TEST_CASE("a file at every earlier schema version is migrated to the current one
   ScratchDirectory dir("schema");
   for (int v = 0; v < currentSchemaVersion(); ++v) {
     CAPTURE(v);
-    const std::string path = dir.file("v" + std::to_string(v) + ".db");
+    const std::string path = dir.file(std::to_string(v) + "-version.db");
     makeFileAtVersion(path, v);
     ExperienceStore store(path);
     CHECK(store.schemaVersion() == currentSchemaVersion());

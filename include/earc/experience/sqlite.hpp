@@ -166,6 +166,14 @@ class Connection {
   template <class Body>
   auto write(Body&& body) -> decltype(body());
 
+  // Runs f(); on BusyError runs it again after a doubling backoff, at most
+  // settings.write_attempts times, then BusyError. For steps outside a
+  // transaction that other connections can make busy without the busy
+  // handler waiting (switching a new file to WAL while another process
+  // creates it too).
+  template <class F>
+  auto retryWhileBusy(F&& f) -> decltype(f());
+
   // PRAGMA-free passive checkpoint: copies what it can from the WAL
   // without waiting for readers (keeps the WAL from growing without bound
   // behind a long-lived reader).
@@ -186,29 +194,36 @@ class Connection {
   std::unique_ptr<sqlite3, ConnectionCloser> db_;
 };
 
+template <class F>
+auto Connection::retryWhileBusy(F&& f) -> decltype(f()) {
+  for (int attempt = 1;; ++attempt) {
+    try {
+      return f();
+    } catch (const BusyError&) {
+      if (attempt >= settings_.write_attempts) throwBusy(attempt);
+      backoff(attempt);
+    }
+  }
+}
+
 template <class Body>
 auto Connection::write(Body&& body) -> decltype(body()) {
-  for (int attempt = 1;; ++attempt) {
+  return retryWhileBusy([&]() -> decltype(body()) {
     try {
       beginImmediate();
       if constexpr (std::is_void_v<decltype(body())>) {
         body();
         exec("COMMIT");
-        return;
       } else {
         auto result = body();
         exec("COMMIT");
         return result;
       }
-    } catch (const BusyError&) {
-      rollbackQuietly();
-      if (attempt >= settings_.write_attempts) throwBusy(attempt);
-      backoff(attempt);
     } catch (...) {
-      rollbackQuietly();
+      rollbackQuietly();  // busy or not: nothing of this attempt stays
       throw;
     }
-  }
+  });
 }
 
 }  // namespace earc::exp
