@@ -26,12 +26,12 @@ grep -q "imported 40 of 40 rows" "$WORK/out" || fail "import summary: $(cat "$WO
 "$DB" export --db "$WORK/b.db" -o "$WORK/b.jsonl" > /dev/null || fail "re-export"
 cmp -s <(tail -n +2 "$WORK/a.jsonl") <(tail -n +2 "$WORK/b.jsonl") || fail "export -> import -> export changed rows"
 
-# One bad line (a NaN-free but non-finite-looking value, here a string) in
-# the second of two inputs: exit 2, the line named, nothing imported.
+# One bad line (a string where a coordinate belongs) in the second of two
+# inputs: exit 2, the line named, nothing imported.
 "$PY" - "$WORK/a.jsonl" "$WORK/bad.jsonl" <<'PY'
 import json, sys
 lines = open(sys.argv[1]).read().splitlines()
-row = json.loads(lines[7]); row["paths"][1][0][0] = 1e400 if False else "x"
+row = json.loads(lines[7]); row["paths"][1][0][0] = "x"
 lines[7] = json.dumps(row)
 open(sys.argv[2], "w").write("\n".join(lines) + "\n")
 PY
@@ -42,9 +42,9 @@ grep -q "bad.jsonl.*line 8" "$WORK/err" || fail "bad line not named: $(cat "$WOR
 [ "$(count "$WORK/c.db")" = 0 ] || fail "a failed import left rows behind"
 
 # A database with a truncated blob, imported directly: exit 2, row id named.
-cp "$WORK/a.db" "$WORK/d.db" 2>/dev/null  # closed file, no WAL: a plain copy is safe here
 "$PY" -c 'import sqlite3,sys
-c = sqlite3.connect(sys.argv[1]); c.execute("update experiences set paths = substr(paths, 1, 20) where id = 12"); c.commit()' "$WORK/d.db"
+d = sqlite3.connect(sys.argv[2]); sqlite3.connect(sys.argv[1]).backup(d)  # the backup API, never cp
+d.execute("update experiences set paths = substr(paths, 1, 20) where id = 12"); d.commit()' "$WORK/a.db" "$WORK/d.db"
 "$DB" import --db "$WORK/e.db" "$WORK/d.db" > "$WORK/out" 2> "$WORK/err"
 [ $? -eq 2 ] || fail "import of a damaged database did not exit 2"
 grep -q "row 12" "$WORK/err" || fail "damaged row not named: $(cat "$WORK/err")"

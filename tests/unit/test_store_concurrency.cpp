@@ -3,6 +3,7 @@
 // rows, no unhandled SQLITE_BUSY, integrity intact.
 #include <doctest/doctest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "earc/experience/maintenance.hpp"
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/scratch.hpp"
@@ -81,4 +83,73 @@ TEST_CASE("two processes inserting into one new file at once lose no row and dup
   for (int child = 0; child < 2; ++child)
     for (int i = 0; i < kRowsPerChild; ++i) CHECK(markers.count(child * 1000 + i) == 1);
   CHECK(c.pragmaInt("user_version") == currentSchemaVersion());
+}
+
+namespace {
+
+// Runs in a forked child: inserts rows until killed, writing each marker
+// to `fd` only after insert() returned (the commit is reported). Never returns.
+[[noreturn]] void insertUntilKilled(const std::string& path, int round, int fd) {
+  try {
+    RobotSpec spec;
+    spec.radius = 0.3;
+    const RobotTraits disc = traitsOf(*makeRobotModel(spec, Resolution{}));
+    std::vector<RobotTraits> robots{disc, disc};
+    std::mt19937_64 rng(static_cast<std::uint64_t>(500 + round));
+    ExperienceStore store(path);
+    for (std::int64_t i = 0;; ++i) {
+      Experience e = straightLineExperience(robots, sampleMobileQuery(2, rng), 4);
+      e.solve_time_s = static_cast<double>(round * 100000 + i);
+      if (i % 5 == 4) {
+        store.insertAll({e, e}, -1);  // a two-row transaction now and then
+      } else {
+        store.insert(e, -1);
+      }
+      const std::int64_t marker = round * 100000 + i;
+      if (write(fd, &marker, sizeof marker) != sizeof marker) _exit(3);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "crash child: %s\n", e.what());
+  }
+  _exit(2);
+}
+
+}  // namespace
+
+TEST_CASE("a writer killed at random moments loses no reported commit and leaves an intact file") {
+  ScratchDirectory dir("crash");
+  const std::string path = dir.file("crash.db");
+  std::set<std::int64_t> reported;
+  std::mt19937_64 rng(42);
+  for (int round = 0; round < 5; ++round) {
+    int fds[2];
+    REQUIRE(pipe(fds) == 0);
+    pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      close(fds[0]);
+      insertUntilKilled(path, round, fds[1]);
+    }
+    close(fds[1]);
+    usleep(static_cast<useconds_t>(50000 + rng() % 250000));  // 50-300 ms of inserting
+    kill(pid, SIGKILL);
+    int status = 0;
+    REQUIRE(waitpid(pid, &status, 0) == pid);
+    CHECK(WIFSIGNALED(status));
+    std::int64_t marker = 0;
+    while (read(fds[0], &marker, sizeof marker) == sizeof marker) reported.insert(marker);
+    close(fds[0]);
+  }
+  REQUIRE(reported.size() > 5);
+  {
+    Connection c(path, OpenMode::ReadOnly);
+    CHECK(c.pragmaText("integrity_check") == "ok");
+    Statement rows = c.prepare("SELECT CAST(solve_time_s AS INTEGER) FROM experiences");
+    std::set<std::int64_t> stored;
+    while (rows.step()) stored.insert(rows.int64At(0));
+    for (std::int64_t m : reported) CHECK_MESSAGE(stored.count(m) == 1, "reported commit " << m << " is missing");
+  }
+  CHECK(verifyDatabase(path).ok());
+  ExperienceStore reopened(path);  // and the file is usable for writing again
+  CHECK(reopened.size() >= reported.size());
 }
