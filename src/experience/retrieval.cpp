@@ -15,7 +15,59 @@ std::vector<RobotTraits> traitsOfAll(const std::vector<const RobotModel*>& robot
   return traits;
 }
 
+// The experience of a solved subproblem, or nothing when its robots form
+// no class or the paths do not match them.
+std::optional<Experience> experienceOf(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths,
+                                       double solve_time_s, Source source) {
+  const std::vector<RobotTraits> traits = traitsOfAll(robots);
+  if (!hasExperienceClass(traits) || paths.size() != robots.size()) return std::nullopt;
+  std::vector<std::vector<double>> starts, goals;
+  for (std::size_t r = 0; r < paths.size(); ++r) {
+    const Path& p = paths[r];
+    if (p.empty() || p.dim() != robots[r]->dim()) return std::nullopt;
+    starts.emplace_back(p.at(0), p.at(0) + p.dim());
+    goals.emplace_back(p.back(), p.back() + p.dim());
+  }
+  Experience e = canonicalExperience(canonicalize(traits, starts, goals), paths);
+  e.source = source;
+  e.solve_time_s = solve_time_s;
+  return e;
+}
+
 }  // namespace
+
+std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths) {
+  const std::size_t n = paths.empty() ? 0 : paths.front().size();
+  auto stepsAt = [&](std::size_t t) {
+    int k = 0;
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      k = std::max(k, robots[r]->stepsBetween(paths[r].at(t), paths[r].at(t + 1)));
+    return k;
+  };
+  bool fits = true;
+  for (std::size_t t = 0; t + 1 < n && fits; ++t) fits = stepsAt(t) <= 1;
+  if (fits) return paths;
+  std::vector<Path> out;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    out.emplace_back(robots[r]->dim());
+    out[r].push(paths[r].at(0));
+  }
+  std::vector<double> q;
+  for (std::size_t t = 0; t + 1 < n; ++t) {
+    const int k = std::max(1, stepsAt(t));  // a step where all wait stays one step
+    for (int j = 1; j <= k; ++j)
+      for (std::size_t r = 0; r < robots.size(); ++r) {
+        if (j == k) {
+          out[r].push(paths[r].at(t + 1));
+          continue;
+        }
+        q.resize(static_cast<std::size_t>(robots[r]->dim()));
+        robots[r]->interpolate(paths[r].at(t), paths[r].at(t + 1), static_cast<double>(j) / k, q.data());
+        out[r].push(q);
+      }
+  }
+  return out;
+}
 
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
@@ -27,7 +79,7 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
   std::vector<Candidate> out;
   for (const Canonical& form : forms)
     for (Match& m : store.nearest(form.cls, form.key, k))
-      out.push_back({m.experience.id, m.distance, form.fromCanonical(m.experience.paths)});
+      out.push_back({m.experience.id, m.distance, fitResolution(robots, form.fromCanonical(m.experience.paths))});
   // Two role assignments may both find one row: keep its nearer use.
   std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
   std::vector<Candidate> unique;
@@ -41,18 +93,20 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
 std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                   const std::vector<Path>& paths, double solve_time_s, Source source,
                                   double near_duplicate_eps) {
-  const std::vector<RobotTraits> traits = traitsOfAll(robots);
-  if (!hasExperienceClass(traits) || paths.size() != robots.size()) return std::nullopt;
-  std::vector<std::vector<double>> starts, goals;
-  for (const Path& p : paths) {
-    if (p.empty()) return std::nullopt;
-    starts.emplace_back(p.at(0), p.at(0) + p.dim());
-    goals.emplace_back(p.back(), p.back() + p.dim());
-  }
-  Experience e = canonicalExperience(canonicalize(traits, starts, goals), paths);
-  e.source = source;
-  e.solve_time_s = solve_time_s;
-  return store.insert(e, near_duplicate_eps);
+  auto e = experienceOf(robots, paths, solve_time_s, source);
+  if (!e) return std::nullopt;
+  return store.insert(*e, near_duplicate_eps);
+}
+
+std::size_t learnAll(ExperienceStore& store, const std::vector<Solved>& solved, Source source,
+                     double near_duplicate_eps) {
+  std::vector<Experience> batch;
+  for (const Solved& s : solved)
+    if (auto e = experienceOf(s.robots, s.paths, s.solve_time_s, source)) batch.push_back(std::move(*e));
+  if (batch.empty()) return 0;
+  std::size_t stored = 0;
+  for (const auto& id : store.insertAll(batch, near_duplicate_eps)) stored += id.has_value();
+  return stored;
 }
 
 }  // namespace earc::exp

@@ -23,10 +23,12 @@ Path line(std::vector<double> a, std::vector<double> b, int steps) {
   return p;
 }
 
-std::unique_ptr<RobotModel> discModel() {
+std::unique_ptr<RobotModel> discModel(double translation = 0.05) {
   RobotSpec s;
   s.radius = 0.3;
-  return makeRobotModel(s, Resolution{});
+  Resolution res;
+  res.translation = translation;
+  return makeRobotModel(s, res);
 }
 
 std::unique_ptr<RobotModel> armModel(double x, double y, double angle) {
@@ -47,7 +49,8 @@ TEST_CASE("a mobile solution learned in one place is retrieved translated and re
   ExperienceStore store(dir.file("e.db"));
   auto m = discModel();
   std::vector<const RobotModel*> robots{m.get(), m.get()};
-  std::vector<Path> solved{line({0, 0, 0}, {2, 2, 0}, 6), line({2, 0, 1}, {0, 2, 1}, 6)};
+  // 2.83 units in 59 steps of 0.048: within the 0.05 resolution.
+  std::vector<Path> solved{line({0, 0, 0}, {2, 2, 0}, 60), line({2, 0, 1}, {0, 2, 1}, 60)};
   REQUIRE(learn(store, robots, solved, 0.1).has_value());
   // The same subproblem 10 units to the right, robots listed the other way.
   auto moved = [](const Path& p) {
@@ -104,4 +107,36 @@ TEST_CASE("robots that form no class retrieve nothing and learn nothing") {
   std::vector<double> q{0, 0, 0, 0, 0};
   CHECK(retrieveCandidates(store, {a.get()}, {q}, {q}, 5).empty());
   CHECK_FALSE(learn(store, {a.get(), m.get()}, {line(q, q, 2), line({0, 0, 0}, {1, 0, 0}, 2)}, 0.1).has_value());
+}
+
+TEST_CASE("an entry stored under a coarser resolution comes back in steps the robots can take") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto coarse = discModel(0.2), fine = discModel(0.05);
+  // 0.2 per step: fine robots need 4 steps for each.
+  std::vector<Path> solved{line({0, 0, 0}, {1, 0, 0}, 6), line({1, 1, 0}, {0, 1, 0}, 6)};
+  REQUIRE(learn(store, {coarse.get(), coarse.get()}, solved, 0.1).has_value());
+  std::vector<const RobotModel*> robots{fine.get(), fine.get()};
+  auto found = retrieveCandidates(store, robots, {{0, 0, 0}, {1, 1, 0}}, {{1, 0, 0}, {0, 1, 0}}, 1);
+  REQUIRE(found.size() == 1);
+  const auto& p = found[0].paths;
+  CHECK(p[0].size() == 21);
+  CHECK(p[0].size() == p[1].size());
+  for (std::size_t r = 0; r < 2; ++r)
+    for (std::size_t t = 0; t + 1 < p[r].size(); ++t) CHECK(fine->stepsBetween(p[r].at(t), p[r].at(t + 1)) <= 1);
+  CHECK(p[0].back()[0] == doctest::Approx(1.0));
+  // Paths that already fit are handed back unchanged.
+  CHECK(fitResolution(robots, p)[0].raw() == p[0].raw());
+}
+
+TEST_CASE("several solved subproblems are learned in one call") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto m = discModel();
+  std::vector<const RobotModel*> robots{m.get(), m.get()};
+  std::vector<Solved> solved{{robots, {line({0, 0, 0}, {2, 2, 0}, 6), line({2, 0, 1}, {0, 2, 1}, 6)}, 0.1},
+                             {robots, {line({0, 0, 0}, {2, 2, 0}, 6), line({2, 0, 1}, {0, 2, 1}, 6)}, 0.1},
+                             {robots, {line({5, 0, 0}, {5, 3, 0}, 7), line({6, 3, 0}, {6, 0, 0}, 7)}, 0.2}};
+  CHECK(learnAll(store, solved) == 2);  // the second is a duplicate of the first
+  CHECK(store.size() == 2);
 }

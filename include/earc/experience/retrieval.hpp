@@ -35,9 +35,18 @@ struct Candidate {
 // ends near its goal (not exactly; the caller connects them). Empty when
 // the robots form no experience class (hasExperienceClass). For a
 // symmetric arm pair both role assignments are searched and merged.
+// Entries stored under a coarser resolution than the robots' come back
+// with their long steps split (fitResolution), never breaking the
+// resolution rule.
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
                                           const std::vector<std::vector<double>>& goals, std::size_t k);
+
+// Paths whose consecutive states some robot cannot reach in one step at
+// its resolution, with every such step split into as many as the slowest
+// robot needs (all robots move together, as in the coupled solver's time
+// stamping). Paths that already fit are returned unchanged.
+std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths);
 
 // Stores a solved subproblem: paths in subproblem robot order and world
 // frame, all of one length (a LocalSolution). Its starts and goals are the
@@ -46,5 +55,18 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
 std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                   const std::vector<Path>& paths, double solve_time_s, Source source = Source::Planner,
                                   double near_duplicate_eps = kNearDuplicateEps);
+
+// A solved subproblem waiting to be learned.
+struct Solved {
+  std::vector<const RobotModel*> robots;
+  std::vector<Path> paths;  // subproblem robot order and world frame
+  double solve_time_s = 0.0;
+};
+
+// learn() for several solutions in ONE transaction (one fsync instead of
+// one per solution). Entries whose robots form no class are skipped.
+// Returns how many were stored.
+std::size_t learnAll(ExperienceStore& store, const std::vector<Solved>& solved, Source source = Source::Planner,
+                     double near_duplicate_eps = kNearDuplicateEps);
 
 }  // namespace earc::exp
