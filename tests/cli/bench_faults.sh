@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: bench
 # Trials that crash, hang or return an invalid solution are failures, and
 # the run goes on: a planner child that dies of SIGSEGV and one that never
 # returns (test faults, EARC_BENCH_FAULT=METHOD:crash|hang), and a planner

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: bench
 # A quick benchmark end to end: mobile robots, 2 and 4 of them, methods arc,
 # prioritized and lightning, 2 trials per cell under a short limit (the
 # Lightning databases are built on the way); then the table, the CSV and

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: bench
 # An interrupted run resumes: the benchmark is killed with SIGKILL after a
 # few trials finished; its planners must not outlive it, the results
 # database must pass integrity_check, and the same command must then run
