@@ -71,9 +71,9 @@ FreeSpaceGrid::FreeSpaceGrid(const geo::Aabb& workspace, double cell, double rad
 }
 
 int FreeSpaceGrid::componentOf(geo::Vec2 p) const {
-  const int c = static_cast<int>(std::floor((p.x - workspace_.lo.x) / cell_));
-  const int r = static_cast<int>(std::floor((p.y - workspace_.lo.y) / cell_));
-  if (c < 0 || c >= cols_ || r < 0 || r >= rows_) return -1;
+  const double fc = std::floor((p.x - workspace_.lo.x) / cell_), fr = std::floor((p.y - workspace_.lo.y) / cell_);
+  if (!(fc >= 0 && fc < cols_ && fr >= 0 && fr < rows_)) return -1;  // also NaN; before any cast to int
+  const int c = static_cast<int>(fc), r = static_cast<int>(fr);
   const int l = label_[static_cast<std::size_t>(r * cols_ + c)];
   if (l < 0) return -1;
   // Every point of the segment from p to the cell centre lies within

@@ -43,6 +43,8 @@ TEST_CASE("a wall across the workspace splits the free space into two components
   CHECK(grid.componentOf({2, 9}) == left);
   CHECK(grid.componentOf({5, 5}) == -1);    // inside the wall
   CHECK(grid.componentOf({0.1, 5}) == -1);  // the disc would leave the workspace
+  CHECK(grid.componentOf({-1e30, 5}) == -1);
+  CHECK(grid.componentOf({5, 1e300}) == -1);
 }
 
 TEST_CASE("a gap narrower than the disc keeps the two sides apart, a wide one joins them") {
