@@ -233,7 +233,9 @@
     ox = (w - ww * scale) / 2;
     oy = (h - wh * scale) / 2;
     drawBackground();
-    dirty = true;
+    // Resizing clears the canvas: redraw now rather than on the next
+    // animation frame, so no frame (or self-test reading it) sees it blank.
+    draw();
   }
 
   // ---- Drawing ------------------------------------------------------------
