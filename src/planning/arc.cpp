@@ -155,7 +155,7 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
     for (int v : *vertices) waypoints.push_back({std::vector<double>(graph.config(v), graph.config(v) + model.dim())});
     CompositeChecker checker(world, {&model});
     std::mt19937_64 rng(seed);
-    shortcutComposite(checker, waypoints, kIndividualShortcuts, rng);
+    shortcutComposite(checker, waypoints, kIndividualShortcuts, rng, deadline);
     std::vector<std::vector<double>> qs;
     for (auto& w : waypoints) qs.push_back(std::move(w[0]));
     return timeStamp(model, qs);

@@ -59,8 +59,8 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
 }
 
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
-                       std::mt19937_64& rng) {
-  for (int it = 0; it < iterations && waypoints.size() > 2; ++it) {
+                       std::mt19937_64& rng, const Deadline& deadline) {
+  for (int it = 0; it < iterations && waypoints.size() > 2 && !deadline.expired(); ++it) {
     std::size_t n = waypoints.size();
     std::size_t i = uniformIndex(rng, n - 2);
     std::size_t j = i + 2 + uniformIndex(rng, n - i - 2);

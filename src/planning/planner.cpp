@@ -1,5 +1,7 @@
 #include "earc/planning/planner.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "earc/planning/arc.hpp"
@@ -34,6 +36,7 @@ const char* failureCauseName(FailureCause c) {
     case FailureCause::NoIndividualPath: return "no_individual_path";
     case FailureCause::SubproblemUnsolved: return "subproblem_unsolved";
     case FailureCause::InvalidResult: return "invalid_result";
+    case FailureCause::TooLarge: return "too_large";
   }
   return "?";
 }
@@ -123,14 +126,45 @@ PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings
   return result;
 }
 
+// The scalars of every robot's path if each went straight from start to
+// goal at the scenario's resolution: a lower bound on what any plan holds.
+// (In steps of the distance metric, as a double: a resolution fine
+// enough to overflow a step count is simply too large.)
+double straightPathScalars(const Scenario& scenario) {
+  double total = 0.0;
+  for (const auto& model : makeRobotModels(scenario)) {
+    const RobotSpec& r = model->spec();
+    total += (std::ceil(model->distance(r.start.data(), r.goal.data())) + 1.0) * model->dim();
+  }
+  return total;
+}
+
+// Refuses a scenario too large to hold (PlannerSettings::max_path_scalars).
+bool refuseTooLarge(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result) {
+  const double need = straightPathScalars(scenario);
+  if (need <= static_cast<double>(settings.max_path_scalars)) return false;
+  result.failures.insert(FailureCause::TooLarge);
+  result.stats["too_large"] = {
+      {"straight_path_scalars", need},
+      {"limit", settings.max_path_scalars},
+      {"detail", "the robots' straight start-to-goal paths alone hold " +
+                     std::to_string(static_cast<long long>(std::min(need, 9e18))) +
+                     " scalars at this resolution (limit " + std::to_string(settings.max_path_scalars) +
+                     "): coarsen the resolution or split the problem"}};
+  result.stats["planning_time_s"] = 0.0;
+  return true;
+}
+
 PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
   PlanResult result;
-  switch (settings.method) {
-    case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
-    case Method::Earc: result = planEarc(scenario, settings, store); break;
-    case Method::Prioritized: result = planPrioritized(scenario, settings); break;
-    case Method::Coupled: result = planCoupled(scenario, settings); break;
-    case Method::Lightning: result = planLightning(scenario, settings); break;
+  if (!refuseTooLarge(scenario, settings, result)) {
+    switch (settings.method) {
+      case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
+      case Method::Earc: result = planEarc(scenario, settings, store); break;
+      case Method::Prioritized: result = planPrioritized(scenario, settings); break;
+      case Method::Coupled: result = planCoupled(scenario, settings); break;
+      case Method::Lightning: result = planLightning(scenario, settings); break;
+    }
   }
   result.solution.method = methodName(settings.method);
   result.solution.scenario = scenario.name;

@@ -198,6 +198,8 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
     std::reverse(keys.begin(), keys.end());
     bool ok = true;
     for (int key : keys) {
+      // Each edge check can be long at a fine resolution: poll between them.
+      if (deadline.expired()) return std::nullopt;
       if (!graph.edgeValid(key)) {
         invalid[key] = true;
         ok = false;

@@ -7,6 +7,7 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc {
 
@@ -39,7 +40,8 @@ class CompositeChecker {
 
 // Random shortcutting of a composite waypoint sequence: replace the part
 // between two waypoints by the straight motion when that motion is valid.
+// Stops early at the deadline (the path stays valid, only less short).
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
-                       std::mt19937_64& rng);
+                       std::mt19937_64& rng, const Deadline& deadline = Deadline());
 
 }  // namespace earc

@@ -37,9 +37,13 @@ struct PlannerSettings {
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
   bool db_learn = true;               // insert subproblems solved from scratch
+  // Memory guard: a scenario whose straight start-to-goal motions alone
+  // would take more time-stamped scalars than this (all robots together;
+  // 8 bytes each) is refused as too large before planning starts.
+  std::int64_t max_path_scalars = std::int64_t{1} << 24;  // 128 MiB
 };
 
-enum class FailureCause { TimeLimit, InvalidInput, NoIndividualPath, SubproblemUnsolved, InvalidResult };
+enum class FailureCause { TimeLimit, InvalidInput, NoIndividualPath, SubproblemUnsolved, InvalidResult, TooLarge };
 const char* failureCauseName(FailureCause c);
 
 struct PlanResult {

@@ -1,0 +1,60 @@
+#!/bin/bash
+# label: bench
+# Limits are honoured. With --time-limit L on a 128-robot scenario that no
+# method solves that fast, every method stops within 10% of L, by its own
+# clock and by the wall clock (plus 1 s for start-up and writing), and
+# says the time limit was why. A scenario whose resolution makes even the
+# straight start-to-goal paths too large to hold is refused at once as
+# too_large, with the numbers, within a 400 MiB address-space limit.
+# (Label bench: it times the process, which AddressSanitizer slows down.)
+set -u
+BUILD=$1
+PLAN="$BUILD/earc-plan"
+GEN="$BUILD/earc-scenario"
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+command -v jq > /dev/null || { echo "skipped: no jq (tools/setup.sh --tests)"; exit 77; }
+
+"$GEN" generate --family mobile -n 128 --obstacles --seed 1 -o "$WORK/big.json" > /dev/null || fail "generate"
+LIMIT=3
+for method in arc earc prioritized coupled lightning; do
+  extra=()
+  [ "$method" = earc ] && extra=(--db "$WORK/empty.sqlite")
+  start=$(date +%s.%N)
+  "$PLAN" plan "$WORK/big.json" -o "$WORK/$method.json" --method "$method" --time-limit $LIMIT --seed 1 -q "${extra[@]}"
+  rc=$?
+  wall=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+  [ -f "$WORK/$method.json" ] || { fail "$method: no solution file (exit $rc)"; continue; }
+  own=$(jq '.stats.planning_time_s' "$WORK/$method.json")
+  solved=$(jq '.solved' "$WORK/$method.json")
+  echo "$method: exit $rc, solved $solved, planning_time_s $own, wall $wall s (limit $LIMIT s)"
+  awk -v t="$own" -v l=$LIMIT 'BEGIN { exit !(t <= 1.1 * l) }' || fail "$method planned for $own s, limit $LIMIT s"
+  awk -v t="$wall" -v l=$LIMIT 'BEGIN { exit !(t <= 1.1 * l + 1) }' || fail "$method ran for $wall s, limit $LIMIT s"
+  if [ "$solved" = false ]; then
+    [ $rc -eq 1 ] || fail "$method unsolved: exit $rc, expected 1"
+    jq -e '.stats.failure | index("time_limit")' "$WORK/$method.json" > /dev/null ||
+      fail "$method: unsolved but not for the time limit: $(jq -c .stats.failure "$WORK/$method.json")"
+  fi
+done
+# Composite planning over 128 robots cannot finish in 3 s: the limit must
+# be what stopped them, or this test checked nothing.
+for method in coupled lightning; do
+  [ "$(jq .solved "$WORK/$method.json" 2> /dev/null)" = false ] || fail "$method solved 128 robots in $LIMIT s?"
+done
+
+# A resolution of 1e-5 over a 20 m workspace: millions of steps per robot.
+jq '.resolution = {"translation": 0.00001, "rotation": 0.00001, "joint": 0.00001}' "$WORK/big.json" > "$WORK/fine.json"
+# Under a 400 MiB address-space limit: planning it would need gigabytes.
+(ulimit -v 409600; exec "$PLAN" plan "$WORK/fine.json" -o "$WORK/fine.sol.json" --time-limit 60 -q)
+rc=$?
+[ $rc -eq 1 ] || fail "too large: exit $rc, expected 1"
+jq -e '.stats.failure == ["too_large"]' "$WORK/fine.sol.json" > /dev/null || fail "too large: $(jq -c .stats "$WORK/fine.sol.json")"
+jq -e '.stats.too_large.straight_path_scalars > .stats.too_large.limit' "$WORK/fine.sol.json" > /dev/null ||
+  fail "too large: the numbers are missing: $(jq -c .stats.too_large "$WORK/fine.sol.json")"
+jq -e '.stats.planning_time_s < 1' "$WORK/fine.sol.json" > /dev/null || fail "too large: not refused at once"
+echo "too large: refused: $(jq -r .stats.too_large.detail "$WORK/fine.sol.json")"
+
+[ $failures -eq 0 ] || { echo "$failures failure(s)"; exit 1; }
+echo "ok"
