@@ -9,11 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include "earc/bench/child.hpp"
 #include "earc/bench/report.hpp"
@@ -143,6 +145,10 @@ class Runner {
         const std::size_t i = next.fetch_add(1);
         if (i >= cells.size()) return;
         const Cell& c = cells[i];
+        if (o_.cutoff && cutOff(c)) {
+          progress.tick();
+          continue;
+        }
         progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
                            std::to_string(c.trial));
         TrialRecord t = runTrial(c);
@@ -160,6 +166,7 @@ class Runner {
     log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
     if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
     log_ << "\n";
+    for (const auto& line : cut_notes_) log_ << line << "\n";
     printTable();
     return summary_;
   }
@@ -485,8 +492,41 @@ class Runner {
               << ")\n";
   }
 
+  // RunOptions::cutoff: true (and counted) when c's method solved none of
+  // the run's trials at a smaller robot count of c's suite.
+  bool cutOff(const Cell& c) {
+    std::lock_guard lock(record_mutex_);
+    if (!outcomes_loaded_) {
+      TrialFilter f{o_.seed, o_.time_limit_s};
+      for (const TrialRecord& t : f.apply(db_.trials())) {
+        auto& o = outcomes_[{t.suite, t.method, t.robots}];
+        ++o.first;
+        if (t.success) ++o.second;
+      }
+      outcomes_loaded_ = true;
+    }
+    for (const auto& [key, o] : outcomes_) {
+      const auto& [suite, method, robots] = key;
+      if (suite != c.suite->name || method != c.method || robots >= c.robots) continue;
+      if (o.first >= o_.trials && o.second == 0) {
+        ++summary_.cut;
+        const std::string note = "cut off: " + c.method + " on " + suite + " from " + std::to_string(c.robots) +
+                                 " robots (solved 0 of " + std::to_string(o.first) + " at " +
+                                 std::to_string(robots) + ")";
+        if (std::find(cut_notes_.begin(), cut_notes_.end(), note) == cut_notes_.end()) cut_notes_.push_back(note);
+        return true;
+      }
+    }
+    return false;
+  }
+
   void record(const TrialRecord& t) {
     std::lock_guard lock(record_mutex_);
+    if (outcomes_loaded_) {
+      auto& o = outcomes_[{t.suite, t.method, t.robots}];
+      ++o.first;
+      if (t.success) ++o.second;
+    }
     db_.addTrial(t);
     ++summary_.run;
     if (t.success) ++summary_.solved;
@@ -515,6 +555,10 @@ class Runner {
   std::string work_, lightning_dir_, plan_, bench_;
   RunSummary summary_;
   std::mutex record_mutex_, scenario_mutex_;
+  // (suite, method, robots) -> (trials recorded, solved), for cutOff.
+  std::map<std::tuple<std::string, std::string, int>, std::pair<int, int>> outcomes_;
+  bool outcomes_loaded_ = false;
+  std::vector<std::string> cut_notes_;
 };
 
 }  // namespace

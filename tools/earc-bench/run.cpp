@@ -80,6 +80,8 @@ void setupRun(CLI::App& app) {
   cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
   cmd->add_flag("--keep-solutions", r.keep_solutions, "Keep the solution files of solved trials");
   cmd->add_flag("-v,--verbose", r.verbose, "One line per finished trial");
+  cmd->add_flag("--cutoff", r.cutoff,
+                "Skip a method at larger robot counts of a suite once it solved none of the trials at a smaller one");
   cmd->callback([o, suites, robots, methods, trials] {
     bench::RunOptions& r = o->run;
     if (o->full) {

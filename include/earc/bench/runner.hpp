@@ -39,6 +39,10 @@ struct RunOptions {
   bool learn = false;                    // let database methods learn during trials
   bool keep_solutions = false;           // keep solved trials' solution files
   bool verbose = false;                  // one line per trial on stdout
+  // Skip a method's trials at a robot count once it solved none of all
+  // `trials` trials at a smaller count of the same suite (the paper stops
+  // plotting such methods too). Cut trials are not recorded, only counted.
+  bool cutoff = false;
   double wall_margin_s = -1;             // < 0: wallMargin(time_limit_s)
   std::string plan_program;              // empty: earc-plan next to this program
   std::string bench_program;             // empty: this program
@@ -54,6 +58,7 @@ struct RunSummary {
   std::size_t run = 0;
   std::size_t solved = 0;
   std::size_t invalid = 0;      // solutions the validator rejected
+  std::size_t cut = 0;          // not run: RunOptions::cutoff
   bool interrupted = false;
 };
 
