@@ -24,6 +24,7 @@
 #include <random>
 
 #include "earc/planning/composite.hpp"
+#include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
 
 namespace ob = ompl::base;
@@ -267,7 +268,12 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   auto planner = std::make_shared<og::RRTConnect>(si);
   planner->setProblemDefinition(pdef);
   planner->setup();
-  ob::PlannerStatus status = planner->ob::Planner::solve(settings.time_limit_s);
+  // The time limit, or sooner when the process is asked to stop (a signal
+  // to `earc-plan serve`, see requestStop in earc/util/deadline.hpp).
+  const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
+      ob::timedPlannerTerminationCondition(settings.time_limit_s),
+      ob::PlannerTerminationCondition([] { return stopRequested(); }));
+  ob::PlannerStatus status = planner->solve(ptc);
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
 
   auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();

@@ -1,10 +1,21 @@
 // A wall-clock deadline that planners poll.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <limits>
 
 namespace earc {
+
+// A process-wide stop request: once set, every Deadline reads as expired
+// (remaining() 0), so a planner in flight winds down as if its time limit
+// had passed. Set from a signal handler by `earc-plan serve` (a lock-free
+// atomic store is async-signal-safe); cleared before the next request.
+inline std::atomic<bool> g_stop_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+inline void requestStop() noexcept { g_stop_requested.store(true, std::memory_order_relaxed); }
+inline void clearStopRequest() noexcept { g_stop_requested.store(false, std::memory_order_relaxed); }
+inline bool stopRequested() noexcept { return g_stop_requested.load(std::memory_order_relaxed); }
 
 class Deadline {
  public:
@@ -14,8 +25,9 @@ class Deadline {
       : end_(seconds_from_now >= 1e9 ? Clock::time_point::max()
                                      : Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                           std::chrono::duration<double>(seconds_from_now))) {}
-  bool expired() const { return end_ != Clock::time_point::max() && Clock::now() >= end_; }
+  bool expired() const { return stopRequested() || (end_ != Clock::time_point::max() && Clock::now() >= end_); }
   double remaining() const {
+    if (stopRequested()) return 0.0;
     if (end_ == Clock::time_point::max()) return std::numeric_limits<double>::infinity();
     return std::chrono::duration<double>(end_ - Clock::now()).count();
   }
