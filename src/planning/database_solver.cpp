@@ -159,13 +159,20 @@ void DatabaseSolver::accepted(const SolverContext& ctx, const LocalSolution& sol
 void DatabaseSolver::finish(nlohmann::json& stats) {
   Stopwatch sw;
   int learned = 0;
+  // The ids of the rows inserted (each committed when learn returns), so
+  // that a caller such as `earc-plan serve` can report what it stored.
+  nlohmann::json learned_ids = nlohmann::json::array();
   for (const auto& p : pending_)
-    if (exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) ++learned;
+    if (auto id = exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) {
+      ++learned;
+      learned_ids.push_back(*id);
+    }
   store_.flush();
   stats["db_queries"] = queries_;
   stats["db_hits"] = hits_;
   stats["db_repairs"] = repairs_;
   stats["db_learned"] = learned;
+  stats["db_learned_ids"] = std::move(learned_ids);
   stats["db_learn_candidates"] = pending_.size();
   stats["db_learn_time_s"] = sw.seconds();
   pending_.clear();
