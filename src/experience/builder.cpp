@@ -254,8 +254,10 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
   auto flushBatch = [&] {
     if (batch.empty()) return;
     auto ids = store.insertAll(batch, s.near_duplicate_eps);
+    std::vector<std::int64_t> committed;
     for (std::size_t k = 0; k < ids.size(); ++k) {
       if (ids[k]) {
+        committed.push_back(*ids[k]);
         ++report.inserted;
         ++report.inserted_per_class[batch[k].cls.label()];
       } else {
@@ -263,6 +265,7 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
       }
     }
     batch.clear();
+    if (s.on_commit) s.on_commit(committed);
   };
   try {
     for (std::size_t i = 0; i < n; ++i) {

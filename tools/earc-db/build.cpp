@@ -1,8 +1,14 @@
 // earc-db build --db FILE [--kind mobile|arms] [--count N] [--scenario FILE]
 // [--shape box|disc --size LxW --radius R] [--seed S] [--threads T]
-// [--time-per-problem S]: fills a database with solved random subproblems
-// (paper, "Database Construction"); see earc/experience/builder.hpp.
+// [--time-per-problem S] [--report FILE]: fills a database with solved
+// random subproblems (paper, "Database Construction"); see
+// earc/experience/builder.hpp.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <set>
 
@@ -26,6 +32,35 @@ struct BuildOptions {
   int threads = 2;
   double time_per_problem = 0.5;
   double dedupe = 1e-3;
+  std::string report;
+};
+
+// --report FILE: after every committed insert transaction, one line with
+// the ids it stored (space-separated), appended and fsync'd before the
+// build goes on, so that a reader knows what survives if the build is
+// killed at any moment after it (tests/cli/serve_crash.sh).
+class CommitLog {
+ public:
+  explicit CommitLog(const std::string& path) : path_(path) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw earc::InputError(path, "--report", std::string("cannot open: ") + std::strerror(errno));
+  }
+  ~CommitLog() { ::close(fd_); }
+  CommitLog(const CommitLog&) = delete;
+  CommitLog& operator=(const CommitLog&) = delete;
+  void committed(const std::vector<std::int64_t>& ids) {
+    if (ids.empty()) return;
+    std::string line;
+    for (std::int64_t id : ids) line += (line.empty() ? "" : " ") + std::to_string(id);
+    line += "\n";
+    // One write of the whole line, so that a kill leaves no half line.
+    if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) || ::fsync(fd_) != 0)
+      throw std::runtime_error(path_ + ": cannot write the commit report: " + std::strerror(errno));
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
 };
 
 // "0.6x0.4" -> (0.6, 0.4).
@@ -74,6 +109,11 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   s.threads = opt.threads;
   s.time_per_problem_s = opt.time_per_problem;
   s.near_duplicate_eps = opt.dedupe;
+  std::optional<CommitLog> log;
+  if (!opt.report.empty()) {
+    log.emplace(opt.report);
+    s.on_commit = [&log](const std::vector<std::int64_t>& ids) { log->committed(ids); };
+  }
   std::optional<earc::Scenario> scenario;
   if (!opt.scenario.empty()) {
     scenario = earc::loadScenario(opt.scenario);
@@ -126,6 +166,8 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)");
+  sub->add_option("--report", opt->report,
+                  "Append a line with the ids of each committed insert transaction to FILE (fsync'd)");
   sub->callback([opt] { runBuild(*opt, std::cout); });
 }
 

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -53,6 +54,9 @@ struct BuildSettings {
   int threads = 2;
   double time_per_problem_s = 0.5;
   double near_duplicate_eps = 1e-3;
+  // Called after each insert transaction commits, with the ids it stored
+  // (duplicates left out); `earc-db build --report` logs them.
+  std::function<void(const std::vector<std::int64_t>& ids)> on_commit;
 };
 
 struct BuildReport {
