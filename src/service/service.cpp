@@ -1,0 +1,254 @@
+#include "earc/service/service.hpp"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "earc/experience/store.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/util/deadline.hpp"
+
+namespace earc::service {
+
+using nlohmann::json;
+
+namespace {
+
+// Error messages quote what the client sent, which need not be UTF-8:
+// never let the reply itself fail to encode.
+std::string dumpLine(const json& doc) { return doc.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// One line, so that a response stays one line whatever an error said.
+std::string oneLine(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+const json& field(const json& request, const char* name) {
+  static const json missing;
+  auto it = request.find(name);
+  return it == request.end() ? missing : *it;
+}
+
+InputError badField(const std::string& name, const std::string& reason) {
+  return InputError("request", "$." + name, reason);
+}
+
+PlannerSettings settingsFrom(const json& request, const ServiceSettings& defaults) {
+  PlannerSettings s;
+  const json& method = field(request, "method");
+  if (method.is_null()) {
+    s.method = methodFromName(defaults.method);
+  } else {
+    if (!method.is_string()) throw badField("method", "must be a string");
+    try {
+      s.method = methodFromName(method.get<std::string>());
+    } catch (const std::invalid_argument& e) {
+      throw badField("method", e.what());
+    }
+  }
+  s.time_limit_s = defaults.time_limit_s;
+  if (const json& t = field(request, "time_limit"); !t.is_null()) {
+    if (!t.is_number() || !std::isfinite(t.get<double>()) || !(t.get<double>() > 0))
+      throw badField("time_limit", "must be a positive number of seconds");
+    s.time_limit_s = t.get<double>();
+  }
+  s.seed = defaults.seed;
+  if (const json& k = field(request, "seed"); !k.is_null()) {
+    if (!k.is_number_unsigned()) throw badField("seed", "must be a whole number >= 0");
+    s.seed = k.get<std::uint64_t>();
+  }
+  if (const json& l = field(request, "learn"); !l.is_null()) {
+    if (!l.is_boolean()) throw badField("learn", "must be true or false");
+    s.db_learn = l.get<bool>();
+  }
+  if (const json& w = field(request, "window"); !w.is_null()) {
+    if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
+      throw badField("window", "must be a whole number of steps from 1 to 1000000");
+    s.initial_window = static_cast<int>(w.get<std::uint64_t>());
+  }
+  return s;
+}
+
+Scenario scenarioFrom(const json& request) {
+  const json& inline_doc = field(request, "scenario");
+  const json& file = field(request, "scenario_file");
+  if (inline_doc.is_null() == file.is_null())
+    throw InputError("request", "", "give exactly one of \"scenario\" (an object) and \"scenario_file\" (a path)");
+  if (!file.is_null()) {
+    if (!file.is_string() || file.get<std::string>().empty())
+      throw badField("scenario_file", "must be a file name");
+    return loadScenario(file.get<std::string>());
+  }
+  if (!inline_doc.is_object()) throw badField("scenario", "must be a scenario object (earc.scenario.v1)");
+  // Errors name "scenario" and the JSON path inside it.
+  Scenario s = scenarioFromJson(inline_doc, "scenario");
+  checkScenarioGeometry(s, "scenario");
+  return s;
+}
+
+void requireKnownKeys(const json& request, const std::set<std::string>& known) {
+  for (const auto& [key, value] : request.items())
+    if (!known.count(key)) throw InputError("request", "$." + key, "unknown key for op \"" +
+                                                                      request.value("op", std::string("plan")) + "\"");
+}
+
+}  // namespace
+
+Service::Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings)
+    : store_(std::move(store)), settings_(std::move(settings)), started_(std::chrono::steady_clock::now()) {
+  methodFromName(settings_.method);  // throws std::invalid_argument for a bad default
+}
+
+Service::~Service() = default;
+
+std::string Service::handleLine(std::string_view line) {
+  json request;
+  try {
+    request = parseJsonText(std::string(line), "request");
+  } catch (const std::exception& e) {
+    ++counters_.requests;
+    return dumpLine(error(nullptr, e.what()));
+  }
+  return dumpLine(handle(request));
+}
+
+std::string Service::tooLongResponse() {
+  ++counters_.requests;
+  return dumpLine(error(nullptr, "request: longer than " + std::to_string(kMaxRequestBytes) +
+                                     " bytes: not read (send a scenario_file instead)"));
+}
+
+json Service::handle(const json& request) {
+  ++counters_.requests;
+  const json id = request.is_object() ? field(request, "id") : json();
+  try {
+    if (!request.is_object()) throw InputError("request", "", "must be a JSON object");
+    const json& op = field(request, "op");
+    if (!op.is_null() && !op.is_string()) throw badField("op", "must be a string");
+    const std::string name = op.is_null() ? "plan" : op.get<std::string>();
+    json response;
+    if (name == "plan") {
+      requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
+                                 "window"});
+      response = plan(request);
+    } else if (name == "ping") {
+      requireKnownKeys(request, {"id", "op"});
+      response = {{"ok", true}, {"protocol", kProtocol}};
+    } else if (name == "stats") {
+      requireKnownKeys(request, {"id", "op"});
+      response = {{"ok", true}, {"stats", stats()}};
+    } else {
+      throw badField("op", "unknown op \"" + name + "\" (plan, ping, stats)");
+    }
+    json out = {{"id", id}};
+    out.update(response);
+    return out;
+  } catch (const InputError& e) {
+    return error(id, e.what());
+  } catch (const std::bad_alloc&) {
+    return error(id, "out of memory while handling the request");
+  } catch (const std::exception& e) {
+    // Not the client's fault (a database error, say): said as it is.
+    return error(id, std::string("internal error: ") + e.what());
+  }
+}
+
+json Service::plan(const json& request) {
+  Scenario scenario = scenarioFrom(request);
+  PlannerSettings s = settingsFrom(request, settings_);
+  if (s.method == Method::Earc && !store_)
+    throw badField("method", "method earc needs the service to have an experience database");
+  // Rows other processes committed since the last request.
+  std::size_t entries_before = 0;
+  if (store_) {
+    store_->refresh();
+    entries_before = store_->size();
+  }
+  ++counters_.plans;
+  Stopwatch clock;
+  PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr);
+  const bool interrupted = stopRequested();
+  json st = r.stats;
+  st["request_s"] = clock.seconds();
+  if (store_) {
+    st["db_entries_before"] = entries_before;
+    st["db_entries"] = store_->size();
+  }
+  counters_.learned += st.value("db_learned", 0);
+  json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
+  if (r.solution.solved) {
+    ++counters_.solved;
+    out["solution"] = solutionToJson(r.solution);
+  }
+  out["stats"] = std::move(st);
+  return out;
+}
+
+json Service::stats() {
+  json st = {{"protocol", kProtocol},
+             {"requests", counters_.requests},
+             {"plans", counters_.plans},
+             {"solved", counters_.solved},
+             {"errors", counters_.errors},
+             {"learned", counters_.learned},
+             {"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()}};
+  if (store_) {
+    store_->refresh();
+    st["db"] = store_->path();
+    st["db_entries"] = store_->size();
+    st["db_session"] = store_->session();
+  }
+  return st;
+}
+
+json Service::error(const json& id, const std::string& message) {
+  ++counters_.errors;
+  return {{"id", id}, {"ok", false}, {"error", oneLine(message)}};
+}
+
+void Service::close() {
+  if (store_) store_->close();
+}
+
+std::vector<LineSplitter::Line> LineSplitter::feed(std::string_view bytes) {
+  std::vector<Line> out;
+  while (!bytes.empty()) {
+    const std::size_t nl = bytes.find('\n');
+    const std::string_view part = bytes.substr(0, nl);
+    if (!skipping_) {
+      if (buffer_.size() + part.size() > max_) {
+        // Report once, then drop everything up to the newline.
+        out.push_back({std::string(), true});
+        buffer_.clear();
+        skipping_ = true;
+      } else {
+        buffer_.append(part);
+      }
+    }
+    if (nl == std::string_view::npos) break;
+    if (skipping_) skipping_ = false;
+    else emit(out);
+    bytes.remove_prefix(nl + 1);
+  }
+  return out;
+}
+
+std::vector<LineSplitter::Line> LineSplitter::finish() {
+  std::vector<Line> out;
+  if (!skipping_) emit(out);
+  skipping_ = false;
+  buffer_.clear();
+  return out;
+}
+
+void LineSplitter::emit(std::vector<Line>& out) {
+  if (!buffer_.empty() && buffer_.back() == '\r') buffer_.pop_back();
+  if (buffer_.find_first_not_of(" \t") != std::string::npos) out.push_back({std::move(buffer_), false});
+  buffer_.clear();
+}
+
+}  // namespace earc::service

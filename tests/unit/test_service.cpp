@@ -1,0 +1,178 @@
+// The planner service's protocol (earc/service/service.hpp): bad requests
+// get one-line errors and the service goes on, solutions are validated,
+// learned rows are reported by id and committed, other processes' rows are
+// picked up, and a stop request cuts planning short.
+#include <doctest/doctest.h>
+
+#include "earc/experience/scratch.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/service/service.hpp"
+#include "earc/util/deadline.hpp"
+#include "earc/validate/validator.hpp"
+
+using namespace earc;
+using nlohmann::json;
+
+namespace {
+
+// 16 mobile robots among obstacles: ARC meets 8 conflicts with seed 3,
+// and E-ARC learns how each was resolved.
+const std::string kScenarioFile = EARC_SOURCE_DIR "/datasets/mobile-obst-16-s1.json";
+Scenario serviceScenario() { return loadScenario(kScenarioFile); }
+
+json reply(service::Service& svc, const std::string& line) {
+  const std::string out = svc.handleLine(line);
+  CHECK(out.find('\n') == std::string::npos);  // one line per response
+  return json::parse(out);
+}
+
+}  // namespace
+
+TEST_CASE("service answers bad requests with one-line errors and keeps serving") {
+  exp::ScratchDirectory dir("service-errors");
+  auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
+  service::Service svc(store, {});
+
+  json r = reply(svc, "{\"id\": 1, \"scenario\": ");  // cut off
+  CHECK(r["ok"] == false);
+  CHECK(r["id"].is_null());
+  CHECK(r["error"].get<std::string>().find("malformed JSON") != std::string::npos);
+
+  r = reply(svc, "[1, 2]");
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("must be a JSON object") != std::string::npos);
+
+  r = reply(svc, R"({"id": "a", "op": "fly"})");
+  CHECK(r["id"] == "a");
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("unknown op") != std::string::npos);
+
+  json bad = scenarioToJson(serviceScenario());
+  bad["robots"][2]["start"][0] = 600.0;  // outside the workspace
+  r = reply(svc, json{{"id", 7}, {"scenario", bad}, {"method", "arc"}}.dump());
+  CHECK(r["id"] == 7);
+  CHECK(r["ok"] == false);
+  const std::string why = r["error"].get<std::string>();
+  CHECK(why.find("$.robots[2]") != std::string::npos);
+
+  r = reply(svc, json{{"id", 8}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limt", 3}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("$.time_limt") != std::string::npos);
+
+  r = reply(svc, json{{"id", 9}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limit", -1}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("$.time_limit") != std::string::npos);
+
+  r = reply(svc, json{{"id", 10}, {"scenario_file", dir.file("missing.json")}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("missing.json") != std::string::npos);
+
+  r = reply(svc, R"({"id": 11, "op": "ping"})");
+  CHECK(r["ok"] == true);
+  CHECK(r["protocol"] == service::kProtocol);
+  CHECK(svc.counters().errors == 7);
+  CHECK(svc.counters().requests == 8);
+}
+
+TEST_CASE("service plans through the validator and reports what it learned by id") {
+  exp::ScratchDirectory dir("service-learn");
+  const std::string path = dir.file("s.db");
+  auto store = std::make_shared<exp::ExperienceStore>(path);
+  service::Service svc(store, {});
+  const Scenario scenario = serviceScenario();
+  json r = reply(svc, json{{"id", "first"}, {"scenario", scenarioToJson(scenario)}, {"seed", 3}}.dump());
+  REQUIRE(r["ok"] == true);
+  CHECK(r["id"] == "first");
+  REQUIRE(r["solved"] == true);
+  CHECK(r["interrupted"] == false);
+  const Solution sol = solutionFromJson(r["solution"], &scenario, "response");
+  CHECK(validateSolution(scenario, sol).valid);
+  const json& st = r["stats"];
+  CHECK(st["method"] == "earc");
+  const auto ids = st["db_learned_ids"].get<std::vector<std::int64_t>>();
+  CHECK(ids.size() == st["db_learned"].get<std::size_t>());
+  REQUIRE(!ids.empty());
+  CHECK(st["db_entries"].get<std::size_t>() == st["db_entries_before"].get<std::size_t>() + ids.size());
+  // Committed before the response: another connection sees every row.
+  {
+    exp::StoreOptions ro;
+    ro.read_only = true;
+    exp::ExperienceStore other(path, ro);
+    for (std::int64_t id : ids) CHECK(other.get(id).has_value());
+  }
+  CHECK(svc.counters().learned == static_cast<std::int64_t>(ids.size()));
+
+  // The same problem again: now solved from the database, nothing new.
+  r = reply(svc, json{{"id", "again"}, {"scenario", scenarioToJson(scenario)}, {"seed", 3}}.dump());
+  REQUIRE(r["solved"] == true);
+  CHECK(r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>() >= 1);
+
+  r = reply(svc, R"({"op": "stats"})");
+  CHECK(r["stats"]["plans"] == 2);
+  CHECK(r["stats"]["solved"] == 2);
+  svc.close();
+}
+
+TEST_CASE("service picks up experiences another connection inserted since the last request") {
+  exp::ScratchDirectory dir("service-refresh");
+  const std::string path = dir.file("s.db");
+  auto store = std::make_shared<exp::ExperienceStore>(path);
+  service::Service svc(store, {});
+  json r = reply(svc, R"({"op": "stats"})");
+  CHECK(r["stats"]["db_entries"] == 0);
+  {
+    // Another writer (a second connection, as another process would be)
+    // learns the scenario's conflicts.
+    exp::ExperienceStore writer(path);
+    PlannerSettings s;
+    s.method = Method::Earc;
+    s.seed = 3;
+    REQUIRE(plan(serviceScenario(), s, &writer).solution.solved);
+    REQUIRE(writer.size() > 0);
+  }
+  r = reply(svc, json{{"scenario", scenarioToJson(serviceScenario())}, {"seed", 3}}.dump());
+  REQUIRE(r["solved"] == true);
+  CHECK(r["stats"]["db_entries_before"].get<std::size_t>() > 0);
+  CHECK(r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>() >= 1);
+}
+
+TEST_CASE("a stop request cuts the planning request in flight short and says so") {
+  exp::ScratchDirectory dir("service-stop");
+  auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
+  service::Service svc(store, {});
+  requestStop();
+  Stopwatch clock;
+  json r = reply(svc, json{{"id", 1}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limit", 30}}.dump());
+  clearStopRequest();
+  CHECK(clock.seconds() < 5.0);
+  CHECK(r["ok"] == true);
+  CHECK(r["interrupted"] == true);
+  CHECK(r["solved"] == false);
+  CHECK(!r.contains("solution"));
+  // And the next request plans normally again.
+  r = reply(svc, json{{"id", 2}, {"scenario", scenarioToJson(serviceScenario())}, {"method", "arc"}}.dump());
+  CHECK(r["interrupted"] == false);
+  CHECK(r["solved"] == true);
+}
+
+TEST_CASE("line splitter yields whole lines across reads and skips an overlong one") {
+  service::LineSplitter split(10);
+  auto a = split.feed("{\"a\":1}\r\n{\"b\"");
+  REQUIRE(a.size() == 1);
+  CHECK(a[0].text == "{\"a\":1}");
+  auto b = split.feed(":2}\n\n   \n0123456789ABCDEF");
+  REQUIRE(b.size() == 2);
+  CHECK(b[0].text == "{\"b\":2}");
+  CHECK(b[1].too_long);
+  auto c = split.feed("GHIJ\nok\n");
+  REQUIRE(c.size() == 1);
+  CHECK(c[0].text == "ok");
+  CHECK(!c[0].too_long);
+  split.feed("tail");
+  auto d = split.finish();
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].text == "tail");
+  CHECK(split.finish().empty());
+}

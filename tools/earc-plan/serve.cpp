@@ -1,0 +1,273 @@
+// earc-plan serve --db FILE [--socket PATH] [--method M] [--seed K]
+// [--time-limit S]: a long-running planner. Opens the experience store once
+// and answers planning requests, one JSON line each (protocol in
+// earc/service/service.hpp), on stdin/stdout and, with --socket, on a Unix
+// domain socket (any number of connections, requests answered one at a
+// time in arrival order). SIGINT or SIGTERM cuts the request in flight
+// short (its answer says "interrupted"), commits what was learned, closes
+// the database and exits 0. Without --socket the service also ends at the
+// end of stdin; with one, it keeps serving the socket.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <iostream>
+#include <list>
+
+#include "earc/experience/store.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/service/service.hpp"
+#include "earc/util/deadline.hpp"
+#include "earc/util/subcommands.hpp"
+#include "plan_store.hpp"
+
+namespace earc {
+namespace {
+
+struct ServeOptions {
+  std::string db;
+  std::string socket;
+  std::string method = "earc";
+  double time_limit = 60.0;
+  std::uint64_t seed = 1;
+};
+
+// Written by the signal handler only: the signal's number, and a byte into
+// a pipe that the poll loop watches, so that a signal between two polls is
+// never missed.
+volatile std::sig_atomic_t g_signal = 0;
+int g_wake_fd = -1;
+
+extern "C" void onStopSignal(int signo) {
+  g_signal = signo;
+  requestStop();  // every planner Deadline now reads as expired
+  const int saved = errno;
+  if (g_wake_fd >= 0) {
+    const char byte = 1;
+    [[maybe_unused]] ssize_t n = ::write(g_wake_fd, &byte, 1);
+  }
+  errno = saved;
+}
+
+class Fd {
+ public:
+  explicit Fd(int fd = -1) : fd_(fd) {}
+  ~Fd() { reset(); }
+  Fd(Fd&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
+  Fd& operator=(Fd&& o) noexcept {
+    if (this != &o) {
+      reset();
+      fd_ = o.fd_;
+      o.fd_ = -1;
+    }
+    return *this;
+  }
+  int get() const { return fd_; }
+  void reset() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_;
+};
+
+std::runtime_error systemError(const std::string& what) {
+  return std::runtime_error(what + ": " + std::strerror(errno));
+}
+
+// Writes all of text; false when the reader has gone (EPIPE and the like).
+bool writeAll(int fd, const std::string& text) {
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// The listening socket at `path`. A stale socket file (no one accepts on
+// it) is replaced; a live one, or any other kind of file, is refused.
+Fd listenOn(const std::string& path) {
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  if (path.size() >= sizeof addr.sun_path)
+    throw InputError(path, "--socket", "path longer than " + std::to_string(sizeof addr.sun_path - 1) + " bytes");
+  std::memcpy(addr.sun_path, path.c_str(), path.size() + 1);
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISSOCK(st.st_mode)) throw InputError(path, "--socket", "exists and is not a socket: not replaced");
+    Fd probe(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+    if (probe.get() >= 0 && ::connect(probe.get(), reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0)
+      throw InputError(path, "--socket", "another service is listening on it");
+    ::unlink(path.c_str());
+  }
+  Fd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+  if (fd.get() < 0) throw systemError("socket");
+  if (::bind(fd.get(), reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+    throw systemError(path + ": cannot bind");
+  if (::listen(fd.get(), 16) != 0) throw systemError(path + ": cannot listen");
+  return fd;
+}
+
+// One source of requests: stdin (answered on stdout) or a connection.
+struct Client {
+  int in = -1;
+  int out = -1;
+  Fd owned;  // connections only
+  service::LineSplitter lines;
+  bool open = true;
+};
+
+class Server {
+ public:
+  Server(service::Service& service, Fd listener) : service_(service), listener_(std::move(listener)) {}
+
+  // Serves until a stop signal, or the end of stdin when there is no socket.
+  void run() {
+    Client stdio;
+    stdio.in = STDIN_FILENO;
+    stdio.out = STDOUT_FILENO;
+    int wake[2];
+    if (::pipe2(wake, O_CLOEXEC | O_NONBLOCK) != 0) throw systemError("pipe");
+    Fd wake_read(wake[0]), wake_write(wake[1]);
+    g_wake_fd = wake_write.get();
+    while (!g_signal) {
+      std::vector<pollfd> fds{{wake_read.get(), POLLIN, 0}};
+      if (stdio.open) fds.push_back({stdio.in, POLLIN, 0});
+      if (listener_.get() >= 0) fds.push_back({listener_.get(), POLLIN, 0});
+      for (const Client& c : connections_) fds.push_back({c.in, POLLIN, 0});
+      if (!stdio.open && listener_.get() < 0) break;
+      if (::poll(fds.data(), fds.size(), -1) < 0) {
+        if (errno == EINTR) continue;
+        throw systemError("poll");
+      }
+      std::size_t i = 1;
+      if (stdio.open && fds[i++].revents) serve(stdio);
+      if (listener_.get() >= 0 && fds[i++].revents & POLLIN) accept();
+      for (auto it = connections_.begin(); it != connections_.end() && !g_signal;) {
+        if (i < fds.size() && fds[i].fd == it->in && fds[i].revents) serve(*it);
+        ++i;
+        it = it->open ? std::next(it) : connections_.erase(it);
+      }
+    }
+    g_wake_fd = -1;
+  }
+
+ private:
+  void accept() {
+    const int fd = ::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0) return;  // the client gave up already, or EINTR: poll again
+    Client& c = connections_.emplace_back();
+    c.owned = Fd(fd);
+    c.in = c.out = fd;
+  }
+
+  // Reads what is there and answers every complete line, one at a time.
+  void serve(Client& c) {
+    char buf[65536];
+    const ssize_t n = ::read(c.in, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) return;
+    const bool eof = n <= 0;
+    auto lines = eof ? c.lines.finish() : c.lines.feed(std::string_view(buf, static_cast<std::size_t>(n)));
+    for (const auto& line : lines) {
+      if (g_signal) return;  // not started: left unanswered
+      const std::string response = line.too_long ? service_.tooLongResponse() : service_.handleLine(line.text);
+      if (!writeAll(c.out, response + "\n")) {
+        c.open = false;
+        return;
+      }
+    }
+    if (eof) c.open = false;
+  }
+
+  service::Service& service_;
+  Fd listener_;
+  std::list<Client> connections_;
+};
+
+void installSignals() {
+  struct sigaction sa {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: poll and read return EINTR
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  // A client that hangs up must not kill the service.
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, nullptr);
+}
+
+int runServe(const ServeOptions& o) {
+  if (!(o.time_limit > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
+  service::ServiceSettings settings;
+  try {
+    methodFromName(o.method);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", "--method", e.what());
+  }
+  settings.method = o.method;
+  settings.time_limit_s = o.time_limit;
+  settings.seed = o.seed;
+  installSignals();
+  // The socket first: a second service on the same path is refused before
+  // it touches the database. Clients that connect meanwhile wait in the
+  // backlog until the store is open.
+  Fd listener;
+  if (!o.socket.empty()) listener = listenOn(o.socket);
+  std::shared_ptr<exp::ExperienceStore> store;
+  try {
+    store = openStoreForPlanning(Method::Earc, o.db);
+  } catch (...) {
+    if (!o.socket.empty()) ::unlink(o.socket.c_str());
+    throw;
+  }
+  service::Service service(store, settings);
+  std::cerr << "earc-plan serve: " << o.db << " (" << store->size() << " experiences), requests on stdin"
+            << (o.socket.empty() ? "" : " and " + o.socket) << "\n";
+  try {
+    Server(service, std::move(listener)).run();
+  } catch (...) {
+    if (!o.socket.empty()) ::unlink(o.socket.c_str());
+    throw;
+  }
+  if (!o.socket.empty()) ::unlink(o.socket.c_str());
+  service.close();  // learned rows are committed already; counters, checkpoint
+  const auto& n = service.counters();
+  std::cerr << "earc-plan serve: " << (g_signal ? (g_signal == SIGINT ? "SIGINT" : "SIGTERM") : "end of input")
+            << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
+            << " experiences learned; database closed\n";
+  return 0;
+}
+
+void setupServe(CLI::App& app) {
+  auto opts = std::make_shared<ServeOptions>();
+  auto* cmd = app.add_subcommand(
+      "serve", "Answer planning requests (JSON lines, protocol earc.service.v1) with one experience database open");
+  cmd->add_option("--db", opts->db, "Experience database (created when missing)")->required();
+  cmd->add_option("--socket", opts->socket, "Also accept requests on this Unix domain socket");
+  cmd->add_option("--method", opts->method, "Method for requests that name none")->capture_default_str();
+  cmd->add_option("--time-limit", opts->time_limit, "Time limit for requests that give none (s)")
+      ->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed for requests that give none")->capture_default_str();
+  cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
+}
+
+cli::Registrar reg("earc-plan", "serve", setupServe);
+
+}  // namespace
+}  // namespace earc
