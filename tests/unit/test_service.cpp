@@ -30,7 +30,7 @@ json reply(service::Service& svc, const std::string& line) {
 
 }  // namespace
 
-TEST_CASE("service answers bad requests with one-line errors and keeps serving") {
+TEST_CASE("serve protocol: the service answers bad requests with one-line errors and keeps serving") {
   exp::ScratchDirectory dir("service-errors");
   auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
   service::Service svc(store, {});
@@ -76,7 +76,7 @@ TEST_CASE("service answers bad requests with one-line errors and keeps serving")
   CHECK(svc.counters().requests == 8);
 }
 
-TEST_CASE("service plans through the validator and reports what it learned by id") {
+TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {
   exp::ScratchDirectory dir("service-learn");
   const std::string path = dir.file("s.db");
   auto store = std::make_shared<exp::ExperienceStore>(path);
@@ -115,7 +115,7 @@ TEST_CASE("service plans through the validator and reports what it learned by id
   svc.close();
 }
 
-TEST_CASE("service picks up experiences another connection inserted since the last request") {
+TEST_CASE("serve protocol: the service picks up experiences another connection inserted since the last request") {
   exp::ScratchDirectory dir("service-refresh");
   const std::string path = dir.file("s.db");
   auto store = std::make_shared<exp::ExperienceStore>(path);
@@ -138,7 +138,7 @@ TEST_CASE("service picks up experiences another connection inserted since the la
   CHECK(r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>() >= 1);
 }
 
-TEST_CASE("a stop request cuts the planning request in flight short and says so") {
+TEST_CASE("serve protocol: a stop request cuts the planning request in flight short and says so") {
   exp::ScratchDirectory dir("service-stop");
   auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
   service::Service svc(store, {});
@@ -157,7 +157,7 @@ TEST_CASE("a stop request cuts the planning request in flight short and says so"
   CHECK(r["solved"] == true);
 }
 
-TEST_CASE("line splitter yields whole lines across reads and skips an overlong one") {
+TEST_CASE("serve protocol: the line splitter yields whole lines across reads and skips an overlong one") {
   service::LineSplitter split(10);
   auto a = split.feed("{\"a\":1}\r\n{\"b\"");
   REQUIRE(a.size() == 1);
