@@ -133,23 +133,32 @@ VerifyReport verifyDatabase(const std::string& path) {
   VerifyReport r;
   if (!std::filesystem::exists(path)) throw InputError(path, "", "no such file");
   std::unique_ptr<Connection> db;
-  try {
+  // A file that cannot be read as an earc database at all (not SQLite,
+  // foreign, newer, damaged where the schema lives) is bad input: one line,
+  // exit 2. Past that point every problem is listed in the report.
+  withInputErrors(path, [&] {
     db = std::make_unique<Connection>(path, OpenMode::Hostile);
     r.schema_version = checkIdentity(*db);
-  } catch (const StoreError& e) {
-    r.problems.push_back(e.what());
-    return r;
-  }
-  if (r.schema_version == 0) {
-    r.problems.push_back(path + ": empty file, not an earc experience database");
-    return r;
-  }
+  });
+  if (r.schema_version == 0) throw InputError(path, "", "empty file, not an earc experience database");
   if (r.schema_version < currentSchemaVersion())
     r.notes.push_back("schema version " + std::to_string(r.schema_version) + " (this program: " +
                       std::to_string(currentSchemaVersion()) + "); migrated on the next read-write open");
-  Statement integrity = db->prepare("PRAGMA integrity_check");
-  while (integrity.step())
-    if (integrity.textAt(0) != "ok") r.problems.push_back("integrity_check: " + integrity.textAt(0));
+  try {
+    Statement integrity = db->prepare("PRAGMA integrity_check");
+    while (integrity.step()) {
+      // One result row may hold several lines ("*** in database main ***\n...").
+      std::string text = integrity.textAt(0);
+      for (std::size_t at = 0; at < text.size();) {
+        std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string line = text.substr(at, end - at);
+        if (line != "ok" && line != "*** in database main ***") r.problems.push_back("integrity_check: " + line);
+        at = end + 1;
+      }
+    }
+  } catch (const StoreError& e) {
+    r.problems.push_back(e.what());
+  }
   std::map<ExperienceClass, std::pair<std::size_t, std::int64_t>> key_dims;  // class -> (dim, first row)
   try {
     db->exec("BEGIN");
@@ -168,7 +177,8 @@ VerifyReport verifyDatabase(const std::string& path) {
     }
     db->exec("COMMIT");
   } catch (const StoreError& e) {
-    r.problems.push_back(e.what());
+    // The damage integrity_check already met stops the row scan too: once.
+    if (std::find(r.problems.begin(), r.problems.end(), e.what()) == r.problems.end()) r.problems.push_back(e.what());
   }
   return r;
 }

@@ -1,5 +1,6 @@
 #include "earc/experience/sqlite.hpp"
 
+#include <filesystem>
 #include <random>
 #include <thread>
 
@@ -17,39 +18,59 @@ std::string fileOf(sqlite3* db) {
   return f && *f ? f : "<memory>";
 }
 
-[[noreturn]] void throwFor(sqlite3* db, int rc, std::string_view context) {
-  std::string msg = fileOf(db) + ": " + std::string(context) + ": " + sqlite3_errmsg(db);
+// Errors that say what is wrong with the file rather than which statement
+// met it: the user can act on "damaged" or "not a SQLite database", not on
+// the SQL that happened to read the bad page first.
+[[noreturn]] void throwForFile(const std::string& file, int rc, const std::string& message, std::string_view context) {
+  const int primary = rc & 0xff;
+  if (primary == SQLITE_NOTADB) throw ForeignDatabaseError(file + ": not a SQLite database");
+  if (primary == SQLITE_CORRUPT)
+    throw DamagedDatabaseError(file + ": damaged database file (" + message +
+                               "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
+  if (primary == SQLITE_IOERR && (rc == SQLITE_IOERR_SHORT_READ || rc == SQLITE_IOERR_TRUNCATE))
+    throw DamagedDatabaseError(file + ": damaged database file (truncated: " + message + ")");
+  std::string msg = file + ": " + std::string(context) + ": " + message;
   if (isBusy(rc)) throw BusyError(msg);
-  if ((rc & 0xff) == SQLITE_NOTADB) throw ForeignDatabaseError(fileOf(db) + ": not a SQLite database");
   throw StoreError(msg);
+}
+
+[[noreturn]] void throwFor(sqlite3* db, const std::string& file, int rc, std::string_view context) {
+  throwForFile(file.empty() ? fileOf(db) : file, rc, sqlite3_errmsg(db), context);
 }
 
 }  // namespace
 
+std::string withoutFile(const std::string& message, const std::string& path) {
+  std::error_code ec;
+  for (const std::string& name : {path, std::filesystem::absolute(path, ec).lexically_normal().string()})
+    if (!name.empty() && message.rfind(name + ": ", 0) == 0) return message.substr(name.size() + 2);
+  return message;
+}
+
 // ---------------------------------------------------------------- Statement
 
-Statement::Statement(sqlite3* db, std::string_view sql) : db_(db) {
+Statement::Statement(sqlite3* db, std::string_view sql, std::string file) : db_(db), file_(std::move(file)) {
   sqlite3_stmt* raw = nullptr;
   int rc = sqlite3_prepare_v3(db, sql.data(), static_cast<int>(sql.size()), 0, &raw, nullptr);
   stmt_.reset(raw);
-  if (rc != SQLITE_OK) throwFor(db, rc, "preparing \"" + std::string(sql.substr(0, 60)) + "\"");
+  if (rc != SQLITE_OK) throwFor(db, file_, rc, "preparing \"" + std::string(sql.substr(0, 60)) + "\"");
 }
 
 Statement& Statement::bind(int index, std::int64_t v) {
   int rc = sqlite3_bind_int64(stmt_.get(), index, v);
-  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  if (rc != SQLITE_OK) throwFor(db_, file_, rc, "bind");
   return *this;
 }
 
 Statement& Statement::bind(int index, double v) {
   int rc = sqlite3_bind_double(stmt_.get(), index, v);
-  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  if (rc != SQLITE_OK) throwFor(db_, file_, rc, "bind");
   return *this;
 }
 
 Statement& Statement::bind(int index, std::string_view text) {
   int rc = sqlite3_bind_text64(stmt_.get(), index, text.data(), text.size(), SQLITE_TRANSIENT, SQLITE_UTF8);
-  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  if (rc != SQLITE_OK) throwFor(db_, file_, rc, "bind");
   return *this;
 }
 
@@ -58,7 +79,7 @@ Statement& Statement::bindBlob(int index, std::span<const unsigned char> bytes) 
   static const unsigned char kEmpty = 0;
   int rc = sqlite3_bind_blob64(stmt_.get(), index, bytes.empty() ? &kEmpty : bytes.data(), bytes.size(),
                                SQLITE_TRANSIENT);
-  if (rc != SQLITE_OK) throwFor(db_, rc, "bind");
+  if (rc != SQLITE_OK) throwFor(db_, file_, rc, "bind");
   return *this;
 }
 
@@ -70,7 +91,7 @@ bool Statement::step() {
     return false;
   }
   sqlite3_reset(stmt_.get());
-  throwFor(db_, rc, std::string("executing \"") + std::string(std::string_view(sqlite3_sql(stmt_.get())).substr(0, 60)) + "\"");
+  throwFor(db_, file_, rc, std::string("executing \"") + std::string(std::string_view(sqlite3_sql(stmt_.get())).substr(0, 60)) + "\"");
 }
 
 void Statement::run() {
@@ -138,11 +159,23 @@ void Connection::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     std::string msg = err ? err : sqlite3_errstr(rc);
     sqlite3_free(err);
-    std::string context = path_ + ": " + text.substr(0, 60) + ": " + msg;
-    if (isBusy(rc)) throw BusyError(context);
-    if ((rc & 0xff) == SQLITE_NOTADB) throw ForeignDatabaseError(path_ + ": not a SQLite database");
-    throw StoreError(context);
+    throwForFile(path_, rc, msg, text.substr(0, 60));
   }
+}
+
+void Connection::requireQuickCheck() {
+  Statement check = prepare("PRAGMA quick_check");
+  std::string first;
+  std::size_t problems = 0;
+  while (check.step()) {
+    std::string line = check.textAt(0);
+    if (line == "ok") continue;
+    if (problems++ == 0) first = std::move(line);
+  }
+  if (problems > 0)
+    throw DamagedDatabaseError(path_ + ": damaged database file (quick_check: " + first +
+                               (problems > 1 ? "; " + std::to_string(problems - 1) + " more" : std::string()) +
+                               "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
 }
 
 std::int64_t Connection::pragmaInt(std::string_view pragma) {

@@ -60,6 +60,10 @@ void ExperienceStore::openLocked() {
   // Identity first: never switch a foreign file to WAL or write to it.
   // Another process creating the same file may make these steps busy.
   version_ = conn_->retryWhileBusy([&] { return checkIdentity(*conn_); });
+  // Then the file's structure, before anything is written to it or read
+  // from it: a truncated or damaged file is refused here, naming the first
+  // problem, instead of failing some later query mid-plan.
+  conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
   if (options_.read_only) {
     if (version_ == 0) throw ForeignDatabaseError(path_ + ": empty file, not an earc experience database");
   } else {
@@ -168,6 +172,10 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
       if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
     } catch (const CorruptRowError& e) {
       warnSkipped(n.id, e.reason());
+    } catch (const DamagedDatabaseError& e) {
+      // The file was damaged after it was opened (quick_check passed then):
+      // this row cannot be read; planning goes on without it.
+      warnSkipped(n.id, e.what());
     }
   }
   return out;

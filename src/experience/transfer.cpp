@@ -104,7 +104,14 @@ std::vector<Experience> readJsonl(const std::string& path) {
   if (!in) throw InputError(path, "", "cannot open for reading");
   std::string line;
   if (!std::getline(in, line)) throw InputError(path, "line 1", "empty file: expected an earc experience export");
-  json header = parseJsonText(line, path + ": line 1");
+  json header;
+  try {
+    header = parseJsonText(line, path);
+  } catch (const InputError&) {
+    throw InputError(path, "line 1",
+                     std::string("not an earc experience database or export (neither SQLite nor JSON lines of \"") +
+                         kExportFormat + "\")");
+  }
   if (!header.is_object() || header.value("format", json()) != kExportFormat)
     throw InputError(path, "line 1", std::string("not an earc experience export (expected format \"") + kExportFormat + "\")");
   std::vector<Experience> rows;
@@ -117,8 +124,11 @@ std::vector<Experience> readJsonl(const std::string& path) {
     try {
       rows.push_back(experienceFromJson(parseJsonText(line, path + ": " + where), path, where));
     } catch (const InputError& e) {
-      // Row errors name the line already; parse errors name the JSON path.
-      bad.add(e.file() == path ? e.where() : where + (e.where().empty() ? "" : " " + e.where()), e.reason());
+      // Row errors name the line already; parse errors name the column
+      // (of the line, which the parser saw as line 1) and the JSON path.
+      std::string at = e.where();
+      if (at.rfind("line 1, ", 0) == 0) at.erase(0, 8);
+      bad.add(e.file() == path ? e.where() : where + (at.empty() ? "" : " " + at), e.reason());
     }
   }
   bad.throwIfAny();
@@ -135,11 +145,7 @@ std::vector<Experience> readSqlite(const std::string& path) {
     const int version = checkIdentity(db);  // foreign or newer: refused before reading rows
     if (version == 0) throw InputError(path, "", "empty database");
     // quick_check before reading rows: a damaged file is refused as a whole.
-    Statement check = db.prepare("PRAGMA quick_check");
-    std::string first;
-    while (check.step())
-      if (first.empty()) first = check.textAt(0);
-    if (first != "ok") throw InputError(path, "", "quick_check failed: " + first);
+    db.requireQuickCheck();
     Statement table = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'experiences'");
     table.step();
     if (table.int64At(0) != 1) throw InputError(path, "", "no experiences table");
@@ -157,7 +163,7 @@ std::vector<Experience> readSqlite(const std::string& path) {
     bad.throwIfAny();
     return rows;
   } catch (const StoreError& e) {
-    throw InputError(path, "", e.what());
+    throw InputError(path, "", withoutFile(e.what(), path));
   }
 }
 

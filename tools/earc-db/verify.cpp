@@ -1,6 +1,7 @@
 // earc-db verify --db FILE: integrity_check, identity and schema version,
 // and every row's blobs and consistency. Exit 0 sound, 1 anything wrong
-// (each problem named, rows by id), 2 no such file. Never writes.
+// (each problem named, rows by id), 2 not readable as an earc database at
+// all (missing, not SQLite, foreign, newer, damaged schema). Never writes.
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"

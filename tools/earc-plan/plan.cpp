@@ -1,6 +1,7 @@
 // earc-plan plan: plan a scenario with one method and write its solution.
 #include <iostream>
 
+#include "earc/experience/maintenance.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/subcommands.hpp"
@@ -38,7 +39,10 @@ int runPlan(const PlanOptions& o) {
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
   auto store = openStoreForPlanning(s.method, o.db);
-  PlanResult r = plan(scenario, s, store.get());
+  // A database damaged while planning (quick_check passed at open) is bad
+  // input too: one line naming the file, exit 2. Busy stays exit 1.
+  PlanResult r = store ? exp::withInputErrors(o.db, [&] { return plan(scenario, s, store.get()); })
+                       : plan(scenario, s, nullptr);
   saveSolution(o.output, r.solution);
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {

@@ -14,7 +14,7 @@ std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const 
     throw;
   } catch (const std::exception& e) {
     // Foreign, newer or damaged files: one line naming the file, nothing written.
-    throw InputError(db, "database", e.what());
+    throw InputError(db, "database", exp::withoutFile(e.what(), db));
   }
 }
 

@@ -50,7 +50,8 @@ struct VerifyReport {
 
 // integrity_check, application_id and schema version, every row (column
 // types, blob headers and lengths, finite numbers, key and class
-// consistency), one key dimension per class. Never writes.
+// consistency), one key dimension per class. Never writes. Throws
+// InputError for a file that is not readable as an earc database at all.
 VerifyReport verifyDatabase(const std::string& path);
 
 struct CurateSettings {
@@ -90,9 +91,7 @@ auto withInputErrors(const std::string& path, F&& f) -> decltype(f()) {
   } catch (const BusyError&) {
     throw;
   } catch (const StoreError& e) {
-    std::string reason = e.what();
-    if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
-    throw InputError(path, "", reason);
+    throw InputError(path, "", withoutFile(e.what(), path));
   }
 }
 

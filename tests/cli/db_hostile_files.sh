@@ -1,0 +1,228 @@
+#!/bin/bash
+# Hostile database and import files: every command that reads one either
+# works or exits 2 with one line on stderr naming the file and what is wrong
+# (verify may instead list problems and exit 1); never a crash, a signal or
+# a screen of text; an import with any bad row changes nothing.
+#   truncated database, truncated WAL, foreign SQLite file, newer schema,
+#   import sources with bad rows (JSON: wrong dimension, NaN; SQLite: path
+#   blob with a wrong header or length, NaN in a blob, wrong key length),
+#   and a seeded loop that flips random bytes of a real database.
+# EARC_HOSTILE_FLIPS sets the loop's rounds (default 15; the unit test
+# test_store_hostile flips 120 more in-process).
+set -u
+BUILD=$1
+SRC=$2
+DB="$BUILD/earc-db"
+PLAN="$BUILD/earc-plan"
+PY=/usr/bin/python3
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+[ -x "$DB" ] && [ -x "$PLAN" ] || { echo "FAIL: earc-db or earc-plan not built in $BUILD"; exit 1; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+SCEN="$SRC/tests/data/scenarios/swap-discs.json"
+fail() { echo "FAIL: $*"; exit 1; }
+sql() { "$PY" -c 'import sqlite3,sys
+c = sqlite3.connect(sys.argv[1])
+for s in sys.argv[2:]: c.execute(s)
+c.commit()' "$@"; }
+rows() { "$PY" -c 'import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute("select count(*) from experiences").fetchone()[0])' "$1"; }
+
+# run NAME FILE CMD...: runs CMD with stdout/stderr in $WORK/out, $WORK/err; sets $code.
+run() { "${@:3}" > "$WORK/out" 2> "$WORK/err"; code=$?; }
+# refused CASE FILE PATTERN: the last command exited 2 with one stderr line
+# that names FILE and matches PATTERN (grep -E).
+refused() {
+  [ $code -eq 2 ] || fail "$1: exit $code, expected 2: $(head -c 400 "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "$1: stderr is not one line: $(head -c 800 "$WORK/err")"
+  grep -qF "$2" "$WORK/err" || fail "$1: message does not name $2: $(cat "$WORK/err")"
+  grep -qE "$3" "$WORK/err" || fail "$1: message does not say /$3/: $(cat "$WORK/err")"
+}
+# every_command CASE FILE PATTERN: inspect, verify, export, import FILE as a
+# source, and plan with FILE as the database, each refuse it; FILE unchanged.
+every_command() {
+  local name=$1 file=$2 pattern=$3 before
+  before=$(md5sum < "$file")
+  run "$name" "$file" "$DB" inspect --db "$file"; refused "$name: inspect" "$file" "$pattern"
+  run "$name" "$file" "$DB" verify --db "$file"; refused "$name: verify" "$file" "$pattern"
+  run "$name" "$file" "$DB" export --db "$file" -o "$WORK/x.jsonl"; refused "$name: export" "$file" "$pattern"
+  [ -e "$WORK/x.jsonl" ] && fail "$name: export wrote a file"
+  rm -f "$WORK/target.db"*
+  run "$name" "$file" "$DB" import --db "$WORK/target.db" "$file"; refused "$name: import" "$file" "$pattern"
+  run "$name" "$file" "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$file"
+  refused "$name: plan" "$file" "$pattern"
+  [ "$(md5sum < "$file")" = "$before" ] || fail "$name: the file was modified"
+  rm -f "$file-wal" "$file-shm"
+}
+
+"$DB" build --db "$WORK/good.db" --scenario "$SCEN" --count 24 --seed 3 --threads 1 > /dev/null 2>&1 || fail "build"
+sql "$WORK/good.db" "pragma wal_checkpoint(truncate)"
+size=$(stat -c %s "$WORK/good.db")
+
+# --- Truncated database: half the file, and less than one page.
+head -c $((size / 2)) "$WORK/good.db" > "$WORK/half.db"
+every_command "truncated to half" "$WORK/half.db" "damaged database file"
+head -c 1000 "$WORK/good.db" > "$WORK/stub.db"
+every_command "truncated to 1000 bytes" "$WORK/stub.db" "damaged database file|not a SQLite database"
+
+# --- Foreign SQLite file and a file that is no database at all.
+sql "$WORK/foreign.db" "create table photos (id integer primary key, data blob)" "insert into photos values (1, x'00')"
+every_command "foreign SQLite file" "$WORK/foreign.db" "not an earc experience database \(application_id 0x00000000"
+head -c 5000 /dev/urandom > "$WORK/noise.db"
+every_command "random bytes" "$WORK/noise.db" "not a SQLite database|not an earc experience database or export"
+
+# --- Newer schema: refused naming both versions, nothing written.
+cp "$WORK/good.db" "$WORK/newer.db"
+sql "$WORK/newer.db" "pragma user_version = 99"
+every_command "newer schema" "$WORK/newer.db" "schema version 99 is newer than this program's version"
+rm -f "$WORK/t.db"*
+"$DB" import --db "$WORK/t.db" "$WORK/good.db" > /dev/null || fail "import into a fresh file"
+cp "$WORK/newer.db" "$WORK/newer-target.db"
+before=$(md5sum < "$WORK/newer-target.db")
+run "newer target" "$WORK/newer-target.db" "$DB" import --db "$WORK/newer-target.db" "$WORK/good.db"
+refused "import into a newer file" "$WORK/newer-target.db" "schema version 99 is newer"
+[ "$(md5sum < "$WORK/newer-target.db")" = "$before" ] || fail "import modified a newer file"
+
+# --- Truncated WAL: committed transactions in whole frames survive, a torn
+# last frame is ignored; every command works.
+cp "$WORK/good.db" "$WORK/wal.db"
+"$PY" - "$WORK/wal.db" "$WORK/walcopy.db" <<'EOF' || fail "making a WAL"
+import shutil, sqlite3, sys
+src, dst = sys.argv[1], sys.argv[2]
+c = sqlite3.connect(src)
+c.execute("pragma wal_autocheckpoint = 0")
+rows = c.execute("select kind, robot_count, signature, base_class, key, paths, cost, source, created_at from experiences").fetchall()
+for r in rows[:10]:  # ten committed transactions, each its own frames
+    c.execute("insert into experiences (kind, robot_count, signature, base_class, key, paths, cost, source, created_at) values (?,?,?,?,?,?,?,?,?)", r)
+    c.commit()
+shutil.copy(src, dst)
+wal = open(src + "-wal", "rb").read()
+open(dst + "-wal", "wb").write(wal[: len(wal) - 3000])  # tear the last frames
+c.close()
+EOF
+n=$(rows "$WORK/walcopy.db")
+[ "$n" -gt 24 ] && [ "$n" -lt 34 ] || fail "torn WAL: expected some of the ten WAL commits, found $n rows"
+run "torn WAL" x "$DB" inspect --db "$WORK/walcopy.db"
+[ $code -eq 0 ] || fail "inspect with a torn WAL exited $code: $(cat "$WORK/err")"
+grep -q "entries   $n in" "$WORK/out" || fail "inspect with a torn WAL: not $n entries: $(cat "$WORK/out")"
+run "torn WAL" x "$DB" verify --db "$WORK/walcopy.db"
+[ $code -eq 0 ] || fail "verify with a torn WAL exited $code: $(cat "$WORK/out" "$WORK/err")"
+run "torn WAL" x "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/walcopy.db"
+[ $code -eq 0 ] || fail "plan with a torn WAL exited $code: $(cat "$WORK/err")"
+
+# --- Import sources with bad rows: JSON export lines and SQLite rows. Each
+# refused naming the file and the row, and the target keeps its rows.
+"$DB" export --db "$WORK/good.db" -o "$WORK/good.jsonl" > /dev/null || fail "export"
+rm -f "$WORK/target.db"*
+"$DB" import --db "$WORK/target.db" "$WORK/good.db" > /dev/null || fail "import into the target"
+target_rows=$(rows "$WORK/target.db")
+# bad_import CASE FILE PATTERN
+bad_import() {
+  local before
+  before=$(md5sum < "$WORK/target.db")
+  run "$1" "$2" "$DB" import --db "$WORK/target.db" "$WORK/good.jsonl" "$2"
+  refused "$1" "$2" "$3"
+  grep -q "nothing was imported" "$WORK/err" || fail "$1: does not say nothing was imported: $(cat "$WORK/err")"
+  [ "$(rows "$WORK/target.db")" -eq "$target_rows" ] || fail "$1: the target's rows changed"
+}
+"$PY" - "$WORK/good.jsonl" "$WORK" <<'EOF' || fail "making bad exports"
+import json, sys
+src, work = sys.argv[1], sys.argv[2]
+lines = open(src).read().splitlines()
+def write(name, line_no, edit):
+    out = list(lines)
+    row = json.loads(out[line_no])
+    edit(row)
+    out[line_no] = json.dumps(row)
+    open(f"{work}/{name}.jsonl", "w").write("\n".join(out) + "\n")
+def dim(r): r["paths"][0][1] = r["paths"][0][1][:2]
+def nan(r): r["paths"][1][2][0] = float("nan")   # json.dumps writes NaN
+def key(r): r["key"] = r["key"][:-1]
+write("bad-dimension", 3, dim)
+write("bad-nan", 5, nan)
+write("bad-key", 2, key)
+EOF
+bad_import "export with a wrong dimension" "$WORK/bad-dimension.jsonl" "line 4 .*dimension differs"
+bad_import "export with a NaN" "$WORK/bad-nan.jsonl" "line 6 .*(NaN|not valid JSON|parse)"
+bad_import "export with a short key" "$WORK/bad-key.jsonl" "line 3 .*key has"
+"$PY" - "$WORK/good.db" "$WORK" <<'EOF' || fail "making bad databases"
+import shutil, sqlite3, struct, sys
+src, work = sys.argv[1], sys.argv[2]
+def make(name, sql, *args):
+    shutil.copy(src, f"{work}/{name}.db")
+    c = sqlite3.connect(f"{work}/{name}.db")
+    c.execute(sql, args)
+    c.commit()
+    c.close()
+blob = sqlite3.connect(src).execute("select paths from experiences where id = 5").fetchone()[0]
+make("blob-magic", "update experiences set paths = ? where id = 5", b"XPTH" + blob[4:])
+make("blob-version", "update experiences set paths = ? where id = 5", blob[:4] + b"\x07\x00" + blob[6:])
+make("blob-short", "update experiences set paths = ? where id = 5", blob[:-8])
+make("blob-long", "update experiences set paths = ? where id = 5", blob + b"\0" * 8)
+nan = struct.pack("<d", float("nan"))
+make("blob-nan", "update experiences set paths = ? where id = 5", blob[:40] + nan + blob[48:])
+make("key-length", "update experiences set key = substr(key, 1, 16) where id = 7")
+make("two-bad", "update experiences set paths = x'00' where id in (2, 9)")
+EOF
+bad_import "database with a bad blob magic" "$WORK/blob-magic.db" "row 5: path blob: bad magic"
+bad_import "database with a bad blob version" "$WORK/blob-version.db" "row 5: path blob: format version 7"
+bad_import "database with a short blob" "$WORK/blob-short.db" "row 5: path blob: .*length"
+bad_import "database with a long blob" "$WORK/blob-long.db" "row 5: path blob: .*length"
+bad_import "database with a NaN in a blob" "$WORK/blob-nan.db" "row 5: path blob: .*not finite"
+bad_import "database with a short key" "$WORK/key-length.db" "row 7: key"
+bad_import "database with two bad rows" "$WORK/two-bad.db" "row 2: path blob.*1 more bad row \(row 9\)"
+
+# --- Random bytes flipped in a real database, seeded: every command works
+# or refuses the file cleanly. Each round damages a fresh copy in 1..8 places
+# past the 100-byte header (the header's own checks are covered above).
+"$DB" build --db "$WORK/flip-src.db" --scenario "$SCEN" --count 40 --seed 4 --threads 1 > /dev/null 2>&1 || fail "build"
+sql "$WORK/flip-src.db" "pragma wal_checkpoint(truncate)"
+rounds=${EARC_HOSTILE_FLIPS:-15}
+# check_clean ROUND CMD: exit 0, or 2 with one line naming the copy; verify
+# may exit 1 with a report ending in FAILED and nothing on stderr; plan may
+# exit 1 (not solved) with a solution written; never a signal.
+check_clean() {
+  local round=$1 what=$2
+  [ $code -lt 128 ] || fail "round $round: $what died with signal $((code - 128)): $(head -c 800 "$WORK/err")"
+  case $code in
+    0) ;;
+    2) [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$WORK/f.db" "$WORK/err" \
+         || fail "round $round: $what exit 2 without one line naming the file: $(head -c 800 "$WORK/err")" ;;
+    1) if [ "$what" = verify ]; then
+         tail -1 "$WORK/out" | grep -q "^FAILED: " && [ ! -s "$WORK/err" ] \
+           || fail "round $round: verify exit 1 without a report: $(head -c 800 "$WORK/out" "$WORK/err")"
+       elif [ "$what" = plan ]; then
+         grep -q "^not solved" "$WORK/out" || fail "round $round: plan exit 1: $(head -c 800 "$WORK/err")"
+       else
+         fail "round $round: $what exit 1: $(head -c 800 "$WORK/err")"
+       fi ;;
+    *) fail "round $round: $what exit $code: $(head -c 800 "$WORK/err")" ;;
+  esac
+}
+fsize=$(stat -c %s "$WORK/flip-src.db")
+refusals=0
+for round in $(seq 1 "$rounds"); do
+  rm -f "$WORK/f.db"* "$WORK/x.jsonl" "$WORK/target.db"*
+  cp "$WORK/flip-src.db" "$WORK/f.db"
+  "$PY" - "$WORK/f.db" "$round" "$fsize" <<'EOF'
+import random, sys
+path, seed, size = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+rng = random.Random(seed)
+with open(path, "r+b") as f:
+    for _ in range(rng.randint(1, 8)):
+        at = rng.randrange(100, size)
+        f.seek(at)
+        b = f.read(1)[0]
+        f.seek(at)
+        f.write(bytes([b ^ (1 << rng.randrange(8))]))
+EOF
+  run $round x "$DB" inspect --db "$WORK/f.db"; check_clean $round inspect
+  [ $code -eq 2 ] && refusals=$((refusals + 1))
+  run $round x "$DB" verify --db "$WORK/f.db"; check_clean $round verify
+  run $round x "$DB" export --db "$WORK/f.db" -o "$WORK/x.jsonl"; check_clean $round export
+  run $round x "$DB" import --db "$WORK/target.db" "$WORK/f.db"; check_clean $round import
+  [ $code -eq 0 ] || [ ! -e "$WORK/target.db" ] || [ "$(rows "$WORK/target.db")" -eq 0 ] \
+    || fail "round $round: a refused import left rows in the target"
+  run $round x "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/f.db" --time-limit 20
+  check_clean $round plan
+done
+echo "ok: $rounds flip rounds, $refusals refused by inspect"

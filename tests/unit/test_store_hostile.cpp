@@ -1,0 +1,197 @@
+// Damaged database files: the store runs quick_check on open and refuses a
+// damaged file before writing to it; a file truncated or with random bytes
+// flipped makes every reader throw a StoreError or an InputError (one line
+// in the tools, exit 2), never crash or throw anything else.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+
+#include "earc/experience/maintenance.hpp"
+#include "earc/experience/sampling.hpp"
+#include "earc/experience/scratch.hpp"
+#include "earc/experience/store.hpp"
+#include "earc/experience/transfer.hpp"
+#include "earc/io/input_error.hpp"
+
+using namespace earc;
+using namespace earc::exp;
+
+namespace {
+
+std::vector<unsigned char> readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+// A checkpointed database of 2- and 3-disc rows (paths long enough for
+// overflow pages), its WAL folded in so the main file is the whole story.
+void makeDatabase(const std::string& path, std::uint64_t seed, int rows = 30) {
+  RobotSpec disc;
+  disc.radius = 0.3;
+  const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+  std::mt19937_64 rng(seed);
+  std::vector<Experience> batch;
+  for (int i = 0; i < rows; ++i)
+    batch.push_back(straightLineExperience(std::vector<RobotTraits>(2 + i % 2, d), sampleMobileQuery(2 + i % 2, rng),
+                                           40 + i));
+  {
+    ExperienceStore store(path);
+    store.insertAll(batch, -1);
+  }
+  Connection c(path, OpenMode::ReadWrite);
+  c.exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  c.exec("PRAGMA journal_mode = DELETE");
+}
+
+std::int64_t pageSize(const std::string& path) {
+  Connection c(path, OpenMode::ReadOnly);
+  return c.pragmaInt("page_size");
+}
+
+std::int64_t rootPage(const std::string& path, const std::string& name) {
+  Connection c(path, OpenMode::ReadOnly);
+  Statement s = c.prepare("SELECT rootpage FROM sqlite_schema WHERE name = ?1");
+  s.bind(1, std::string_view(name));
+  REQUIRE(s.step());
+  return s.int64At(0);
+}
+
+template <class E>
+std::string openError(const std::string& path, bool read_only) {
+  StoreOptions o;
+  o.read_only = read_only;
+  try {
+    ExperienceStore store(path, o);
+  } catch (const E& e) {
+    return e.what();
+  }
+  FAIL("the store opened a damaged file");
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a damaged table page the index scan never reads is caught by quick_check at open") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  makeDatabase(path, 1);
+  // The table's root page: opening reads only the covering key index, so
+  // without quick_check this damage would surface mid-plan, if ever.
+  std::vector<unsigned char> bytes = readBytes(path);
+  const auto at = static_cast<std::size_t>((rootPage(path, "experiences") - 1) * pageSize(path));
+  REQUIRE(at < bytes.size());
+  bytes[at] = 0x07;  // not a b-tree page type
+  writeBytes(path, bytes);
+  for (bool read_only : {true, false}) {
+    const std::string msg = openError<DamagedDatabaseError>(path, read_only);
+    CHECK(msg.rfind(path + ": damaged database file (", 0) == 0);
+    CHECK(msg.find('\n') == std::string::npos);
+  }
+  // Refused before anything was written: no WAL switch, no session count.
+  CHECK(readBytes(path) == bytes);
+  CHECK_FALSE(std::filesystem::exists(path + "-wal"));
+}
+
+TEST_CASE("a truncated database is refused as damaged by the store, verify and import, and left as it was") {
+  ScratchDirectory dir("hostile");
+  const std::string good = dir.file("good.db");
+  makeDatabase(good, 2);
+  const std::vector<unsigned char> whole = readBytes(good);
+  const std::string path = dir.file("cut.db");
+  const std::vector<unsigned char> half(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(whole.size() / 2));
+  writeBytes(path, half);
+  for (bool read_only : {true, false}) {
+    const std::string msg = openError<DamagedDatabaseError>(path, read_only);
+    CHECK(msg.find(path + ": damaged database file") == 0);
+  }
+  CHECK(readBytes(path) == half);
+  // verify lists the damage (exit 1) or refuses the file (exit 2), naming it.
+  try {
+    VerifyReport r = verifyDatabase(path);
+    CHECK_FALSE(r.ok());
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find(path) == 0);
+  }
+  CHECK_THROWS_WITH_AS(readImportSource(path), doctest::Contains("damaged database file"), InputError);
+}
+
+TEST_CASE("a torn WAL keeps the whole transactions before the tear and loses nothing else") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("w.db");
+  makeDatabase(path, 3, 10);
+  const std::string copy = dir.file("copy.db");
+  RobotSpec disc;
+  disc.radius = 0.3;
+  const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+  std::mt19937_64 rng(33);
+  {
+    ExperienceStore store(path);
+    store.connection().exec("PRAGMA wal_autocheckpoint = 0");
+    for (int i = 0; i < 6; ++i)
+      store.insert(straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 40), -1);
+    // Copy while the store is open: its close would checkpoint the WAL.
+    std::filesystem::copy_file(path, copy);
+    std::vector<unsigned char> wal = readBytes(path + "-wal");
+    REQUIRE(wal.size() > 5000);
+    wal.resize(wal.size() - 3000);  // the last commit's frames torn
+    writeBytes(copy + "-wal", wal);
+  }
+  StoreOptions ro;
+  ro.read_only = true;
+  ExperienceStore store(copy, ro);
+  CHECK(store.size() >= 10);
+  CHECK(store.size() < 16);
+  CHECK(verifyDatabase(copy).ok());
+}
+
+TEST_CASE("random bytes flipped in a database make readers throw store or input errors, never crash") {
+  ScratchDirectory dir("hostile");
+  const std::string good = dir.file("good.db");
+  makeDatabase(good, 4, 24);
+  const std::vector<unsigned char> original = readBytes(good);
+  std::mt19937_64 rng(20240611);
+  int refused = 0, opened = 0;
+  for (int round = 0; round < 120; ++round) {
+    std::vector<unsigned char> bytes = original;
+    const int flips = 1 + static_cast<int>(rng() % 6);
+    for (int f = 0; f < flips; ++f) {
+      const std::size_t at = 100 + rng() % (bytes.size() - 100);  // past the file header
+      bytes[at] ^= static_cast<unsigned char>(1u << (rng() % 8));
+    }
+    const std::string path = dir.file("f" + std::to_string(round) + ".db");
+    writeBytes(path, bytes);
+    CAPTURE(round);
+    try {
+      StoreOptions ro;
+      ro.read_only = true;
+      ExperienceStore store(path, ro);
+      ++opened;
+      for (const auto& info : store.classes()) {
+        std::vector<double> key(info.key_dim, 0.5);
+        for (const Match& m : store.nearest(info.cls, key, 5)) CHECK_FALSE(findProblem(m.experience));
+      }
+    } catch (const StoreError&) {
+      ++refused;
+    }
+    try {
+      (void)verifyDatabase(path);
+    } catch (const InputError&) {
+    }
+    try {
+      for (const Experience& e : readImportSource(path)) CHECK_FALSE(findProblem(e));
+    } catch (const InputError&) {
+    }
+    std::filesystem::remove(path);
+  }
+  // Both outcomes occur: the loop exercises refusal and survival alike.
+  CHECK(refused > 0);
+  CHECK(opened > 0);
+}
