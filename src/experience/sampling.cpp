@@ -16,8 +16,10 @@ Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s
     const double ds = uniform(rng, s.min_start_distance, s.max_start_distance);
     const double across = a + pi + uniform(rng, -s.cross_jitter, s.cross_jitter);
     const double dg = uniform(rng, s.min_start_distance, s.max_start_distance);
-    q.starts.push_back({ds * std::cos(a), ds * std::sin(a), uniform(rng, -pi, pi)});
-    q.goals.push_back({dg * std::cos(across), dg * std::sin(across), uniform(rng, -pi, pi)});
+    const double heading = uniform(rng, -pi, pi);
+    const double turn = uniform(rng, -s.max_heading_change, s.max_heading_change);
+    q.starts.push_back({ds * std::cos(a), ds * std::sin(a), heading});
+    q.goals.push_back({dg * std::cos(across), dg * std::sin(across), geo::wrapAngle(heading + turn)});
   }
   return q;
 }

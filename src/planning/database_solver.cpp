@@ -2,6 +2,7 @@
 #include "earc/planning/database_solver.hpp"
 
 #include <algorithm>
+#include <random>
 
 #include "earc/experience/retrieval.hpp"
 #include "earc/io/input_error.hpp"
@@ -14,6 +15,10 @@
 namespace earc {
 
 namespace {
+
+// Shortcut attempts on a retrieved (or repaired) solution joined to the
+// subproblem's start and goal.
+constexpr int kConnectShortcuts = 100;
 
 CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
   CompositeState q;
@@ -40,6 +45,22 @@ std::vector<std::pair<std::size_t, std::size_t>> invalidRuns(const CompositeChec
   return runs;
 }
 
+// Keys hold positions, not headings, so a retrieved mobile robot's path
+// may start facing anywhere: turn the whole path by one angle so that it
+// starts at the subproblem's start heading (its steps keep their turns;
+// the turned candidate is validated like any other). Without this, joins
+// spend up to pi / rotation-resolution steps turning on the spot.
+void alignHeadings(const std::vector<const RobotModel*>& robots, const Subproblem& sub, std::vector<Path>& paths) {
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    if (!robots[r]->isMobile() || paths[r].empty()) continue;
+    const double turn = geo::wrapAngle(sub.starts[r][2] - paths[r].at(0)[2]);
+    for (std::size_t t = 0; t < paths[r].size(); ++t) {
+      double* q = paths[r].mutableAt(t);
+      q[2] = geo::wrapAngle(q[2] + turn);
+    }
+  }
+}
+
 // Appends the states of `part` after its first to `out` (paths joined end to start).
 void appendAfterFirst(std::vector<Path>& out, const std::vector<Path>& part) {
   for (std::size_t r = 0; r < out.size(); ++r) out[r].append(part[r], 1);
@@ -55,6 +76,24 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k);
   ++queries_;
   if (candidates.empty()) return {std::nullopt, name(), -1};
+  // Try the k nearest in order of how long they would make the local
+  // solution (their own steps plus the joins to this start and goal), so
+  // the first valid one is also the shortest: a longer local solution
+  // delays every later step of these robots and makes new conflicts.
+  std::vector<std::size_t> joined(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    alignHeadings(robots, sub, candidates[i].paths);
+    const auto& p = candidates[i].paths;
+    int in = 0, out = 0;
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      in = std::max(in, robots[r]->stepsBetween(sub.starts[r].data(), p[r].at(0)));
+      out = std::max(out, robots[r]->stepsBetween(p[r].at(p[r].size() - 1), sub.goals[r].data()));
+    }
+    joined[i] = p.front().size() + static_cast<std::size_t>(in + out);
+  }
+  std::vector<std::size_t> order(candidates.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return joined[a] < joined[b]; });
   CompositeChecker checker(ctx.world, robots);
 
   struct Repairable {
@@ -63,8 +102,8 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   };
   std::optional<Repairable> best;
   std::optional<SolverOutcome> found;
-  for (std::size_t i = 0; i < candidates.size() && !found; ++i) {
-    if (ctx.deadline.expired()) break;
+  for (std::size_t i : order) {
+    if (found || ctx.deadline.expired()) break;
     const auto& c = candidates[i];
     const CompositeState first = stateAt(c.paths, 0);
     const CompositeState last = stateAt(c.paths, c.paths.front().size() - 1);
@@ -76,7 +115,7 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
     }
     auto runs = invalidRuns(checker, c.paths);
     if (runs.empty()) {
-      found = SolverOutcome{connect(robots, sub, c.paths), "database", c.id};
+      found = SolverOutcome{connect(checker, ctx, robots, c.paths), "database", c.id};
       store_.recordUse(c.id, true);
       ++hits_;
       break;
@@ -118,18 +157,24 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
     for (std::size_t t = copied_to; t < c.paths[r].size(); ++t) repaired[r].push(c.paths[r].at(t));
   ++repairs_;
   store_.recordUse(c.id, true);
-  return {connect(robots, sub, repaired), "repair", c.id};
+  return {connect(checker, ctx, robots, repaired), "repair", c.id};
 }
 
-LocalSolution DatabaseSolver::connect(const std::vector<const RobotModel*>& robots, const Subproblem& sub,
+LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const SolverContext& ctx,
+                                      const std::vector<const RobotModel*>& robots,
                                       const std::vector<Path>& middle) const {
-  const CompositeState first = stateAt(middle, 0);
-  const CompositeState last = stateAt(middle, middle.front().size() - 1);
-  LocalSolution head = timeStampComposite(robots, {sub.starts, first});
-  LocalSolution tail = timeStampComposite(robots, {last, sub.goals});
-  LocalSolution out = std::move(head);
-  appendAfterFirst(out.paths, middle);
-  appendAfterFirst(out.paths, tail.paths);
+  const Subproblem& sub = ctx.sub;
+  std::vector<CompositeState> waypoints{sub.starts};
+  for (std::size_t t = 0; t < middle.front().size(); ++t) waypoints.push_back(stateAt(middle, t));
+  waypoints.push_back(sub.goals);
+  // A stored solution answered a nearby query, not this one: joined to
+  // this start and goal it can double back, and every extra step shifts
+  // the rest of the robots' paths in time and breeds new conflicts. Every
+  // shortcut is a checked straight composite motion, so the result stays
+  // as valid as the candidate was.
+  std::mt19937_64 rng(splitSeed(ctx.seed, 0xdb));
+  shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
+  LocalSolution out = timeStampComposite(robots, waypoints);
   // Hold at the goals through the window, as the other solvers do.
   const std::size_t len = std::max(out.length(), sub.t_end - sub.t_start + 1);
   for (auto& p : out.paths)

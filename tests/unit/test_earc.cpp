@@ -163,3 +163,51 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
 TEST_CASE("E-ARC without a database is refused with a clear error") {
   CHECK_THROWS_WITH_AS(plan(crossing(0, 0, 6), earcSettings(1), nullptr), doctest::Contains("--db"), InputError);
 }
+
+TEST_CASE("A retrieved mobile solution is turned to the start headings and shortcut before use") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  // Stored: two discs drive side by side in +x, facing along x, robot a
+  // with a pointless loop up and back that a shortcut removes.
+  Scenario open;
+  open.name = "parallel";
+  open.workspace = {{0, 0}, {10, 10}};
+  open.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0})};
+  auto owned = makeRobotModels(open);
+  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  std::vector<CompositeState> way{{{4, 4, 0}, {4, 6, 0}}, {{5, 4, 0}, {5, 6, 0}}, {{5, 5, 0}, {5, 6, 0}},
+                                  {{5, 4, 0}, {5, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}};
+  LocalSolution stored = timeStampComposite(models, way);
+  const std::size_t stored_steps = stored.length();
+  REQUIRE(exp::learn(store, models, stored.paths, 0.1, exp::Source::Build).has_value());
+
+  // The same motion asked for with both discs facing +y (pi/2) throughout:
+  // joined without turning, the robots would first spin a quarter turn on
+  // the spot (pi/2 / 0.05 = 32 steps) and back at the end.
+  CollisionWorld world(open);
+  RoadmapSet roadmaps(world, models, 300, 10, 1);
+  const double up = 1.5707963267948966;
+  Subproblem sub;
+  sub.robots = {0, 1};
+  sub.starts = {{4, 4, up}, {4, 6, up}};
+  sub.goals = {{6, 4, up}, {6, 6, up}};
+  std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]})};
+  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
+  sub.workspace_region = {{1, 1}, {9, 9}};
+  sub.t_start = 0;
+  sub.t_end = 1;
+  SolverContext ctx{world, models, roadmaps, plan_paths, sub, Deadline(10), 7};
+  DatabaseSolver solver(store, DatabaseSolverSettings{});
+  SolverOutcome out = solver.solve(ctx);
+  REQUIRE(out.solution.has_value());
+  CHECK(out.how == "database");
+  const auto& p = out.solution->paths;
+  for (int r = 0; r < 2; ++r) {
+    CHECK(p[r].at(0)[2] == doctest::Approx(up));
+    CHECK(p[r].back()[2] == doctest::Approx(up));
+    for (std::size_t t = 0; t < p[r].size(); ++t) REQUIRE(p[r].at(t)[2] == doctest::Approx(up));  // never turned
+  }
+  // The loop is gone: 2 units at 0.05 per step are 40 steps.
+  CHECK(out.solution->length() < stored_steps);
+  CHECK(out.solution->length() <= 41);
+}

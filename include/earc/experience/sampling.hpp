@@ -15,8 +15,13 @@ namespace earc::exp {
 
 struct QuerySampling {
   // Mobile: each start lies this far from the conflict point (units) ...
-  double min_start_distance = 0.4;
-  double max_start_distance = 1.5;
+  // ARC's local queries are path states a window (8 steps of 0.05, more
+  // after expansions) before and after the conflict: 0.2-0.9 units away.
+  double min_start_distance = 0.25;
+  double max_start_distance = 0.9;
+  // ... and turns at most this much from start to goal (radians; within a
+  // window a robot turns little). Headings are uniform.
+  double max_heading_change = 0.8;
   // ... and its goal roughly across it: the direction back through the
   // conflict point turned by at most this much (radians), at a distance
   // drawn from the same range, so the straight paths cross.
@@ -38,7 +43,8 @@ struct Query {
   std::vector<std::vector<double>> goals;
 };
 
-// Mobile robots around a conflict point at the origin; headings uniform.
+// Mobile robots around a conflict point at the origin; start headings
+// uniform, goal headings within max_heading_change of them.
 Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& sampling = {});
 
 // Two arms reaching towards each other (see QuerySampling), clamped to the

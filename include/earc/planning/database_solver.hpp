@@ -10,6 +10,7 @@
 #pragma once
 
 #include "earc/experience/store.hpp"
+#include "earc/planning/composite.hpp"
 #include "earc/planning/solver.hpp"
 
 namespace earc {
@@ -34,9 +35,9 @@ class DatabaseSolver : public SubproblemSolver {
 
  private:
   // start -> candidate's first state, the candidate, last state -> goal,
-  // held at the goals through the window.
-  LocalSolution connect(const std::vector<const RobotModel*>& robots, const Subproblem& sub,
-                        const std::vector<Path>& middle) const;
+  // shortcut, then held at the goals through the window.
+  LocalSolution connect(const CompositeChecker& checker, const SolverContext& ctx,
+                        const std::vector<const RobotModel*>& robots, const std::vector<Path>& middle) const;
 
   struct Pending {
     std::vector<const RobotModel*> robots;
