@@ -165,6 +165,12 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
 
 namespace {
 
+// Solver budgets: the solvers' own up to the last expansion level, then
+// doubling with every retry of that largest subproblem.
+double budgetScale(int level, int max_expansions) {
+  return level <= max_expansions ? 1.0 : std::pow(2.0, std::min(level - max_expansions, 20));
+}
+
 nlohmann::json boxJson(const geo::Aabb& b) { return {{b.lo.x, b.lo.y}, {b.hi.x, b.hi.y}}; }
 
 class ArcRun {
@@ -192,6 +198,7 @@ class ArcRun {
   std::vector<std::shared_ptr<const RobotModel>> owned_models_;
   std::vector<const RobotModel*> models_;
   Deadline deadline_;
+  bool whole_problem_failed_ = false;
   std::vector<Path> paths_;
   std::vector<ResolvedSpan> spans_;
   std::unique_ptr<RoadmapSet> roadmaps_;
@@ -243,9 +250,13 @@ bool ArcRun::resolve(const Conflict& c) {
   const auto tc = static_cast<std::size_t>(c.t);
   int merged_here = mergeOverlapping(robots, spans_, tc, tc, kMaxMergedRobots);
   merged_ += merged_here;
-  for (int level = 0; level <= settings_.max_expansions;) {
+  // Levels beyond max_expansions re-solve the last level's subproblem (the
+  // whole problem, unless the paths are very long) with ever larger
+  // budgets, until the deadline: giving up with time left helps no one.
+  for (int level = 0;;) {
     if (deadline_.expired()) return false;
-    Subproblem sub = createSubproblem(c, robots, level, models_, paths_, world_, settings_);
+    Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.max_expansions), models_, paths_, world_,
+                                      settings_);
     nlohmann::json ev;
     if (settings_.trace)
       ev = {{"type", "subproblem"}, {"id", subproblem_id_}, {"conflict", conflicts_ - 1}, {"robots", sub.robots},
@@ -253,7 +264,7 @@ bool ArcRun::resolve(const Conflict& c) {
             {"expansions", level}, {"merged", merged_here}};
     ++subproblem_id_;
     SolverContext ctx{world_, models_, *roadmaps_, paths_, sub, deadline_,
-                      splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_))};
+                      splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_)), budgetScale(level, settings_.max_expansions)};
     nlohmann::json attempts = nlohmann::json::array();
     bool restart = false;
     for (auto& solver : hierarchy_) {
@@ -299,11 +310,9 @@ bool ArcRun::resolve(const Conflict& c) {
       ev["attempts"] = attempts;
       traceEvent(ev);
     }
-    // Once the subproblem is the whole problem, growing it changes nothing.
-    if (sub.whole_problem && !restart) return false;
+    if (sub.whole_problem && !restart) whole_problem_failed_ = true;
     if (!restart) ++level;
   }
-  return false;
 }
 
 PlanResult ArcRun::run() {
@@ -342,6 +351,9 @@ PlanResult ArcRun::run() {
                   {"place", {c->place.x, c->place.y}}, {"at_s", clock.seconds()}});
       if (!resolve(*c)) {
         failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
+        // Said too when the time ran out re-solving a conflict whose
+        // subproblem had already grown to the whole problem and failed.
+        if (whole_problem_failed_) failures_.insert(FailureCause::SubproblemUnsolved);
         break;
       }
       from = last_t_start_;

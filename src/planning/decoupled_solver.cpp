@@ -242,7 +242,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   const std::size_t n = sub.robots.size();
   const std::size_t window = sub.t_end - sub.t_start;  // steps in the replaced span
   const std::size_t horizon = 4 * window + 100;
-  const Deadline deadline = ctx.deadline.capped(settings_.time_budget_s);
+  const Deadline deadline = ctx.deadline.capped(settings_.time_budget_s * ctx.budget_scale);
   std::vector<MovingObstacle> others;
   if (settings_.avoid_others) others = nearbyRobots(ctx, horizon);
 
@@ -297,7 +297,7 @@ SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
   q.goals = sub.goals;
   q.region = sub.region;
   CoupledSettings cs;
-  cs.time_limit_s = std::min(settings_.time_budget_s, ctx.deadline.remaining());
+  cs.time_limit_s = std::min(settings_.time_budget_s * ctx.budget_scale, ctx.deadline.remaining());
   if (cs.time_limit_s <= 0) return {std::nullopt, name(), -1};
   auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
   if (!sol) return {std::nullopt, name(), -1};

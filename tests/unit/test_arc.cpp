@@ -272,6 +272,26 @@ TEST_CASE("ARC plans four discs crossing in the open, and the solution validates
   CHECK(v.valid);
 }
 
+TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the deadline, then says both why") {
+  // Two discs must swap ends of a corridor too narrow to pass: no
+  // subproblem can ever be solved. ARC must not give up early with time
+  // left (it retries the whole problem with growing budgets), and must
+  // report the time limit and the unsolved subproblem.
+  Scenario s;
+  s.name = "corridor";
+  s.workspace = {{0, 0}, {6, 1}};
+  s.robots = {disc("a", 0.3, {0.5, 0.5, 0}, {5.5, 0.5, 0}), disc("b", 0.3, {5.5, 0.5, 0}, {0.5, 0.5, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 5.0;
+  settings.max_expansions = 3;  // 64 steps each side: the whole 100-step paths
+  PlanResult r = plan(s, settings);
+  CHECK_FALSE(r.solution.solved);
+  CHECK(r.failures.count(FailureCause::TimeLimit) == 1);
+  CHECK(r.failures.count(FailureCause::SubproblemUnsolved) == 1);
+  CHECK(r.stats["planning_time_s"].get<double>() >= 4.9);
+  CHECK(r.stats["subproblems"].get<int>() > settings.max_expansions + 1);  // retried beyond the last level
+}
+
 TEST_CASE("ARC plans two facing arms whose straight motions collide, and the solution validates") {
   Scenario s;
   s.name = "arms";

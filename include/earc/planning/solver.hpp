@@ -57,6 +57,11 @@ struct SolverContext {
   const Subproblem& sub;
   Deadline deadline;
   std::uint64_t seed = 0;
+  // Multiplies the solvers' own time budgets: ARC raises it as a
+  // subproblem keeps failing, so that once the subproblem has grown to
+  // the whole problem the solvers get ever more of the remaining time
+  // instead of the same short tries.
+  double budget_scale = 1.0;
 };
 
 struct SolverOutcome {
