@@ -54,7 +54,8 @@ int runPlan(const PlanOptions& o) {
                 << "\n";
     else
       std::cout << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
-                << st.value("planning_time_s", 0.0) << " s\n";
+                << st.value("planning_time_s", 0.0) << " s"
+                << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
     std::cout << "solution: " << o.output << "\n";
   }
   return r.solution.solved ? 0 : 1;
