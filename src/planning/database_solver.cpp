@@ -95,6 +95,22 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return joined[a] < joined[b]; });
   CompositeChecker checker(ctx.world, robots);
+  // The robots outside the subproblem, as the decoupled solver sees them: a
+  // stored solution knows nothing of them, and one that runs into them
+  // only trades this conflict for the next.
+  const std::size_t window = sub.t_end - sub.t_start;
+  const std::vector<MovingObstacle> others = nearbyRobots(ctx, 4 * window + 100);
+  // Shortcutting changes when the robots are where, which the other
+  // robots may not allow: then the candidate as stored is tried.
+  auto joinClear = [&](const std::vector<Path>& middle) -> std::optional<LocalSolution> {
+    for (bool shortcut : {true, false}) {
+      LocalSolution sol = connect(checker, ctx, robots, middle, shortcut);
+      bool clear = true;
+      for (std::size_t r = 0; r < robots.size() && clear; ++r) clear = clearOfMoving(*robots[r], sol.paths[r], others);
+      if (clear) return sol;
+    }
+    return std::nullopt;
+  };
 
   struct Repairable {
     std::size_t index;
@@ -115,7 +131,13 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
     }
     auto runs = invalidRuns(checker, c.paths);
     if (runs.empty()) {
-      found = SolverOutcome{connect(checker, ctx, robots, c.paths), "database", c.id};
+      auto sol = joinClear(c.paths);
+      if (!sol) {
+        store_.recordUse(c.id, false);
+        ++crowded_;
+        continue;
+      }
+      found = SolverOutcome{std::move(*sol), "database", c.id};
       store_.recordUse(c.id, true);
       ++hits_;
       break;
@@ -155,14 +177,20 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   }
   for (std::size_t r = 0; r < robots.size(); ++r)
     for (std::size_t t = copied_to; t < c.paths[r].size(); ++t) repaired[r].push(c.paths[r].at(t));
+  auto sol = joinClear(repaired);
+  if (!sol) {
+    store_.recordUse(c.id, false);
+    ++crowded_;
+    return {std::nullopt, name(), -1};
+  }
   ++repairs_;
   store_.recordUse(c.id, true);
-  return {connect(checker, ctx, robots, repaired), "repair", c.id};
+  return {std::move(*sol), "repair", c.id};
 }
 
 LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const SolverContext& ctx,
                                       const std::vector<const RobotModel*>& robots,
-                                      const std::vector<Path>& middle) const {
+                                      const std::vector<Path>& middle, bool shortcut) const {
   const Subproblem& sub = ctx.sub;
   std::vector<CompositeState> waypoints{sub.starts};
   for (std::size_t t = 0; t < middle.front().size(); ++t) waypoints.push_back(stateAt(middle, t));
@@ -173,7 +201,7 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
   // shortcut is a checked straight composite motion, so the result stays
   // as valid as the candidate was.
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdb));
-  shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
+  if (shortcut) shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
   LocalSolution out = timeStampComposite(robots, waypoints);
   // Hold at the goals through the window, as the other solvers do.
   const std::size_t len = std::max(out.length(), sub.t_end - sub.t_start + 1);
@@ -216,6 +244,7 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   stats["db_queries"] = queries_;
   stats["db_hits"] = hits_;
   stats["db_repairs"] = repairs_;
+  stats["db_refused_crowded"] = crowded_;
   stats["db_learned"] = learned;
   stats["db_learned_ids"] = std::move(learned_ids);
   stats["db_learn_candidates"] = pending_.size();

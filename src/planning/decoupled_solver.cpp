@@ -215,6 +215,17 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
   return path;
 }
 
+bool clearOfMoving(const RobotModel& model, const Path& local, const std::vector<MovingObstacle>& obstacles) {
+  if (local.empty() || obstacles.empty()) return true;
+  const std::size_t last_step = local.size() - 1;
+  MotionGuard guard(model, obstacles, 2 * last_step + 2);
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  if (!guard.free(local.at(0), 0)) return false;
+  for (std::size_t t = 0; t < last_step; ++t)
+    if (!guard.motionFree(local.at(t), local.at(t + 1), 1, t, q)) return false;
+  return true;
+}
+
 std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t span) {
   std::vector<MovingObstacle> out;
   const Subproblem& sub = ctx.sub;

@@ -211,3 +211,47 @@ TEST_CASE("A retrieved mobile solution is turned to the start headings and short
   CHECK(out.solution->length() < stored_steps);
   CHECK(out.solution->length() <= 41);
 }
+
+TEST_CASE("The database solver refuses a stored solution that runs into a robot outside the subproblem") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  Scenario s;
+  s.name = "parked";
+  s.workspace = {{0, 0}, {10, 10}};
+  // a and b drive side by side in +x; c, not in the subproblem, is parked
+  // on a's way for the whole time.
+  s.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0}), disc("c", {5, 4, 0}, {5, 4, 0})};
+  auto owned = makeRobotModels(s);
+  std::vector<const RobotModel*> all{owned[0].get(), owned[1].get(), owned[2].get()};
+  std::vector<const RobotModel*> pair{owned[0].get(), owned[1].get()};
+  LocalSolution stored = timeStampComposite(pair, {{{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}});
+  REQUIRE(exp::learn(store, pair, stored.paths, 0.1, exp::Source::Build).has_value());
+
+  CollisionWorld world(s);
+  RoadmapSet roadmaps(world, all, 300, 10, 1);
+  Subproblem sub;
+  sub.robots = {0, 1};
+  sub.starts = {{4, 4, 0}, {4, 6, 0}};
+  sub.goals = {{6, 4, 0}, {6, 6, 0}};
+  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
+  sub.workspace_region = {{1, 1}, {9, 9}};
+  sub.t_start = 0;
+  sub.t_end = 1;
+  std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]}),
+                               line({{5, 4, 0}, {5, 4, 0}})};
+  DatabaseSolver solver(store, DatabaseSolverSettings{});
+  SolverContext ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
+  SolverOutcome out = solver.solve(ctx);
+  CHECK_FALSE(out.solution.has_value());
+  nlohmann::json stats;
+  solver.finish(stats);
+  CHECK(stats["db_refused_crowded"].get<int>() == 1);
+  CHECK(stats["db_hits"].get<int>() == 0);
+
+  // With c parked out of the way the same entry is used.
+  plan_paths[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
+  SolverContext clear_ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
+  SolverOutcome used = solver.solve(clear_ctx);
+  REQUIRE(used.solution.has_value());
+  CHECK(used.how == "database");
+}

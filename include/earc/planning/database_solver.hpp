@@ -35,9 +35,10 @@ class DatabaseSolver : public SubproblemSolver {
 
  private:
   // start -> candidate's first state, the candidate, last state -> goal,
-  // shortcut, then held at the goals through the window.
+  // shortcut (when asked), then held at the goals through the window.
   LocalSolution connect(const CompositeChecker& checker, const SolverContext& ctx,
-                        const std::vector<const RobotModel*>& robots, const std::vector<Path>& middle) const;
+                        const std::vector<const RobotModel*>& robots, const std::vector<Path>& middle,
+                        bool shortcut) const;
 
   struct Pending {
     std::vector<const RobotModel*> robots;
@@ -50,6 +51,7 @@ class DatabaseSolver : public SubproblemSolver {
   int queries_ = 0;
   int hits_ = 0;
   int repairs_ = 0;
+  int crowded_ = 0;  // valid candidates refused for running into other robots
 };
 
 }  // namespace earc

@@ -138,4 +138,9 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
 // [0, span] may come near the subproblem's region, as moving obstacles.
 std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t span);
 
+// True when `local` (a time-stamped path of `model`, local step 0 being
+// the subproblem's t_start) touches none of the moving obstacles at any
+// step or midpoint, counting the obstacles' waits at their path ends.
+bool clearOfMoving(const RobotModel& model, const Path& local, const std::vector<MovingObstacle>& obstacles);
+
 }  // namespace earc
