@@ -149,6 +149,7 @@ class Runner {
           progress.tick();
           continue;
         }
+        if (c.method == "lightning") ensureLightningDb(*c.suite, c.robots);
         progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
                            std::to_string(c.trial));
         TrialRecord t = runTrial(c);
@@ -209,42 +210,45 @@ class Runner {
     return given.empty() ? work_ + "/earc-" + family + ".sqlite" : given;
   }
 
+  // A Lightning database is built (in a child, timed) just before the
+  // first trial that needs it, so that trials --cutoff skips never pay for
+  // one (at 32 robots that is minutes of planning problems it cannot
+  // solve). One build at a time; other workers wait for theirs.
+  void ensureLightningDb(const Suite& suite, int robots) {
+    std::lock_guard lock(lightning_mutex_);
+    if (g_interrupted.load()) return;
+    const std::string path = lightningDb(suite, robots);
+    if (fs::exists(path)) return;
+    fs::create_directories(lightning_dir_);
+    const int problems = o_.lightning_problems > 0 ? o_.lightning_problems : o_.lightning_problems_per_robot * robots;
+    log_ << "building Lightning database " << path << " from " << problems << " problems\n";
+    std::vector<std::string> argv = {bench_, "lightning-db", "--suite", suite.name, "--robots",
+                                     std::to_string(robots), "--count", std::to_string(problems), "--seed",
+                                     std::to_string(o_.seed), "--problem-time-limit",
+                                     std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
+                                     "--results", o_.results};
+    const std::string stem = work_ + "/logs/lightning-db-" + suite.name + "-" + std::to_string(robots);
+    ChildSpec spec;
+    spec.argv = argv;
+    spec.stdout_path = stem + ".out";
+    spec.stderr_path = stem + ".err";
+    spec.wall_limit_s =
+        problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
+    spec.memory_limit_mb = o_.memory_limit_mb;
+    ChildOutcome out = runChild(spec, &g_interrupted);
+    if (out.exit_code != 0)
+      std::cerr << "earc-bench: building " << path << " failed ("
+                << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
+                << "): " << lastLine(stem + ".err") << "; its Lightning trials will fail\n";
+  }
+
   // Databases are built (in a child, timed) when missing and recorded in
   // the results with their construction time; a database that was given
   // is recorded without one.
   void prepareDatabases(const std::vector<Cell>& cells) {
-    std::set<std::pair<const Suite*, int>> lightning;
     std::set<std::string> families;
-    for (const Cell& c : cells) {
-      if (c.method == "lightning") lightning.insert({c.suite, c.robots});
+    for (const Cell& c : cells)
       if (c.method == "earc") families.insert(c.suite->family);
-    }
-    for (const auto& [suite, robots] : lightning) {
-      if (g_interrupted.load()) return;
-      const std::string path = lightningDb(*suite, robots);
-      if (fs::exists(path)) continue;
-      fs::create_directories(lightning_dir_);
-      const int problems = o_.lightning_problems > 0 ? o_.lightning_problems : o_.lightning_problems_per_robot * robots;
-      log_ << "building Lightning database " << path << " from " << problems << " problems\n";
-      std::vector<std::string> argv = {bench_, "lightning-db", "--suite", suite->name, "--robots",
-                                       std::to_string(robots), "--count", std::to_string(problems), "--seed",
-                                       std::to_string(o_.seed), "--problem-time-limit",
-                                       std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
-                                       "--results", o_.results};
-      const std::string stem = work_ + "/logs/lightning-db-" + suite->name + "-" + std::to_string(robots);
-      ChildSpec spec;
-      spec.argv = argv;
-      spec.stdout_path = stem + ".out";
-      spec.stderr_path = stem + ".err";
-      spec.wall_limit_s =
-          problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
-      spec.memory_limit_mb = o_.memory_limit_mb;
-      ChildOutcome out = runChild(spec, &g_interrupted);
-      if (out.exit_code != 0)
-        std::cerr << "earc-bench: building " << path << " failed ("
-                  << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
-                  << "): " << lastLine(stem + ".err") << "; its Lightning trials will fail\n";
-    }
     for (const std::string& family : families) {
       if (g_interrupted.load()) return;
       const std::string path = earcDb(family);
@@ -554,7 +558,7 @@ class Runner {
   ResultsDb db_;
   std::string work_, lightning_dir_, plan_, bench_;
   RunSummary summary_;
-  std::mutex record_mutex_, scenario_mutex_;
+  std::mutex record_mutex_, scenario_mutex_, lightning_mutex_;
   // (suite, method, robots) -> (trials recorded, solved), for cutOff.
   std::map<std::tuple<std::string, std::string, int>, std::pair<int, int>> outcomes_;
   bool outcomes_loaded_ = false;
