@@ -152,6 +152,61 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
   return {static_cast<int>(ratios.size()), quantile(ratios, 0.5)};
 }
 
+std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
+  std::ostringstream out;
+  const auto cells = summarize(trials);
+  std::vector<std::string> methods;
+  for (const CellSummary& c : cells)
+    if (std::find(methods.begin(), methods.end(), c.method) == methods.end()) methods.push_back(c.method);
+  std::sort(methods.begin(), methods.end(),
+            [](const std::string& a, const std::string& b) { return methodRank(a) < methodRank(b) || (methodRank(a) == methodRank(b) && a < b); });
+  const bool both = std::find(methods.begin(), methods.end(), "earc") != methods.end() &&
+                    std::find(methods.begin(), methods.end(), "arc") != methods.end();
+  std::string suite;
+  std::set<std::pair<std::string, int>> rows;
+  for (const CellSummary& c : cells) {
+    if (!rows.insert({c.suite, c.robots}).second) continue;
+    if (c.suite != suite) {
+      suite = c.suite;
+      out << (out.tellp() > 0 ? "\n" : "") << "### " << suite << "\n\n| robots |";
+      for (const auto& m : methods) out << " " << m << " |";
+      if (both) out << " E-ARC / ARC | E-ARC hit rate |";
+      out << "\n|---:|";
+      for (std::size_t i = 0; i < methods.size(); ++i) out << "---|";
+      if (both) out << "---:|---:|";
+      out << "\n";
+    }
+    out << "| " << c.robots << " |";
+    for (const auto& m : methods) {
+      auto it = std::find_if(cells.begin(), cells.end(), [&](const CellSummary& x) {
+        return x.suite == c.suite && x.robots == c.robots && x.method == m;
+      });
+      if (it == cells.end()) {
+        out << " - |";
+        continue;
+      }
+      out << " " << it->solved << "/" << it->trials;
+      if (it->median_s) out << " " << secs(*it->median_s);
+      out << " |";
+    }
+    if (both) {
+      PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
+      std::int64_t hits = 0, conflicts = 0;
+      for (const TrialRecord& t : trials)
+        if (t.suite == c.suite && t.robots == c.robots && t.method == "earc" && t.success) {
+          hits += t.db_hits.value_or(0);
+          conflicts += t.conflicts.value_or(0);
+        }
+      out << " " << (r.pairs ? fmt("%.2f", *r.median) : "-") << " | "
+          << (conflicts ? fmt("%.0f%%", 100.0 * static_cast<double>(hits) / static_cast<double>(conflicts)) : "-")
+          << " |";
+    }
+    out << "\n";
+  }
+  if (cells.empty()) out << "(no trials)\n";
+  return out.str();
+}
+
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases) {
   std::ostringstream out;
   const auto cells = summarize(trials);

@@ -142,6 +142,21 @@ TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones"
   CHECK(md.find("| mobile | 4 | 2 | 0.625 |") != std::string::npos);
 }
 
+TEST_CASE("the wide table has a row per robot count, a column per method, the paired ratio and the hit rate") {
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 2), trial("earc", 0, true, 1),  // 0.5
+                                trial("arc", 1, true, 4), trial("earc", 1, true, 3),  // 0.75
+                                trial("coupled", 0, false, 60), trial("arc", 0, true, 8, "mobile", 8)};
+  t[1].db_hits = 3;
+  t[1].conflicts = 4;
+  t[3].db_hits = 1;
+  t[3].conflicts = 4;
+  const std::string md = markdownWideTable(t);
+  CHECK(md.find("| robots | earc | arc | coupled | E-ARC / ARC | E-ARC hit rate |") != std::string::npos);
+  CHECK(md.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0/1 | 0.62 | 50% |") != std::string::npos);
+  // E-ARC and coupled did not run at 8 robots.
+  CHECK(md.find("| 8 | - | 1/1 8.00 | - | - | - |") != std::string::npos);
+}
+
 TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {
   TrialRecord t = trial("arc", 0, false, 1);
   t.failure = "exit 2: bad \"input\", really";

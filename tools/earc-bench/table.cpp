@@ -2,7 +2,7 @@
 // planning time (IQR) per suite, robot count and method, the E-ARC/ARC
 // ratio paired by seed, and the databases.
 //
-//   earc-bench table --results FILE [--seed S] [--time-limit S]
+//   earc-bench table --results FILE [--seed S] [--time-limit S] [--wide]
 #include <iostream>
 
 #include "earc/bench/report.hpp"
@@ -16,6 +16,7 @@ struct TableOptions {
   std::string results;
   std::uint64_t seed = 0;
   double time_limit = 0;
+  bool wide = false;
 };
 
 void setupTable(CLI::App& app) {
@@ -24,13 +25,16 @@ void setupTable(CLI::App& app) {
   cmd->add_option("--results", o->results, "Results database")->required();
   auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed");
   auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  cmd->add_flag("--wide", o->wide,
+                "One table per suite laid out like the paper's figures: a row per robot count, a column per method, "
+                "the paired E-ARC/ARC ratio and E-ARC's hit rate");
   cmd->callback([o, seed, limit] {
     bench::ResultsDb db(o->results, true);
     bench::TrialFilter f;
     if (seed->count()) f.seed = o->seed;
     if (limit->count()) f.time_limit_s = o->time_limit;
     const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
-    std::cout << bench::markdownTable(trials, db.databases());
+    std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()));
   });
 }
 

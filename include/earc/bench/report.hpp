@@ -53,6 +53,13 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
 // databases.
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
 
+// The same results laid out like the paper's figures: one table per suite,
+// a row per robot count, a column per method ("solved/trials median s";
+// "-" where the method was not run), then E-ARC's time over ARC's paired
+// by seed and E-ARC's hit rate (subproblems solved from the database,
+// directly or repaired, over conflicts).
+std::string markdownWideTable(const std::vector<TrialRecord>& trials);
+
 // One row per trial, RFC 4180 quoting, a header line first.
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
 void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
