@@ -236,7 +236,13 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   lightning_setup.setup();
 
   const double remaining = settings.time_limit_s - clock.seconds();
-  ob::PlannerStatus status = remaining > 0 ? lightning_setup.solve(remaining) : ob::PlannerStatus(ob::PlannerStatus::TIMEOUT);
+  // The time limit, or sooner when the process is asked to stop (a signal
+  // to `earc-plan serve`: see requestStop in earc/util/deadline.hpp).
+  ob::PlannerStatus status =
+      remaining > 0 ? lightning_setup.solve(ob::plannerOrTerminationCondition(
+                          ob::timedPlannerTerminationCondition(remaining),
+                          ob::PlannerTerminationCondition([] { return stopRequested(); })))
+                    : ob::PlannerStatus(ob::PlannerStatus::TIMEOUT);
   const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION && lightning_setup.haveExactSolutionPath();
   if (exact) {
     const std::string winner = lightning_setup.getSolutionPlannerName();

@@ -94,6 +94,28 @@ ids = {json.loads(l)["id"] for l in open(os.path.join(work, "e.jsonl")).read().s
 if not set(learned) <= ids:
     fail("learned ids missing from the file: %s" % sorted(set(learned) - ids)[:5])
 print("SIGINT answered and exited in %.2f s; %d experiences learned before it, all in the file" % (took, len(learned)))
+
+# SIGTERM during a Lightning request (OMPL's own solve loop) stops it too.
+svc = subprocess.Popen([plan_bin, "serve", "--db", os.path.join(work, "l.db")], stdin=subprocess.PIPE,
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+svc.stdin.write(json.dumps({"id": "lightning", "scenario_file": os.path.join(work, "big.json"), "time_limit": 60,
+                            "method": "lightning"}) + "\n")
+svc.stdin.flush()
+time.sleep(1.5)
+t0 = time.monotonic()
+svc.send_signal(signal.SIGTERM)
+line = svc.stdout.readline()
+try:
+    code = svc.wait(timeout=30)
+except subprocess.TimeoutExpired:
+    svc.kill(); code = "hung"
+took = time.monotonic() - t0
+if code != 0 or took > 10:
+    fail("lightning request: exit %s after %.1f s of SIGTERM" % (code, took))
+elif '"interrupted":true' not in line:
+    fail("lightning request not answered as interrupted: %r" % line[:300])
+else:
+    print("SIGTERM during a Lightning request: answered and exited in %.2f s" % took)
 for m in failures:
     print("FAIL:", m)
 sys.exit(1 if failures else 0)
