@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -149,12 +150,20 @@ class Runner {
           progress.tick();
           continue;
         }
+        if (g_interrupted.load()) {
+          if (o_.cutoff) done(c);
+          return;
+        }
         if (c.method == "lightning") ensureLightningDb(*c.suite, c.robots);
         progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
                            std::to_string(c.trial));
         TrialRecord t = runTrial(c);
-        if (g_interrupted.load() && !t.success && t.failure.rfind("interrupted", 0) == 0) return;
+        if (g_interrupted.load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
+          if (o_.cutoff) done(c);
+          return;
+        }
         record(t);
+        if (o_.cutoff) done(c);
         progress.tick();
       }
     };
@@ -498,8 +507,11 @@ class Runner {
 
   // RunOptions::cutoff: true (and counted) when c's method solved none of
   // the run's trials at a smaller robot count of c's suite.
+  // When a smaller count of c's suite and method has solved nothing so far
+  // and still has trials running (another worker's), waits for them: the
+  // verdict needs them all. Otherwise c counts as running until done(c).
   bool cutOff(const Cell& c) {
-    std::lock_guard lock(record_mutex_);
+    std::unique_lock lock(record_mutex_);
     if (!outcomes_loaded_) {
       TrialFilter f{o_.seed, o_.time_limit_s};
       for (const TrialRecord& t : f.apply(db_.trials())) {
@@ -509,6 +521,15 @@ class Runner {
       }
       outcomes_loaded_ = true;
     }
+    auto undecided = [&] {
+      for (const auto& [key, n] : running_) {
+        const auto& [suite, method, robots] = key;
+        if (n > 0 && suite == c.suite->name && method == c.method && robots < c.robots && outcomes_[key].second == 0)
+          return true;
+      }
+      return false;
+    };
+    finished_cv_.wait(lock, [&] { return !undecided() || g_interrupted.load(); });
     for (const auto& [key, o] : outcomes_) {
       const auto& [suite, method, robots] = key;
       if (suite != c.suite->name || method != c.method || robots >= c.robots) continue;
@@ -521,7 +542,17 @@ class Runner {
         return true;
       }
     }
+    ++running_[{c.suite->name, c.method, c.robots}];
     return false;
+  }
+
+  // c's trial is recorded (or abandoned): wake workers waiting in cutOff.
+  void done(const Cell& c) {
+    {
+      std::lock_guard lock(record_mutex_);
+      --running_[{c.suite->name, c.method, c.robots}];
+    }
+    finished_cv_.notify_all();
   }
 
   void record(const TrialRecord& t) {
@@ -563,6 +594,8 @@ class Runner {
   std::map<std::tuple<std::string, std::string, int>, std::pair<int, int>> outcomes_;
   bool outcomes_loaded_ = false;
   std::vector<std::string> cut_notes_;
+  std::map<std::tuple<std::string, std::string, int>, int> running_;  // trials in flight (cutoff only)
+  std::condition_variable finished_cv_;
 };
 
 }  // namespace

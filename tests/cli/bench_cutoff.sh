@@ -3,7 +3,8 @@
 # earc-bench run --cutoff: a method that solved none of its trials at a
 # robot count is not run at the larger counts of that suite (here coupled
 # is made to crash in every trial by EARC_BENCH_FAULT), and the run says
-# so; other methods run everywhere. Without --cutoff everything runs.
+# so; other methods run everywhere, also with two workers (a count waits
+# for the smaller count's last trials). Without --cutoff everything runs.
 set -u
 BUILD=$1
 BENCH="$BUILD/earc-bench"
@@ -17,7 +18,7 @@ count() {  # count RESULTS METHOD ROBOTS
 }
 
 RUN=(run --suites mobile --robots 2,4 --methods arc,coupled --trials 2 --time-limit 5 --seed 3)
-EARC_BENCH_FAULT=coupled:crash "$BENCH" "${RUN[@]}" --cutoff --results "$WORK/cut.sqlite" > "$WORK/out" 2>&1 ||
+EARC_BENCH_FAULT=coupled:crash "$BENCH" "${RUN[@]}" --cutoff --jobs 2 --results "$WORK/cut.sqlite" > "$WORK/out" 2>&1 ||
   fail "run with --cutoff exited $?"
 grep -q "cut off: coupled on mobile from 4 robots (solved 0 of 2 at 2)" "$WORK/out" || fail "no cut-off note"
 [ "$(count "$WORK/cut.sqlite" coupled 2)" -eq 2 ] || fail "coupled at 2 robots should have run twice"
