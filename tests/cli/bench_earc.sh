@@ -1,8 +1,10 @@
 #!/bin/bash
+# label: bench
 # E-ARC through the benchmark: missing E-ARC databases are built with
 # `earc-db build` (timed and recorded), and the earc trials plan with them,
 # paired with ARC's trials by seed. Skipped (77) without earc-db or
-# /usr/bin/python3.
+# /usr/bin/python3. (Label bench: its trials run under an address-space
+# limit, which AddressSanitizer cannot live with.)
 set -u
 BUILD=$1
 SRC=$2
@@ -13,7 +15,7 @@ PY=/usr/bin/python3
 [ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; tail -20 "$WORK/run.out" "$WORK/run.err"; exit 1; }
+fail() { echo "FAIL: $*"; tail -n 20 "$WORK/run.out" "$WORK/run.err"; exit 1; }
 
 "$BENCH" run --suites mobile,arms --robots 2 --methods earc,arc --trials 2 --time-limit 10 --seed 9 \
   --earc-db-count 30 --results "$WORK/r.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" || fail "run exited $?"
