@@ -62,19 +62,23 @@ for bad, why in [("this is not json", "malformed JSON"), ('{"id": 2, "scenario":
 if json.loads(ask('{"id": 4, "op": "ping"}')).get("ok") is not True:
     fail("the service stopped serving after bad requests")
 
+def interrupt(svc, request_id, method, sig):
+    """Sends a long request on stdin, then sig 1.5 s into it: (answer line, exit code, seconds to stop)."""
+    svc.stdin.write(json.dumps({"id": request_id, "scenario_file": os.path.join(work, "big.json"), "time_limit": 60,
+                                "method": method}) + "\n")
+    svc.stdin.flush()
+    time.sleep(1.5)
+    t0 = time.monotonic()
+    svc.send_signal(sig)
+    line = svc.stdout.readline()
+    try:
+        code = svc.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        svc.kill(); code = "hung"
+    return line, code, time.monotonic() - t0
+
 # A long request on stdin, interrupted by SIGINT.
-svc.stdin.write(json.dumps({"id": "long", "scenario_file": os.path.join(work, "big.json"), "time_limit": 60,
-                            "method": "earc"}) + "\n")
-svc.stdin.flush()
-time.sleep(1.5)
-t0 = time.monotonic()
-svc.send_signal(signal.SIGINT)
-line = svc.stdout.readline()
-try:
-    code = svc.wait(timeout=30)
-except subprocess.TimeoutExpired:
-    svc.kill(); code = "hung"
-took = time.monotonic() - t0
+line, code, took = interrupt(svc, "long", "earc", signal.SIGINT)
 if code != 0:
     fail("exit status after SIGINT: %s (%s)" % (code, svc.stderr.read()[-300:]))
 if took > 10:
@@ -98,18 +102,7 @@ print("SIGINT answered and exited in %.2f s; %d experiences learned before it, a
 # SIGTERM during a Lightning request (OMPL's own solve loop) stops it too.
 svc = subprocess.Popen([plan_bin, "serve", "--db", os.path.join(work, "l.db")], stdin=subprocess.PIPE,
                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-svc.stdin.write(json.dumps({"id": "lightning", "scenario_file": os.path.join(work, "big.json"), "time_limit": 60,
-                            "method": "lightning"}) + "\n")
-svc.stdin.flush()
-time.sleep(1.5)
-t0 = time.monotonic()
-svc.send_signal(signal.SIGTERM)
-line = svc.stdout.readline()
-try:
-    code = svc.wait(timeout=30)
-except subprocess.TimeoutExpired:
-    svc.kill(); code = "hung"
-took = time.monotonic() - t0
+line, code, took = interrupt(svc, "lightning", "lightning", signal.SIGTERM)
 if code != 0 or took > 10:
     fail("lightning request: exit %s after %.1f s of SIGTERM" % (code, took))
 elif '"interrupted":true' not in line:
