@@ -274,7 +274,11 @@ bool ArcRun::resolve(const Conflict& c) {
       out.seconds = secs;
       solver_time_[solver->name()] += secs;
       const std::string how = out.how.empty() ? solver->name() : out.how;
-      attempts.push_back({{"solver", how}, {"ok", out.solution.has_value()}, {"time_s", secs}});
+      if (settings_.trace) {
+        nlohmann::json attempt = {{"solver", how}, {"ok", out.solution.has_value()}, {"time_s", secs}};
+        if (!out.detail.empty()) attempt["detail"] = out.detail;
+        attempts.push_back(std::move(attempt));
+      }
       if (!out.solution) continue;
       if (robots.size() < kMaxMergedRobots) {
         if (auto other = conflictsWithResolved(sub, *out.solution)) {

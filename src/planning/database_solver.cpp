@@ -75,7 +75,15 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   if (robots.size() < 2 || robots.size() > kMaxRobots) return {std::nullopt, name(), -1};
   auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k);
   ++queries_;
-  if (candidates.empty()) return {std::nullopt, name(), -1};
+  if (candidates.empty()) return {std::nullopt, name(), -1, 0.0, "no entries of this class"};
+  // What became of the candidates, for the trace.
+  int ends_blocked = 0, invalid = 0, crowded = 0;
+  auto failed = [&](const std::string& why) {
+    return SolverOutcome{std::nullopt, name(), -1, 0.0,
+                         std::to_string(candidates.size()) + " candidates: " + std::to_string(ends_blocked) +
+                             " ends blocked, " + std::to_string(invalid) + " invalid, " + std::to_string(crowded) +
+                             " crowded; " + why};
+  };
   // Try the k nearest in order of how long they would make the local
   // solution (their own steps plus the joins to this start and goal), so
   // the first valid one is also the shortest: a longer local solution
@@ -121,12 +129,12 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   for (std::size_t i : order) {
     if (found || ctx.deadline.expired()) break;
     const auto& c = candidates[i];
-    const CompositeState first = stateAt(c.paths, 0);
-    const CompositeState last = stateAt(c.paths, c.paths.front().size() - 1);
     // A candidate is only usable when the subproblem's start and goal
     // connect to its ends without collision.
-    if (!checker.motionValid(sub.starts, first) || !checker.motionValid(last, sub.goals)) {
+    if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
+        !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
       store_.recordUse(c.id, false);
+      ++ends_blocked;
       continue;
     }
     auto runs = invalidRuns(checker, c.paths);
@@ -135,6 +143,7 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
       if (!sol) {
         store_.recordUse(c.id, false);
         ++crowded_;
+        ++crowded;
         continue;
       }
       found = SolverOutcome{std::move(*sol), "database", c.id};
@@ -143,11 +152,13 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
       break;
     }
     store_.recordUse(c.id, false);
+    ++invalid;
     if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
   }
   if (found) return std::move(*found);
-  if (!best || best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
-    return {std::nullopt, name(), -1};
+  if (!best) return failed("none to repair");
+  if (best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
+    return failed("fewest invalid runs " + std::to_string(best->runs.size()) + ", too many to repair");
 
   // Repair: replan each invalid run between the valid states around it in
   // the composite space, inside a box around the run.
@@ -166,11 +177,11 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
     q.region = sub.region;
     CoupledSettings cs;
     cs.time_limit_s = std::min(settings_.repair_time_s, ctx.deadline.remaining());
-    if (cs.time_limit_s <= 0) return {std::nullopt, name(), -1};
+    if (cs.time_limit_s <= 0) return failed("no time left to repair");
     auto fix = solveCoupled(ctx.world, q, cs, splitSeed(ctx.seed, a));
     if (!fix) {
       store_.recordUse(c.id, false);
-      return {std::nullopt, name(), -1};
+      return failed("repair failed");
     }
     appendAfterFirst(repaired, fix->paths);
     copied_to = b + 1;
@@ -181,7 +192,7 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   if (!sol) {
     store_.recordUse(c.id, false);
     ++crowded_;
-    return {std::nullopt, name(), -1};
+    return failed("repaired but crowded");
   }
   ++repairs_;
   store_.recordUse(c.id, true);

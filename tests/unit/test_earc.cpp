@@ -73,10 +73,23 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
   int learned = 0;
   {
     exp::ExperienceStore store(tmp.file());
-    PlanResult first = plan(s, earcSettings(1), &store);
+    PlannerSettings traced = earcSettings(1);
+    traced.trace = true;
+    PlanResult first = plan(s, traced, &store);
     REQUIRE(first.solution.solved);
     CHECK(validateSolution(s, first.solution).valid);
     CHECK(first.stats["db_hits"].get<int>() == 0);  // the store was empty
+    // ... and the trace says so for the database's attempts.
+    int explained = 0;
+    for (const auto& ev : first.trace["events"])
+      if (ev["type"] == "subproblem")
+        for (const auto& a : ev["attempts"])
+          if (a["solver"] == "database") {
+            CHECK_FALSE(a["ok"].get<bool>());
+            CHECK(a.value("detail", "") == "no entries of this class");
+            ++explained;
+          }
+    CHECK(explained >= 1);
     learned = first.stats["db_learned"].get<int>();
     CHECK(learned >= 1);
     CHECK(store.size() == static_cast<std::size_t>(learned));
@@ -243,6 +256,8 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   SolverContext ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
   SolverOutcome out = solver.solve(ctx);
   CHECK_FALSE(out.solution.has_value());
+  // The trace says what became of the candidates.
+  CHECK(out.detail == "1 candidates: 0 ends blocked, 0 invalid, 1 crowded; none to repair");
   nlohmann::json stats;
   solver.finish(stats);
   CHECK(stats["db_refused_crowded"].get<int>() == 1);

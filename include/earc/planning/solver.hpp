@@ -69,6 +69,7 @@ struct SolverOutcome {
   std::string how;            // the solver's name, or a refinement ("repair")
   std::int64_t entry = -1;    // database entry used, if any
   double seconds = 0.0;       // time the solver took (set by the hierarchy)
+  std::string detail = {};    // why it failed or how it succeeded, for traces
 };
 
 class SubproblemSolver {
