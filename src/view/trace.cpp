@@ -115,10 +115,12 @@ class TraceReader {
       for (std::size_t k = 0; k < list->size(); ++k) {
         const std::string a = element(ap, k);
         const json& at = r_.object((*list)[k], a);
-        attempts.push_back({{"solver", r_.string(r_.required(at, "solver", a), member(a, "solver"))},
-                            {"ok", r_.boolean(r_.required(at, "ok", a), member(a, "ok"))},
-                            {"time_s", rounded(r_.nonNegative(r_.required(at, "time_s", a), member(a, "time_s")),
-                                               kSecondsQuantum)}});
+        json attempt = {{"solver", r_.string(r_.required(at, "solver", a), member(a, "solver"))},
+                        {"ok", r_.boolean(r_.required(at, "ok", a), member(a, "ok"))},
+                        {"time_s", rounded(r_.nonNegative(r_.required(at, "time_s", a), member(a, "time_s")),
+                                           kSecondsQuantum)}};
+        if (const json* d = r_.optional(at, "detail", true)) attempt["detail"] = r_.string(*d, member(a, "detail"));
+        attempts.push_back(std::move(attempt));
       }
     }
     s["attempts"] = std::move(attempts);

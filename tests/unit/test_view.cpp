@@ -174,6 +174,7 @@ TEST_CASE("viewer refuses a solution of another scenario, order, robot count or 
 TEST_CASE("viewer reads a trace: conflicts and subproblems with rounded numbers, unknown events skipped") {
   json events = {conflictEvent(0, 0, 1), subproblemEvent(0, 0), {{"type", "future-kind"}, {"x", 1}}};
   events[1]["entry"] = 42;
+  events[1]["attempts"][0]["detail"] = "3 candidates: 3 ends blocked, 0 invalid, 0 crowded; none to repair";
   const json t = view::traceFromJson(traceDoc(events), swapScenario(), "t.json");
   REQUIRE(t["conflicts"].size() == 1);
   REQUIRE(t["subproblems"].size() == 1);
@@ -183,6 +184,8 @@ TEST_CASE("viewer reads a trace: conflicts and subproblems with rounded numbers,
   CHECK(s["entry"] == 42);
   CHECK(s["solved_by"] == "decoupled");
   CHECK(s["attempts"][1]["time_s"].get<double>() == doctest::Approx(0.012346).epsilon(1e-12));
+  CHECK(s["attempts"][0]["detail"] == "3 candidates: 3 ends blocked, 0 invalid, 0 crowded; none to repair");
+  CHECK_FALSE(s["attempts"][1].contains("detail"));
   CHECK(s["window"] == json({1.0, 9.0}));
 }
 
@@ -204,6 +207,10 @@ TEST_CASE("viewer refuses a trace with robots the scenario lacks, dangling refer
   json fractional = conflictEvent(0, 0, 1);
   fractional["id"] = 0.5;
   CHECK(traceError(traceDoc({fractional})).find("$.events[0].id: expected a whole number") != std::string::npos);
+  json odd_detail = subproblemEvent(0, 0);
+  odd_detail["attempts"][0]["detail"] = 7;
+  CHECK(traceError(traceDoc({conflictEvent(0, 0, 1), odd_detail})).find("$.events[1].attempts[0].detail") !=
+        std::string::npos);
   json no_place = conflictEvent(0, 0, 1);
   no_place.erase("place");
   CHECK(traceError(traceDoc({no_place})).find("$.events[0]") != std::string::npos);

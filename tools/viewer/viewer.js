@@ -639,8 +639,10 @@
     const box = el('span');
     s.attempts.forEach(function (a, k) {
       if (k) box.appendChild(document.createTextNode(', '));
-      box.appendChild(el('span', a.solver + ' ' + (a.ok ? 'ok' : 'failed') + ' ' + fmt(a.time_s * 1000, 2) + ' ms',
-                         a.ok ? 'ok' : 'bad'));
+      const item = el('span', a.solver + ' ' + (a.ok ? 'ok' : 'failed') + ' ' + fmt(a.time_s * 1000, 2) + ' ms',
+                      a.ok ? 'ok' : 'bad');
+      if (a.detail) item.title = a.detail;  // why a solver failed, on hover
+      box.appendChild(item);
     });
     return box;
   }
