@@ -145,7 +145,7 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
   Roadmap& rm = roadmaps.forRobot(robot);
   for (int attempt = 0; attempt <= kRoadmapGrowths; ++attempt) {
     if (attempt > 0) rm.grow(rm.size());
-    QueryGraph graph(rm);
+    QueryGraph graph(rm, model);
     int s = graph.addVertex(spec.start.data(), 10);
     int g = graph.addVertex(spec.goal.data(), 10);
     auto vertices = shortestPath(graph, s, g, deadline);

@@ -276,7 +276,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     bool ok = true;
     for (std::size_t i : ord) {
       const int robot = sub.robots[i];
-      QueryGraph graph(ctx.roadmaps.forRobot(robot), &sub.region[i]);
+      QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
       auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, settings_.max_expansions);

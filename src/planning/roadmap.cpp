@@ -96,7 +96,8 @@ std::vector<int> Roadmap::nearest(const double* q, int k) const {
   return out;
 }
 
-QueryGraph::QueryGraph(Roadmap& roadmap, const ConfigBox* region) : roadmap_(roadmap), region_(region) {}
+QueryGraph::QueryGraph(Roadmap& roadmap, const RobotModel& robot, const ConfigBox* region)
+    : roadmap_(roadmap), robot_(robot), region_(region) {}
 
 const double* QueryGraph::config(int v) const {
   const int n = roadmap_.size();

@@ -8,15 +8,21 @@ namespace earc {
 RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples,
                        int neighbors, std::uint64_t seed)
     : world_(world), models_(std::move(models)), samples_(samples), neighbors_(neighbors), seed_(seed) {
-  // Robots whose bodies are placed the same way share a roadmap: mobile
-  // robots by geometry alone, arms by geometry and base.
+  // Robots for which the same configurations are valid share a roadmap:
+  // mobile robots by geometry alone; arms by geometry when nothing lies
+  // within their reach (the disc of their reach about the base is inside
+  // the workspace and touches no obstacle, so validity is joint limits and
+  // self-collision only, wherever the base is), else by geometry and base.
   std::map<std::string, int> slots;
   for (const RobotModel* m : models_) {
     std::string key = m->geometrySignature();
     if (!m->isMobile()) {
       const RobotSpec& s = m->spec();
-      key += "@" + std::to_string(s.base_position.x) + "," + std::to_string(s.base_position.y) + "," +
-             std::to_string(s.base_angle);
+      if (world_.bodyFree(geo::Body::disc(s.base_position, m->boundingRadius())))
+        key += "@anywhere";
+      else
+        key += "@" + std::to_string(s.base_position.x) + "," + std::to_string(s.base_position.y) + "," +
+               std::to_string(s.base_angle);
     }
     auto [it, inserted] = slots.emplace(key, static_cast<int>(slots.size()));
     slot_.push_back(it->second);

@@ -308,6 +308,24 @@ TEST_CASE("ARC plans two facing arms whose straight motions collide, and the sol
   CHECK(v.valid);
 }
 
+TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle or the workspace edge has its own") {
+  Scenario s;
+  s.name = "arms";
+  s.workspace = {{-4, -4}, {12, 8}};
+  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              arm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              arm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
+              arm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
+  s.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {0.4, 0.4}));  // within c's reach (2.55)
+  Models m(s);
+  CollisionWorld world(s);
+  RoadmapSet roadmaps(world, m.raw, 50, 10, 1);
+  CHECK(&roadmaps.forRobot(0) == &roadmaps.forRobot(1));  // facing each other, yet the same valid joint space
+  CHECK(&roadmaps.forRobot(2) != &roadmaps.forRobot(0));  // an obstacle within reach
+  CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(0));  // its reach crosses the workspace edge
+  CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(2));
+}
+
 TEST_CASE("Every method reports a solution as solved only when it validates") {
   Scenario s = openScenario(6);
   s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0}), disc("b", 0.3, {5, 5, 0}, {1, 1, 0})};

@@ -67,11 +67,15 @@ class Roadmap {
 };
 
 // A roadmap plus a few query vertices (a start, a goal), optionally
-// restricted to a configuration-space region. Vertex ids below
-// roadmap.size() are roadmap vertices; the query vertices follow.
+// restricted to a configuration-space region, for one robot. The roadmap
+// may have been built for another robot for which the same
+// configurations are valid (RoadmapSet shares one between arms with
+// nothing in reach): where the robot's body is comes from `robot`.
+// Vertex ids below roadmap.size() are roadmap vertices; the query
+// vertices follow.
 class QueryGraph {
  public:
-  QueryGraph(Roadmap& roadmap, const ConfigBox* region = nullptr);
+  QueryGraph(Roadmap& roadmap, const RobotModel& robot, const ConfigBox* region = nullptr);
 
   // Adds q as a vertex connected to its k nearest roadmap vertices inside
   // the region and to the query vertices added before it.
@@ -99,7 +103,7 @@ class QueryGraph {
   // Validity of an edge given by its key (roadmap ids >= 0, query edges < 0).
   bool edgeValid(int key);
   Roadmap& roadmap() { return roadmap_; }
-  const RobotModel& model() const { return roadmap_.model(); }
+  const RobotModel& model() const { return robot_; }
 
  private:
   struct Extra {
@@ -108,6 +112,7 @@ class QueryGraph {
   };
   int addEdge(int a, int b);
   Roadmap& roadmap_;
+  const RobotModel& robot_;
   const ConfigBox* region_;
   std::vector<Extra> extra_;
   std::unordered_map<int, std::vector<Roadmap::Edge>> back_edges_;
