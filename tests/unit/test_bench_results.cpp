@@ -136,10 +136,11 @@ TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones"
   PairedRatio r = pairedRatio(t, "mobile", 4, "earc", "arc");
   CHECK(r.pairs == 2);
   CHECK(*r.median == doctest::Approx(0.625));
+  CHECK(*r.of_medians == doctest::Approx(2.0 / 3.0));  // medians of the paired trials: 2 and 3
   const std::string md = markdownTable(t, {});
   CHECK(md.find("### mobile") != std::string::npos);
   CHECK(md.find("| 4 | earc | 3/4 (75%) |") != std::string::npos);
-  CHECK(md.find("| mobile | 4 | 2 | 0.625 |") != std::string::npos);
+  CHECK(md.find("| mobile | 4 | 2 | 0.667 | 0.625 |") != std::string::npos);
 }
 
 TEST_CASE("the wide table has a row per robot count, a column per method, the paired ratio and the hit rate") {
@@ -151,10 +152,11 @@ TEST_CASE("the wide table has a row per robot count, a column per method, the pa
   t[3].db_hits = 1;
   t[3].conflicts = 4;
   const std::string md = markdownWideTable(t);
-  CHECK(md.find("| robots | earc | arc | coupled | E-ARC / ARC | E-ARC hit rate |") != std::string::npos);
-  CHECK(md.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0/1 | 0.62 | 50% |") != std::string::npos);
+  CHECK(md.find("| robots | earc | arc | coupled | E-ARC / ARC medians | E-ARC / ARC paired | E-ARC hit rate |") !=
+        std::string::npos);
+  CHECK(md.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0/1 | 0.67 | 0.62 | 50% |") != std::string::npos);
   // E-ARC and coupled did not run at 8 robots.
-  CHECK(md.find("| 8 | - | 1/1 8.00 | - | - | - |") != std::string::npos);
+  CHECK(md.find("| 8 | - | 1/1 8.00 | - | - | - | - |") != std::string::npos);
 }
 
 TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {

@@ -41,9 +41,13 @@ std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials);
 
 // Median over the scenarios both methods solved of time(a) / time(b), pairs
 // being the same (suite, robots, trial, seed, time limit).
+// E-ARC against ARC on the same scenarios (pairs both solved): the
+// median of the per-scenario ratios, and the ratio of the two medians
+// (what "E-ARC's median is at most 0.6x ARC's" compares).
 struct PairedRatio {
   int pairs = 0;
   std::optional<double> median;
+  std::optional<double> of_medians;
 };
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
                         const std::string& a, const std::string& b);
