@@ -19,7 +19,11 @@ bash "$src/tools/build.sh" "$src/build"
 (cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
-bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+# -O1 and line tables only (-g1): what the sanitizers' reports need, at
+# half the compile time of -O2 -g (18.7 -> 8.9 s for src/planning/arc.cpp),
+# which keeps the whole of CI within its 20 minutes on two cores.
+bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
 (cd "$src/build-asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
    ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench")
