@@ -105,16 +105,18 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   CompositeChecker checker(ctx.world, robots);
   // The robots outside the subproblem, as the decoupled solver sees them: a
   // stored solution knows nothing of them, and one that runs into them
-  // only trades this conflict for the next.
+  // only trades this conflict for the next. Collected when the first
+  // candidate gets that far: most queries end before.
   const std::size_t window = sub.t_end - sub.t_start;
-  const std::vector<MovingObstacle> others = nearbyRobots(ctx, 4 * window + 100);
+  std::optional<std::vector<MovingObstacle>> others;
   // Shortcutting changes when the robots are where, which the other
   // robots may not allow: then the candidate as stored is tried.
   auto joinClear = [&](const std::vector<Path>& middle) -> std::optional<LocalSolution> {
+    if (!others) others = nearbyRobots(ctx, 4 * window + 100);
     for (bool shortcut : {true, false}) {
       LocalSolution sol = connect(checker, ctx, robots, middle, shortcut);
       bool clear = true;
-      for (std::size_t r = 0; r < robots.size() && clear; ++r) clear = clearOfMoving(*robots[r], sol.paths[r], others);
+      for (std::size_t r = 0; r < robots.size() && clear; ++r) clear = clearOfMoving(*robots[r], sol.paths[r], *others);
       if (clear) return sol;
     }
     return std::nullopt;
