@@ -65,6 +65,20 @@ Path line(std::vector<std::vector<double>> states) {
   return p;
 }
 
+// Robots 0 and 1 from starts to goals within one step, in the box
+// (1, 1)-(9, 9) of a 10 x 10 world, headings free.
+Subproblem pairSubproblem(std::vector<std::vector<double>> starts, std::vector<std::vector<double>> goals) {
+  Subproblem sub;
+  sub.robots = {0, 1};
+  sub.starts = std::move(starts);
+  sub.goals = std::move(goals);
+  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
+  sub.workspace_region = {{1, 1}, {9, 9}};
+  sub.t_start = 0;
+  sub.t_end = 1;
+  return sub;
+}
+
 }  // namespace
 
 TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them from the database next time") {
@@ -146,14 +160,7 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
   CollisionWorld world(blocked);
   RoadmapSet roadmaps(world, models, 300, 10, 1);
   std::vector<Path> plan_paths{line({{4, 5, 0}, {6, 5, 0}}), line({{6, 5, 0}, {4, 5, 0}})};
-  Subproblem sub;
-  sub.robots = {0, 1};
-  sub.starts = {{4, 5, 0}, {6, 5, 0}};
-  sub.goals = {{6, 5, 0}, {4, 5, 0}};
-  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
-  sub.workspace_region = {{1, 1}, {9, 9}};
-  sub.t_start = 0;
-  sub.t_end = 1;
+  Subproblem sub = pairSubproblem({{4, 5, 0}, {6, 5, 0}}, {{6, 5, 0}, {4, 5, 0}});
   SolverContext ctx{world, models, roadmaps, plan_paths, sub, Deadline(10), 7};
   DatabaseSolverSettings ds;
   ds.repair_time_s = 2.0;
@@ -200,15 +207,8 @@ TEST_CASE("A retrieved mobile solution is turned to the start headings and short
   CollisionWorld world(open);
   RoadmapSet roadmaps(world, models, 300, 10, 1);
   const double up = 1.5707963267948966;
-  Subproblem sub;
-  sub.robots = {0, 1};
-  sub.starts = {{4, 4, up}, {4, 6, up}};
-  sub.goals = {{6, 4, up}, {6, 6, up}};
+  Subproblem sub = pairSubproblem({{4, 4, up}, {4, 6, up}}, {{6, 4, up}, {6, 6, up}});
   std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]})};
-  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
-  sub.workspace_region = {{1, 1}, {9, 9}};
-  sub.t_start = 0;
-  sub.t_end = 1;
   SolverContext ctx{world, models, roadmaps, plan_paths, sub, Deadline(10), 7};
   DatabaseSolver solver(store, DatabaseSolverSettings{});
   SolverOutcome out = solver.solve(ctx);
@@ -242,14 +242,7 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
 
   CollisionWorld world(s);
   RoadmapSet roadmaps(world, all, 300, 10, 1);
-  Subproblem sub;
-  sub.robots = {0, 1};
-  sub.starts = {{4, 4, 0}, {4, 6, 0}};
-  sub.goals = {{6, 4, 0}, {6, 6, 0}};
-  for (int r = 0; r < 2; ++r) sub.region.push_back({{1, 1, -3.15}, {9, 9, 3.15}});
-  sub.workspace_region = {{1, 1}, {9, 9}};
-  sub.t_start = 0;
-  sub.t_end = 1;
+  Subproblem sub = pairSubproblem({{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}});
   std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]}),
                                line({{5, 4, 0}, {5, 4, 0}})};
   DatabaseSolver solver(store, DatabaseSolverSettings{});
