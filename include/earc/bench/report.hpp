@@ -39,11 +39,10 @@ struct CellSummary {
 // unknown suites and methods after the known ones, alphabetically.
 std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials);
 
-// Median over the scenarios both methods solved of time(a) / time(b), pairs
-// being the same (suite, robots, trial, seed, time limit).
-// E-ARC against ARC on the same scenarios (pairs both solved): the
-// median of the per-scenario ratios, and the ratio of the two medians
-// (what "E-ARC's median is at most 0.6x ARC's" compares).
+// Method a against b on the scenarios both solved, pairs being the same
+// (suite, robots, trial, seed, time limit): the median of the per-scenario
+// ratios time(a) / time(b), and the ratio of the two medians (what
+// "E-ARC's median is at most 0.6x ARC's" compares).
 struct PairedRatio {
   int pairs = 0;
   std::optional<double> median;
@@ -59,9 +58,10 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 
 // The same results laid out like the paper's figures: one table per suite,
 // a row per robot count, a column per method ("solved/trials median s";
-// "-" where the method was not run), then E-ARC's time over ARC's paired
-// by seed and E-ARC's hit rate (subproblems solved from the database,
-// directly or repaired, over conflicts).
+// "-" where the method was not run), then E-ARC's time over ARC's on the
+// same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
+// (subproblems solved from the database, directly or repaired, over
+// conflicts).
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
 // One row per trial, RFC 4180 quoting, a header line first.
