@@ -96,7 +96,10 @@ double sdSegRect(Vec2 a, Vec2 b, Vec2 c, Vec2 u, Vec2 h) {
   return dist;
 }
 
-double sdRectRect(Vec2 c1, Vec2 u1, Vec2 h1, Vec2 c2, Vec2 u2, Vec2 h2) {
+// The least overlap of two rectangles' projections on the four edge
+// normals (SAT): their penetration depth when >= 0; when < 0, minus a
+// lower bound on the gap between them.
+double rectRectPenetration(Vec2 c1, Vec2 u1, Vec2 h1, Vec2 c2, Vec2 u2, Vec2 h2) {
   const Vec2 v1 = perp(u1);
   const Vec2 v2 = perp(u2);
   const Vec2 dc = c2 - c1;
@@ -106,7 +109,14 @@ double sdRectRect(Vec2 c1, Vec2 u1, Vec2 h1, Vec2 c2, Vec2 u2, Vec2 h2) {
     const double e2 = h2.x * std::abs(dot(u2, n)) + h2.y * std::abs(dot(v2, n));
     pen = std::min(pen, e1 + e2 - std::abs(dot(dc, n)));
   }
+  return pen;
+}
+
+double sdRectRect(Vec2 c1, Vec2 u1, Vec2 h1, Vec2 c2, Vec2 u2, Vec2 h2) {
+  const double pen = rectRectPenetration(c1, u1, h1, c2, u2, h2);
   if (pen >= 0.0) return -pen;
+  const Vec2 v1 = perp(u1);
+  const Vec2 v2 = perp(u2);
   double dist = std::numeric_limits<double>::infinity();
   for (auto [sx, sy] : kCornerSigns) {
     const Vec2 k1 = c1 + u1 * (sx * h1.x) + v1 * (sy * h1.y);
@@ -142,6 +152,20 @@ double signedDistance(const Body& a, const Body& b) {
   // caller's order; so do we.
   const double core = a.kind <= b.kind ? coreDistanceOrdered(a, b) : coreDistanceOrdered(b, a);
   return core - a.radius - b.radius;
+}
+
+bool touches(const Body& a, const Body& b) {
+  // Two rectangles (boxes, box obstacles) that a separating axis keeps
+  // further apart than their radii cannot touch: the exact distance, eight
+  // corner distances with a square root each, is only worked out when
+  // they are closer than that. Otherwise this is signedDistance's own
+  // arithmetic, in the same order, so the answer is the same.
+  if (a.kind == CoreKind::Rect && b.kind == CoreKind::Rect) {
+    const double pen = rectRectPenetration(a.p0, a.axis, a.half, b.p0, b.axis, b.half);
+    if (pen >= 0.0) return -pen - a.radius - b.radius < -kContactTolerance;
+    if (-pen > a.radius + b.radius) return false;
+  }
+  return signedDistance(a, b) < -kContactTolerance;
 }
 
 Aabb bounds(const Body& b) {

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 
 #include "earc/geometry/shapes.hpp"
 
@@ -115,6 +116,34 @@ TEST_CASE("an overlap of 5e-7 is within the contact tolerance") {
 TEST_CASE("an overlap of 2e-6 is a collision") {
   CHECK(touches(Body::box({0, 0}, {1, 1}, 0.0), Body::box({2 - 2e-6, 0}, {1, 1}, 0.0)));
   CHECK(touches(Body::disc({0, 0}, 0.5), Body::disc({1 - 2e-6, 0}, 0.5)));
+}
+
+TEST_CASE("touches says what the signed distance says for rectangles, near, apart, with and without radii") {
+  // touches skips the exact distance when a separating axis keeps two
+  // rectangles further apart than their radii.
+  auto rounded = [](Body b, double r) {
+    b.radius = r;
+    return b;
+  };
+  // Diagonal neighbours: apart on both axes by 0.1, corners sqrt(0.02) apart.
+  const Body a = Body::box({0, 0}, {1, 1}, 0.0);
+  const Body b = Body::box({2.1, 2.1}, {1, 1}, 0.0);
+  CHECK_FALSE(touches(a, b));
+  CHECK_FALSE(touches(rounded(a, 0.05), rounded(b, 0.02)));  // radii 0.07 < corner gap 0.141
+  CHECK(touches(rounded(a, 0.1), rounded(b, 0.05)));          // radii 0.15 > corner gap, though > axis gap 0.1
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> pos(-2.0, 2.0), half(0.05, 1.0), angle(-3.2, 3.2), radius(0.0, 0.3);
+  int touching = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Body x = rounded(Body::box({pos(rng), pos(rng)}, {half(rng), half(rng)}, angle(rng)), i % 2 ? radius(rng) : 0.0);
+    const Body y = rounded(Body::box({pos(rng), pos(rng)}, {half(rng), half(rng)}, angle(rng)), i % 3 ? radius(rng) : 0.0);
+    const bool expected = signedDistance(x, y) < -earc::geo::kContactTolerance;
+    touching += expected;
+    REQUIRE(touches(x, y) == expected);
+    REQUIRE(touches(y, x) == (signedDistance(y, x) < -earc::geo::kContactTolerance));
+  }
+  CHECK(touching > 2000);  // both answers were exercised
+  CHECK(touching < 18000);
 }
 
 TEST_CASE("bounds of a rotated box are its projected half extents around the centre") {

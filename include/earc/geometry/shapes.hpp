@@ -70,9 +70,9 @@ struct Body {
 double signedDistance(const Body& a, const Body& b);
 
 // The contract's contact rule: overlap by more than kContactTolerance.
-inline bool touches(const Body& a, const Body& b) {
-  return signedDistance(a, b) < -kContactTolerance;
-}
+// The same as signedDistance(a, b) < -kContactTolerance, faster for
+// rectangles that are clearly apart.
+bool touches(const Body& a, const Body& b);
 
 // Tight axis-aligned bounds of a body.
 Aabb bounds(const Body& b);
