@@ -21,14 +21,26 @@ class MotionGuard {
  public:
   MotionGuard(const RobotModel& model, const std::vector<MovingObstacle>& obstacles, std::size_t last_instant)
       : model_(model), obstacles_(obstacles), last_(last_instant) {
-    std::vector<double> q;
     for (const auto& o : obstacles_) {
       Track tr;
-      q.resize(static_cast<std::size_t>(o.model->dim()));
       tr.centers.reserve(last_ + 1);
+      // Centres at whole steps come from the path's states; a midpoint's
+      // is halfway between its neighbours' (see RobotModel::boundingCenter),
+      // exact up to rounding, which a broad phase with a contact tolerance
+      // below it cannot notice.
+      const Path& path = *o.path;
+      const std::size_t last_state = path.size() - 1;
+      auto centerAt = [&](std::size_t t) { return o.model->boundingCenter(path.at(std::min(t, last_state))); };
+      geo::Vec2 here = centerAt(o.offset);
       for (std::size_t k = 0; k <= last_; ++k) {
-        stateAtInstant(*o.model, *o.path, 2 * o.offset + k, q.data());
-        tr.centers.push_back(o.model->boundingCenter(q.data()));
+        const std::size_t instant = 2 * o.offset + k;
+        if (instant % 2 == 0) {
+          here = centerAt(instant / 2);
+          tr.centers.push_back(here);
+        } else {
+          const geo::Vec2 next = centerAt(instant / 2 + 1);
+          tr.centers.push_back({0.5 * (here.x + next.x), 0.5 * (here.y + next.y)});
+        }
       }
       for (std::size_t c = 0; c * kChunk <= last_; ++c) {
         geo::Aabb box;
@@ -254,6 +266,10 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   const std::size_t window = sub.t_end - sub.t_start;  // steps in the replaced span
   const std::size_t horizon = 4 * window + 100;
   const Deadline deadline = ctx.deadline.capped(settings_.time_budget_s * ctx.budget_scale);
+  std::size_t max_expansions = settings_.max_expansions;
+  if (settings_.expansions_per_horizon_step > 0)
+    max_expansions = std::min(max_expansions, static_cast<std::size_t>(static_cast<double>(
+                                                  settings_.expansions_per_horizon_step * horizon) * ctx.budget_scale));
   std::vector<MovingObstacle> others;
   if (settings_.avoid_others) others = nearbyRobots(ctx, horizon);
 
@@ -279,7 +295,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
-      auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, settings_.max_expansions);
+      auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, max_expansions);
       if (!p) {
         ok = false;
         break;

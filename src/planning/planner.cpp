@@ -86,6 +86,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   DecoupledSettings ds;
   ds.time_budget_s = settings.time_limit_s;
   ds.max_expansions = 2000000;
+  ds.expansions_per_horizon_step = 0;
   ds.max_orders = 1000;
   ds.avoid_others = false;
   DecoupledSolver solver(ds);

@@ -93,6 +93,11 @@ class SubproblemSolver {
 struct DecoupledSettings {
   double time_budget_s = 0.25;
   std::size_t max_expansions = 60000;  // space-time states expanded per robot
+  // And at most this many per step of the search's horizon (0: no such
+  // cap), times the hierarchy's budget scale. Searches that succeed
+  // expand few states; one that fails has often exhausted every state
+  // reachable before the horizon, the costliest way a subproblem fails.
+  std::size_t expansions_per_horizon_step = 32;
   int connect_neighbors = 10;
   int max_orders = 4;                   // priority orders tried
   bool avoid_others = true;             // treat robots outside the subproblem as moving obstacles

@@ -45,7 +45,9 @@ class RobotModel {
   virtual bool withinLimits(const double* q) const = 0;
 
   // Radius of a disc around boundingCenter(q) that contains the whole body
-  // at any configuration.
+  // at any configuration. The centre moves along a straight line, evenly,
+  // as interpolate moves q (a mobile robot's position; an arm's fixed
+  // base), which lets broad phases tabulate it without interpolating.
   virtual double boundingRadius() const = 0;
   virtual geo::Vec2 boundingCenter(const double* q) const = 0;
 
