@@ -256,14 +256,24 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     // modulo 2 pi, so every motion is unchanged).
     waypoints.front() = start;
     waypoints.back() = goal;
-    bool motions_valid = true;
-    for (std::size_t i = 1; i < waypoints.size() && motions_valid; ++i)
-      motions_valid = checker.motionValid(waypoints[i - 1], waypoints[i]);
-    if (motions_valid) {
+    // OMPL's simplifier keeps pieces of checked motions without checking
+    // them again, which our checker (at the time-stamped instants of each
+    // motion) may refuse; when its own repair of such a piece fails it
+    // leaves the last state it sampled in the path. Say which.
+    std::string refused;
+    for (std::size_t i = 1; i < waypoints.size() && refused.empty(); ++i) {
+      if (checker.motionValid(waypoints[i - 1], waypoints[i])) continue;
+      refused = "Lightning's path: motion " + std::to_string(i) + " of " + std::to_string(waypoints.size() - 1) +
+                " is not valid";
+      if (!checker.stateValid(waypoints[i]) && i + 1 < waypoints.size())
+        refused += " (its end, a state of the path, is in collision: left there by OMPL's path simplifier)";
+    }
+    if (refused.empty()) {
       result.solution.solved = true;
       result.solution.paths = timeStampComposite(robots.models, waypoints).paths;
     } else {
       result.failures.insert(FailureCause::InvalidResult);
+      st["invalid_result"] = nlohmann::json::array({refused});
     }
   } else {
     result.failures.insert(FailureCause::TimeLimit);
@@ -276,11 +286,12 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   return result;
 }
 
-// plan()'s Lightning: no database file, so it starts empty and RRT-Connect
-// from scratch wins (use the overload or `earc-bench lightning-plan` for a
-// database).
+// plan()'s Lightning: the database file of the settings, if any.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings) {
-  return planLightning(scenario, settings, LightningSettings{});
+  LightningSettings ls;
+  ls.db_path = settings.lightning_db;
+  ls.learn = settings.db_learn;
+  return planLightning(scenario, settings, ls);
 }
 
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
@@ -291,35 +302,6 @@ PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settin
   const std::size_t before = db.entries();
   PlanResult result = db.plan(scenario, settings, lightning);
   if (file && lightning.learn && lightning.save && db.entries() != before) db.save(lightning.db_path);
-  return result;
-}
-
-PlanResult planLightningChecked(const Scenario& scenario, const PlannerSettings& settings,
-                                const LightningSettings& lightning) {
-  PlanResult result = planLightning(scenario, settings, lightning);
-  Solution& sol = result.solution;
-  sol.method = methodName(Method::Lightning);
-  sol.scenario = scenario.name;
-  if (sol.solved) {
-    sol.nameRobots(scenario);
-    ValidationReport report = validateSolution(scenario, sol);
-    sol.solved = report.valid;
-    if (report.valid) {
-      result.stats["makespan"] = report.makespan;
-      result.stats["sum_of_costs"] = report.sum_of_costs;
-    } else {
-      result.failures.insert(FailureCause::InvalidResult);
-      result.stats["invalid_result"] = report.violations.empty() ? "" : report.violations.front().detail;
-    }
-  }
-  if (!sol.solved) {
-    nlohmann::json why = nlohmann::json::array();
-    for (FailureCause c : result.failures) why.push_back(failureCauseName(c));
-    result.stats["failure"] = why;
-  }
-  result.stats["method"] = sol.method;
-  result.stats["seed"] = settings.seed;
-  sol.stats = result.stats;
   return result;
 }
 

@@ -334,17 +334,11 @@ class Runner {
   std::vector<std::string> planArgv(const Cell& c, const std::string& scenario, const std::string& solution,
                                     std::uint64_t seed) const {
     const std::string limit = std::to_string(o_.time_limit_s), s = std::to_string(seed);
-    if (c.method == "lightning") {
-      std::vector<std::string> a = {bench_, "lightning-plan", scenario, "-o", solution, "--time-limit", limit,
-                                    "--seed", s, "--db", lightningDb(*c.suite, c.robots), "-q"};
-      if (!o_.learn) a.push_back("--no-learn");
-      return a;
-    }
     std::vector<std::string> a = {plan_, "plan", scenario, "-o", solution, "--method", c.method,
                                   "--time-limit", limit, "--seed", s, "-q"};
-    if (c.method == "earc") {
+    if (c.method == "earc" || c.method == "lightning") {
       a.push_back("--db");
-      a.push_back(earcDb(c.suite->family));
+      a.push_back(c.method == "earc" ? earcDb(c.suite->family) : lightningDb(*c.suite, c.robots));
       if (!o_.learn) a.push_back("--no-learn");
     }
     return a;
@@ -388,6 +382,11 @@ class Runner {
       } else {
         t.failure = "not solved: " + (f.is_string() ? f.get<std::string>() : f.dump());
       }
+      // What was wrong with a result the planner refused (the validator's
+      // violations, or Lightning's own motion check).
+      if (st.contains("invalid_result") && st["invalid_result"].is_array() && !st["invalid_result"].empty() &&
+          st["invalid_result"][0].is_string())
+        t.failure += " (" + st["invalid_result"][0].get<std::string>() + ")";
     }
     return true;
   }

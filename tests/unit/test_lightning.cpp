@@ -53,7 +53,7 @@ struct TempFile {
 
 TEST_CASE("Lightning solves a two-robot mobile scenario with a solution the validator accepts") {
   const Scenario s = twoMobile(3);
-  PlanResult r = planLightningChecked(s, settings(1), LightningSettings{});
+  PlanResult r = plan(s, settings(1));
   REQUIRE(r.solution.solved);
   CHECK(r.failures.empty());
   CHECK(validateSolution(s, r.solution).valid);
@@ -67,11 +67,12 @@ TEST_CASE("plan() dispatches to Lightning and validates its solution") {
   PlanResult r = plan(s, settings(2));
   REQUIRE(r.solution.solved);
   CHECK(r.solution.method == "lightning");
+  CHECK(r.stats.value("lightning_db_entries", -1) == 0);  // no database file: an empty one
 }
 
 TEST_CASE("Lightning plans two facing arms") {
   const Scenario s = twoArms(4);
-  PlanResult r = planLightningChecked(s, settings(3), LightningSettings{});
+  PlanResult r = plan(s, settings(3));
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(s, r.solution).valid);
 }
@@ -92,17 +93,17 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
   again.load(file.path);
   CHECK(again.entries() == 1);
   CHECK(again.states() >= 2);
-  // The same problem again: either thread may win the race, but the plan
-  // must be valid whichever did.
-  LightningSettings no_learn;
-  no_learn.learn = false;
-  PlanResult r = planLightningChecked(s, settings(9), [&] {
-    LightningSettings ls = no_learn;
-    ls.db_path = file.path;
-    return ls;
-  }());
+  // The same problem again, through plan() with the file and without
+  // learning: either thread may win the race, but the plan must be valid
+  // whichever did, and the file stays as it was.
+  const auto size = std::filesystem::file_size(file.path);
+  PlannerSettings st = settings(9);
+  st.lightning_db = file.path;
+  st.db_learn = false;
+  PlanResult r = plan(s, st);
   REQUIRE(r.solution.solved);
   CHECK(r.stats.value("lightning_db_entries", 0) == 1);
+  CHECK(std::filesystem::file_size(file.path) == size);
 }
 
 TEST_CASE("planning without learning leaves a Lightning database as it was") {
@@ -140,9 +141,9 @@ TEST_CASE("a Lightning database of another state space is refused with a message
 TEST_CASE("a Lightning database file is created when missing, and only then") {
   TempFile file("earc-lightning-create");
   const Scenario s = twoMobile(17);
-  LightningSettings ls;
-  ls.db_path = file.path;
-  PlanResult r = planLightning(s, settings(1), ls);
+  PlannerSettings st = settings(1);
+  st.lightning_db = file.path;
+  PlanResult r = plan(s, st);
   REQUIRE(r.solution.solved);
   CHECK(std::filesystem::exists(file.path));
   LightningDatabase db(s);

@@ -1,4 +1,5 @@
 // earc-plan plan: plan a scenario with one method and write its solution.
+#include <filesystem>
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
@@ -38,6 +39,11 @@ int runPlan(const PlanOptions& o) {
   s.trace = !o.trace.empty();
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
+  if (s.method == Method::Lightning) {
+    if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
+      throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
+    s.lightning_db = o.db;
+  }
   auto store = openStoreForPlanning(s.method, o.db);
   // A database damaged while planning (quick_check passed at open) is bad
   // input too: one line naming the file, exit 2. Busy stays exit 1.
@@ -67,12 +73,14 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->required();
   cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->required();
   cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled or lightning")->capture_default_str();
-  cmd->add_option("--db", opts->db, "Experience database (method earc)");
+  cmd->add_option("--db", opts->db,
+                  "Experience database (method earc, SQLite); Lightning database (method lightning, OMPL's "
+                  "format, created when missing unless --no-learn; without it Lightning starts empty)");
   cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for every random choice")->capture_default_str();
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict");
-  cmd->add_flag("--no-learn", opts->no_learn, "E-ARC: do not insert new experiences into the database");
+  cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }

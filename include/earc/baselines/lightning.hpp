@@ -67,14 +67,9 @@ class LightningDatabase {
 };
 
 // Lightning with the database file lightning.db_path (created when missing
-// and learn and save are set). Not validated here; plan() validates the
-// generic form, planLightningChecked() this one.
+// and learn and save are set). Not validated here: plan() (method
+// lightning, settings.lightning_db) validates, and is what callers want.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
                          const LightningSettings& lightning);
-
-// The same with plan()'s guarantee: reported solved only when
-// validateSolution agrees, with makespan and sum of costs in the stats.
-PlanResult planLightningChecked(const Scenario& scenario, const PlannerSettings& settings,
-                                const LightningSettings& lightning);
 
 }  // namespace earc

@@ -18,7 +18,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
 PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings);
 // E-ARC: ARC with the experience database solver first in the hierarchy.
 PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
-// Lightning (OMPL) with a whole-problem database.
+// Lightning (OMPL) with the whole-problem database settings.lightning_db.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
 
 }  // namespace earc

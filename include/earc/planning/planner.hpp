@@ -36,7 +36,11 @@ struct PlannerSettings {
   // E-ARC's database solver.
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
-  bool db_learn = true;               // insert subproblems solved from scratch
+  bool db_learn = true;               // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
+  // Lightning's whole-problem database file (OMPL's format): empty starts
+  // from an empty database and writes none; a missing file is created when
+  // db_learn is set.
+  std::string lightning_db;
   // Memory guard: a scenario whose straight start-to-goal motions alone
   // would take more time-stamped scalars than this (all robots together;
   // 8 bytes each) is refused as too large before planning starts.

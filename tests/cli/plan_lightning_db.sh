@@ -1,0 +1,55 @@
+#!/bin/bash
+# earc-plan plan --method lightning --db FILE: the Lightning database file
+# is created by the first solution, recalled from (and left as it was) with
+# --no-learn, and refused with one line naming it (exit 2) when it is
+# missing under --no-learn or is not a Lightning database of this space.
+set -u
+BUILD=$1
+PLAN="$BUILD/earc-plan"
+GEN="$BUILD/earc-scenario"
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+command -v jq > /dev/null || { echo "skipped: no jq (tools/setup.sh --tests)"; exit 77; }
+
+"$GEN" generate --family mobile -n 2 --seed 3 -o "$WORK/two.json" > /dev/null || fail "generate"
+"$GEN" generate --family arms -n 2 --seed 3 -o "$WORK/arms.json" > /dev/null || fail "generate arms"
+DBF="$WORK/two.lightning"
+
+"$PLAN" plan "$WORK/two.json" -o "$WORK/a.json" --method lightning --db "$DBF" --time-limit 20 -q ||
+  fail "first plan: exit $?"
+[ -s "$DBF" ] || fail "the database file was not created"
+jq -e '.solved and .stats.lightning_db_entries == 0 and .stats.lightning_db_added == 1' "$WORK/a.json" > /dev/null ||
+  fail "first plan: $(jq -c .stats "$WORK/a.json")"
+before=$(md5sum < "$DBF")
+
+"$PLAN" plan "$WORK/two.json" -o "$WORK/b.json" --method lightning --db "$DBF" --no-learn --time-limit 20 --seed 2 -q ||
+  fail "second plan: exit $?"
+jq -e '.solved and .stats.lightning_db_entries == 1 and .stats.lightning_db_added == 0' "$WORK/b.json" > /dev/null ||
+  fail "second plan did not use the file: $(jq -c .stats "$WORK/b.json")"
+[ "$(md5sum < "$DBF")" = "$before" ] || fail "--no-learn changed the database file"
+
+# Refusals: one line naming the file, exit 2, nothing written.
+refused() {  # what, expected text, command...
+  local what=$1 text=$2
+  shift 2
+  "$@" > "$WORK/out" 2>&1
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$what: exit $rc, expected 2"
+  [ "$(wc -l < "$WORK/out")" -eq 1 ] || fail "$what: not one line: $(cat "$WORK/out")"
+  grep -q "$text" "$WORK/out" || fail "$what: message lacks '$text': $(cat "$WORK/out")"
+}
+refused "missing file with --no-learn" "$WORK/none.lightning" \
+  "$PLAN" plan "$WORK/two.json" -o "$WORK/c.json" --method lightning --db "$WORK/none.lightning" --no-learn -q
+[ -e "$WORK/none.lightning" ] && fail "a missing file was created under --no-learn"
+refused "a database of another space" "$DBF" \
+  "$PLAN" plan "$WORK/arms.json" -o "$WORK/d.json" --method lightning --db "$DBF" -q
+[ "$(md5sum < "$DBF")" = "$before" ] || fail "a refused plan changed the database file"
+echo "not a database" > "$WORK/text.lightning"
+refused "a text file" "$WORK/text.lightning" \
+  "$PLAN" plan "$WORK/two.json" -o "$WORK/e.json" --method lightning --db "$WORK/text.lightning" -q
+[ "$(cat "$WORK/text.lightning")" = "not a database" ] || fail "a refused file was overwritten"
+
+[ $failures -eq 0 ] && echo "lightning --db: created, recalled, refusals one line each"
+exit $((failures > 0))
