@@ -24,13 +24,11 @@ class MotionGuard {
     for (const auto& o : obstacles_) {
       Track tr;
       tr.centers.reserve(last_ + 1);
-      // Centres at whole steps come from the path's states; a midpoint's
-      // is halfway between its neighbours' (see RobotModel::boundingCenter),
-      // exact up to rounding, which a broad phase with a contact tolerance
-      // below it cannot notice.
-      const Path& path = *o.path;
-      const std::size_t last_state = path.size() - 1;
-      auto centerAt = [&](std::size_t t) { return o.model->boundingCenter(path.at(std::min(t, last_state))); };
+      // Centres at whole steps come from the path's states (past its end,
+      // the last); a midpoint's is halfway between its neighbours' (see
+      // RobotModel::boundingCenter), exact up to rounding, which a broad
+      // phase with a contact tolerance below it cannot notice.
+      auto centerAt = [&](std::size_t t) { return o.model->boundingCenter(o.path->at(t)); };
       geo::Vec2 here = centerAt(o.offset);
       for (std::size_t k = 0; k <= last_; ++k) {
         const std::size_t instant = 2 * o.offset + k;
