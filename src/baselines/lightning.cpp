@@ -15,10 +15,10 @@
 #include <set>
 #include <unistd.h>
 
-#include "earc/baselines/ompl_composite.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
+#include "earc/planning/ompl_composite.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
 #include "earc/validate/validator.hpp"
@@ -45,7 +45,7 @@ class StreamedRRTConnect : public og::RRTConnect {
  public:
   StreamedRRTConnect(const ob::SpaceInformationPtr& si, std::uint64_t stream) : og::RRTConnect(si), stream_(stream) {}
   ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
-    baselines::SeededPlanningStream seeded(splitSeed(stream_, solves_++));
+    SeededPlanningStream seeded(splitSeed(stream_, solves_++));
     return og::RRTConnect::solve(ptc);
   }
 
@@ -137,7 +137,7 @@ struct LightningDatabase::Impl {
   Robots robots;
   CollisionWorld world;
   CompositeChecker checker;
-  baselines::OmplComposite composite;
+  OmplComposite composite;
   std::shared_ptr<EditableLightningDB> db;
 
   explicit Impl(const Scenario& s)
@@ -145,7 +145,7 @@ struct LightningDatabase::Impl {
         robots(s),
         world(s),
         checker(world, robots.models),
-        composite(world, checker, {starts(s), goals(s)}),
+        composite(checker, compositeBounds(world, robots.models, {}, {starts(s), goals(s)})),
         db(std::make_shared<EditableLightningDB>(composite.space())) {}
 };
 
@@ -207,7 +207,7 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   CollisionWorld world(scenario);
   CompositeChecker checker(world, robots.models);
   const CompositeState start = starts(scenario), goal = goals(scenario);
-  baselines::OmplComposite composite(world, checker, {start, goal});
+  OmplComposite composite(checker, compositeBounds(world, robots.models, {}, {start, goal}));
   composite.setSeed(settings.seed);
   // OMPL seeds the generators of its path simplifiers from a global one;
   // reset it (OMPL complains once generators exist, but does reseed).

@@ -1,4 +1,4 @@
-#include "earc/baselines/ompl_composite.hpp"
+#include "earc/planning/ompl_composite.hpp"
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/StateSampler.h>
@@ -17,7 +17,7 @@
 
 namespace ob = ompl::base;
 
-namespace earc::baselines {
+namespace earc {
 
 namespace {
 
@@ -106,24 +106,41 @@ class CompositeSampler : public ob::StateSampler {
   CompositeState q_;
 };
 
-OmplComposite::OmplComposite(const CollisionWorld& world, const CompositeChecker& checker,
-                             const std::vector<CompositeState>& must_contain)
-    : checker_(checker) {
+std::vector<ConfigBox> compositeBounds(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
+                                       const std::vector<ConfigBox>& region,
+                                       const std::vector<CompositeState>& must_contain) {
+  std::vector<ConfigBox> boxes(robots.size());
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const RobotModel& m = *robots[r];
+    ConfigBox& b = boxes[r];
+    if (r < region.size() && !region[r].lo.empty())
+      b = region[r];
+    else
+      m.samplingBounds(world.workspace(), b.lo, b.hi);
+    for (std::size_t j = 0; j < b.lo.size(); ++j) {
+      if (m.isMobile() && j == 2) {  // headings: always the whole circle
+        b.lo[j] = -std::numbers::pi;
+        b.hi[j] = std::numbers::pi;
+        continue;
+      }
+      for (const CompositeState& q : must_contain) {
+        b.lo[j] = std::min(b.lo[j], q[r][j]);
+        b.hi[j] = std::max(b.hi[j], q[r][j]);
+      }
+    }
+  }
+  return boxes;
+}
+
+OmplComposite::OmplComposite(const CompositeChecker& checker, std::vector<ConfigBox> bounds)
+    : checker_(checker), bounds_(std::move(bounds)) {
   const auto& robots = checker.robots();
   auto compound = std::make_shared<ob::CompoundStateSpace>();
   for (std::size_t r = 0; r < robots.size(); ++r) {
     const RobotModel& m = *robots[r];
-    Bounds b;
-    m.samplingBounds(world.workspace(), b.lo, b.hi);
-    for (const CompositeState& q : must_contain)
-      for (std::size_t j = 0; j < b.lo.size(); ++j) {
-        if (m.isMobile() && j == 2) continue;  // headings: always the whole circle
-        b.lo[j] = std::min(b.lo[j], q[r][j]);
-        b.hi[j] = std::max(b.hi[j], q[r][j]);
-      }
+    const ConfigBox& b = bounds_[r];
+    // OMPL refuses an empty interval: give a degenerate one some width.
     if (m.isMobile()) {
-      b.lo[2] = -std::numbers::pi;
-      b.hi[2] = std::numbers::pi;
       auto se2 = std::make_shared<ob::SE2StateSpace>();
       ob::RealVectorBounds xy(2);
       for (unsigned j = 0; j < 2; ++j) {
@@ -143,7 +160,6 @@ OmplComposite::OmplComposite(const CollisionWorld& world, const CompositeChecker
       rv->setBounds(joints);
       compound->addSubspace(rv, 1.0);
     }
-    bounds_.push_back(std::move(b));
   }
   compound->lock();
   space_ = compound;
@@ -204,4 +220,4 @@ SeededPlanningStream::~SeededPlanningStream() {
     t_stream.reset();
 }
 
-}  // namespace earc::baselines
+}  // namespace earc

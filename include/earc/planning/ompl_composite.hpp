@@ -1,8 +1,10 @@
-// The composite configuration space of a set of robots as an OMPL space,
-// for baselines that run OMPL's own planning frameworks (Lightning) over
-// the whole problem: one SE2StateSpace per mobile robot and one
-// RealVectorStateSpace per arm, validity and motion checking delegated to
-// our CompositeChecker, sampling from our own seeded engine.
+// The composite configuration space of a set of robots as an OMPL space:
+// one SE2StateSpace per mobile robot and one RealVectorStateSpace per arm,
+// validity and motion checking delegated to our CompositeChecker (motions
+// at exactly the instants at which timeStampComposite places the robots,
+// so a time-stamped result is valid by construction), sampling from our
+// own seeded engine (OMPL's global seed can be set only once per process).
+// Used by coupled planning (solveCoupled) and by the Lightning baseline.
 #pragma once
 
 #include <ompl/base/SpaceInformation.h>
@@ -13,16 +15,23 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/composite.hpp"
+#include "earc/planning/subproblem.hpp"
 #include "earc/scene/robot_model.hpp"
 
-namespace earc::baselines {
+namespace earc {
+
+// Sampling bounds per robot: region[r] when given (else the robot's whole
+// sampling range, RobotModel::samplingBounds), widened to contain every
+// state of must_contain; a mobile robot's heading always the whole circle.
+std::vector<ConfigBox> compositeBounds(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
+                                       const std::vector<ConfigBox>& region,
+                                       const std::vector<CompositeState>& must_contain);
 
 class OmplComposite {
  public:
-  // The robots' whole sampling ranges (RobotModel::samplingBounds) widened
-  // to contain the given starts and goals. The checker must outlive this.
-  OmplComposite(const CollisionWorld& world, const CompositeChecker& checker,
-                const std::vector<CompositeState>& must_contain);
+  // Over the given sampling bounds (see compositeBounds), one per robot of
+  // the checker. The checker must outlive this.
+  OmplComposite(const CompositeChecker& checker, std::vector<ConfigBox> bounds);
 
   const ompl::base::StateSpacePtr& space() const { return space_; }
   // Space information with our state validity checker and motion validator
@@ -45,11 +54,8 @@ class OmplComposite {
   const CompositeChecker& checker() const { return checker_; }
 
  private:
-  struct Bounds {
-    std::vector<double> lo, hi;
-  };
   const CompositeChecker& checker_;
-  std::vector<Bounds> bounds_;
+  std::vector<ConfigBox> bounds_;
   ompl::base::StateSpacePtr space_;
   ompl::base::SpaceInformationPtr si_;
   std::uint64_t seed_ = 1;
@@ -72,4 +78,4 @@ class SeededPlanningStream {
   std::uint64_t previous_;
 };
 
-}  // namespace earc::baselines
+}  // namespace earc
