@@ -37,6 +37,8 @@ constexpr std::uint64_t kScratchStream = 1;
 constexpr std::uint64_t kRepairStream = 2;
 // Stream of the seed given to OMPL's global generator (its path simplifiers).
 constexpr std::uint64_t kOmplGlobalStream = 3;
+// Stream of our replanning of what OMPL's simplifier left invalid.
+constexpr std::uint64_t kRepairPathStream = 4;
 
 // RRT-Connect whose samplers draw from a stream of ours: one stream per
 // solve() call, numbered in call order, so that the repair planner (one
@@ -259,18 +261,31 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     // OMPL's simplifier keeps pieces of checked motions without checking
     // them again, which our checker (at the time-stamped instants of each
     // motion) may refuse; when its own repair of such a piece fails it
-    // leaves the last state it sampled in the path. Say which.
+    // leaves the last state it sampled, in collision, in the path. Drop
+    // such states and replan what is still invalid between the valid
+    // states around it, as Lightning repairs a recalled path.
+    std::vector<CompositeState> kept{waypoints.front()};
+    for (std::size_t i = 1; i + 1 < waypoints.size(); ++i)
+      if (checker.stateValid(waypoints[i])) kept.push_back(waypoints[i]);
+    kept.push_back(waypoints.back());
+    std::vector<Path> paths = timeStampComposite(robots.models, kept).paths;
+    const std::vector<StepRun> runs = invalidRuns(checker, paths);
     std::string refused;
-    for (std::size_t i = 1; i < waypoints.size() && refused.empty(); ++i) {
-      if (checker.motionValid(waypoints[i - 1], waypoints[i])) continue;
-      refused = "Lightning's path: motion " + std::to_string(i) + " of " + std::to_string(waypoints.size() - 1) +
-                " is not valid";
-      if (!checker.stateValid(waypoints[i]) && i + 1 < waypoints.size())
-        refused += " (its end, a state of the path, is in collision: left there by OMPL's path simplifier)";
+    if (!runs.empty()) {
+      const Deadline deadline(settings.time_limit_s - clock.seconds());
+      RunRepair fix = repairRuns(world, robots.models, paths, runs, {}, deadline.remaining(), deadline,
+                                 splitSeed(settings.seed, kRepairPathStream));
+      st["lightning_repaired_runs"] = runs.size();
+      if (fix.paths && invalidRuns(checker, *fix.paths).empty())
+        paths = std::move(*fix.paths);
+      else
+        refused = "Lightning's path has " + std::to_string(runs.size()) + " invalid stretch(es) (the first at step " +
+                  std::to_string(runs.front().first) + "), and replanning them failed: " +
+                  (fix.why.empty() ? std::string("still invalid") : fix.why);
     }
     if (refused.empty()) {
       result.solution.solved = true;
-      result.solution.paths = timeStampComposite(robots.models, waypoints).paths;
+      result.solution.paths = std::move(paths);
     } else {
       result.failures.insert(FailureCause::InvalidResult);
       st["invalid_result"] = nlohmann::json::array({refused});

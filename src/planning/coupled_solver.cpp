@@ -8,6 +8,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <random>
 
 #include "earc/planning/composite.hpp"
@@ -52,6 +53,57 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
     }
   }
   return sol;
+}
+
+std::vector<std::vector<double>> stateAt(const std::vector<Path>& paths, std::size_t t) {
+  CompositeState q;
+  for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
+  return q;
+}
+
+std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vector<Path>& paths) {
+  std::vector<StepRun> runs;
+  const std::size_t n = paths.front().size();
+  std::vector<char> state_ok(n);
+  for (std::size_t t = 0; t < n; ++t) state_ok[t] = checker.stateValid(stateAt(paths, t));
+  for (std::size_t t = 0; t + 1 < n; ++t) {
+    bool ok = state_ok[t] && state_ok[t + 1] && checker.motionValid(stateAt(paths, t), stateAt(paths, t + 1));
+    if (ok) continue;
+    if (!runs.empty() && runs.back().second + 1 == t)
+      runs.back().second = t;
+    else
+      runs.emplace_back(t, t);
+  }
+  return runs;
+}
+
+RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
+                     const std::vector<Path>& paths, const std::vector<StepRun>& runs,
+                     const std::vector<ConfigBox>& region, double time_per_run_s, const Deadline& deadline,
+                     std::uint64_t seed) {
+  std::vector<Path> repaired;
+  for (const RobotModel* m : robots) repaired.emplace_back(m->dim());
+  std::size_t copied_to = 0;  // states [0, copied_to) of paths are in `repaired`
+  for (const auto& [first, last] : runs) {
+    const std::size_t a = first, b = last + 1;  // valid states around the run
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      for (std::size_t t = copied_to; t <= a; ++t) repaired[r].push(paths[r].at(t));
+    CoupledQuery q;
+    q.robots = robots;
+    q.starts = stateAt(paths, a);
+    q.goals = stateAt(paths, b);
+    q.region = region;
+    CoupledSettings cs;
+    cs.time_limit_s = std::min(time_per_run_s, deadline.remaining());
+    if (cs.time_limit_s <= 0) return {std::nullopt, "no time left to repair"};
+    auto fix = solveCoupled(world, q, cs, splitSeed(seed, a));
+    if (!fix) return {std::nullopt, "repair failed"};
+    for (std::size_t r = 0; r < robots.size(); ++r) repaired[r].append(fix->paths[r], 1);
+    copied_to = b + 1;
+  }
+  for (std::size_t r = 0; r < robots.size(); ++r)
+    for (std::size_t t = copied_to; t < paths[r].size(); ++t) repaired[r].push(paths[r].at(t));
+  return {std::move(repaired), ""};
 }
 
 std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const CoupledQuery& query,

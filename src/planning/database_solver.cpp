@@ -20,31 +20,6 @@ namespace {
 // subproblem's start and goal.
 constexpr int kConnectShortcuts = 100;
 
-CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
-  CompositeState q;
-  for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
-  return q;
-}
-
-// Steps t whose motion t -> t+1 (either end or its midpoint) is invalid, as
-// maximal runs [first, last] of consecutive invalid steps.
-std::vector<std::pair<std::size_t, std::size_t>> invalidRuns(const CompositeChecker& checker,
-                                                             const std::vector<Path>& paths) {
-  std::vector<std::pair<std::size_t, std::size_t>> runs;
-  const std::size_t n = paths.front().size();
-  std::vector<char> state_ok(n);
-  for (std::size_t t = 0; t < n; ++t) state_ok[t] = checker.stateValid(stateAt(paths, t));
-  for (std::size_t t = 0; t + 1 < n; ++t) {
-    bool ok = state_ok[t] && state_ok[t + 1] && checker.motionValid(stateAt(paths, t), stateAt(paths, t + 1));
-    if (ok) continue;
-    if (!runs.empty() && runs.back().second + 1 == t)
-      runs.back().second = t;
-    else
-      runs.emplace_back(t, t);
-  }
-  return runs;
-}
-
 // Keys hold positions, not headings, so a retrieved mobile robot's path
 // may start facing anywhere: turn the whole path by one angle so that it
 // starts at the subproblem's start heading (its steps keep their turns;
@@ -59,11 +34,6 @@ void alignHeadings(const std::vector<const RobotModel*>& robots, const Subproble
       q[2] = geo::wrapAngle(q[2] + turn);
     }
   }
-}
-
-// Appends the states of `part` after its first to `out` (paths joined end to start).
-void appendAfterFirst(std::vector<Path>& out, const std::vector<Path>& part) {
-  for (std::size_t r = 0; r < out.size(); ++r) out[r].append(part[r], 1);
 }
 
 }  // namespace
@@ -124,7 +94,7 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
 
   struct Repairable {
     std::size_t index;
-    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    std::vector<StepRun> runs;
   };
   std::optional<Repairable> best;
   std::optional<SolverOutcome> found;
@@ -163,33 +133,15 @@ SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
     return failed("fewest invalid runs " + std::to_string(best->runs.size()) + ", too many to repair");
 
   // Repair: replan each invalid run between the valid states around it in
-  // the composite space, inside a box around the run.
+  // the composite space, inside the subproblem's region.
   const auto& c = candidates[best->index];
-  std::vector<Path> repaired;
-  for (const RobotModel* m : robots) repaired.emplace_back(m->dim());
-  std::size_t copied_to = 0;  // states [0, copied_to) of c.paths are in `repaired`
-  for (const auto& [first, last] : best->runs) {
-    const std::size_t a = first, b = last + 1;  // valid states around the run
-    for (std::size_t r = 0; r < robots.size(); ++r)
-      for (std::size_t t = copied_to; t <= a; ++t) repaired[r].push(c.paths[r].at(t));
-    CoupledQuery q;
-    q.robots = robots;
-    q.starts = stateAt(c.paths, a);
-    q.goals = stateAt(c.paths, b);
-    q.region = sub.region;
-    CoupledSettings cs;
-    cs.time_limit_s = std::min(settings_.repair_time_s, ctx.deadline.remaining());
-    if (cs.time_limit_s <= 0) return failed("no time left to repair");
-    auto fix = solveCoupled(ctx.world, q, cs, splitSeed(ctx.seed, a));
-    if (!fix) {
-      store_.recordUse(c.id, false);
-      return failed("repair failed");
-    }
-    appendAfterFirst(repaired, fix->paths);
-    copied_to = b + 1;
+  RunRepair fix = repairRuns(ctx.world, robots, c.paths, best->runs, sub.region, settings_.repair_time_s,
+                             ctx.deadline, ctx.seed);
+  if (!fix.paths) {
+    if (fix.why == "repair failed") store_.recordUse(c.id, false);
+    return failed(fix.why);
   }
-  for (std::size_t r = 0; r < robots.size(); ++r)
-    for (std::size_t t = copied_to; t < c.paths[r].size(); ++t) repaired[r].push(c.paths[r].at(t));
+  const std::vector<Path>& repaired = *fix.paths;
   auto sol = joinClear(repaired);
   if (!sol) {
     store_.recordUse(c.id, false);

@@ -131,19 +131,35 @@ TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict hap
   CHECK(second.stats["db_hits"].get<int>() + second.stats["db_repairs"].get<int>() >= 1);
 }
 
+// Two discs swap places along x in a 10 x 10 world: a goes up and over, b
+// straight (the waypoints of a stored experience, time-stamped together).
+Scenario swapScenario() {
+  Scenario s;
+  s.name = "swap";
+  s.workspace = {{0, 0}, {10, 10}};
+  s.robots = {disc("a", {4, 5, 0}, {6, 5, 0}), disc("b", {6, 5, 0}, {4, 5, 0})};
+  return s;
+}
+const std::vector<CompositeState> kSwapOverTheTop{{{4, 5, 0}, {6, 5, 0}}, {{4, 6, 0}, {6, 5, 0}},
+                                                  {{6, 6, 0}, {4, 5, 0}}, {{6, 5, 0}, {4, 5, 0}}};
+// The scenario with a small disc obstacle on a's way over the top.
+Scenario swapBlocked() {
+  Scenario s = swapScenario();
+  Obstacle o;
+  o.type = Obstacle::Type::Circle;
+  o.center = {5, 6};
+  o.radius = 0.15;
+  s.obstacles.push_back(o);
+  return s;
+}
+
 TEST_CASE("The database solver repairs a retrieved solution that a new obstacle cuts") {
   TempDb tmp;
   exp::ExperienceStore store(tmp.file());
-  // Two discs swap places along x with a side step: a stored experience.
-  Scenario open;
-  open.name = "swap";
-  open.workspace = {{0, 0}, {10, 10}};
-  open.robots = {disc("a", {4, 5, 0}, {6, 5, 0}), disc("b", {6, 5, 0}, {4, 5, 0})};
+  const Scenario open = swapScenario();
   auto owned = makeRobotModels(open);
   std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
-  // a goes up and over, b goes straight: waypoints time-stamped together.
-  std::vector<CompositeState> way{{{4, 5, 0}, {6, 5, 0}}, {{4, 6, 0}, {6, 5, 0}}, {{6, 6, 0}, {4, 5, 0}},
-                                  {{6, 5, 0}, {4, 5, 0}}};
+  const std::vector<CompositeState>& way = kSwapOverTheTop;
   LocalSolution stored = timeStampComposite(models, way);
   CollisionWorld open_world(open);
   CompositeChecker open_checker(open_world, models);
@@ -151,13 +167,7 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
   REQUIRE(exp::learn(store, models, stored.paths, 0.1, exp::Source::Build).has_value());
 
   // Now a small obstacle sits on a's path over the top.
-  Scenario blocked = open;
-  Obstacle o;
-  o.type = Obstacle::Type::Circle;
-  o.center = {5, 6};
-  o.radius = 0.15;
-  blocked.obstacles.push_back(o);
-  CollisionWorld world(blocked);
+  CollisionWorld world(swapBlocked());
   RoadmapSet roadmaps(world, models, 300, 10, 1);
   std::vector<Path> plan_paths{line({{4, 5, 0}, {6, 5, 0}}), line({{6, 5, 0}, {4, 5, 0}})};
   Subproblem sub = pairSubproblem({{4, 5, 0}, {6, 5, 0}}, {{6, 5, 0}, {4, 5, 0}});
@@ -178,6 +188,42 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
     REQUIRE(checker.motionValid(a, b));
   }
   CHECK(std::vector<double>(p[0].back(), p[0].back() + 3) == sub.goals[0]);
+}
+
+TEST_CASE("invalidRuns finds the stretch an obstacle cuts and repairRuns replans only that stretch") {
+  auto owned = makeRobotModels(swapScenario());
+  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  const std::vector<Path> paths = timeStampComposite(models, kSwapOverTheTop).paths;
+  {
+    CollisionWorld open_world(swapScenario());
+    CHECK(invalidRuns(CompositeChecker(open_world, models), paths).empty());
+  }
+  CollisionWorld world(swapBlocked());
+  CompositeChecker checker(world, models);
+  const std::vector<StepRun> runs = invalidRuns(checker, paths);
+  REQUIRE(runs.size() == 1);
+  const auto [first, last] = runs.front();
+  CHECK(first > 0);
+  CHECK(last + 1 < paths[0].size() - 1);
+  // a is over the obstacle somewhere in the run, and nowhere outside it.
+  for (std::size_t t = 0; t < paths[0].size(); ++t)
+    if (t < first || t > last + 1) CHECK(checker.stateValid(stateAt(paths, t)));
+
+  const std::vector<ConfigBox> region(2, ConfigBox{{0, 0, -3.15}, {10, 10, 3.15}});
+  RunRepair fix = repairRuns(world, models, paths, runs, region, 2.0, Deadline(10), 3);
+  REQUIRE(fix.paths.has_value());
+  CHECK(fix.why.empty());
+  const std::vector<Path>& p = *fix.paths;
+  CHECK(invalidRuns(checker, p).empty());
+  // Untouched up to the run's first state, and ending where it ended.
+  for (std::size_t t = 0; t <= first; ++t) CHECK(stateAt(p, t) == stateAt(paths, t));
+  CHECK(stateAt(p, p[0].size() - 1) == stateAt(paths, paths[0].size() - 1));
+  CHECK(p[0].size() == p[1].size());
+
+  // No time left: nothing replanned, and it says why.
+  RunRepair late = repairRuns(world, models, paths, runs, region, 2.0, Deadline(0), 3);
+  CHECK_FALSE(late.paths.has_value());
+  CHECK(late.why == "no time left to repair");
 }
 
 TEST_CASE("E-ARC without a database is refused with a clear error") {

@@ -6,11 +6,15 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/planning/composite.hpp"
 #include "earc/planning/subproblem.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc {
 
@@ -39,5 +43,26 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
 // arrive together. waypoints[w][r] is robot r's configuration at waypoint w.
 LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
                                  const std::vector<std::vector<std::vector<double>>>& waypoints);
+
+// The composite state of time-stamped paths at step t.
+std::vector<std::vector<double>> stateAt(const std::vector<Path>& paths, std::size_t t);
+
+// Steps t of time-stamped paths whose motion t -> t+1 (either end or its
+// midpoint) is invalid, as maximal runs [first, last] of consecutive steps.
+using StepRun = std::pair<std::size_t, std::size_t>;
+std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vector<Path>& paths);
+
+// Time-stamped paths with each invalid run replanned in the composite space
+// (solveCoupled inside `region`, at most time_per_run_s each and within the
+// deadline) between the valid states around it, the rest kept as it was.
+// Without paths when a run could not be replanned; `why` says so.
+struct RunRepair {
+  std::optional<std::vector<Path>> paths;
+  std::string why;  // "no time left to repair" or "repair failed"
+};
+RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
+                     const std::vector<Path>& paths, const std::vector<StepRun>& runs,
+                     const std::vector<ConfigBox>& region, double time_per_run_s, const Deadline& deadline,
+                     std::uint64_t seed);
 
 }  // namespace earc
