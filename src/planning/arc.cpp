@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 
 #include "earc/planning/composite.hpp"
 #include "earc/util/random.hpp"
@@ -102,6 +103,19 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
     sub.region.push_back(std::move(box));
   }
   return sub;
+}
+
+// A solver's answer is spliced into the robots' paths: one path per robot
+// of the subproblem, all of one length, is what makes that safe. Anything
+// else is a bug in the solver, said as such rather than as a bad_alloc.
+void requireWellFormed(const LocalSolution& local, const Subproblem& sub, const std::string& solver) {
+  bool ok = local.paths.size() == sub.robots.size() && !local.paths.empty() && local.paths.front().size() > 0;
+  for (std::size_t i = 0; ok && i < local.paths.size(); ++i)
+    ok = local.paths[i].size() == local.paths.front().size() &&
+         local.paths[i].dim() == static_cast<int>(sub.starts[i].size());
+  if (!ok)
+    throw std::logic_error("solver '" + solver + "' answered a subproblem of " + std::to_string(sub.robots.size()) +
+                           " robots with " + std::to_string(local.paths.size()) + " paths of unequal or wrong shape");
 }
 
 void splice(std::vector<Path>& paths, const Subproblem& sub, const LocalSolution& local) {
@@ -280,6 +294,7 @@ bool ArcRun::resolve(const Conflict& c) {
         attempts.push_back(std::move(attempt));
       }
       if (!out.solution) continue;
+      requireWellFormed(*out.solution, sub, how);
       if (robots.size() < kMaxMergedRobots) {
         if (auto other = conflictsWithResolved(sub, *out.solution)) {
           // Merge the robot rather than undo its earlier resolution, and

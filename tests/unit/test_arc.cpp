@@ -292,6 +292,27 @@ TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the 
   CHECK(r.stats["subproblems"].get<int>() > settings.max_expansions + 1);  // retried beyond the last level
 }
 
+TEST_CASE("A solver answering with the wrong number of paths is a named error, not a corrupted plan") {
+  // A buggy solver: one path for a two-robot subproblem.
+  struct OnePath : SubproblemSolver {
+    const char* name() const override { return "one-path"; }
+    SolverOutcome solve(SolverContext& ctx) override {
+      LocalSolution sol;
+      sol.paths.push_back(line({ctx.sub.starts[0], ctx.sub.goals[0]}));
+      return {std::move(sol), name(), -1};
+    }
+  };
+  Scenario s = openScenario(6);
+  s.robots = {disc("w", 0.3, {1, 3, 0}, {5, 3, 0}), disc("e", 0.3, {5, 3, 3.14}, {1, 3, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 10;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+  hierarchy.push_back(std::make_unique<OnePath>());
+  CHECK_THROWS_WITH_AS(runArc(s, settings, std::move(hierarchy)),
+                       doctest::Contains("solver 'one-path' answered a subproblem of 2 robots with 1 paths"),
+                       std::logic_error);
+}
+
 TEST_CASE("ARC plans two facing arms whose straight motions collide, and the solution validates") {
   Scenario s;
   s.name = "arms";
