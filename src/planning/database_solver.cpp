@@ -2,6 +2,8 @@
 #include "earc/planning/database_solver.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <random>
 
 #include "earc/experience/retrieval.hpp"
@@ -39,6 +41,50 @@ void alignHeadings(const std::vector<const RobotModel*>& robots, const Subproble
 }  // namespace
 
 SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
+  SolverOutcome out = query(ctx);
+  if (settings_.shadow_decoupled) shadow(ctx, out);
+  return out;
+}
+
+void DatabaseSolver::shadow(SolverContext& ctx, const SolverOutcome& db) {
+  Stopwatch sw;
+  const SolverOutcome dec = DecoupledSolver().solve(ctx);
+  const double seconds = sw.seconds();
+  Shadow& s = shadow_;
+  ++s.queries;
+  s.database += db.solution.has_value();
+  s.decoupled += dec.solution.has_value();
+  if (db.solution && dec.solution) {
+    ++s.both;
+    s.decoupled_s_both.push_back(seconds);
+    s.extra_steps_both.push_back(static_cast<long>(db.solution->length()) - static_cast<long>(dec.solution->length()));
+  }
+  if (!db.solution && !dec.solution) {
+    // Why the database failed, from its detail ("K candidates: B ends
+    // blocked, I invalid, C crowded; why"), numbers taken out so that
+    // reasons add up across subproblems.
+    int k = 0, blocked = 0, invalid = 0, crowded = 0;
+    const bool counted = std::sscanf(db.detail.c_str(), "%d candidates: %d ends blocked, %d invalid, %d crowded", &k,
+                                     &blocked, &invalid, &crowded) == 4;
+    const std::size_t cut = db.detail.rfind("; ");
+    const std::string why = cut == std::string::npos ? db.detail : db.detail.substr(cut + 2);
+    std::string general;
+    if (db.detail.empty())
+      general = "no class of this size";
+    else if (counted && why == "none to repair")
+      general = blocked == k ? "every candidate blocked at its ends" : "every candidate blocked or crowded";
+    else
+      for (char ch : why) {
+        if (!std::isdigit(static_cast<unsigned char>(ch)))
+          general += ch;
+        else if (general.empty() || general.back() != 'N')
+          general += 'N';
+      }
+    ++s.database_failed_where_decoupled_failed[general];
+  }
+}
+
+SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   const Subproblem& sub = ctx.sub;
   std::vector<const RobotModel*> robots;
   for (int r : sub.robots) robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
@@ -214,6 +260,16 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   stats["db_learned_ids"] = std::move(learned_ids);
   stats["db_learn_candidates"] = pending_.size();
   stats["db_learn_time_s"] = sw.seconds();
+  if (settings_.shadow_decoupled) {
+    const Shadow& s = shadow_;
+    stats["db_shadow_decoupled"] = {{"queries", s.queries},
+                                    {"database_solved", s.database},
+                                    {"decoupled_solved", s.decoupled},
+                                    {"both_solved", s.both},
+                                    {"decoupled_seconds_where_both", s.decoupled_s_both},
+                                    {"database_extra_steps_where_both", s.extra_steps_both},
+                                    {"database_failed_where_decoupled_failed", s.database_failed_where_decoupled_failed}};
+  }
   pending_.clear();
 }
 
@@ -223,6 +279,7 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   ds.k = static_cast<std::size_t>(settings.db_k);
   ds.max_invalid_segments = settings.db_max_invalid_segments;
   ds.learn = settings.db_learn;
+  ds.shadow_decoupled = settings.db_shadow_decoupled;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
   for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));

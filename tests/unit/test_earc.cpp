@@ -116,6 +116,36 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
   CHECK(second.stats["db_hit_rate"].get<double>() > 0.0);
 }
 
+TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the database") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  REQUIRE(plan(crossing(0, 0, 12), earcSettings(2), &store).solution.solved);  // something to retrieve
+  PlannerSettings settings = earcSettings(3);
+  settings.db_learn = false;
+  settings.db_shadow_decoupled = true;
+  PlanResult r = plan(crossing(5.0, 4.0, 12), settings, &store);
+  REQUIRE(r.solution.solved);
+  REQUIRE(r.stats.contains("db_shadow_decoupled"));
+  const auto& sh = r.stats["db_shadow_decoupled"];
+  const int queries = sh["queries"], database = sh["database_solved"], decoupled = sh["decoupled_solved"],
+            both = sh["both_solved"];
+  CHECK(queries == r.stats["db_queries"].get<int>());
+  CHECK(queries >= 1);
+  CHECK(database == r.stats["db_hits"].get<int>() + r.stats["db_repairs"].get<int>());
+  CHECK(both <= std::min(database, decoupled));
+  CHECK(sh["decoupled_seconds_where_both"].size() == static_cast<std::size_t>(both));
+  CHECK(sh["database_extra_steps_where_both"].size() == static_cast<std::size_t>(both));
+  int neither = 0;
+  for (const auto& [why, n] : sh["database_failed_where_decoupled_failed"].items()) {
+    CHECK_FALSE(why.empty());
+    neither += n.get<int>();
+  }
+  CHECK(neither == queries - database - decoupled + both);
+  // Without the flag there is no such entry.
+  settings.db_shadow_decoupled = false;
+  CHECK_FALSE(plan(crossing(5.0, 4.0, 12), settings, &store).stats.contains("db_shadow_decoupled"));
+}
+
 TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict happens") {
   TempDb tmp;
   exp::ExperienceStore store(tmp.file());

@@ -22,6 +22,7 @@ struct PlanOptions {
   std::uint64_t seed = 1;
   int window = 0;
   bool no_learn = false;
+  bool shadow_decoupled = false;
   bool quiet = false;
 };
 
@@ -39,6 +40,9 @@ int runPlan(const PlanOptions& o) {
   s.trace = !o.trace.empty();
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
+  if (o.shadow_decoupled && s.method != Method::Earc)
+    throw InputError("", "--shadow-decoupled", "is for method earc");
+  s.db_shadow_decoupled = o.shadow_decoupled;
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
@@ -81,6 +85,9 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict");
   cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");
+  cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
+                "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
+                "report what each solved (stats db_shadow_decoupled; planning times then include it)");
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }

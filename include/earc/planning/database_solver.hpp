@@ -9,6 +9,10 @@
 // learned (inserted when planning ends).
 #pragma once
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "earc/experience/store.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/solver.hpp"
@@ -20,6 +24,7 @@ struct DatabaseSolverSettings {
   int max_invalid_segments = 3;   // repair only up to this many invalid runs
   double repair_time_s = 0.1;     // composite replanning budget per run
   bool learn = true;              // insert subproblems solved from scratch
+  bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
 
 class DatabaseSolver : public SubproblemSolver {
@@ -34,6 +39,11 @@ class DatabaseSolver : public SubproblemSolver {
   static constexpr std::size_t kMaxRobots = 4;
 
  private:
+  SolverOutcome query(SolverContext& ctx);
+  // What the decoupled solver makes of the subproblem the database was
+  // just asked (`db`), for the db_shadow_decoupled stats.
+  void shadow(SolverContext& ctx, const SolverOutcome& db);
+
   // start -> candidate's first state, the candidate, last state -> goal,
   // shortcut (when asked), then held at the goals through the window.
   LocalSolution connect(const CompositeChecker& checker, const SolverContext& ctx,
@@ -52,6 +62,12 @@ class DatabaseSolver : public SubproblemSolver {
   int hits_ = 0;
   int repairs_ = 0;
   int crowded_ = 0;  // valid candidates refused for running into other robots
+  struct Shadow {
+    int queries = 0, database = 0, decoupled = 0, both = 0;
+    std::vector<double> decoupled_s_both;  // decoupled's time where both solved
+    std::vector<long> extra_steps_both;    // database's length minus decoupled's
+    std::map<std::string, int> database_failed_where_decoupled_failed;  // by reason
+  } shadow_;
 };
 
 }  // namespace earc

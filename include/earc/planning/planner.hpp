@@ -37,6 +37,10 @@ struct PlannerSettings {
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
   bool db_learn = true;               // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
+  // Diagnostic: also run the decoupled solver on every subproblem put to
+  // the database and report what each solved (stats
+  // db_shadow_decoupled). Planning times then include those runs.
+  bool db_shadow_decoupled = false;
   // Lightning's whole-problem database file (OMPL's format): empty starts
   // from an empty database and writes none; a missing file is created when
   // db_learn is set.
