@@ -12,6 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string_view>
 #include <set>
 #include <unistd.h>
 
@@ -20,6 +23,7 @@
 #include "earc/planning/methods.hpp"
 #include "earc/planning/ompl_composite.hpp"
 #include "earc/util/deadline.hpp"
+#include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
 #include "earc/validate/validator.hpp"
 
@@ -157,16 +161,44 @@ LightningDatabase::LightningDatabase(const Scenario& prototype) : impl_(std::mak
 
 LightningDatabase::~LightningDatabase() = default;
 
+// OMPL's loader trusts its file: a damaged one can crash it. So every file
+// we write ends with a line of our own after OMPL's data, naming the state
+// space and carrying a checksum of everything before it, and a file is
+// handed to OMPL only when that line is there and agrees.
+namespace {
+constexpr std::string_view kTrailerTag = "earc-lightning v1 fnv1a64=";
+
+std::string trailer(std::string_view body, const std::string& space) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(body)));
+  return "\n" + std::string(kTrailerTag) + hex + " space=" + space + "\n";
+}
+}  // namespace
+
 void LightningDatabase::load(const std::string& path) {
-  const std::string refusal = "not a Lightning database of " + spaceDescription(impl_->prototype) +
-                              " (build one with earc-bench lightning-db)";
-  // OMPL's loader trusts the file: a path count first, then the paths. A
-  // file of another state space loads as empty paths, so read the count
-  // ourselves and check every path that comes back.
-  double declared = -1;
+  const std::string space = spaceDescription(impl_->prototype);
+  const std::string rebuild = " (build one with earc-bench lightning-db)";
+  const std::string refusal = "not a Lightning database of " + space + rebuild;
+  std::string bytes;
   {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", "cannot read the Lightning database");
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path, "", "cannot read the Lightning database");
+  }
+  const std::size_t at = bytes.rfind("\n" + std::string(kTrailerTag));
+  if (at == std::string::npos || bytes.back() != '\n')
+    throw InputError(path, "", "no earc checksum line at the end: cut short, or not written by earc" + rebuild);
+  if (bytes.compare(at, std::string::npos, trailer(std::string_view(bytes).substr(0, at), space)) != 0) {
+    const std::string line = bytes.substr(at + 1, bytes.size() - at - 2);
+    if (line.find(" space=" + space) == std::string::npos) throw InputError(path, "", refusal);
+    throw InputError(path, "", "damaged: its checksum does not match its contents" + rebuild);
+  }
+  // OMPL reads a path count, then the paths. Check that every path it
+  // hands back has states.
+  double declared = -1;
+  {
+    std::istringstream in(bytes.substr(0, at));
     in >> declared;
     if (!in || declared < 0 || declared != static_cast<double>(static_cast<std::size_t>(declared)))
       throw InputError(path, "", refusal);
@@ -185,13 +217,27 @@ void LightningDatabase::load(const std::string& path) {
 
 void LightningDatabase::save(const std::string& path) const {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  if (!impl_->db->save(tmp)) throw std::runtime_error(path + ": cannot write the Lightning database");
+  auto fail = [&](const std::string& why) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error(path + ": cannot write the Lightning database" + why);
+  };
+  if (!impl_->db->save(tmp)) fail("");
+  std::string body;
+  {
+    std::ifstream in(tmp, std::ios::binary);
+    body.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) fail("");
+  }
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::app);
+    out << trailer(body, spaceDescription(impl_->prototype));
+    out.flush();
+    if (!out) fail("");
+  }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp);
-    throw std::runtime_error(path + ": cannot write the Lightning database: " + ec.message());
-  }
+  if (ec) fail(": " + ec.message());
 }
 
 std::size_t LightningDatabase::entries() const { return impl_->db->getExperiencesCount(); }

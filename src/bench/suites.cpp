@@ -4,6 +4,7 @@
 
 #include "earc/gen/generators.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
 
 namespace earc::bench {
@@ -16,13 +17,9 @@ constexpr int kGenerationAttempts = 8;
 constexpr std::uint64_t kTrialStream = 0x7419;
 constexpr std::uint64_t kDatabaseStream = 0xdb;
 
-// A stable 64-bit hash (FNV-1a) of a suite name: seeds must not depend on
-// the order suites are listed in.
-std::uint64_t nameHash(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
-  return h;
-}
+// A stable hash of a suite name: seeds must not depend on the order
+// suites are listed in.
+std::uint64_t nameHash(const std::string& s) { return fnv1a64(s); }
 
 Scenario generate(const Suite& suite, int robots, std::uint64_t seed) {
   if (suite.family == "arms") {

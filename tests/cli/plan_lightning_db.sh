@@ -2,7 +2,8 @@
 # earc-plan plan --method lightning --db FILE: the Lightning database file
 # is created by the first solution, recalled from (and left as it was) with
 # --no-learn, and refused with one line naming it (exit 2) when it is
-# missing under --no-learn or is not a Lightning database of this space.
+# missing under --no-learn, is not a Lightning database of this space, or
+# is damaged.
 set -u
 BUILD=$1
 PLAN="$BUILD/earc-plan"
@@ -51,5 +52,20 @@ refused "a text file" "$WORK/text.lightning" \
   "$PLAN" plan "$WORK/two.json" -o "$WORK/e.json" --method lightning --db "$WORK/text.lightning" -q
 [ "$(cat "$WORK/text.lightning")" = "not a database" ] || fail "a refused file was overwritten"
 
-[ $failures -eq 0 ] && echo "lightning --db: created, recalled, refusals one line each"
+# A damaged file (bytes changed, cut short) is refused before OMPL, whose
+# loader trusts its input, reads it: exit 2, one line, never a crash.
+size=$(stat -c %s "$DBF")
+damaged=0
+for at in 0 9 40 $((size / 3)) $((size / 2)) $((size - 60)) $((size - 30)) $((size - 2)); do
+  cp "$DBF" "$WORK/flip.lightning"
+  printf 'X' | dd of="$WORK/flip.lightning" bs=1 seek="$at" conv=notrunc status=none
+  refused "a byte changed at $at" "$WORK/flip.lightning" \
+    "$PLAN" plan "$WORK/two.json" -o "$WORK/f.json" --method lightning --db "$WORK/flip.lightning" --no-learn -q
+  head -c "$at" "$DBF" > "$WORK/cut.lightning"
+  refused "cut at $at" "$WORK/cut.lightning" \
+    "$PLAN" plan "$WORK/two.json" -o "$WORK/f.json" --method lightning --db "$WORK/cut.lightning" --no-learn -q
+  damaged=$((damaged + 2))
+done
+
+[ $failures -eq 0 ] && echo "lightning --db: created, recalled, refusals one line each ($damaged damaged files)"
 exit $((failures > 0))
