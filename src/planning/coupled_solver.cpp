@@ -55,7 +55,7 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
   return sol;
 }
 
-std::vector<std::vector<double>> stateAt(const std::vector<Path>& paths, std::size_t t) {
+CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
   CompositeState q;
   for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
   return q;
@@ -95,15 +95,15 @@ RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotM
     q.region = region;
     CoupledSettings cs;
     cs.time_limit_s = std::min(time_per_run_s, deadline.remaining());
-    if (cs.time_limit_s <= 0) return {std::nullopt, "no time left to repair"};
+    if (cs.time_limit_s <= 0) return {std::nullopt, true, "no time left to repair"};
     auto fix = solveCoupled(world, q, cs, splitSeed(seed, a));
-    if (!fix) return {std::nullopt, "repair failed"};
+    if (!fix) return {std::nullopt, false, "repair failed"};
     for (std::size_t r = 0; r < robots.size(); ++r) repaired[r].append(fix->paths[r], 1);
     copied_to = b + 1;
   }
   for (std::size_t r = 0; r < robots.size(); ++r)
     for (std::size_t t = copied_to; t < paths[r].size(); ++t) repaired[r].push(paths[r].at(t));
-  return {std::move(repaired), ""};
+  return {std::move(repaired), false, ""};
 }
 
 std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const CoupledQuery& query,

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
+#include <string_view>
 #include <random>
 
 #include "earc/experience/retrieval.hpp"
@@ -21,6 +21,9 @@ namespace {
 // Shortcut attempts on a retrieved (or repaired) solution joined to the
 // subproblem's start and goal.
 constexpr int kConnectShortcuts = 100;
+
+// Why a query failed when no candidate was both valid and clear.
+constexpr std::string_view kNoneToRepair = "none to repair";
 
 // Keys hold positions, not headings, so a retrieved mobile robot's path
 // may start facing anywhere: turn the whole path by one angle so that it
@@ -60,21 +63,17 @@ void DatabaseSolver::shadow(SolverContext& ctx, const SolverOutcome& db) {
     s.extra_steps_both.push_back(static_cast<long>(db.solution->length()) - static_cast<long>(dec.solution->length()));
   }
   if (!db.solution && !dec.solution) {
-    // Why the database failed, from its detail ("K candidates: B ends
-    // blocked, I invalid, C crowded; why"), numbers taken out so that
-    // reasons add up across subproblems.
-    int k = 0, blocked = 0, invalid = 0, crowded = 0;
-    const bool counted = std::sscanf(db.detail.c_str(), "%d candidates: %d ends blocked, %d invalid, %d crowded", &k,
-                                     &blocked, &invalid, &crowded) == 4;
-    const std::size_t cut = db.detail.rfind("; ");
-    const std::string why = cut == std::string::npos ? db.detail : db.detail.substr(cut + 2);
+    // Why the database failed (the query's tally), numbers taken out so
+    // that reasons add up across subproblems.
+    const Tally& t = tally_;
     std::string general;
-    if (db.detail.empty())
+    if (t.why.empty())
       general = "no class of this size";
-    else if (counted && why == "none to repair")
-      general = blocked == k ? "every candidate blocked at its ends" : "every candidate blocked or crowded";
+    else if (t.why == kNoneToRepair)
+      general = static_cast<std::size_t>(t.ends_blocked) == t.candidates ? "every candidate blocked at its ends"
+                                                                          : "every candidate blocked or crowded";
     else
-      for (char ch : why) {
+      for (char ch : t.why) {
         if (!std::isdigit(static_cast<unsigned char>(ch)))
           general += ch;
         else if (general.empty() || general.back() != 'N')
@@ -88,17 +87,23 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   const Subproblem& sub = ctx.sub;
   std::vector<const RobotModel*> robots;
   for (int r : sub.robots) robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  tally_ = {};
   if (robots.size() < 2 || robots.size() > kMaxRobots) return {std::nullopt, name(), -1};
   auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k);
   ++queries_;
-  if (candidates.empty()) return {std::nullopt, name(), -1, 0.0, "no entries of this class"};
+  if (candidates.empty()) {
+    tally_.why = "no entries of this class";
+    return {std::nullopt, name(), -1, 0.0, tally_.why};
+  }
   // What became of the candidates, for the trace.
-  int ends_blocked = 0, invalid = 0, crowded = 0;
-  auto failed = [&](const std::string& why) {
+  tally_.candidates = candidates.size();
+  auto failed = [&](std::string_view why) {
+    const Tally& t = tally_;
+    tally_.why = why;
     return SolverOutcome{std::nullopt, name(), -1, 0.0,
-                         std::to_string(candidates.size()) + " candidates: " + std::to_string(ends_blocked) +
-                             " ends blocked, " + std::to_string(invalid) + " invalid, " + std::to_string(crowded) +
-                             " crowded; " + why};
+                         std::to_string(t.candidates) + " candidates: " + std::to_string(t.ends_blocked) +
+                             " ends blocked, " + std::to_string(t.invalid) + " invalid, " + std::to_string(t.crowded) +
+                             " crowded; " + t.why};
   };
   // Try the k nearest in order of how long they would make the local
   // solution (their own steps plus the joins to this start and goal), so
@@ -152,7 +157,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
         !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
       store_.recordUse(c.id, false);
-      ++ends_blocked;
+      ++tally_.ends_blocked;
       continue;
     }
     auto runs = invalidRuns(checker, c.paths);
@@ -161,7 +166,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
       if (!sol) {
         store_.recordUse(c.id, false);
         ++crowded_;
-        ++crowded;
+        ++tally_.crowded;
         continue;
       }
       found = SolverOutcome{std::move(*sol), "database", c.id};
@@ -170,11 +175,11 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
       break;
     }
     store_.recordUse(c.id, false);
-    ++invalid;
+    ++tally_.invalid;
     if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
   }
   if (found) return std::move(*found);
-  if (!best) return failed("none to repair");
+  if (!best) return failed(kNoneToRepair);
   if (best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
     return failed("fewest invalid runs " + std::to_string(best->runs.size()) + ", too many to repair");
 
@@ -184,7 +189,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   RunRepair fix = repairRuns(ctx.world, robots, c.paths, best->runs, sub.region, settings_.repair_time_s,
                              ctx.deadline, ctx.seed);
   if (!fix.paths) {
-    if (fix.why == "repair failed") store_.recordUse(c.id, false);
+    if (!fix.out_of_time) store_.recordUse(c.id, false);
     return failed(fix.why);
   }
   const std::vector<Path>& repaired = *fix.paths;

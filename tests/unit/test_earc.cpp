@@ -243,6 +243,7 @@ TEST_CASE("invalidRuns finds the stretch an obstacle cuts and repairRuns replans
   RunRepair fix = repairRuns(world, models, paths, runs, region, 2.0, Deadline(10), 3);
   REQUIRE(fix.paths.has_value());
   CHECK(fix.why.empty());
+  CHECK_FALSE(fix.out_of_time);
   const std::vector<Path>& p = *fix.paths;
   CHECK(invalidRuns(checker, p).empty());
   // Untouched up to the run's first state, and ending where it ended.
@@ -253,6 +254,7 @@ TEST_CASE("invalidRuns finds the stretch an obstacle cuts and repairRuns replans
   // No time left: nothing replanned, and it says why.
   RunRepair late = repairRuns(world, models, paths, runs, region, 2.0, Deadline(0), 3);
   CHECK_FALSE(late.paths.has_value());
+  CHECK(late.out_of_time);
   CHECK(late.why == "no time left to repair");
 }
 

@@ -45,7 +45,7 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
                                  const std::vector<std::vector<std::vector<double>>>& waypoints);
 
 // The composite state of time-stamped paths at step t.
-std::vector<std::vector<double>> stateAt(const std::vector<Path>& paths, std::size_t t);
+CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
 
 // Steps t of time-stamped paths whose motion t -> t+1 (either end or its
 // midpoint) is invalid, as maximal runs [first, last] of consecutive steps.
@@ -58,7 +58,8 @@ std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vec
 // Without paths when a run could not be replanned; `why` says so.
 struct RunRepair {
   std::optional<std::vector<Path>> paths;
-  std::string why;  // "no time left to repair" or "repair failed"
+  bool out_of_time = false;  // no time was left for a run (rather than its replanning failing)
+  std::string why;           // "no time left to repair" or "repair failed"
 };
 RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
                      const std::vector<Path>& paths, const std::vector<StepRun>& runs,

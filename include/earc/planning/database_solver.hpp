@@ -62,6 +62,13 @@ class DatabaseSolver : public SubproblemSolver {
   int hits_ = 0;
   int repairs_ = 0;
   int crowded_ = 0;  // valid candidates refused for running into other robots
+  // What became of the last query's candidates (its trace detail), and why
+  // it failed; why is empty when the subproblem's size has no class.
+  struct Tally {
+    std::size_t candidates = 0;
+    int ends_blocked = 0, invalid = 0, crowded = 0;
+    std::string why;
+  } tally_;
   struct Shadow {
     int queries = 0, database = 0, decoupled = 0, both = 0;
     std::vector<double> decoupled_s_both;  // decoupled's time where both solved
