@@ -2,7 +2,9 @@
 
 #include <stdexcept>
 
+#include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
@@ -22,6 +24,15 @@ constexpr std::uint64_t kDatabaseStream = 0xdb;
 std::uint64_t nameHash(const std::string& s) { return fnv1a64(s); }
 
 Scenario generate(const Suite& suite, int robots, std::uint64_t seed) {
+  if (!suite.map.empty()) {
+    const gen::EmbeddedMap* map = gen::findEmbeddedMovingAiMap(suite.map);
+    if (!map) throw std::logic_error("suite " + suite.name + ": map " + suite.map + " is not compiled in");
+    gen::MovingAiSettings s;
+    s.robots = robots;
+    s.seed = seed;
+    return gen::generateMovingAi(
+        gen::parseMovingAiMap(std::string(map->text), "datasets/movingai/" + suite.map + ".map"), s);
+  }
   if (suite.family == "arms") {
     gen::ArmSettings s;
     s.robots = robots;
@@ -53,18 +64,25 @@ Scenario generateRetrying(const Suite& suite, int robots, std::uint64_t seed) {
 
 const std::vector<Suite>& allSuites() {
   static const std::vector<Suite> suites = {
-      {"mobile", "mobile", false, {2, 4, 8, 16, 32}},
-      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}},
-      {"arms", "arms", false, {2, 4, 8, 16}},
-      {"arms-obst", "arms", true, {2, 4, 8, 16}},
+      {"mobile", "mobile", false, {2, 4, 8, 16, 32}, "", true},
+      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}, "", true},
+      {"arms", "arms", false, {2, 4, 8, 16}, "", true},
+      {"arms-obst", "arms", true, {2, 4, 8, 16}, "", true},
+      // A 32x32 field with 20% of its cells blocked at random, and a game
+      // level of 256x257 cells: corridors one cell wide.
+      {"movingai-random", "mobile", true, {2, 4, 8, 16, 32}, "random-32-32-20", false},
+      {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d", false},
   };
   return suites;
 }
 
 const Suite& suiteByName(const std::string& name) {
-  for (const Suite& s : allSuites())
+  std::string names;
+  for (const Suite& s : allSuites()) {
     if (s.name == name) return s;
-  throw InputError("", "--suites", "unknown suite '" + name + "' (mobile, mobile-obst, arms, arms-obst)");
+    names += (names.empty() ? "" : ", ") + s.name;
+  }
+  throw InputError("", "--suites", "unknown suite '" + name + "' (" + names + ")");
 }
 
 const std::vector<std::string>& allMethods() {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/placement.hpp"
 #include "earc/gen/random.hpp"
 #include "earc/io/input_error.hpp"
@@ -118,6 +119,12 @@ GridMap readMovingAiMap(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return parseMovingAiMap(text.str(), path);
+}
+
+const EmbeddedMap* findEmbeddedMovingAiMap(std::string_view name) {
+  for (const EmbeddedMap& m : embeddedMovingAiMaps())
+    if (m.name == name) return &m;
+  return nullptr;
 }
 
 std::vector<CellRect> mergeBlockedCells(const GridMap& map) {

@@ -4,12 +4,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/gen/embedded_maps.hpp"
+#include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
 
 using namespace earc;
@@ -229,4 +232,41 @@ TEST_CASE("a trial's scenario is a function of suite, robots, trial and seed, an
   CHECK(d.robots[0].start != a.robots[0].start);
   CHECK_THROWS_AS(suiteByName("boats"), InputError);
   CHECK(splitList("a,,b,") == std::vector<std::string>{"a", "b"});
+}
+
+TEST_CASE("the MovingAI suites put robots on the compiled-in maps, which are the files in datasets/movingai") {
+  // Every map in the folder is compiled in, unchanged.
+  std::size_t files = 0;
+  for (const auto& f : std::filesystem::directory_iterator(std::filesystem::path(EARC_SOURCE_DIR) / "datasets" / "movingai")) {
+    if (f.path().extension() != ".map") continue;
+    ++files;
+    const gen::EmbeddedMap* m = gen::findEmbeddedMovingAiMap(f.path().stem().string());
+    REQUIRE_MESSAGE(m != nullptr, f.path());
+    std::ifstream in(f.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(m->text == text);
+  }
+  CHECK(files == gen::embeddedMovingAiMaps().size());
+  CHECK(gen::findEmbeddedMovingAiMap("no-such-map") == nullptr);
+
+  int paper = 0;
+  for (const Suite& s : allSuites()) {
+    paper += s.paper ? 1 : 0;
+    if (s.map.empty()) continue;
+    CAPTURE(s.name);
+    CHECK_FALSE(s.paper);
+    CHECK(s.family == "mobile");  // E-ARC answers them from the mobile database
+    const gen::GridMap map = gen::parseMovingAiMap(std::string(gen::findEmbeddedMovingAiMap(s.map)->text), s.map);
+    const Scenario a = trialScenario(s, 8, 0, 1), b = trialScenario(s, 8, 0, 1), c = trialScenario(s, 8, 1, 1);
+    CHECK(a.name == s.name + "-8-t0");
+    CHECK(a.robots.size() == 8);
+    CHECK(a.obstacles.size() == gen::mergeBlockedCells(map).size());
+    CHECK(a.workspace.hi.x == map.width);
+    CHECK(a.workspace.hi.y == map.height);
+    for (std::size_t i = 0; i < a.robots.size(); ++i) CHECK(a.robots[i].start == b.robots[i].start);
+    CHECK(a.robots[0].start != c.robots[0].start);
+    CHECK(databaseProblem(s, 8, 0, 1).robots[0].start != a.robots[0].start);
+  }
+  CHECK(paper == 4);
+  CHECK(suiteByName("movingai-den520d").map == "den520d");
 }

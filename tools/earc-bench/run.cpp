@@ -47,7 +47,8 @@ void setupRun(CLI::App& app) {
   bench::RunOptions& r = o->run;
   auto* cmd = app.add_subcommand(
       "run", "Run the paper's experiments: trials per (suite, robots, method), each in its own process; resumable");
-  auto* suites = cmd->add_option("--suites", o->suites, "Suites: mobile, mobile-obst, arms, arms-obst (default mobile-obst,arms)");
+  auto* suites = cmd->add_option("--suites", o->suites, "Suites: mobile, mobile-obst, arms, arms-obst (the paper's), movingai-random, movingai-den520d "
+                  "(MovingAI maps) (default mobile-obst,arms)");
   auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full every count of the suite)");
   auto* methods = cmd->add_option("--methods", o->methods,
                                   "Methods: earc, arc, lightning, prioritized, coupled (default earc,arc,lightning,prioritized)");
@@ -76,7 +77,8 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--wall-margin", r.wall_margin_s,
                   "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)");
   cmd->add_option("--plan-program", r.plan_program, "The earc-plan to run (default: the one next to earc-bench)");
-  cmd->add_flag("--full", o->full, "Everything: all suites, robot counts and methods, 20 trials per cell");
+  cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
+                "(with --suites: those suites instead)");
   cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
   cmd->add_flag("--keep-solutions", r.keep_solutions, "Keep the solution files of solved trials");
   cmd->add_flag("-v,--verbose", r.verbose, "One line per finished trial");
@@ -86,7 +88,8 @@ void setupRun(CLI::App& app) {
     bench::RunOptions& r = o->run;
     if (o->full) {
       r.suites.clear();
-      for (const auto& s : bench::allSuites()) r.suites.push_back(s.name);
+      for (const auto& s : bench::allSuites())
+        if (s.paper) r.suites.push_back(s.name);
       r.robots.clear();
       r.methods = bench::allMethods();
       if (!trials->count()) r.trials = kFullTrials;

@@ -23,13 +23,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
-SUITES = ["mobile", "mobile-obst", "arms", "arms-obst"]
+SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d"]
 METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
           "coupled": "Coupled RRT-Connect"}
 # Line style and marker per suite: databases of one method for several
 # suites share its colour.
-SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", "s"), "arms-obst": ("-.", "D")}
+SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", "s"), "arms-obst": ("-.", "D"),
+                "movingai-random": ((0, (5, 1)), "v"), "movingai-den520d": ((0, (1, 1, 3, 1)), "P")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
           "coupled": "tab:orange"}
 

@@ -1,6 +1,8 @@
 // The experiment suites of the E-ARC paper ("Experiments"): mobile robots
 // and facing pairs of 5-DOF arms, each without and with random obstacles
-// that move from trial to trial, at growing robot counts. A trial's
+// that move from trial to trial, at growing robot counts; and, beside
+// them, mobile robots on MovingAI benchmark maps (fixed obstacles, random
+// starts and goals per trial). A trial's
 // scenario is a pure function of (suite, robots, trial, run seed): every
 // method sees the same scenarios, so results are paired by seed.
 #pragma once
@@ -14,12 +16,15 @@
 namespace earc::bench {
 
 struct Suite {
-  std::string name;         // "mobile", "mobile-obst", "arms", "arms-obst"
+  std::string name;         // "mobile", "mobile-obst", "arms", "arms-obst", "movingai-..."
   std::string family;       // "mobile" or "arms"
   bool obstacles = false;
-  std::vector<int> robots;  // the robot counts of the paper
+  std::vector<int> robots;  // the robot counts run by default
+  std::string map;          // MovingAI suites: the embedded map's name
+  bool paper = true;        // one of the paper's suites (earc-bench run --full)
 };
 
+// The paper's suites first, then the MovingAI ones.
 const std::vector<Suite>& allSuites();
 // Throws InputError naming the option for an unknown name.
 const Suite& suiteByName(const std::string& name);
