@@ -164,6 +164,20 @@ void Connection::exec(std::string_view sql) {
 }
 
 void Connection::requireQuickCheck() {
+  const std::int64_t mmap = pragmaInt("mmap_size"), cache = pragmaInt("cache_size");
+  exec("PRAGMA mmap_size = 0");
+  exec("PRAGMA cache_size = -" + std::to_string(kQuickCheckCacheKiB));
+  struct Restore {
+    Connection& c;
+    std::int64_t mmap, cache;
+    ~Restore() {
+      try {
+        c.exec("PRAGMA cache_size = " + std::to_string(cache));
+        c.exec("PRAGMA mmap_size = " + std::to_string(mmap));
+      } catch (...) {  // settings only: the connection stays usable
+      }
+    }
+  } restore{*this, mmap, cache};
   Statement check = prepare("PRAGMA quick_check");
   std::string first;
   std::size_t problems = 0;

@@ -100,6 +100,29 @@ TEST_CASE("a damaged table page the index scan never reads is caught by quick_ch
   CHECK_FALSE(std::filesystem::exists(path + "-wal"));
 }
 
+TEST_CASE("quick_check runs unmapped with a small cache and gives the connection its settings back") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  makeDatabase(path, 2);
+  for (OpenMode mode : {OpenMode::ReadOnly, OpenMode::ReadWrite}) {
+    Connection c(path, mode);
+    const std::int64_t mmap = c.pragmaInt("mmap_size"), cache = c.pragmaInt("cache_size");
+    CHECK(mmap == kMmapBytes);
+    CHECK(cache == -kPageCacheKiB);
+    c.requireQuickCheck();
+    CHECK(c.pragmaInt("mmap_size") == mmap);
+    CHECK(c.pragmaInt("cache_size") == cache);
+  }
+  // A damaged file: the error still leaves the settings as they were.
+  std::vector<unsigned char> bytes = readBytes(path);
+  bytes[static_cast<std::size_t>((rootPage(path, "experiences") - 1) * pageSize(path))] = 0x07;
+  writeBytes(path, bytes);
+  Connection c(path, OpenMode::ReadOnly);
+  CHECK_THROWS_AS(c.requireQuickCheck(), DamagedDatabaseError);
+  CHECK(c.pragmaInt("mmap_size") == kMmapBytes);
+  CHECK(c.pragmaInt("cache_size") == -kPageCacheKiB);
+}
+
 TEST_CASE("a truncated database is refused as damaged by the store, verify and import, and left as it was") {
   ScratchDirectory dir("hostile");
   const std::string good = dir.file("good.db");
