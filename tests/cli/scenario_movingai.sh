@@ -1,7 +1,7 @@
 #!/bin/bash
 # earc-scenario movingai: a benchmark map becomes a deterministic scenario
 # with the map's size; malformed maps are bad input (exit 2) naming the
-# file and the line.
+# file and the line; a compiled-in map is found by its name.
 set -u
 BUILD=$1
 SRC=$2
@@ -30,5 +30,9 @@ printf 'type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n' > "$WORK/bad.map"
 grep -q "bad.map: line 6: column 2: unknown terrain character 'x'" "$WORK/err" || fail "unhelpful error: $(cat "$WORK/err")"
 "$GEN" movingai "$WORK/missing.map" --robots 1 -o "$WORK/x.json" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a missing map did not exit 2"
+# A compiled-in map by name, from a directory without it: the same scenario.
+(cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||
+  fail "the compiled-in map random-32-32-10 was not found by name"
+cmp -s "$WORK/a.json" "$WORK/e.json" || fail "the compiled-in map gave another scenario than the file"
 [ -e "$WORK/x.json" ] && fail "a failed run left an output file"
 echo "ok"

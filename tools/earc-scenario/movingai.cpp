@@ -1,11 +1,15 @@
-// earc-scenario movingai MAPFILE --robots N [--seed S] [--shape box|disc]
+// earc-scenario movingai MAP --robots N [--seed S] [--shape box|disc]
 //   [--radius R] -o FILE
 // A scenario on a MovingAI benchmark map (earc/gen/movingai.hpp): blocked
-// cells merged into box obstacles, random starts and goals.
+// cells merged into box obstacles, random starts and goals. MAP is a .map
+// file, or the name of a map compiled in (datasets/movingai: den520d,
+// random-32-32-10, random-32-32-20) when no such file exists.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/gen/scenario_text.hpp"
 #include "earc/util/subcommands.hpp"
@@ -21,13 +25,20 @@ struct MovingAiOptions {
   std::string output;
 };
 
+earc::gen::GridMap loadMap(const std::string& map) {
+  if (!std::filesystem::exists(map))
+    if (const earc::gen::EmbeddedMap* m = earc::gen::findEmbeddedMovingAiMap(map))
+      return earc::gen::parseMovingAiMap(std::string(m->text), map + ".map");
+  return earc::gen::readMovingAiMap(map);
+}
+
 void runMovingAi(const MovingAiOptions& opt) {
   earc::gen::MovingAiSettings s;
   s.robots = opt.robots;
   s.seed = opt.seed;
   s.footprint.shape = opt.shape == "disc" ? earc::MobileShape::Disc : earc::MobileShape::Box;
   s.footprint.radius = opt.radius;
-  const earc::Scenario sc = earc::gen::generateMovingAi(earc::gen::readMovingAiMap(opt.map), s);
+  const earc::Scenario sc = earc::gen::generateMovingAi(loadMap(opt.map), s);
   earc::gen::writeScenarioFile(opt.output, sc);
   std::cout << opt.output << ": " << earc::gen::scenarioSummary(sc) << "\n";
 }
@@ -35,7 +46,7 @@ void runMovingAi(const MovingAiOptions& opt) {
 void setupMovingAi(CLI::App& app) {
   auto opt = std::make_shared<MovingAiOptions>();
   CLI::App* sub = app.add_subcommand("movingai", "Make a scenario from a MovingAI .map file");
-  sub->add_option("map", opt->map, "MovingAI .map file")->required();
+  sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (den520d, random-32-32-10, random-32-32-20)")->required();
   sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(CLI::Range(1, 1024))->capture_default_str();
   sub->add_option("--seed,-s", opt->seed, "Random seed")->capture_default_str();
   sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
