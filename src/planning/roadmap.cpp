@@ -157,7 +157,8 @@ bool QueryGraph::edgeValid(int key) {
 std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline) {
   const int n = graph.size();
   const RobotModel& model = graph.model();
-  std::unordered_map<int, bool> invalid;  // edges this query found invalid
+  // Edges found invalid, by this search or earlier ones on the roadmap, are
+  // left out; the search repeats until its path has no invalid edge.
   for (;;) {
     if (deadline.expired()) return std::nullopt;
     std::vector<double> g(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
@@ -178,7 +179,7 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
         break;
       }
       graph.forEachEdge(v, [&](int u, int steps, int key) {
-        if (closed[static_cast<std::size_t>(u)] || invalid.count(key)) return;
+        if (closed[static_cast<std::size_t>(u)] || graph.knownInvalid(key)) return;
         double cand = g[static_cast<std::size_t>(v)] + steps;
         if (cand < g[static_cast<std::size_t>(u)]) {
           g[static_cast<std::size_t>(u)] = cand;
@@ -201,10 +202,7 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
     for (int key : keys) {
       // Each edge check can be long at a fine resolution: poll between them.
       if (deadline.expired()) return std::nullopt;
-      if (!graph.edgeValid(key)) {
-        invalid[key] = true;
-        ok = false;
-      }
+      if (!graph.edgeValid(key)) ok = false;
     }
     if (ok) return path;
   }

@@ -40,6 +40,7 @@ class Roadmap {
 
   // Whether the edge's motion is valid against the world (checked once).
   bool edgeValid(int id);
+  bool knownInvalid(int id) const { return edge_state_[static_cast<std::size_t>(id)] < 0; }
   std::size_t edgeChecks() const { return edge_checks_; }
 
   // Up to k roadmap vertices nearest to q (approximately, in the metric).
@@ -102,6 +103,11 @@ class QueryGraph {
 
   // Validity of an edge given by its key (roadmap ids >= 0, query edges < 0).
   bool edgeValid(int key);
+  // True when an earlier check, by this query or any query on the same
+  // roadmap, found the edge invalid (no check is made here).
+  bool knownInvalid(int key) const {
+    return key >= 0 ? roadmap_.knownInvalid(key) : extra_edge_state_[static_cast<std::size_t>(-1 - key)] < 0;
+  }
   Roadmap& roadmap() { return roadmap_; }
   const RobotModel& model() const { return robot_; }
 
