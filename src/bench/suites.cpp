@@ -1,10 +1,10 @@
 #include "earc/bench/suites.hpp"
 
+#include <optional>
 #include <stdexcept>
 
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/generators.hpp"
-#include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
@@ -25,13 +25,12 @@ std::uint64_t nameHash(const std::string& s) { return fnv1a64(s); }
 
 Scenario generate(const Suite& suite, int robots, std::uint64_t seed) {
   if (!suite.map.empty()) {
-    const gen::EmbeddedMap* map = gen::findEmbeddedMovingAiMap(suite.map);
+    std::optional<gen::GridMap> map = gen::embeddedMovingAiMap(suite.map);
     if (!map) throw std::logic_error("suite " + suite.name + ": map " + suite.map + " is not compiled in");
     gen::MovingAiSettings s;
     s.robots = robots;
     s.seed = seed;
-    return gen::generateMovingAi(
-        gen::parseMovingAiMap(std::string(map->text), "datasets/movingai/" + suite.map + ".map"), s);
+    return gen::generateMovingAi(*map, s);
   }
   if (suite.family == "arms") {
     gen::ArmSettings s;
@@ -64,14 +63,14 @@ Scenario generateRetrying(const Suite& suite, int robots, std::uint64_t seed) {
 
 const std::vector<Suite>& allSuites() {
   static const std::vector<Suite> suites = {
-      {"mobile", "mobile", false, {2, 4, 8, 16, 32}, "", true},
-      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}, "", true},
-      {"arms", "arms", false, {2, 4, 8, 16}, "", true},
-      {"arms-obst", "arms", true, {2, 4, 8, 16}, "", true},
+      {"mobile", "mobile", false, {2, 4, 8, 16, 32}, ""},
+      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}, ""},
+      {"arms", "arms", false, {2, 4, 8, 16}, ""},
+      {"arms-obst", "arms", true, {2, 4, 8, 16}, ""},
       // A 32x32 field with 20% of its cells blocked at random, and a game
       // level of 256x257 cells: corridors one cell wide.
-      {"movingai-random", "mobile", true, {2, 4, 8, 16, 32}, "random-32-32-20", false},
-      {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d", false},
+      {"movingai-random", "mobile", true, {2, 4, 8, 16, 32}, "random-32-32-20"},
+      {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d"},
   };
   return suites;
 }

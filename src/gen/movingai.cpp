@@ -127,6 +127,12 @@ const EmbeddedMap* findEmbeddedMovingAiMap(std::string_view name) {
   return nullptr;
 }
 
+std::optional<GridMap> embeddedMovingAiMap(std::string_view name) {
+  const EmbeddedMap* m = findEmbeddedMovingAiMap(name);
+  if (!m) return std::nullopt;
+  return parseMovingAiMap(std::string(m->text), "datasets/movingai/" + std::string(name) + ".map");
+}
+
 std::vector<CellRect> mergeBlockedCells(const GridMap& map) {
   std::vector<unsigned char> covered(map.blocked.size(), 0);
   auto index = [&](int col, int row) {

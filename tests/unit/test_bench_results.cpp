@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -251,12 +252,14 @@ TEST_CASE("the MovingAI suites put robots on the compiled-in maps, which are the
 
   int paper = 0;
   for (const Suite& s : allSuites()) {
-    paper += s.paper ? 1 : 0;
+    paper += s.paper() ? 1 : 0;
     if (s.map.empty()) continue;
     CAPTURE(s.name);
-    CHECK_FALSE(s.paper);
+    CHECK_FALSE(s.paper());
     CHECK(s.family == "mobile");  // E-ARC answers them from the mobile database
-    const gen::GridMap map = gen::parseMovingAiMap(std::string(gen::findEmbeddedMovingAiMap(s.map)->text), s.map);
+    const std::optional<gen::GridMap> embedded = gen::embeddedMovingAiMap(s.map);
+    REQUIRE(embedded.has_value());
+    const gen::GridMap& map = *embedded;
     const Scenario a = trialScenario(s, 8, 0, 1), b = trialScenario(s, 8, 0, 1), c = trialScenario(s, 8, 1, 1);
     CHECK(a.name == s.name + "-8-t0");
     CHECK(a.robots.size() == 8);

@@ -89,7 +89,7 @@ void setupRun(CLI::App& app) {
     if (o->full) {
       r.suites.clear();
       for (const auto& s : bench::allSuites())
-        if (s.paper) r.suites.push_back(s.name);
+        if (s.paper()) r.suites.push_back(s.name);
       r.robots.clear();
       r.methods = bench::allMethods();
       if (!trials->count()) r.trials = kFullTrials;

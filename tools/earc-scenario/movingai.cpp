@@ -27,8 +27,7 @@ struct MovingAiOptions {
 
 earc::gen::GridMap loadMap(const std::string& map) {
   if (!std::filesystem::exists(map))
-    if (const earc::gen::EmbeddedMap* m = earc::gen::findEmbeddedMovingAiMap(map))
-      return earc::gen::parseMovingAiMap(std::string(m->text), map + ".map");
+    if (auto embedded = earc::gen::embeddedMovingAiMap(map)) return *embedded;
   return earc::gen::readMovingAiMap(map);
 }
 

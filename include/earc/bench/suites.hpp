@@ -21,7 +21,9 @@ struct Suite {
   bool obstacles = false;
   std::vector<int> robots;  // the robot counts run by default
   std::string map;          // MovingAI suites: the embedded map's name
-  bool paper = true;        // one of the paper's suites (earc-bench run --full)
+
+  // One of the paper's suites (earc-bench run --full): the generated ones.
+  bool paper() const { return map.empty(); }
 };
 
 // The paper's suites first, then the MovingAI ones.

@@ -3,8 +3,11 @@
 // earc-bench's MovingAI suites run from any directory and any install.
 #pragma once
 
+#include <optional>
 #include <string_view>
 #include <vector>
+
+#include "earc/gen/movingai.hpp"
 
 namespace earc::gen {
 
@@ -18,5 +21,9 @@ const std::vector<EmbeddedMap>& embeddedMovingAiMaps();
 
 // The map of that name, or nullptr.
 const EmbeddedMap* findEmbeddedMovingAiMap(std::string_view name);
+
+// The map of that name parsed (errors name it datasets/movingai/NAME.map),
+// or nothing when no map of that name is compiled in.
+std::optional<GridMap> embeddedMovingAiMap(std::string_view name);
 
 }  // namespace earc::gen
