@@ -25,6 +25,16 @@ constexpr int kConnectShortcuts = 100;
 // Why a query failed when no candidate was both valid and clear.
 constexpr std::string_view kNoneToRepair = "none to repair";
 
+// Valid candidates that ran into robots outside the subproblem before the
+// query gives up: the region is busy with other robots at this time, and
+// more candidates, or a repaired one, run into them too (measured on 20
+// plans of 32 mobile robots with obstacles: of 82 repairs tried after 3
+// or more such candidates, 4 came out clear; stopping there cut the time
+// of the queries that fail by 40%). The decoupled solver, which plans
+// around those robots, takes over.
+constexpr int kCrowdedGiveUp = 3;
+constexpr std::string_view kBusy = "region busy with other robots";
+
 // Keys hold positions, not headings, so a retrieved mobile robot's path
 // may start facing anywhere: turn the whole path by one angle so that it
 // starts at the subproblem's start heading (its steps keep their turns;
@@ -166,7 +176,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
       if (!sol) {
         store_.recordUse(c.id, false);
         ++crowded_;
-        ++tally_.crowded;
+        if (++tally_.crowded >= kCrowdedGiveUp) break;
         continue;
       }
       found = SolverOutcome{std::move(*sol), "database", c.id};
@@ -179,6 +189,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
   }
   if (found) return std::move(*found);
+  if (tally_.crowded >= kCrowdedGiveUp) return failed(kBusy);
   if (!best) return failed(kNoneToRepair);
   if (best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
     return failed("fewest invalid runs " + std::to_string(best->runs.size()) + ", too many to repair");

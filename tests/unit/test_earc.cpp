@@ -303,28 +303,44 @@ TEST_CASE("A retrieved mobile solution is turned to the start headings and short
   CHECK(out.solution->length() <= 41);
 }
 
-TEST_CASE("The database solver refuses a stored solution that runs into a robot outside the subproblem") {
-  TempDb tmp;
-  exp::ExperienceStore store(tmp.file());
-  Scenario s;
-  s.name = "parked";
-  s.workspace = {{0, 0}, {10, 10}};
-  // a and b drive side by side in +x; c, not in the subproblem, is parked
-  // on a's way for the whole time.
-  s.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0}), disc("c", {5, 4, 0}, {5, 4, 0})};
-  auto owned = makeRobotModels(s);
+namespace {
+
+// a and b drive side by side in +x from x = 4 to 6 (a at y = 4, b at
+// y = 6); c, not in the subproblem, is parked on a's way (5, 4) for the
+// whole time.
+struct ParkedRobot {
+  Scenario s = [] {
+    Scenario sc;
+    sc.name = "parked";
+    sc.workspace = {{0, 0}, {10, 10}};
+    sc.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0}), disc("c", {5, 4, 0}, {5, 4, 0})};
+    return sc;
+  }();
+  std::vector<std::shared_ptr<const RobotModel>> owned = makeRobotModels(s);
   std::vector<const RobotModel*> all{owned[0].get(), owned[1].get(), owned[2].get()};
   std::vector<const RobotModel*> pair{owned[0].get(), owned[1].get()};
-  LocalSolution stored = timeStampComposite(pair, {{{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}});
-  REQUIRE(exp::learn(store, pair, stored.paths, 0.1, exp::Source::Build).has_value());
-
-  CollisionWorld world(s);
-  RoadmapSet roadmaps(world, all, 300, 10, 1);
+  CollisionWorld world{s};
+  RoadmapSet roadmaps{world, all, 300, 10, 1};
   Subproblem sub = pairSubproblem({{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}});
   std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]}),
                                line({{5, 4, 0}, {5, 4, 0}})};
+
+  // Stores a's and b's motion through the given composite waypoints.
+  void store(exp::ExperienceStore& db, const std::vector<CompositeState>& way) const {
+    LocalSolution st = timeStampComposite(pair, way);
+    REQUIRE(exp::learn(db, pair, st.paths, 0.1, exp::Source::Build).has_value());
+  }
+};
+
+}  // namespace
+
+TEST_CASE("The database solver refuses a stored solution that runs into a robot outside the subproblem") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  ParkedRobot f;
+  f.store(store, {{{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}});
   DatabaseSolver solver(store, DatabaseSolverSettings{});
-  SolverContext ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
+  SolverContext ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
   SolverOutcome out = solver.solve(ctx);
   CHECK_FALSE(out.solution.has_value());
   // The trace says what became of the candidates.
@@ -335,9 +351,45 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   CHECK(stats["db_hits"].get<int>() == 0);
 
   // With c parked out of the way the same entry is used.
-  plan_paths[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
-  SolverContext clear_ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
+  f.plan_paths[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
+  SolverContext clear_ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
   SolverOutcome used = solver.solve(clear_ctx);
   REQUIRE(used.solution.has_value());
   CHECK(used.how == "database");
+}
+
+TEST_CASE("After three stored solutions run into robots outside the subproblem, the database hands over") {
+  ParkedRobot f;
+  // `straight` entries where a drives straight through c (b a little
+  // higher or lower each time, so that no entry is a near duplicate of
+  // another), then one where a drives round c below it: the longest, so
+  // the last candidate tried.
+  auto run = [&](int straight) {
+    TempDb tmp;
+    exp::ExperienceStore store(tmp.file());
+    const double b_rows[] = {6.0, 6.3, 5.7};
+    for (int i = 0; i < straight; ++i) {
+      const double y = b_rows[i];
+      f.store(store, {{{4, 4, 0}, {4, y, 0}}, {{6, 4, 0}, {6, y, 0}}});
+    }
+    f.store(store,
+            {{{4, 4, 0}, {4, 6.15, 0}}, {{4, 2.5, 0}, {4, 6.15, 0}}, {{6, 2.5, 0}, {6, 6.15, 0}}, {{6, 4, 0}, {6, 6.15, 0}}});
+    DatabaseSolver solver(store, DatabaseSolverSettings{});
+    SolverContext ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
+    return solver.solve(ctx);
+  };
+
+  // Two crowded candidates: the query goes on to the way round.
+  SolverOutcome two = run(2);
+  REQUIRE(two.solution.has_value());
+  CHECK(two.how == "database");
+  bool went_round = false;
+  for (std::size_t t = 0; t < two.solution->paths[0].size(); ++t) went_round |= two.solution->paths[0].at(t)[1] < 3.0;
+  CHECK(went_round);
+
+  // Three: the region is taken to be busy, and neither the way round nor
+  // a repair is tried.
+  SolverOutcome three = run(3);
+  CHECK_FALSE(three.solution.has_value());
+  CHECK(three.detail == "4 candidates: 0 ends blocked, 0 invalid, 3 crowded; region busy with other robots");
 }
