@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string_view>
 #include <set>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include "earc/io/input_error.hpp"
@@ -203,8 +204,22 @@ void LightningDatabase::load(const std::string& path) {
     if (!in || declared < 0 || declared != static_cast<double>(static_cast<std::size_t>(declared)))
       throw InputError(path, "", refusal);
   }
+  // OMPL reads only from a named file. Hand it the bytes just checked, in
+  // an anonymous in-memory file, not `path` again: the file could change
+  // in between (another process saving it), and would be read twice.
+  const int fd = ::memfd_create("earc-lightning", MFD_CLOEXEC);
+  if (fd < 0) throw std::runtime_error(path + ": cannot load the Lightning database (memfd_create failed)");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  for (std::size_t done = 0; done < at;) {
+    const ssize_t n = ::write(fd, bytes.data() + done, at - done);
+    if (n <= 0) throw std::runtime_error(path + ": cannot load the Lightning database (writing it to memory failed)");
+    done += static_cast<std::size_t>(n);
+  }
   ot::LightningDB fresh(impl_->composite.space());
-  if (!fresh.load(path)) throw InputError(path, "", refusal);
+  if (!fresh.load("/proc/self/fd/" + std::to_string(fd))) throw InputError(path, "", refusal);
   std::vector<ob::PlannerDataPtr> paths;
   fresh.getAllPlannerDatas(paths);
   if (paths.size() != static_cast<std::size_t>(declared)) throw InputError(path, "", refusal);

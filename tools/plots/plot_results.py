@@ -139,8 +139,10 @@ def plot_databases(dbs, out):
         color = COLORS.get(method)
         line, marker = SUITE_STYLES.get(suite, ("-", "o"))
         if all(n == 0 for n, _ in series):
-            ax.hlines(series[-1][1], min(counts), max(counts), label=label + ", all sizes", colors=color,
-                      linestyles=line)
+            # One database for every robot count: a level line, its time in
+            # the legend too, since two such lines can lie on each other.
+            ax.hlines(series[-1][1], min(counts), max(counts), label="%s, all sizes: %.3g s" % (label, series[-1][1]),
+                      colors=color, linestyles=line)
         else:
             ax.plot([n for n, _ in series if n > 0], [max(s, 1e-3) for n, s in series if n > 0], marker=marker,
                     linestyle=line, label=label, color=color)
