@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/planning/ompl_composite.hpp"
@@ -180,13 +181,7 @@ void LightningDatabase::load(const std::string& path) {
   const std::string space = spaceDescription(impl_->prototype);
   const std::string rebuild = " (build one with earc-bench lightning-db)";
   const std::string refusal = "not a Lightning database of " + space + rebuild;
-  std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot read the Lightning database");
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path, "", "cannot read the Lightning database");
-  }
+  const std::string bytes = readTextFile(path);
   const std::size_t at = bytes.rfind("\n" + std::string(kTrailerTag));
   if (at == std::string::npos || bytes.back() != '\n')
     throw InputError(path, "", "no earc checksum line at the end: cut short, or not written by earc" + rebuild);
@@ -239,10 +234,10 @@ void LightningDatabase::save(const std::string& path) const {
   };
   if (!impl_->db->save(tmp)) fail("");
   std::string body;
-  {
-    std::ifstream in(tmp, std::ios::binary);
-    body.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (!in.good() && !in.eof()) fail("");
+  try {
+    body = readTextFile(tmp);
+  } catch (const std::exception&) {
+    fail("");
   }
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::app);

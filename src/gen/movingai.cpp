@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,6 +11,7 @@
 #include "earc/gen/placement.hpp"
 #include "earc/gen/random.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 
 namespace earc::gen {
 
@@ -113,13 +113,7 @@ GridMap parseMovingAiMap(const std::string& text, const std::string& file) {
   return map;
 }
 
-GridMap readMovingAiMap(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the map file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseMovingAiMap(text.str(), path);
-}
+GridMap readMovingAiMap(const std::string& path) { return parseMovingAiMap(readTextFile(path), path); }
 
 const EmbeddedMap* findEmbeddedMovingAiMap(std::string_view name) {
   for (const EmbeddedMap& m : embeddedMovingAiMaps())

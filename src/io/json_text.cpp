@@ -4,7 +4,9 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -113,14 +115,19 @@ json parseJsonText(const std::string& text, const std::string& file) {
   }
 }
 
-json readJsonFile(const std::string& path) {
+std::string readTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream buf;
-  buf << in.rdbuf();
+  // A directory opens, then reads as nothing, which would be reported as
+  // an empty or malformed file.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a file");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
-  return parseJsonText(buf.str(), path);
+  return text;
 }
+
+json readJsonFile(const std::string& path) { return parseJsonText(readTextFile(path), path); }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text) {
   auto failure = [&](const std::string& what) {

@@ -15,6 +15,7 @@
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 
 using namespace earc;
 using namespace earc::bench;
@@ -243,9 +244,7 @@ TEST_CASE("the MovingAI suites put robots on the compiled-in maps, which are the
     ++files;
     const gen::EmbeddedMap* m = gen::findEmbeddedMovingAiMap(f.path().stem().string());
     REQUIRE_MESSAGE(m != nullptr, f.path());
-    std::ifstream in(f.path(), std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    CHECK(m->text == text);
+    CHECK(m->text == readTextFile(f.path().string()));
   }
   CHECK(files == gen::embeddedMovingAiMaps().size());
   CHECK(gen::findEmbeddedMovingAiMap("no-such-map") == nullptr);

@@ -366,6 +366,16 @@ TEST_CASE("loadScenario reads, parses and checks geometry, naming the file") {
   } catch (const InputError& e) {
     CHECK(has(e.what(), "missing.json: cannot open file"));
   }
+  // A directory opens and reads as nothing: named as such, not as
+  // malformed JSON.
+  std::filesystem::create_directory(dir + "/folder.json");
+  try {
+    earc::loadScenario(dir + "/folder.json");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.file() == dir + "/folder.json");
+    CHECK(e.reason() == "is a directory, not a file");
+  }
   std::filesystem::remove_all(dir);
 }
 
@@ -482,9 +492,7 @@ TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
   const std::string path = dir + "/f.txt";
   earc::writeTextFileAtomic(path, "old");
   earc::writeTextFileAtomic(path, "new text");
-  std::ifstream in(path);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  CHECK(text == "new text");
+  CHECK(earc::readTextFile(path) == "new text");
   int files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
   CHECK(files == 1);

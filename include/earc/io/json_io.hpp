@@ -19,6 +19,9 @@ inline constexpr const char* kSolutionFormat = "earc.solution.v1";
 // `file` only names the source in errors.
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
 nlohmann::json readJsonFile(const std::string& path);
+// A whole file's bytes. Throws InputError naming the file when it cannot be
+// opened or read, or is a directory.
+std::string readTextFile(const std::string& path);
 // Write atomically (temporary file, fsync, rename): a crash leaves the old
 // file or the new one, never half of one.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
