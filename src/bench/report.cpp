@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/hash.hpp"
 
 namespace earc::bench {
 
@@ -68,6 +70,30 @@ std::string opt(const std::optional<T>& v) {
   s.precision(10);
   s << *v;
   return s.str();
+}
+
+// A suite name as part of a file name. The names come from the results
+// database, which anyone can edit: characters outside [A-Za-z0-9._-] (a
+// '/' above all) and a leading '.' become '_', so that a name like
+// "../../x" can never write outside the directory or hide its file; a name
+// that had to change gets a hash of itself, so that two odd names never
+// share (and overwrite) one file. The suites' own names pass unchanged.
+std::string fileNamePart(const std::string& name) {
+  std::string safe = name;
+  for (char& c : safe)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+  if (!safe.empty() && safe[0] == '.') safe[0] = '_';
+  if (safe == name && !safe.empty()) return safe;
+  char hash[24];
+  std::snprintf(hash, sizeof hash, "-%08llx", static_cast<unsigned long long>(fnv1a64(name) & 0xffffffffULL));
+  return safe + hash;
+}
+
+// One line of text: a line break in a value would end a log line early.
+std::string oneLine(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
 }
 
 // OMPL's PlannerStatus for a trial: what ompl_benchmark_statistics.py
@@ -296,7 +322,7 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
   std::vector<std::string> files;
   for (const auto& [key, runs] : experiments) {
     const auto& [rank, suite, robots, limit] = key;
-    std::string name = suite + "-" + std::to_string(robots);
+    std::string name = fileNamePart(suite) + "-" + std::to_string(robots);
     if (limits[{suite, robots}].size() > 1) name += "-tl" + fmt("%g", limit);
     const std::string path = dir + "/" + name + ".log";
     std::map<std::string, std::vector<const TrialRecord*>> by_method;
@@ -319,14 +345,14 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
     o << "earc-bench version 1\n";
     o << "Experiment " << name << "\n";
     o << "3 experiment properties\n";
-    o << "suite TEXT = " << suite << "\n";
+    o << "suite TEXT = " << oneLine(suite) << "\n";
     o << "robots INTEGER = " << robots << "\n";
     o << "run_seeds TEXT = ";
     for (auto it = seeds.begin(); it != seeds.end(); ++it) o << (it == seeds.begin() ? "" : "+") << *it;
     o << "\n";
     o << "Running on " << hostName() << "\n";
     o << "Starting at " << (first.empty() ? "UNKNOWN" : first) << "\n";
-    o << "<<<|\nearc-bench: scenarios of suite " << suite << " with " << robots
+    o << "<<<|\nearc-bench: scenarios of suite " << oneLine(suite) << " with " << robots
       << " robots; each method planned each scenario once in its own process\n|>>>\n";
     o << "<<<|\n|>>>\n";
     o << (seeds.empty() ? 0 : *seeds.begin()) << " is the random seed\n";
@@ -339,7 +365,7 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
       o << '|' << ompl::base::PlannerStatus(static_cast<ompl::base::PlannerStatus::StatusType>(i)).asString();
     o << "\n" << methods.size() << " planners\n";
     for (const std::string& m : methods) {
-      o << m << "\n0 common properties\n" << props.size() << " properties for each run\n";
+      o << oneLine(m) << "\n0 common properties\n" << props.size() << " properties for each run\n";
       for (const auto& p : props) o << p << "\n";
       auto list = by_method[m];
       std::sort(list.begin(), list.end(), [](const TrialRecord* a, const TrialRecord* b) { return a->trial < b->trial; });

@@ -111,6 +111,21 @@ for p in logs:
             assert r["solved"] in ("0", "1") and float(r["time"]) >= 0
 PYEOF
 
+# Suite names come from the results database: one like '../../escaped'
+# must not write outside the --ompl-log directory.
+"$PY" - "$WORK/r.sqlite" "$WORK/odd.sqlite" <<'PYEOF' || fail "could not make odd results"
+import sqlite3, sys
+src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
+src.backup(dst)
+dst.execute("UPDATE trials SET suite = '../../escaped' WHERE robots = 2")
+dst.commit()
+PYEOF
+mkdir -p "$WORK/deep/a/b"
+"$BENCH" export --results "$WORK/odd.sqlite" --ompl-log "$WORK/deep/a/b/logs" > /dev/null || fail "export of odd suite names exited $?"
+outside=$(find "$WORK" -name '*escaped*' ! -path "$WORK/deep/a/b/logs/*")
+[ -z "$outside" ] || fail "export wrote outside its --ompl-log directory: $outside"
+[ "$(find "$WORK/deep/a/b/logs" -name '*.log' | wc -l)" -eq 2 ] || fail "odd suite names: $(ls "$WORK/deep/a/b/logs")"
+
 "$BENCH" "${RUN[@]}" > "$WORK/again.out" 2>&1 || fail "second run exited $?"
 grep -q "nothing to run" "$WORK/again.out" || fail "second run did not skip the finished trials: $(head -3 "$WORK/again.out")"
 echo "ok: quick benchmark, table, CSV and OMPL logs"

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -218,6 +219,37 @@ TEST_CASE("OMPL benchmark logs follow Benchmark::saveResultsToStream's layout") 
   CHECK(std::count(run.begin(), run.end(), ';') == 10);
   CHECK(l[++i] == ".");
   CHECK(l[++i] == "arc");
+}
+
+TEST_CASE("OMPL log names from odd suite names stay inside the directory; the suites' names stay as they are") {
+  TempPath parent("earc-ompl-escape");
+  const std::string dir = parent.path + "/a/b/logs";
+  std::vector<TrialRecord> t;
+  for (const std::string suite : {"../../escaped", "..", "x/y", "x_y", ".hidden", "a\nb"})
+    t.push_back(trial("arc", 0, true, 1, suite));
+  for (const Suite& s : allSuites()) t.push_back(trial("arc", 0, true, 1, s.name));
+  const auto files = writeOmplLogs(t, dir);
+  CHECK(files.size() == t.size());  // no two suites share a file
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(parent.path))
+    if (e.is_regular_file()) {
+      CHECK(e.path().parent_path() == std::filesystem::path(dir));
+      const std::string name = e.path().filename().string();
+      CHECK(name[0] != '.');
+      CHECK(name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") ==
+            std::string::npos);
+      names.insert(name);
+    }
+  CHECK(names.size() == t.size());
+  for (const Suite& s : allSuites()) CHECK(names.count(s.name + "-4.log") == 1);
+  // A line break in a name does not break the log's lines.
+  int one_line = 0;
+  for (const std::string& f : files)
+    for (const std::string& line : lines(f)) {
+      CHECK(line != "b");
+      one_line += line == "suite TEXT = a b";
+    }
+  CHECK(one_line == 1);
 }
 
 TEST_CASE("a trial's scenario is a function of suite, robots, trial and seed, and databases never hold it") {

@@ -69,7 +69,11 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
 void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
 
 // One log per (suite, robots, time limit) experiment, planners = methods,
-// into dir (created). Returns the files written.
+// into dir (created), named SUITE-ROBOTS.log (SUITE-ROBOTS-tlLIMIT.log
+// where a cell has several limits). A suite name with characters outside
+// [A-Za-z0-9._-] or a leading '.' is made safe (those become '_', plus a
+// hash of the name): no file is ever written outside dir. Returns the
+// files written.
 std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir);
 
 }  // namespace earc::bench
