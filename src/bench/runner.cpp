@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -19,6 +20,7 @@
 #include <tuple>
 
 #include "earc/bench/child.hpp"
+#include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
@@ -113,6 +115,34 @@ std::int64_t fileSize(const std::string& path) {
   std::error_code ec;
   auto n = fs::file_size(path, ec);
   return ec ? -1 : static_cast<std::int64_t>(n);
+}
+
+// The E-ARC database of a family: the one given, or WORK/earc-FAMILY.sqlite.
+std::string earcDbPath(const RunOptions& o, const std::string& family) {
+  const std::string& given = family == "arms" ? o.db_arms : o.db_mobile;
+  if (!given.empty()) return given;
+  return (o.work_dir.empty() ? o.results + ".work" : o.work_dir) + "/earc-" + family + ".sqlite";
+}
+
+// The entries of an existing E-ARC database, opened read-only as the
+// trials' `earc-plan --no-learn` opens it. One that cannot be read (a
+// foreign file, a newer schema version) is bad input: every earc trial
+// would fail on it, and be recorded, and be skipped when resumed.
+std::int64_t earcDbEntries(const RunOptions& o, const std::string& family) {
+  const std::string path = earcDbPath(o, family);
+  const bool given = !(family == "arms" ? o.db_arms : o.db_mobile).empty();
+  const std::string option = given ? "--db-" + family : "";
+  if (fs::is_directory(path)) throw InputError(path, option, "a directory, not an E-ARC database");
+  try {
+    exp::StoreOptions so;
+    so.read_only = true;
+    so.new_session = false;
+    exp::ExperienceStore store(path, so);
+    return static_cast<std::int64_t>(store.size());
+  } catch (const std::exception& e) {
+    throw InputError(path, option, "not a usable E-ARC database: " + reasonAbout(e, path) +
+                                       (given ? "" : " (remove it to have it built again)"));
+  }
 }
 
 class Runner {
@@ -214,10 +244,7 @@ class Runner {
     return lightning_dir_ + "/" + s.name + "-" + std::to_string(robots) + ".lightning";
   }
 
-  std::string earcDb(const std::string& family) const {
-    const std::string& given = family == "arms" ? o_.db_arms : o_.db_mobile;
-    return given.empty() ? work_ + "/earc-" + family + ".sqlite" : given;
-  }
+  std::string earcDb(const std::string& family) const { return earcDbPath(o_, family); }
 
   // A Lightning database is built (in a child, timed) just before the
   // first trial that needs it, so that trials --cutoff skips never pay for
@@ -229,7 +256,7 @@ class Runner {
     const std::string path = lightningDb(suite, robots);
     if (fs::exists(path)) return;
     fs::create_directories(lightning_dir_);
-    const int problems = o_.lightning_problems > 0 ? o_.lightning_problems : o_.lightning_problems_per_robot * robots;
+    const int problems = o_.lightning_problems.value_or(o_.lightning_problems_per_robot * robots);
     log_ << "building Lightning database " << path << " from " << problems << " problems\n";
     std::vector<std::string> argv = {bench_, "lightning-db", "--suite", suite.name, "--robots",
                                      std::to_string(robots), "--count", std::to_string(problems), "--seed",
@@ -277,17 +304,9 @@ class Runner {
       d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(path + "-wal"));
       if (construction) {
         d.seed = o_.seed;
-        if (o_.earc_db_count > 0) d.problems = o_.earc_db_count;
+        if (o_.earc_db_count) d.problems = *o_.earc_db_count;
       }
-      try {
-        exp::StoreOptions so;
-        so.read_only = true;
-        so.new_session = false;
-        exp::ExperienceStore store(path, so);
-        d.entries = static_cast<std::int64_t>(store.size());
-      } catch (const std::exception& e) {
-        std::cerr << "earc-bench: cannot read E-ARC database " << path << ": " << e.what() << "\n";
-      }
+      d.entries = earcDbEntries(o_, family);
       db_.addDatabase(d);
     }
   }
@@ -301,9 +320,9 @@ class Runner {
     log_.flush();
     ChildSpec spec;
     spec.argv = {program, "build", "--db", path, "--kind", family, "--seed", std::to_string(o_.seed)};
-    if (o_.earc_db_count > 0) {
+    if (o_.earc_db_count) {
       spec.argv.push_back("--count");
-      spec.argv.push_back(std::to_string(o_.earc_db_count));
+      spec.argv.push_back(std::to_string(*o_.earc_db_count));
     }
     const std::string stem = work_ + "/logs/earc-db-" + family;
     spec.stdout_path = stem + ".out";
@@ -417,7 +436,7 @@ class Runner {
     spec.argv = planArgv(c, scenario, solution, seeds.planner);
     spec.stdout_path = out;
     spec.stderr_path = err;
-    spec.wall_limit_s = o_.time_limit_s + (o_.wall_margin_s >= 0 ? o_.wall_margin_s : wallMargin(o_.time_limit_s));
+    spec.wall_limit_s = o_.time_limit_s + o_.wall_margin_s.value_or(wallMargin(o_.time_limit_s));
     spec.memory_limit_mb = o_.memory_limit_mb;
     spec.fault = faultFor(c.method);
     ChildOutcome run = runChild(spec, &g_interrupted);
@@ -601,14 +620,38 @@ class Runner {
 
 double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
 
-RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
-  if (options.trials < 1) throw InputError("", "--trials", "must be at least 1");
-  if (!(options.time_limit_s > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
-  if (options.jobs < 1) throw InputError("", "--jobs", "must be at least 1");
-  for (const std::string& s : options.suites) suiteByName(s);
-  for (const std::string& m : options.methods)
+namespace {
+
+// Every option checked before anything is created, run or recorded: a
+// configuration error is not a trial failure.
+void validateOptions(const RunOptions& o) {
+  requireAtLeast(o.trials, 1, "--trials");
+  requirePositive(o.time_limit_s, "--time-limit");
+  requireAtLeast(o.jobs, 1, "--jobs");
+  if (o.memory_limit_mb < 1) throw InputError("", "--memory-limit-mb", "must be at least 1 (MiB)");
+  if (o.memory_limit_mb > (std::numeric_limits<std::size_t>::max() >> 20))
+    throw InputError("", "--memory-limit-mb", "too large");
+  if (o.wall_margin_s) requireNonNegative(*o.wall_margin_s, "--wall-margin");
+  if (o.earc_db_count) requireAtLeast(*o.earc_db_count, 1, "--earc-db-count");
+  if (o.lightning_problems) requireAtLeast(*o.lightning_problems, 1, "--lightning-problems");
+  requireAtLeast(o.lightning_problems_per_robot, 1, "--lightning-problems-per-robot");
+  requirePositive(o.lightning_problem_time_limit_s, "--lightning-problem-time-limit");
+  for (const std::string& m : o.methods)
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
+  std::set<std::string> families;
+  for (const std::string& name : o.suites) families.insert(suiteByName(name).family);
+  if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
+  else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
+  if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
+    for (const std::string& family : families)
+      if (fs::exists(earcDbPath(o, family))) earcDbEntries(o, family);
+}
+
+}  // namespace
+
+RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
+  validateOptions(options);
   InterruptGuard guard;
   Runner runner(options, log);
   return runner.run();

@@ -4,7 +4,9 @@
 # the run goes on: a planner child that dies of SIGSEGV and one that never
 # returns (test faults, EARC_BENCH_FAULT=METHOD:crash|hang), and a planner
 # (a stand-in for earc-plan) whose solution teleports, which must be
-# reported loudly. Skipped (77) without /usr/bin/python3.
+# reported loudly. Bad options and unusable databases, on the other hand,
+# are refused before any trial runs, and recorded nowhere. Skipped (77)
+# without /usr/bin/python3.
 set -u
 BUILD=$1
 SRC=$2
@@ -59,4 +61,42 @@ grep -q "^INVALID SOLUTION: mobile, 2 robots, method arc, trial 0: INVALID" "$WO
   || fail "no loud report: $(cat "$WORK/invalid.err")"
 got=$(query "$WORK/invalid.sqlite" "SELECT success, failure FROM trials")
 echo "$got" | grep -q "^0|invalid solution: INVALID" || fail "invalid solution not recorded as a failure: $got"
-echo "ok: crash, hang and invalid solution are failures"
+
+# Configuration errors are not trial failures: bad options, and an E-ARC
+# database that was given but cannot be read (a foreign SQLite file, a
+# newer schema), end the run before any trial with one line naming the
+# option or file and exit status 2, and record nothing, so that a resumed
+# run does not skip trials that never ran.
+refused() {  # refused TEXT ARGS...: exit 2, one line on stderr containing TEXT
+  local want=$1
+  shift
+  timeout 120 "$BENCH" "$@" > "$WORK/bad.out" 2> "$WORK/bad.err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "earc-bench $* exited $rc, not 2: $(cat "$WORK/bad.err")"
+  [ "$(wc -l < "$WORK/bad.err")" -eq 1 ] || fail "earc-bench $*: not one line: $(cat "$WORK/bad.err")"
+  grep -qF -- "$want" "$WORK/bad.err" || fail "earc-bench $*: the error does not say '$want': $(cat "$WORK/bad.err")"
+}
+"$PY" -c 'import sqlite3,sys
+c = sqlite3.connect(sys.argv[1]); c.execute("CREATE TABLE t(x)"); c.commit()
+c = sqlite3.connect(sys.argv[2]); c.execute("CREATE TABLE t(x)")
+c.execute("PRAGMA application_id = %d" % 0x45415243); c.execute("PRAGMA user_version = 99"); c.commit()' \
+  "$WORK/foreign.db" "$WORK/newer.db"
+R=(run --suites mobile --methods earc,arc --trials 1 --results "$WORK/bad.sqlite")
+refused "$WORK/foreign.db: --db-mobile: not a usable E-ARC database: not an earc experience database" \
+  "${R[@]}" --robots 2 --db-mobile "$WORK/foreign.db"
+refused "$WORK/newer.db: --db-mobile: not a usable E-ARC database: schema version 99 is newer" \
+  "${R[@]}" --robots 2 --db-mobile "$WORK/newer.db"
+refused "/nonexistent: --plan-program: no such file" "${R[@]}" --robots 2 --plan-program /nonexistent
+refused "$WORK/foreign.db: --plan-program: not an executable program" "${R[@]}" --robots 2 --plan-program "$WORK/foreign.db"
+refused "--robots: empty item in '2,,4'" "${R[@]}" --robots 2,,4
+refused "--methods: empty item in 'arc,'" run --suites mobile --robots 2 --methods arc, --results "$WORK/bad.sqlite"
+for bad in "--memory-limit-mb 0" "--memory-limit-mb -5" "--wall-margin -5" "--wall-margin nan" "--earc-db-count 0" "--earc-db-count -3" \
+           "--lightning-problems -1" "--lightning-problems-per-robot 0" "--lightning-problem-time-limit -1" \
+           "--lightning-problem-time-limit nan" "--time-limit nan" "--time-limit -1" "--time-limit inf"; do
+  # shellcheck disable=SC2086  # "--option value" splits in two
+  refused "${bad% *}:" "${R[@]}" --robots 2 $bad
+done
+[ -e "$WORK/bad.sqlite" ] && fail "a refused run created its results database"
+[ -e "$WORK/bad.sqlite.work" ] && fail "a refused run created its work directory"
+
+echo "ok: crash, hang and invalid solution are failures; configuration errors are not"

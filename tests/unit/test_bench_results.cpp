@@ -2,6 +2,7 @@
 // keys, statistics, pairing by seed, CSV and OMPL benchmark logs.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
@@ -250,6 +252,23 @@ TEST_CASE("OMPL log names from odd suite names stay inside the directory; the su
       one_line += line == "suite TEXT = a b";
     }
   CHECK(one_line == 1);
+}
+
+TEST_CASE("option checks refuse NaN, infinities and empty items") {
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL, -1.0}) {
+    CHECK_THROWS_AS(requirePositive(bad, "--time-limit"), InputError);
+    CHECK_THROWS_AS(requireNonNegative(bad, "--wall-margin"), InputError);
+  }
+  CHECK_THROWS_AS(requirePositive(0, "--time-limit"), InputError);
+  CHECK_NOTHROW(requirePositive(0.5, "--time-limit"));
+  CHECK_NOTHROW(requireNonNegative(0, "--wall-margin"));
+  CHECK_THROWS_AS(requireAtLeast(0, 1, "--repeats"), InputError);
+  CHECK_NOTHROW(requireAtLeast(1, 1, "--repeats"));
+  CHECK_THROWS_WITH(requirePositive(std::nan(""), "--time-limit"), "<input>: --time-limit: nan is not a positive number");
+
+  CHECK(splitOptionList("2,4", "--robots") == std::vector<std::string>{"2", "4"});
+  for (const char* bad : {"2,,4", "2,", ",2", ",", ""}) CHECK_THROWS_AS(splitOptionList(bad, "--robots"), InputError);
+  CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "<input>: --robots: empty item in '2,,4'");
 }
 
 TEST_CASE("a trial's scenario is a function of suite, robots, trial and seed, and databases never hold it") {

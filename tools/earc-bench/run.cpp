@@ -10,6 +10,7 @@
 // interrupted (run the same command again to resume).
 #include <iostream>
 
+#include "earc/bench/options.hpp"
 #include "earc/bench/runner.hpp"
 #include "earc/bench/suites.hpp"
 #include "earc/io/input_error.hpp"
@@ -24,12 +25,14 @@ constexpr int kFullTrials = 20;
 struct RunCli {
   bench::RunOptions run;
   std::string suites, robots, methods;
+  // Signed, so that "-5" is refused rather than read as 2^64 - 5.
+  std::int64_t memory_limit_mb = static_cast<std::int64_t>(bench::RunOptions{}.memory_limit_mb);
   bool full = false;
 };
 
 std::vector<int> parseCounts(const std::string& list) {
   std::vector<int> out;
-  for (const std::string& item : bench::splitList(list)) {
+  for (const std::string& item : bench::splitOptionList(list, "--robots")) {
     try {
       std::size_t used = 0;
       int n = std::stoi(item, &used);
@@ -72,7 +75,7 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--jobs", r.jobs,
                   "Trials run at once. Default 1: concurrent trials share cores and memory bandwidth and disturb "
                   "each other's timings")->capture_default_str();
-  cmd->add_option("--memory-limit-mb", r.memory_limit_mb, "Address-space limit of each trial's process (MiB)")
+  cmd->add_option("--memory-limit-mb", o->memory_limit_mb, "Address-space limit of each trial's process (MiB)")
       ->capture_default_str();
   cmd->add_option("--wall-margin", r.wall_margin_s,
                   "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)");
@@ -94,11 +97,13 @@ void setupRun(CLI::App& app) {
       r.methods = bench::allMethods();
       if (!trials->count()) r.trials = kFullTrials;
     }
-    if (suites->count()) r.suites = bench::splitList(o->suites);
+    if (suites->count()) r.suites = bench::splitOptionList(o->suites, "--suites");
     if (robots->count()) r.robots = parseCounts(o->robots);
-    if (methods->count()) r.methods = bench::splitList(o->methods);
+    if (methods->count()) r.methods = bench::splitOptionList(o->methods, "--methods");
     if (r.suites.empty()) throw InputError("", "--suites", "no suite given");
     if (r.methods.empty()) throw InputError("", "--methods", "no method given");
+    bench::requireAtLeast(o->memory_limit_mb, 1, "--memory-limit-mb");
+    r.memory_limit_mb = static_cast<std::size_t>(o->memory_limit_mb);
     bench::RunSummary s = bench::runBenchmark(r, std::cout);
     cli::setExitCode(s.interrupted ? 130 : s.invalid ? 1 : 0);
   });

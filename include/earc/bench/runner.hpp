@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,14 +26,14 @@ struct RunOptions {
   // E-ARC databases (earc-plan --db); empty: <work_dir>/earc-FAMILY.sqlite.
   // Built with `earc-db build --kind FAMILY` (timed) when missing.
   std::string db_mobile, db_arms;
-  int earc_db_count = 0;                 // > 0: earc-db build --count
+  std::optional<int> earc_db_count;      // earc-db build --count (unset: earc-db's default)
   std::string earc_db_program;           // empty: earc-db next to this program
   std::string lightning_dir;             // empty: <work_dir>/lightning
   // Lightning databases built when missing: problems = per_robot x robots
   // (the paper grows the database with the robot count), each planned for
   // at most problem_time_limit_s.
   int lightning_problems_per_robot = 4;
-  int lightning_problems = 0;            // > 0: this many, whatever the count
+  std::optional<int> lightning_problems; // this many, whatever the count
   double lightning_problem_time_limit_s = 10.0;
   int jobs = 1;                          // trials at once (1: undisturbed timings)
   std::size_t memory_limit_mb = 4096;    // RLIMIT_AS of each child
@@ -43,7 +44,7 @@ struct RunOptions {
   // `trials` trials at a smaller count of the same suite (the paper stops
   // plotting such methods too). Cut trials are not recorded, only counted.
   bool cutoff = false;
-  double wall_margin_s = -1;             // < 0: wallMargin(time_limit_s)
+  std::optional<double> wall_margin_s;   // unset: wallMargin(time_limit_s)
   std::string plan_program;              // empty: earc-plan next to this program
   std::string bench_program;             // empty: this program
 };
@@ -63,7 +64,11 @@ struct RunSummary {
 };
 
 // Runs what is missing; progress on a terminal, `log` gets per-trial lines
-// (verbose) and the table of this run's cells at the end.
+// (verbose) and the table of this run's cells at the end. Bad options
+// (a number out of range or not finite, a robot count no suite of the run
+// has, a --plan-program that cannot run, an E-ARC database that was given
+// but cannot be read) throw InputError before anything is run or recorded:
+// they are not trial failures.
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log);
 
 }  // namespace earc::bench

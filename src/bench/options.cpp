@@ -1,0 +1,63 @@
+#include "earc/bench/options.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace earc::bench {
+
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+void requirePositive(double value, const std::string& option) {
+  if (!std::isfinite(value) || value <= 0)
+    throw InputError("", option, number(value) + " is not a positive number");
+}
+
+void requireNonNegative(double value, const std::string& option) {
+  if (!std::isfinite(value) || value < 0)
+    throw InputError("", option, number(value) + " is not a finite number of 0 or more");
+}
+
+void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& option) {
+  if (value < least) throw InputError("", option, "must be at least " + std::to_string(least) + ", not " + std::to_string(value));
+}
+
+void requireExecutable(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, option, "no such file");
+  if (!fs::is_regular_file(path, ec) || ::access(path.c_str(), X_OK) != 0)
+    throw InputError(path, option, "not an executable program");
+}
+
+std::vector<std::string> splitOptionList(const std::string& list, const std::string& option) {
+  if (list.empty()) throw InputError("", option, "empty list");
+  std::vector<std::string> items = splitList(list);
+  // splitList drops empty items: one is missing for each of them.
+  if (items.size() != static_cast<std::size_t>(std::count(list.begin(), list.end(), ',')) + 1)
+    throw InputError("", option, "empty item in '" + list + "'");
+  return items;
+}
+
+std::string reasonAbout(const std::exception& e, const std::string& path) {
+  std::string why = e.what();
+  if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);
+  return why;
+}
+
+}  // namespace earc::bench
