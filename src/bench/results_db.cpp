@@ -3,6 +3,7 @@
 #include <ctime>
 #include <string_view>
 
+#include "earc/bench/options.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 
@@ -89,7 +90,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
   try {
     impl_ = std::make_unique<Impl>(path, read_only);
   } catch (const exp::StoreError& e) {
-    throw InputError(path, "", std::string("cannot open the results database: ") + e.what());
+    throw InputError(path, "", "cannot open the results database: " + reasonAbout(e, path));
   }
   Connection& c = impl_->conn;
   std::int64_t app = 0, version = 0, tables = 0;

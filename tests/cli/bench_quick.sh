@@ -3,8 +3,10 @@
 # A quick benchmark end to end: mobile robots, 2 and 4 of them, methods arc,
 # prioritized and lightning, 2 trials per cell under a short limit (the
 # Lightning databases are built on the way); then the table, the CSV and
-# the OMPL benchmark logs must be well formed, and a second run must find
-# nothing left to do. Skipped (77) without /usr/bin/python3.
+# the OMPL benchmark logs must be well formed, plot must draw the figures
+# (leaving out odd values with a warning) and refuse bad input in one
+# line, and a second run must find nothing left to do. Skipped (77)
+# without /usr/bin/python3.
 set -u
 BUILD=$1
 SRC=$2
@@ -125,6 +127,58 @@ mkdir -p "$WORK/deep/a/b"
 outside=$(find "$WORK" -name '*escaped*' ! -path "$WORK/deep/a/b/logs/*")
 [ -z "$outside" ] || fail "export wrote outside its --ompl-log directory: $outside"
 [ "$(find "$WORK/deep/a/b/logs" -name '*.log' | wc -l)" -eq 2 ] || fail "odd suite names: $(ls "$WORK/deep/a/b/logs")"
+
+# Bad input: exit 2 and one line naming the file and the option.
+refused() {  # refused TEXT ARGS...
+  local want=$1
+  shift
+  "$BENCH" "$@" > "$WORK/bad.out" 2> "$WORK/bad.err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "earc-bench $* exited $rc, not 2: $(cat "$WORK/bad.err")"
+  [ "$(wc -l < "$WORK/bad.err")" -eq 1 ] || fail "earc-bench $*: not one line: $(cat "$WORK/bad.err")"
+  grep -qF -- "$want" "$WORK/bad.err" || fail "earc-bench $*: the error does not say '$want': $(cat "$WORK/bad.err")"
+}
+if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
+  "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
+  [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"
+  # Odd values are left out with a warning: no traceback.
+  "$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF' || fail "could not make odd values"
+import sqlite3, sys
+src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
+src.backup(dst)
+ids = [r[0] for r in dst.execute("SELECT id FROM trials WHERE success = 1 ORDER BY id")]
+dst.execute("UPDATE trials SET planning_time_s = 'abc' WHERE id = ?", (ids[0],))
+dst.execute("UPDATE trials SET planning_time_s = 1e308 WHERE id = ?", (ids[1],))
+dst.execute("UPDATE trials SET robots = 0 WHERE id = ?", (ids[2],))
+dst.execute("UPDATE databases SET construction_time_s = 'slow'")
+dst.commit()
+PYEOF
+  "$BENCH" plot --results "$WORK/odd-values.sqlite" -o "$WORK/fig2" > /dev/null 2> "$WORK/plot.err" ||
+    fail "plot of odd values exited $?: $(cat "$WORK/plot.err")"
+  grep -q Traceback "$WORK/plot.err" && fail "plot printed a traceback: $(cat "$WORK/plot.err")"
+  [ "$(wc -l < "$WORK/plot.err")" -eq 2 ] || fail "not one warning per table: $(cat "$WORK/plot.err")"
+  grep -qF "$WORK/odd-values.sqlite: trials: left out 3 of 12 rows with odd values" "$WORK/plot.err" ||
+    fail "no warning about the odd trials: $(cat "$WORK/plot.err")"
+  [ -s "$WORK/fig2/time_mobile.png" ] || fail "plot of odd values wrote no figures"
+  touch "$WORK/a-file"
+  refused "$WORK/a-file: -o: exists and is not a directory" plot --results "$WORK/r.sqlite" -o "$WORK/a-file"
+  "$PY" -c 'import sqlite3,sys
+c = sqlite3.connect(sys.argv[1]); c.execute("PRAGMA user_version = 99"); c.commit()' "$WORK/odd.sqlite"
+  refused "$WORK/odd.sqlite: results schema version 99 is newer than this program's 1" \
+    plot --results "$WORK/odd.sqlite" -o "$WORK/fig3"
+  echo "not a database" > "$WORK/text.txt"
+  refused "$WORK/text.txt: cannot open the results database: not a SQLite database" plot --results "$WORK/text.txt" -o "$WORK/fig3"
+  # The script on its own says the same, in one line, naming the file.
+  "$PY" "$SRC/tools/plots/plot_results.py" --results "$WORK/odd.sqlite" -o "$WORK/fig3" 2> "$WORK/bad.err"
+  [ $? -eq 2 ] && [ "$(wc -l < "$WORK/bad.err")" -eq 1 ] && grep -qF "$WORK/odd.sqlite: results schema version 99" "$WORK/bad.err" ||
+    fail "plot_results.py accepted a newer schema: $(cat "$WORK/bad.err")"
+  "$PY" "$SRC/tools/plots/plot_results.py" --results "$WORK/text.txt" -o "$WORK/fig3" 2> "$WORK/bad.err"
+  [ $? -eq 2 ] && [ "$(wc -l < "$WORK/bad.err")" -eq 1 ] && grep -qF "$WORK/text.txt: " "$WORK/bad.err" ||
+    fail "plot_results.py on a text file: $(cat "$WORK/bad.err")"
+  [ -e "$WORK/fig3" ] && fail "a refused plot created its output directory"
+else
+  echo "note: no matplotlib for $PY: plot not tested"
+fi
 
 "$BENCH" "${RUN[@]}" > "$WORK/again.out" 2>&1 || fail "second run exited $?"
 grep -q "nothing to run" "$WORK/again.out" || fail "second run did not skip the finished trials: $(head -3 "$WORK/again.out")"

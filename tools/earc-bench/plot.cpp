@@ -2,10 +2,13 @@
 // tools/plots/plot_results.py (matplotlib) run with /usr/bin/python3.
 //
 //   earc-bench plot --results FILE -o DIR [--python PATH] [--script PATH]
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 
 #include "earc/bench/child.hpp"
+#include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/subcommands.hpp"
 
@@ -31,14 +34,29 @@ void setupPlot(CLI::App& app) {
   cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
   cmd->callback([o] {
     if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
+    // The checks table and export make (a foreign file, a newer schema),
+    // with their messages, before Python runs.
+    { const bench::ResultsDb check(o->results, true); }
+    if (std::filesystem::exists(o->output) && !std::filesystem::is_directory(o->output))
+      throw InputError(o->output, "-o", "exists and is not a directory");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
+    if (::access(o->python.c_str(), X_OK) != 0 || std::filesystem::is_directory(o->python))
+      throw InputError(o->python, "--python", "not an executable program");
     bench::ChildSpec spec;
     spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
     spec.wall_limit_s = kPlotWallLimitS;
     spec.inherit_output = true;
     bench::ChildOutcome out = bench::runChild(spec);
-    if (out.exit_code == 2) cli::setExitCode(2);
-    else if (out.exit_code != 0) throw std::runtime_error("the plotting script failed");
+    // Exit 1 or 2: the script said why, in one line of its own.
+    if (out.exit_code == 1 || out.exit_code == 2) cli::setExitCode(*out.exit_code);
+    else if (out.killed_at_limit)
+      throw std::runtime_error(o->script + ": the plotting script did not finish in " +
+                               std::to_string(static_cast<int>(kPlotWallLimitS)) + " s");
+    else if (out.exit_code != 0)
+      throw std::runtime_error(o->script + ": the plotting script failed (" +
+                               (out.signal ? "signal " + std::to_string(*out.signal)
+                                           : "exit " + std::to_string(out.exit_code.value_or(-1))) +
+                               ")");
   });
 }
 

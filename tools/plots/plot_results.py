@@ -9,20 +9,35 @@ against robot count per method, the band spanning the quartiles, log scale)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
 that serves every robot count, like E-ARC's, is a horizontal line).
-Exit status 0, or 2 for a missing or foreign results file.
+Rows with values no run writes (a planning time that is not a number, or
+is negative or beyond its trial's time limit; a robot count below 1; ...)
+are left out with one warning line per table. Every error is one line
+naming the file: exit status 2 for a missing, foreign or newer results
+file and for an output path that is not a directory, 1 when drawing or
+writing fails.
 """
 import argparse
+import math
 import os
 import sqlite3
 import sys
+import urllib.parse
 
-import matplotlib
+try:
+    import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as e:
+    print("plot_results.py: needs matplotlib and numpy (%s)" % e, file=sys.stderr)
+    sys.exit(1)
 
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
+SCHEMA_VERSION = 1  # kResultsSchemaVersion there
+# A solved trial's planning time may be this much over its limit (the
+# planners poll their deadline): kTimeLimitSlack in src/bench/runner.cpp.
+TIME_LIMIT_SLACK = 1.01
 SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d"]
 METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
@@ -40,23 +55,98 @@ def ordered(values, order):
     return known + sorted(v for v in values if v not in order)
 
 
+class BadInput(Exception):
+    """Bad input: one line naming the file, exit status 2."""
+
+
+def is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def is_int(v):
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+# What each column read must hold, and what a row that does not is told.
+NAME = (lambda v: isinstance(v, str) and v != "", "is not a name")
+FLAG = (lambda v: is_int(v) and v in (0, 1), "is neither 0 nor 1")
+POSITIVE = (lambda v: is_number(v) and v > 0, "is not a positive number")
+SECONDS = (lambda v: v is None or (is_number(v) and v >= 0), "is not a non-negative number")
+TRIAL_COLUMNS = {"suite": NAME, "robots": (lambda v: is_int(v) and v >= 1, "is not a count of 1 or more"),
+                 "method": NAME, "success": FLAG, "planning_time_s": SECONDS, "time_limit_s": POSITIVE}
+DATABASE_COLUMNS = {"method": NAME, "suite": NAME,
+                    "robots": (lambda v: is_int(v) and v >= 0, "is not a count of 0 or more"),
+                    "construction_time_s": SECONDS}
+
+
+def row_problem(row, columns):
+    """Why a row cannot be plotted, or None."""
+    for column, (ok, says) in columns.items():
+        if not ok(row[column]):
+            return "%s %r %s" % (column, row[column], says)
+    if "planning_time_s" in columns and row["success"] and row["planning_time_s"] is not None \
+            and row["planning_time_s"] > row["time_limit_s"] * TIME_LIMIT_SLACK:
+        return "planning_time_s %r of a solved trial is beyond its time limit %r" % (row["planning_time_s"],
+                                                                                  row["time_limit_s"])
+    return None
+
+
+def warn_skipped(path, table, skipped, total):
+    if skipped:
+        row, why = skipped[0]
+        more = "" if len(skipped) == 1 else " (and %d more)" % (len(skipped) - 1)
+        print("plot_results.py: warning: %s: %s: left out %d of %d rows with odd values: row id %s: %s%s"
+              % (path, table, len(skipped), total, row, why, more), file=sys.stderr)
+
+
 def load(path, seed, time_limit):
     if not os.path.exists(path):
-        raise FileNotFoundError("%s: no such file" % path)
-    con = sqlite3.connect("file:%s?mode=ro" % path, uri=True)
-    app = con.execute("PRAGMA application_id").fetchone()[0]
-    if app != APPLICATION_ID:
-        raise ValueError("%s: not an earc-bench results database (application_id %d)" % (path, app))
-    query = "SELECT suite, robots, method, success, planning_time_s, seed, time_limit_s FROM trials"
-    trials = []
-    for suite, robots, method, success, t, s, limit in con.execute(query):
-        if seed is not None and s != str(seed):
-            continue
-        if time_limit is not None and limit != time_limit:
-            continue
-        trials.append((suite, robots, method, bool(success), t))
-    dbs = con.execute("SELECT method, suite, robots, construction_time_s FROM databases").fetchall()
-    con.close()
+        raise BadInput("%s: no such file" % path)
+    if not os.path.isfile(path):
+        raise BadInput("%s: not a regular file" % path)
+    try:
+        # A URI, so that the file is opened read-only; quoted, so that '?',
+        # '#' or '%' in its name stay part of the name.
+        con = sqlite3.connect("file:%s?mode=ro" % urllib.parse.quote(os.path.abspath(path)), uri=True)
+    except sqlite3.Error as e:
+        raise BadInput("%s: cannot open the results database: %s" % (path, e))
+    try:
+        try:
+            app = con.execute("PRAGMA application_id").fetchone()[0]
+            version = con.execute("PRAGMA user_version").fetchone()[0]
+        except sqlite3.DatabaseError as e:
+            raise BadInput("%s: not an SQLite file (expected an earc-bench results database): %s" % (path, e))
+        if app != APPLICATION_ID:
+            raise BadInput("%s: not an earc-bench results database (application_id %d)" % (path, app))
+        if version > SCHEMA_VERSION:
+            raise BadInput("%s: results schema version %d is newer than this program's %d; use a newer earc-bench"
+                           % (path, version, SCHEMA_VERSION))
+        if version < 1:
+            raise BadInput("%s: results database without a schema version" % path)
+        try:
+            con.row_factory = sqlite3.Row
+            rows = con.execute("SELECT id, %s, seed FROM trials" % ", ".join(TRIAL_COLUMNS)).fetchall()
+            db_rows = con.execute("SELECT id, %s FROM databases" % ", ".join(DATABASE_COLUMNS)).fetchall()
+        except sqlite3.DatabaseError as e:
+            raise BadInput("%s: cannot read the results: %s" % (path, e))
+    finally:
+        con.close()
+    trials, skipped = [], []
+    for r in rows:
+        why = row_problem(r, TRIAL_COLUMNS)
+        if why:
+            skipped.append((r["id"], why))
+        elif (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
+            trials.append((r["suite"], r["robots"], r["method"], bool(r["success"]), r["planning_time_s"]))
+    warn_skipped(path, "trials", skipped, len(rows))
+    dbs, skipped = [], []
+    for r in db_rows:
+        why = row_problem(r, DATABASE_COLUMNS)
+        if why:
+            skipped.append((r["id"], why))
+        else:
+            dbs.append(tuple(r[c] for c in DATABASE_COLUMNS))
+    warn_skipped(path, "databases", skipped, len(db_rows))
     return trials, dbs
 
 
@@ -168,15 +258,32 @@ def main():
     a = p.parse_args()
     try:
         trials, dbs = load(a.results, a.seed, a.time_limit)
-    except (OSError, ValueError, sqlite3.DatabaseError) as e:
+    except BadInput as e:
         print("plot_results.py: %s" % e, file=sys.stderr)
         return 2
-    os.makedirs(a.output, exist_ok=True)
+    if os.path.exists(a.output) and not os.path.isdir(a.output):
+        print("plot_results.py: %s: -o: exists and is not a directory" % a.output, file=sys.stderr)
+        return 2
+    try:
+        os.makedirs(a.output, exist_ok=True)
+    except OSError as e:
+        print("plot_results.py: %s: -o: cannot create the directory: %s" % (a.output, e.strerror or e),
+              file=sys.stderr)
+        return 2
     written = []
-    for suite in ordered({t[0] for t in trials}, SUITES):
-        written.append(plot_times(trials, suite, a.output))
-        written.append(plot_success(trials, suite, a.output))
-    written.append(plot_databases(dbs, a.output))
+    try:
+        for suite in ordered({t[0] for t in trials}, SUITES):
+            written.append(plot_times(trials, suite, a.output))
+            written.append(plot_success(trials, suite, a.output))
+        written.append(plot_databases(dbs, a.output))
+    except OSError as e:
+        print("plot_results.py: %s: cannot write a figure: %s" % (e.filename or a.output, e.strerror or e),
+              file=sys.stderr)
+        return 1
+    except Exception as e:  # one line, never a traceback
+        print("plot_results.py: %s: drawing the figures failed: %s: %s" % (a.results, type(e).__name__, e),
+              file=sys.stderr)
+        return 1
     for name in written:
         print(os.path.join(a.output, name + ".{png,svg}"))
     return 0
