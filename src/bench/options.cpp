@@ -54,10 +54,45 @@ std::vector<std::string> splitOptionList(const std::string& list, const std::str
   return items;
 }
 
+namespace {
+
+fs::path canonicalForm(const std::string& path) {
+  std::error_code ec;
+  fs::path c = fs::weakly_canonical(path, ec);
+  return ec ? fs::absolute(path, ec).lexically_normal() : c;
+}
+
+}  // namespace
+
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  return canonicalForm(a) == canonicalForm(b);
+}
+
 std::string reasonAbout(const std::exception& e, const std::string& path) {
   std::string why = e.what();
   if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);
   return why;
+}
+
+void requireSeparateOutputs(const std::string& input, const std::string& input_option,
+                            const std::vector<std::pair<std::string, std::string>>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [path, option] = outputs[i];
+    if (path.empty()) continue;
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+      if (sameFile(path, input + suffix))
+        throw InputError(path, option,
+                         "is the " + input_option + " file" + (*suffix ? std::string("'s ") + suffix + " file" : "") +
+                             "; writing it would destroy that");
+    for (std::size_t j = 0; j < i; ++j)
+      if (!outputs[j].first.empty() && sameFile(path, outputs[j].first))
+        throw InputError(path, option, "is the same file as " + outputs[j].second + " " + outputs[j].first);
+  }
 }
 
 }  // namespace earc::bench

@@ -305,25 +305,51 @@ void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostrea
         << ',' << opt(d.seed) << ',' << d.recorded_at << "\n";
 }
 
-std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir) {
-  std::filesystem::create_directories(dir);
-  using Experiment = std::tuple<int, std::string, int, double>;
-  std::map<Experiment, std::vector<const TrialRecord*>> experiments;
+namespace {
+
+// One OMPL log: its name (without ".log") and its trials.
+struct OmplExperiment {
+  std::string name;
+  std::vector<const TrialRecord*> runs;
+};
+
+// The logs' experiments in the order they are written: (suite's rank,
+// suite, robots, time limit).
+std::map<std::tuple<int, std::string, int, double>, OmplExperiment> omplExperiments(
+    const std::vector<TrialRecord>& trials) {
+  std::map<std::tuple<int, std::string, int, double>, OmplExperiment> experiments;
   std::map<std::pair<std::string, int>, std::set<double>> limits;
   for (const auto& t : trials) {
-    experiments[{suiteRank(t.suite), t.suite, t.robots, t.time_limit_s}].push_back(&t);
+    experiments[{suiteRank(t.suite), t.suite, t.robots, t.time_limit_s}].runs.push_back(&t);
     limits[{t.suite, t.robots}].insert(t.time_limit_s);
   }
+  for (auto& [key, e] : experiments) {
+    const auto& [rank, suite, robots, limit] = key;
+    e.name = fileNamePart(suite) + "-" + std::to_string(robots);
+    if (limits[{suite, robots}].size() > 1) e.name += "-tl" + fmt("%g", limit);
+  }
+  return experiments;
+}
+
+}  // namespace
+
+std::vector<std::string> omplLogFiles(const std::vector<TrialRecord>& trials, const std::string& dir) {
+  std::vector<std::string> files;
+  for (const auto& [key, e] : omplExperiments(trials)) files.push_back(dir + "/" + e.name + ".log");
+  return files;
+}
+
+std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir) {
+  std::filesystem::create_directories(dir);
   // Run properties: "name TYPE", as Benchmark::saveResultsToStream writes
   // them, in sorted order.
   const std::vector<std::string> props = {
       "conflicts INTEGER", "database hits INTEGER", "makespan INTEGER", "memory REAL",   "solved BOOLEAN",
       "status ENUM",       "sum of costs INTEGER",  "time REAL",        "trial INTEGER", "wall time REAL"};
   std::vector<std::string> files;
-  for (const auto& [key, runs] : experiments) {
+  for (const auto& [key, experiment] : omplExperiments(trials)) {
     const auto& [rank, suite, robots, limit] = key;
-    std::string name = fileNamePart(suite) + "-" + std::to_string(robots);
-    if (limits[{suite, robots}].size() > 1) name += "-tl" + fmt("%g", limit);
+    const auto& [name, runs] = experiment;
     const std::string path = dir + "/" + name + ".log";
     std::map<std::string, std::vector<const TrialRecord*>> by_method;
     std::set<std::uint64_t> seeds;

@@ -128,7 +128,8 @@ outside=$(find "$WORK" -name '*escaped*' ! -path "$WORK/deep/a/b/logs/*")
 [ -z "$outside" ] || fail "export wrote outside its --ompl-log directory: $outside"
 [ "$(find "$WORK/deep/a/b/logs" -name '*.log' | wc -l)" -eq 2 ] || fail "odd suite names: $(ls "$WORK/deep/a/b/logs")"
 
-# Bad input: exit 2 and one line naming the file and the option.
+# Bad input: exit 2 and one line naming the file and the option; the
+# results database survives every refusal.
 refused() {  # refused TEXT ARGS...
   local want=$1
   shift
@@ -138,6 +139,17 @@ refused() {  # refused TEXT ARGS...
   [ "$(wc -l < "$WORK/bad.err")" -eq 1 ] || fail "earc-bench $*: not one line: $(cat "$WORK/bad.err")"
   grep -qF -- "$want" "$WORK/bad.err" || fail "earc-bench $*: the error does not say '$want': $(cat "$WORK/bad.err")"
 }
+# export refuses to overwrite the results or one output with another.
+refused "$WORK/r.sqlite: --csv: is the --results file" export --results "$WORK/r.sqlite" --csv "$WORK/r.sqlite"
+refused "$WORK/./r.sqlite: --databases-csv: is the --results file" \
+  export --results "$WORK/r.sqlite" --databases-csv "$WORK/./r.sqlite"
+"$BENCH" table --results "$WORK/r.sqlite" > /dev/null || fail "the results database did not survive export"
+refused "$WORK/x/../same.csv: --databases-csv: is the same file as --csv $WORK/same.csv" \
+  export --results "$WORK/r.sqlite" --csv "$WORK/same.csv" --databases-csv "$WORK/x/../same.csv"
+[ -e "$WORK/same.csv" ] && fail "export wrote an output before refusing another"
+refused "$WORK/logs/mobile-2.log: --ompl-log: is the same file as --csv $WORK/logs/mobile-2.log" \
+  export --results "$WORK/r.sqlite" --ompl-log "$WORK/logs" --csv "$WORK/logs/mobile-2.log"
+
 if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
   [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"

@@ -2,6 +2,7 @@
 // keys, statistics, pairing by seed, CSV and OMPL benchmark logs.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -254,7 +255,18 @@ TEST_CASE("OMPL log names from odd suite names stay inside the directory; the su
   CHECK(one_line == 1);
 }
 
-TEST_CASE("option checks refuse NaN, infinities and empty items") {
+TEST_CASE("export knows the OMPL logs' files before it writes them") {
+  TempPath dir("earc-ompl-names");
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 1), trial("arc", 0, true, 1, "arms", 2),
+                                trial("arc", 0, true, 1, "a/b")};
+  t.push_back(trial("arc", 0, true, 1));
+  t.back().time_limit_s = 30;  // two limits in one cell: -tl in the names
+  const auto names = omplLogFiles(t, dir.path);
+  CHECK(names == writeOmplLogs(t, dir.path));
+  CHECK(std::count(names.begin(), names.end(), dir.path + "/mobile-4-tl30.log") == 1);
+}
+
+TEST_CASE("option checks refuse NaN, infinities, empty items and outputs that would overwrite the input") {
   for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL, -1.0}) {
     CHECK_THROWS_AS(requirePositive(bad, "--time-limit"), InputError);
     CHECK_THROWS_AS(requireNonNegative(bad, "--wall-margin"), InputError);
@@ -269,6 +281,24 @@ TEST_CASE("option checks refuse NaN, infinities and empty items") {
   CHECK(splitOptionList("2,4", "--robots") == std::vector<std::string>{"2", "4"});
   for (const char* bad : {"2,,4", "2,", ",2", ",", ""}) CHECK_THROWS_AS(splitOptionList(bad, "--robots"), InputError);
   CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "<input>: --robots: empty item in '2,,4'");
+
+  TempPath dir("earc-same-file");
+  std::filesystem::create_directories(dir.path);
+  const std::string results = dir.path + "/r.sqlite";
+  std::ofstream(results) << "results";
+  CHECK(sameFile(results, dir.path + "/./r.sqlite"));
+  CHECK(sameFile(dir.path + "/x/../new.csv", dir.path + "/new.csv"));  // neither exists
+  CHECK_FALSE(sameFile(results, dir.path + "/new.csv"));
+  std::filesystem::create_symlink(results, dir.path + "/link");
+  CHECK(sameFile(dir.path + "/link", results));
+  CHECK_THROWS_AS(requireSeparateOutputs(results, "--results", {{dir.path + "/link", "--csv"}}), InputError);
+  CHECK_THROWS_AS(requireSeparateOutputs(results, "--results", {{results + "-wal", "--csv"}}), InputError);
+  CHECK_THROWS_AS(requireSeparateOutputs(results, "--results",
+                                         {{dir.path + "/a.csv", "--csv"}, {dir.path + "/./a.csv", "--databases-csv"}}),
+                  InputError);
+  CHECK_NOTHROW(requireSeparateOutputs(results, "--results",
+                                       {{"", "--csv"}, {"", "--databases-csv"}, {dir.path + "/a.csv", "--x"}}));
+  CHECK(lines(results) == std::vector<std::string>{"results"});  // untouched
 }
 
 TEST_CASE("a trial's scenario is a function of suite, robots, trial and seed, and databases never hold it") {

@@ -6,9 +6,11 @@
 // The OMPL logs (one per suite, robot count and time limit; planners are the
 // methods) load with ompl_benchmark_statistics.py DIR/*.log -d OUT.db and
 // so into Planner Arena.
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
+#include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
@@ -47,6 +49,16 @@ void setupExport(CLI::App& app) {
     if (seed->count()) f.seed = o->seed;
     if (limit->count()) f.time_limit_s = o->time_limit;
     const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
+    // Before anything is written: no output may overwrite the results or
+    // another output.
+    std::vector<std::pair<std::string, std::string>> outputs = {
+        {o->csv, "--csv"}, {o->databases_csv, "--databases-csv"}, {o->ompl_dir, "--ompl-log"}};
+    if (!o->ompl_dir.empty()) {
+      if (std::filesystem::exists(o->ompl_dir) && !std::filesystem::is_directory(o->ompl_dir))
+        throw InputError(o->ompl_dir, "--ompl-log", "exists and is not a directory");
+      for (const std::string& f : bench::omplLogFiles(trials, o->ompl_dir)) outputs.emplace_back(f, "--ompl-log");
+    }
+    bench::requireSeparateOutputs(o->results, "--results", outputs);
     if (!o->csv.empty()) {
       auto out = openOut(o->csv, "--csv");
       bench::writeCsv(trials, out);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <exception>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace earc::bench {
@@ -23,8 +24,18 @@ void requireExecutable(const std::string& path, const std::string& option);
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option);
 
+// Whether two paths name one file: std::filesystem::equivalent when both
+// exist, else their weakly_canonical forms compared.
+bool sameFile(const std::string& a, const std::string& b);
+
 // An exception's message without the "PATH: " it may start with, for an
 // InputError that names the file itself.
 std::string reasonAbout(const std::exception& e, const std::string& path);
+
+// Refuses, before anything is written, an output that is the input file
+// (or its SQLite -wal, -shm or -journal file) or the same file as another
+// output. outputs: (path, option); empty paths are not outputs.
+void requireSeparateOutputs(const std::string& input, const std::string& input_option,
+                            const std::vector<std::pair<std::string, std::string>>& outputs);
 
 }  // namespace earc::bench

@@ -75,5 +75,7 @@ void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostrea
 // hash of the name): no file is ever written outside dir. Returns the
 // files written.
 std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir);
+// The files writeOmplLogs(trials, dir) would write, in its order.
+std::vector<std::string> omplLogFiles(const std::vector<TrialRecord>& trials, const std::string& dir);
 
 }  // namespace earc::bench
