@@ -75,13 +75,13 @@ const std::vector<Suite>& allSuites() {
   return suites;
 }
 
-const Suite& suiteByName(const std::string& name) {
+const Suite& suiteByName(const std::string& name, const std::string& option) {
   std::string names;
   for (const Suite& s : allSuites()) {
     if (s.name == name) return s;
     names += (names.empty() ? "" : ", ") + s.name;
   }
-  throw InputError("", "--suites", "unknown suite '" + name + "' (" + names + ")");
+  throw InputError("", option, "unknown suite '" + name + "' (" + names + ")");
 }
 
 const std::vector<std::string>& allMethods() {

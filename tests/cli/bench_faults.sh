@@ -99,4 +99,14 @@ done
 [ -e "$WORK/bad.sqlite" ] && fail "a refused run created its results database"
 [ -e "$WORK/bad.sqlite.work" ] && fail "a refused run created its work directory"
 
+# The same for lightning-db: the option named as given, and the results
+# database checked before the Lightning database is built.
+refused "--suite: unknown suite 'bogus'" lightning-db --suite bogus -o "$WORK/l.lightning"
+refused "$WORK/foreign.db: not an earc-bench results database" \
+  lightning-db --suite mobile --robots 2 --count 1 -o "$WORK/l.lightning" --results "$WORK/foreign.db"
+[ -e "$WORK/l.lightning" ] && fail "lightning-db built its database before refusing --results"
+refused "--count: must be at least 1" lightning-db --suite mobile --count 0 -o "$WORK/l.lightning"
+refused "--problem-time-limit: nan is not a positive number" \
+  lightning-db --suite mobile --problem-time-limit nan -o "$WORK/l.lightning"
+refused "$WORK/l.lightning: -o: is the --results file" lightning-db --suite mobile -o "$WORK/l.lightning" --results "$WORK/l.lightning"
 echo "ok: crash, hang and invalid solution are failures; configuration errors are not"

@@ -281,6 +281,7 @@ TEST_CASE("option checks refuse NaN, infinities, empty items and outputs that wo
   CHECK(splitOptionList("2,4", "--robots") == std::vector<std::string>{"2", "4"});
   for (const char* bad : {"2,,4", "2,", ",2", ",", ""}) CHECK_THROWS_AS(splitOptionList(bad, "--robots"), InputError);
   CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "<input>: --robots: empty item in '2,,4'");
+  CHECK_THROWS_WITH(suiteByName("bogus", "--suite"), doctest::Contains("<input>: --suite: unknown suite 'bogus'"));
 
   TempPath dir("earc-same-file");
   std::filesystem::create_directories(dir.path);

@@ -11,8 +11,10 @@
 // growing the database costs.
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "earc/baselines/lightning.hpp"
+#include "earc/bench/options.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
 #include "earc/io/input_error.hpp"
@@ -38,16 +40,23 @@ struct LightningDbOptions {
 };
 
 const bench::Suite& chooseSuite(const LightningDbOptions& o) {
-  if (!o.suite.empty()) return bench::suiteByName(o.suite);
+  if (!o.suite.empty()) return bench::suiteByName(o.suite, "--suite");
   return bench::suiteByName(o.family + (o.obstacles ? "-obst" : ""));
 }
 
 void runLightningDb(const LightningDbOptions& o) {
   const bench::Suite& suite = chooseSuite(o);
-  if (o.count < 1) throw InputError("", "--count", "must be at least 1");
-  if (!(o.problem_time_limit > 0)) throw InputError("", "--problem-time-limit", "must be positive");
+  bench::requireAtLeast(o.count, 1, "--count");
+  bench::requirePositive(o.problem_time_limit, "--problem-time-limit");
   const bool exists = std::filesystem::exists(o.output);
   if (exists && !o.append) throw InputError(o.output, "-o", "exists; pass --append to grow it");
+  // The results database is opened (checked, or created) before the
+  // minutes of planning: a bad one must not throw their work away.
+  std::optional<bench::ResultsDb> results;
+  if (!o.results.empty()) {
+    bench::requireSeparateOutputs(o.results, "--results", {{o.output, "-o"}});
+    results.emplace(o.results);
+  }
 
   Scenario first = bench::databaseProblem(suite, o.robots, 0, o.seed);
   LightningDatabase db(first);
@@ -78,8 +87,7 @@ void runLightningDb(const LightningDbOptions& o) {
             << " states), " << size << " bytes; " << o.count << " problems of " << suite.name << " with " << o.robots
             << " robots, " << solved << " solved (" << recalled << " from recall); construction " << construction
             << " s\n";
-  if (!o.results.empty()) {
-    bench::ResultsDb results(o.results);
+  if (results) {
     bench::DatabaseRecord d;
     d.method = "lightning";
     d.suite = suite.name;
@@ -90,7 +98,7 @@ void runLightningDb(const LightningDbOptions& o) {
     d.size_bytes = size;
     d.problems = o.count;
     d.seed = o.seed;
-    results.addDatabase(d);
+    results->addDatabase(d);
   }
 }
 

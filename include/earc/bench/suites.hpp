@@ -28,8 +28,9 @@ struct Suite {
 
 // The paper's suites first, then the MovingAI ones.
 const std::vector<Suite>& allSuites();
-// Throws InputError naming the option for an unknown name.
-const Suite& suiteByName(const std::string& name);
+// Throws InputError naming `option` (the one the name came from) and the
+// suites for an unknown name.
+const Suite& suiteByName(const std::string& name, const std::string& option = "--suites");
 
 // The methods of the comparison, in the order tables list them.
 const std::vector<std::string>& allMethods();
