@@ -639,8 +639,21 @@ void validateOptions(const RunOptions& o) {
   for (const std::string& m : o.methods)
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
+  std::vector<const Suite*> suites;
   std::set<std::string> families;
-  for (const std::string& name : o.suites) families.insert(suiteByName(name).family);
+  std::string counts;  // "mobile: 2, 4, 8, 16, 32; arms: 2, 4, 8, 16"
+  for (const std::string& name : o.suites) {
+    const Suite& s = suiteByName(name);
+    suites.push_back(&s);
+    families.insert(s.family);
+    counts += (counts.empty() ? "" : "; ") + s.name + ":";
+    for (std::size_t i = 0; i < s.robots.size(); ++i) counts += (i ? ", " : " ") + std::to_string(s.robots[i]);
+  }
+  // A count no suite runs would make "nothing to run: all 0 trials are in ...".
+  for (int n : o.robots)
+    if (std::none_of(suites.begin(), suites.end(),
+                     [n](const Suite* s) { return std::count(s->robots.begin(), s->robots.end(), n) > 0; }))
+      throw InputError("", "--robots", "no suite of this run has " + std::to_string(n) + " robots (" + counts + ")");
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
   if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())

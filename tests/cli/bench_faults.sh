@@ -89,6 +89,9 @@ refused "$WORK/newer.db: --db-mobile: not a usable E-ARC database: schema versio
 refused "/nonexistent: --plan-program: no such file" "${R[@]}" --robots 2 --plan-program /nonexistent
 refused "$WORK/foreign.db: --plan-program: not an executable program" "${R[@]}" --robots 2 --plan-program "$WORK/foreign.db"
 refused "--robots: empty item in '2,,4'" "${R[@]}" --robots 2,,4
+refused "--robots: no suite of this run has 1000 robots (mobile: 2, 4, 8, 16, 32)" "${R[@]}" --robots 1000
+refused "--robots: no suite of this run has 3 robots (mobile: 2, 4, 8, 16, 32; arms: 2, 4, 8, 16)" \
+  run --suites mobile,arms --robots 2,3 --results "$WORK/bad.sqlite"
 refused "--methods: empty item in 'arc,'" run --suites mobile --robots 2 --methods arc, --results "$WORK/bad.sqlite"
 for bad in "--memory-limit-mb 0" "--memory-limit-mb -5" "--wall-margin -5" "--wall-margin nan" "--earc-db-count 0" "--earc-db-count -3" \
            "--lightning-problems -1" "--lightning-problems-per-robot 0" "--lightning-problem-time-limit -1" \
