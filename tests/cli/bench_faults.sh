@@ -112,4 +112,7 @@ refused "--count: must be at least 1" lightning-db --suite mobile --count 0 -o "
 refused "--problem-time-limit: nan is not a positive number" \
   lightning-db --suite mobile --problem-time-limit nan -o "$WORK/l.lightning"
 refused "$WORK/l.lightning: -o: is the --results file" lightning-db --suite mobile -o "$WORK/l.lightning" --results "$WORK/l.lightning"
+# No micro benchmark of 0 batches or of batches 0 s long ("inf checks/s").
+refused "--repeats: must be at least 1" micro --repeats 0
+for bad in 0 nan -1 0.000001; do refused "--batch-seconds:" micro --batch-seconds $bad; done
 echo "ok: crash, hang and invalid solution are failures; configuration errors are not"

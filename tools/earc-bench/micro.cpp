@@ -23,7 +23,9 @@
 #include <random>
 #include <vector>
 
+#include "earc/bench/options.hpp"
 #include "earc/collision/collision_world.hpp"
+#include "earc/io/input_error.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace earc {
@@ -47,7 +49,7 @@ double medianRate(const MicroOptions& o, double ops_per_iteration, Run&& run) {
   long n = 1;
   while (seconds(n) < o.batch_seconds && n < (1L << 40)) n *= 2;
   std::vector<double> rates;
-  for (int r = 0; r < std::max(1, o.repeats); ++r) rates.push_back(static_cast<double>(n) * ops_per_iteration / seconds(n));
+  for (int r = 0; r < o.repeats; ++r) rates.push_back(static_cast<double>(n) * ops_per_iteration / seconds(n));
   std::nth_element(rates.begin(), rates.begin() + static_cast<std::ptrdiff_t>(rates.size() / 2), rates.end());
   return rates[rates.size() / 2];
 }
@@ -175,7 +177,14 @@ void setupMicro(CLI::App& app) {
   cmd->add_option("--seed", opts->seed, "Seed for the random poses and obstacles")->capture_default_str();
   cmd->add_option("--repeats", opts->repeats, "Batches per measurement; the median is reported")->capture_default_str();
   cmd->add_option("--batch-seconds", opts->batch_seconds, "Least duration of one batch")->capture_default_str();
-  cmd->callback([opts] { runMicro(*opts); });
+  cmd->callback([opts] {
+    // 0 batches or 0 seconds would time nothing: "inf checks/s".
+    bench::requireAtLeast(opts->repeats, 1, "--repeats");
+    bench::requirePositive(opts->batch_seconds, "--batch-seconds");
+    if (opts->batch_seconds < 0.001)
+      throw InputError("", "--batch-seconds", "must be at least 0.001 (a shorter batch may take 0 clock ticks)");
+    runMicro(*opts);
+  });
 }
 
 cli::Registrar reg("earc-bench", "micro", setupMicro);
