@@ -129,49 +129,119 @@ std::string readTextFile(const std::string& path) {
 
 json readJsonFile(const std::string& path) { return parseJsonText(readTextFile(path), path); }
 
-void writeTextFileAtomic(const std::string& path, const std::string& text) {
-  auto failure = [&](const std::string& what) {
-    return std::runtime_error(path + ": " + what + ": " + std::strerror(errno));
-  };
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  // Same directory, so the rename stays on one file system and is atomic.
-  std::random_device rd;
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw failure("cannot create temporary file " + tmp);
+namespace {
+
+namespace fs = std::filesystem;
+
+// The directory a file of this path lives in.
+std::string directoryOf(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? "." : parent.string();
+}
+
+// A symbolic link's final target (the link itself stays), else the path.
+std::string throughLinks(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+  const fs::path target = fs::weakly_canonical(path, ec);
+  return ec ? path : target.string();
+}
+
+void writeAll(int fd, const std::string& text, const std::string& path) {
   const char* p = text.data();
   std::size_t left = text.size();
   while (left > 0) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      const auto err = failure("cannot write");
+      const std::string why = std::strerror(n < 0 ? errno : EIO);
       ::close(fd);
-      ::unlink(tmp.c_str());
-      throw err;
+      throw std::runtime_error(path + ": cannot write: " + why);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
+}
+
+}  // namespace
+
+void writeTextFileAtomic(const std::string& given, const std::string& text) {
+  const std::string path = throughLinks(given);
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_directory(st)) throw InputError(given, "", "is a directory, not a file");
+  if (fs::exists(st) && !fs::is_regular_file(st)) {
+    // A device or FIFO: renaming a file over it would destroy it.
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) throw InputError(given, "", std::string("cannot open for writing: ") + std::strerror(errno));
+    writeAll(fd, text, given);
+    ::close(fd);
+    return;
+  }
+  const std::string dir = directoryOf(path);
+  if (!fs::is_directory(dir, ec)) throw InputError(given, "", "cannot write: no directory " + dir);
+  // Same directory, so the rename stays on one file system and is atomic.
+  std::random_device rd;
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(given, "", "cannot write in " + dir + ": " + std::strerror(errno));
+  try {
+    writeAll(fd, text, given);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
   const bool synced = ::fsync(fd) == 0;
   if (!synced || ::close(fd) != 0) {
-    const auto err = failure("cannot flush");
+    const std::string why = std::strerror(errno);
     if (!synced) ::close(fd);  // a failed close has released fd already
     ::unlink(tmp.c_str());
-    throw err;
+    throw std::runtime_error(given + ": cannot flush: " + why);
   }
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const auto err = failure("cannot rename " + tmp + " to it");
+    const std::string why = std::strerror(errno);
     ::unlink(tmp.c_str());
-    throw err;
+    throw InputError(given, "", "cannot replace it: " + why);
   }
-  // Make the rename itself durable.
-  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  syncDirectoryOf(path);  // make the rename itself durable
+}
+
+void syncDirectoryOf(const std::string& path) {
+  const int dfd = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void requireDistinctFiles(const std::vector<NamedPath>& paths) {
+  auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const bool xa = fs::exists(a, ea), xb = fs::exists(b, eb);
+    if (xa && xb) return fs::equivalent(a, b, ea);
+    if (xa != xb) return false;
+    return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
+  };
+  for (std::size_t j = 1; j < paths.size(); ++j)
+    for (std::size_t i = 0; i < j; ++i)
+      if (!paths[i].path.empty() && !paths[j].path.empty() && same(paths[i].path, paths[j].path))
+        throw InputError(paths[j].path, paths[j].name,
+                         "is the same file as " + paths[i].name +
+                             (paths[i].path == paths[j].path ? "" : " (" + paths[i].path + ")") +
+                             "; give each its own file");
+}
+
+void requireWritableOutput(const NamedPath& output) {
+  if (output.path.empty()) return;
+  const std::string path = throughLinks(output.path);
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_directory(st)) throw InputError(output.path, output.name, "is a directory, not a file");
+  if (fs::exists(st) && !fs::is_regular_file(st)) return;  // a device or FIFO, written to directly
+  const std::string dir = directoryOf(path);
+  if (!fs::is_directory(dir, ec)) throw InputError(output.path, output.name, "cannot write: no directory " + dir);
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw InputError(output.path, output.name, "cannot write in " + dir + ": " + std::strerror(errno));
 }
 
 }  // namespace earc

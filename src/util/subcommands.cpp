@@ -1,6 +1,7 @@
 #include "earc/util/subcommands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "earc/io/input_error.hpp"
@@ -13,6 +14,33 @@ int g_exit_code = 0;
 
 void setExitCode(int code) { g_exit_code = code; }
 
+namespace {
+enum class Sign { Any, NonNegative, Positive };
+
+CLI::Validator finiteNumber(Sign sign) {
+  return CLI::Validator(
+      [sign](std::string& text) -> std::string {
+        double v = 0;
+        std::size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(v))
+          return "'" + text + "' is not a finite number";
+        if (sign == Sign::NonNegative && v < 0) return text + " is negative";
+        if (sign == Sign::Positive && v <= 0) return text + " is not positive";
+        return {};
+      },
+      sign == Sign::Any ? "NUMBER" : sign == Sign::NonNegative ? "NUMBER >= 0" : "NUMBER > 0");
+}
+}  // namespace
+
+const CLI::Validator kFinite = finiteNumber(Sign::Any);
+const CLI::Validator kFiniteNonNegative = finiteNumber(Sign::NonNegative);
+const CLI::Validator kFinitePositive = finiteNumber(Sign::Positive);
+
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);
@@ -24,8 +52,20 @@ int runProgram(const std::string& program, const std::string& description, int a
     if (e.program == program) e.setup(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line and the bad-input status, like every other input error.
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::string help = program;  // and the subcommand, when one was named
+    for (const CLI::App* sub : app.get_subcommands()) help += " " + sub->get_name();
+    std::cerr << program << ": error: " << what << " (see " << help << " --help)\n";
+    return kExitBadInput;
   } catch (const InputError& e) {
     std::cerr << program << ": error: " << e.what() << "\n";
     return kExitBadInput;

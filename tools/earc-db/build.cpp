@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -68,7 +69,7 @@ earc::geo::Vec2 parseSize(const std::string& text) {
   double l = 0, w = 0;
   char x = 0, tail = 0;
   if (std::sscanf(text.c_str(), "%lf%c%lf%c", &l, &x, &w, &tail) != 3 || (x != 'x' && x != 'X') || !(l > 0) ||
-      !(w > 0))
+      !(w > 0) || !std::isfinite(l) || !std::isfinite(w))
     throw earc::InputError("", "--size", "expected LENGTHxWIDTH with positive numbers, e.g. 0.6x0.4");
   return {l, w};
 }
@@ -77,6 +78,11 @@ earc::geo::Vec2 parseSize(const std::string& text) {
 // the one given by --shape/--size/--radius, or the builder's default.
 std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::Scenario* scenario) {
   std::vector<earc::RobotSpec> out;
+  // A footprint option that would be ignored is a mistake, not a default.
+  if (opt.shape.empty() && (!opt.size.empty() || opt.radius != 0.0))
+    throw earc::InputError("", opt.size.empty() ? "--radius" : "--size", "needs --shape (box or disc)");
+  if (opt.shape == "disc" && !opt.size.empty()) throw earc::InputError("", "--size", "is for --shape box");
+  if (opt.shape == "box" && opt.radius != 0.0) throw earc::InputError("", "--radius", "is for --shape disc");
   if (scenario && opt.shape.empty()) {
     std::set<std::string> seen;
     for (const auto& r : scenario->robots)
@@ -160,12 +166,13 @@ void setupBuild(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--shape", opt->shape, "Mobile footprint (default: box 0.6x0.4)")->check(CLI::IsMember({"box", "disc"}));
   sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH");
-  sub->add_option("--radius", opt->radius, "Disc footprint radius");
+  sub->add_option("--radius", opt->radius, "Disc footprint radius")->check(earc::cli::kFinitePositive);
   sub->add_option("--seed", opt->seed, "Random seed (the result depends only on it)");
   sub->add_option("--threads", opt->threads, "Solver threads")->check(CLI::Range(1, 256));
   sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)");
+      ->check(earc::cli::kFinitePositive);
+  sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)")
+      ->check(earc::cli::kFinite);
   sub->add_option("--report", opt->report,
                   "Append a line with the ids of each committed insert transaction to FILE (fsync'd)");
   sub->callback([opt] { runBuild(*opt, std::cout); });

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
@@ -15,6 +16,11 @@ struct CurateOptions {
 };
 
 void runCurate(const CurateOptions& opt, std::ostream& out) {
+  std::vector<earc::NamedPath> files{{"--db", opt.db}};
+  for (const auto& in : opt.settings.merge) files.push_back({"--merge", in});
+  files.push_back({"-o", opt.settings.output});
+  earc::requireDistinctFiles(files);
+  earc::requireWritableOutput({"-o", opt.settings.output});
   const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::curateDatabase(opt.db, opt.settings); });
   out << "curated " << r.curated_path << ": " << r.rows_before << " rows before";
   if (!opt.settings.merge.empty()) out << ", " << r.merged << " merged";
@@ -31,11 +37,11 @@ void setupCurate(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
                   "Keep one entry per key-distance ball of this radius in each class (the most successful)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(earc::cli::kFiniteNonNegative);
   sub->add_flag("--drop-unused", opt->settings.drop_unused, "Delete entries never retrieved");
   sub->add_option("--older-than-sessions", opt->settings.older_than_sessions,
                   "With --drop-unused: only entries created at least this many planning sessions ago")
-      ->check(CLI::NonNegativeNumber);
+      ->check(earc::cli::kFiniteNonNegative);
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
   sub->callback([opt] { runCurate(*opt, std::cout); });

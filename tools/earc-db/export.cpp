@@ -4,6 +4,7 @@
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/transfer.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
@@ -14,6 +15,8 @@ struct ExportOptions {
 };
 
 void runExport(const ExportOptions& opt, std::ostream& out) {
+  earc::requireDistinctFiles({{"--db", opt.db}, {"-o", opt.out}});
+  earc::requireWritableOutput({"-o", opt.out});
   const std::size_t rows = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out); });
   out << "exported " << rows << " rows from " << opt.db << " to " << opt.out << "\n";
 }

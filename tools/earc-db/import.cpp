@@ -6,6 +6,7 @@
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/transfer.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
@@ -18,6 +19,10 @@ struct ImportOptions {
 };
 
 void runImport(const ImportOptions& opt, std::ostream& out) {
+  // Importing a file into itself would double every row.
+  std::vector<earc::NamedPath> files{{"--db", opt.db}};
+  for (const auto& in : opt.inputs) files.push_back({"input", in});
+  earc::requireDistinctFiles(files);
   earc::exp::ImportSettings settings;
   settings.near_duplicate_eps = opt.dedupe;
   settings.mark_imported = opt.mark_imported;
@@ -37,7 +42,8 @@ void setupImport(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("import", "Add experiences from exports (.jsonl) or other earc databases, all or nothing");
   sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
   sub->add_option("inputs", opt->inputs, "Export files or earc databases")->required()->check(CLI::ExistingFile);
-  sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)");
+  sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)")
+      ->check(earc::cli::kFinite);
   sub->add_flag("--mark-imported", opt->mark_imported, "Set every imported row's source to 'import'");
   sub->callback([opt] { runImport(*opt, std::cout); });
 }

@@ -27,6 +27,11 @@ struct PlanOptions {
 };
 
 int runPlan(const PlanOptions& o) {
+  // Before any planning: no output may overwrite an input or the other
+  // output, and each must be writable.
+  requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db}, {"-o", o.output}, {"--trace", o.trace}});
+  requireWritableOutput({"-o", o.output});
+  requireWritableOutput({"--trace", o.trace});
   Scenario scenario = loadScenario(o.scenario);
   PlannerSettings s;
   try {
@@ -83,7 +88,8 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for every random choice")->capture_default_str();
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
-  cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict");
+  cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "

@@ -27,6 +27,9 @@ struct ViewOptions {
 };
 
 void runView(const ViewOptions& opt) {
+  earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"--trace", opt.trace},
+                              {"-o", opt.output}});
+  earc::requireWritableOutput({"-o", opt.output});
   // Structure only, as for render: the page is for looking, and the
   // planner already checked the scenario it solved.
   const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);

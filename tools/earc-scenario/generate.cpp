@@ -9,6 +9,7 @@
 
 #include "earc/gen/generators.hpp"
 #include "earc/gen/scenario_text.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
@@ -49,6 +50,7 @@ earc::Scenario generate(const GenerateOptions& opt) {
 }
 
 void runGenerate(const GenerateOptions& opt) {
+  earc::requireWritableOutput({"-o", opt.output});
   const earc::Scenario s = generate(opt);
   earc::gen::writeScenarioFile(opt.output, s);
   std::cout << opt.output << ": " << earc::gen::scenarioSummary(s) << "\n";
@@ -72,9 +74,9 @@ void setupGenerate(CLI::App& app) {
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Mobile footprint: box (0.6 x 0.4) or disc")
       ->check(CLI::IsMember({"box", "disc"}))
       ->capture_default_str();
-  CLI::Option* radius = sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(CLI::PositiveNumber)->capture_default_str();
+  CLI::Option* radius = sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(earc::cli::kFinitePositive)->capture_default_str();
   CLI::Option* workspace = sub->add_option("--workspace", opt->workspace, "Side of the square workspace (mobile)")
-      ->check(CLI::PositiveNumber)
+      ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
   sub->add_option("-o,--output", opt->output, "Scenario file to write")->required();
   sub->callback([opt, shape, radius, workspace] {

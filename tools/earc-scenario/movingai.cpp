@@ -12,6 +12,7 @@
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/gen/scenario_text.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
@@ -32,6 +33,9 @@ earc::gen::GridMap loadMap(const std::string& map) {
 }
 
 void runMovingAi(const MovingAiOptions& opt) {
+  // (A compiled-in map's name is no file.)
+  if (std::filesystem::exists(opt.map)) earc::requireDistinctFiles({{"the map", opt.map}, {"-o", opt.output}});
+  earc::requireWritableOutput({"-o", opt.output});
   earc::gen::MovingAiSettings s;
   s.robots = opt.robots;
   s.seed = opt.seed;
@@ -51,7 +55,7 @@ void setupMovingAi(CLI::App& app) {
   sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
       ->check(CLI::IsMember({"box", "disc"}))
       ->capture_default_str();
-  sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(earc::cli::kFinitePositive)->capture_default_str();
   sub->add_option("-o,--output", opt->output, "Scenario file to write")->required();
   sub->callback([opt] { runMovingAi(*opt); });
 }

@@ -19,9 +19,10 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string compose(const std::string& f, const std::string& w, const std::string& r) {
-    std::string s = f.empty() ? std::string("<input>") : f;
-    if (!w.empty()) s += ": " + w;
-    return s + ": " + r;
+    // A command-line option has no file: "--window: must be ...".
+    std::string s = f;
+    if (!w.empty()) s += (s.empty() ? "" : ": ") + w;
+    return s.empty() ? r : s + ": " + r;
   }
   std::string file_, where_, reason_;
 };

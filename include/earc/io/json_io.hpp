@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "earc/io/input_error.hpp"
 #include "earc/scene/scenario.hpp"
@@ -23,8 +24,30 @@ nlohmann::json readJsonFile(const std::string& path);
 // opened or read, or is a directory.
 std::string readTextFile(const std::string& path);
 // Write atomically (temporary file, fsync, rename): a crash leaves the old
-// file or the new one, never half of one.
+// file or the new one, never half of one. A symbolic link is written
+// through (its target replaced, the link kept); a device or FIFO (such as
+// /dev/stdout) is written to directly, never replaced by a file. Throws
+// InputError naming the file when it cannot be written.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
+
+// fsync the directory holding `path`, so that a rename into it survives a
+// crash (best effort).
+void syncDirectoryOf(const std::string& path);
+
+// A command's file argument: what the user called it ("-o", "--trace",
+// "scenario") and the path given.
+struct NamedPath {
+  std::string name;
+  std::string path;
+};
+// Refuses (InputError naming the later path) when two of the paths are
+// one file, so that an output never overwrites an input or another
+// output. Empty paths are ignored. Existing files are compared by
+// identity (links included), others by their absolute normal form.
+void requireDistinctFiles(const std::vector<NamedPath>& paths);
+// Refuses an output path that cannot be written: a directory, or one whose
+// directory is missing or not writable. Cheap; call it before long work.
+void requireWritableOutput(const NamedPath& output);
 
 // Structure and types only (no geometry).
 Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file);

@@ -41,4 +41,10 @@ int runProgram(const std::string& program, const std::string& description, int a
 // Subcommand callbacks report their exit status here (default 0).
 void setExitCode(int code);
 
+// Option checks that, unlike CLI11's NonNegativeNumber and PositiveNumber,
+// refuse NaN and infinity, and say so without printing the largest double.
+extern const CLI::Validator kFinite;
+extern const CLI::Validator kFiniteNonNegative;
+extern const CLI::Validator kFinitePositive;
+
 }  // namespace earc::cli

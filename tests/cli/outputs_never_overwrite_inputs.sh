@@ -1,0 +1,83 @@
+#!/bin/bash
+# No command overwrites one of its inputs, and no output path is a trap:
+# an output that is also an input (or the other output) is refused before
+# any work, with one line naming it and exit 2, and every file is left as
+# it was; an output in a missing directory is refused before planning; a
+# FIFO or a symbolic link given as the output stays what it is; a
+# command-line parse error is one line and exit 2 too.
+set -u
+BUILD=$1
+SRC=$2
+PLAN="$BUILD/earc-plan"
+DB="$BUILD/earc-db"
+GEN="$BUILD/earc-scenario"
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+cd "$WORK" || exit 1
+cp "$SRC/tests/data/scenarios/swap-discs.json" s.json
+cp "$SRC/datasets/movingai/random-32-32-20.map" m.map
+
+"$PLAN" plan s.json -o sol.json -q || fail "plan exited $?"
+"$DB" build --db e.db --count 20 --seed 1 > /dev/null 2>&1 || fail "build"
+"$DB" export --db e.db -o e.jsonl > /dev/null || fail "export"
+sha256sum s.json sol.json m.map e.db e.jsonl > sums
+
+# refused CMD... : exit 2, one line on stderr naming the expected text,
+# nothing on disk changed.
+refused() {
+  local expect=$1
+  shift
+  "$@" > out 2> err
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$*: exit $rc, expected 2: $(cat err)"
+  [ "$(wc -l < err)" -eq 1 ] || fail "$*: expected one line: $(cat err)"
+  grep -qF -- "$expect" err || fail "$*: expected '$expect' in: $(cat err)"
+  sha256sum --quiet -c sums || fail "$*: changed a file"
+}
+
+refused "s.json: -o: is the same file as the scenario" "$PLAN" plan s.json -o s.json
+refused "s.json: --trace: is the same file as the scenario" "$PLAN" plan s.json -o new.json --trace s.json
+refused "sol.json: --trace: is the same file as -o" "$PLAN" plan s.json -o sol.json --trace sol.json
+refused "./s.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan s.json -o ./s.json
+refused "s.json: -o: is the same file as the scenario" "$PLAN" render s.json sol.json -o s.json
+refused "sol.json: -o: is the same file as the solution" "$PLAN" view s.json sol.json -o sol.json
+refused "e.db: -o: is the same file as --db" "$DB" export --db e.db -o e.db
+refused "e.db: input: is the same file as --db" "$DB" import --db e.db e.db
+refused "e.db: -o: is the same file as --db" "$DB" curate --db e.db -o e.db
+refused "m.map: -o: is the same file as the map" "$GEN" movingai m.map -o m.map
+ln -s s.json link.json
+refused "link.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan s.json -o link.json
+[ -e new.json ] && fail "a refused plan wrote new.json"
+
+# A missing directory is found before planning, not after.
+refused "nodir/x.json: -o: cannot write: no directory nodir" "$PLAN" plan s.json -o nodir/x.json
+refused "nodir/t.json: --trace: cannot write: no directory nodir" "$PLAN" plan s.json -o new.json --trace nodir/t.json
+[ -e new.json ] && fail "a refused plan wrote new.json"
+mkdir adir
+refused "adir: -o: is a directory, not a file" "$PLAN" plan s.json -o adir
+refused "adir: -o: is a directory, not a file" "$GEN" generate -n 2 -o adir
+
+# Parse errors: one line, exit 2.
+refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
+refused "--window" "$PLAN" plan s.json -o x.json --window 0
+refused "--time-per-problem" "$DB" build --db other.db --time-per-problem nan
+refused "--size: needs --shape" "$DB" build --db other.db --size 1x1
+[ -e other.db ] && fail "a refused build made other.db"
+
+# A symbolic link given as the output stays a link; its target is written.
+echo old > target.json
+ln -s target.json out-link.json
+"$PLAN" plan s.json -o out-link.json -q || fail "plan through a link exited $?"
+[ -L out-link.json ] || fail "the link was replaced by a file"
+"$PLAN" validate s.json target.json > /dev/null || fail "the link's target does not hold the solution"
+
+# A FIFO given as the output stays a FIFO, and its reader gets the solution.
+mkfifo pipe
+timeout 20 cat pipe > from-pipe &
+reader=$!
+"$PLAN" plan s.json -o pipe -q || fail "plan into a FIFO exited $?"
+wait $reader
+[ -p pipe ] || fail "the FIFO was replaced by a file"
+"$PLAN" validate s.json from-pipe > /dev/null || fail "the FIFO's reader did not get the solution"
+echo "ok"
