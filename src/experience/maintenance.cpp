@@ -1,6 +1,12 @@
 #include "earc/experience/maintenance.hpp"
 
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -11,6 +17,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/experience/transfer.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 
 namespace earc::exp {
 
@@ -183,16 +190,15 @@ VerifyReport verifyDatabase(const std::string& path) {
   return r;
 }
 
-CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+namespace {
+
+// Curates the database file at `target` in place.
+CurateReport curateFile(const std::string& target, const CurateSettings& settings) {
   CurateReport r;
-  r.curated_path = path;
-  if (!settings.output.empty()) {
-    copyDatabase(path, settings.output);
-    r.curated_path = settings.output;
-  }
+  r.curated_path = target;
   StoreOptions options;
   options.new_session = false;  // curation is not a planning session
-  ExperienceStore store(r.curated_path, options);
+  ExperienceStore store(target, options);
   Connection& db = store.connection();
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
   if (!settings.merge.empty()) {
@@ -213,7 +219,42 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
     });
   if (settings.vacuum) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
+  store.close();  // checkpointed: the main file holds everything
   return r;
+}
+
+void removeDatabaseFiles(const std::string& path) {
+  std::error_code ignored;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path + suffix, ignored);
+}
+
+}  // namespace
+
+CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+  if (settings.output.empty()) return curateFile(path, settings);
+  // The copy is curated under a temporary name and appears under its own
+  // name only when complete: a crash or an error part way never leaves a
+  // half-curated copy that looks like a database.
+  const std::string& out = settings.output;
+  if (std::filesystem::exists(out)) throw InputError(out, "", "already exists; not overwriting it");
+  const std::string tmp = out + ".tmp." + std::to_string(::getpid());
+  removeDatabaseFiles(tmp);
+  try {
+    copyDatabase(path, tmp);
+    CurateReport r = curateFile(tmp, settings);
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, out.c_str(), RENAME_NOREPLACE) != 0) {
+      const int err = errno;
+      throw InputError(out, "", err == EEXIST ? std::string("already exists; not overwriting it")
+                                              : std::string("cannot create it: ") + std::strerror(err));
+    }
+    removeDatabaseFiles(tmp);  // an empty -wal or -shm left by the close
+    syncDirectoryOf(out);
+    r.curated_path = out;
+    return r;
+  } catch (...) {
+    removeDatabaseFiles(tmp);
+    throw;
+  }
 }
 
 void copyDatabase(const std::string& from, const std::string& to) {

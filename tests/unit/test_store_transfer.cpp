@@ -271,3 +271,26 @@ TEST_CASE("curate into a copy merges other files and leaves the original untouch
   CHECK(verifyDatabase(out).ok());
   CHECK_THROWS_AS(copyDatabase(a, out), InputError);  // never overwrites
 }
+
+TEST_CASE("a curated copy appears only when complete: a failure leaves no file under its name") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), bad = dir.file("bad.jsonl"), out = dir.file("copy.db");
+  fill(a, 10);
+  {
+    std::ofstream f(bad);
+    f << "not an export\n";
+  }
+  CurateSettings s;
+  s.merge = {bad};  // fails after the copy was made
+  s.output = out;
+  CHECK_THROWS_AS(curateDatabase(a, s), InputError);
+  // Nothing under the copy's name, and no temporary left beside it.
+  for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+    CHECK_MESSAGE(e.path().filename().string().rfind("copy.db", 0) != 0, e.path());
+  CHECK(rowCount(a) == 60);
+  // The same curation without the bad file then succeeds.
+  s.merge.clear();
+  CHECK(curateDatabase(a, s).rows_after == 60);
+  CHECK(rowCount(out) == 60);
+  CHECK(verifyDatabase(out).ok());
+}
