@@ -1,4 +1,5 @@
 // earc.scenario.v1 documents (shared/spec/formats.md, "Scenario").
+#include <cmath>
 #include <numbers>
 #include <unordered_map>
 
@@ -10,6 +11,9 @@ namespace earc {
 namespace {
 
 using namespace io;  // JsonReader, member, element, json
+
+// Longest straight path across the workspace, in translation steps.
+constexpr double kMaxStepsAcrossWorkspace = 1e7;
 
 Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) {
   r.object(v, p);
@@ -106,6 +110,14 @@ Scenario scenarioFromJson(const json& doc, const std::string& file) {
     if (const json* v = r.optional(*res, "rotation")) s.resolution.rotation = r.positive(*v, "$.resolution.rotation");
     if (const json* v = r.optional(*res, "joint")) s.resolution.joint = r.positive(*v, "$.resolution.joint");
   }
+  // Step counts are ints; a path across the workspace must have one (and
+  // ten million steps is already far beyond anything plannable).
+  const geo::Vec2 extent{s.workspace.hi.x - s.workspace.lo.x, s.workspace.hi.y - s.workspace.lo.y};
+  const double across = std::hypot(extent.x, extent.y) / s.resolution.translation;
+  if (!(across <= kMaxStepsAcrossWorkspace))
+    r.fail("$.workspace", io::formatNumber(across) + " steps across at translation resolution " +
+                              io::formatNumber(s.resolution.translation) + "; at most " +
+                              std::to_string(static_cast<long>(kMaxStepsAcrossWorkspace)));
 
   if (const json* obs = r.optional(doc, "obstacles", true)) {
     r.array(*obs, "$.obstacles");

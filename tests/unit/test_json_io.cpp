@@ -257,6 +257,14 @@ TEST_CASE("sizes must be positive and the workspace non-empty") {
   CHECK_ERROR(scenarioError(doc), "$.robots[2].links", "at least one link");
 }
 
+TEST_CASE("a workspace too large to count steps across is refused naming it") {
+  json doc = validScenario();
+  doc["workspace"] = {{"min", {-1e9, -1e9}}, {"max", {1e9, 1e9}}};
+  CHECK_ERROR(scenarioError(doc), "$.workspace", "steps across at translation resolution");
+  doc["resolution"]["translation"] = 1e4;  // coarse enough: 2.8e5 steps
+  CHECK(scenarioError(doc).empty());
+}
+
 TEST_CASE("unknown robot, obstacle and shape types are refused") {
   json doc = validScenario();
   doc["robots"][1]["type"] = "drone";
