@@ -9,6 +9,7 @@
 
 #include "earc/bench/suites.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -52,25 +53,6 @@ std::vector<std::string> splitOptionList(const std::string& list, const std::str
   if (items.size() != static_cast<std::size_t>(std::count(list.begin(), list.end(), ',')) + 1)
     throw InputError("", option, "empty item in '" + list + "'");
   return items;
-}
-
-namespace {
-
-fs::path canonicalForm(const std::string& path) {
-  std::error_code ec;
-  fs::path c = fs::weakly_canonical(path, ec);
-  return ec ? fs::absolute(path, ec).lexically_normal() : c;
-}
-
-}  // namespace
-
-bool sameFile(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) {
-    const bool same = fs::equivalent(a, b, ec);
-    if (!ec) return same;
-  }
-  return canonicalForm(a) == canonicalForm(b);
 }
 
 std::string reasonAbout(const std::exception& e, const std::string& path) {

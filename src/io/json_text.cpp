@@ -214,17 +214,26 @@ void syncDirectoryOf(const std::string& path) {
   }
 }
 
-void requireDistinctFiles(const std::vector<NamedPath>& paths) {
-  auto same = [](const std::string& a, const std::string& b) {
-    std::error_code ea, eb;
-    const bool xa = fs::exists(a, ea), xb = fs::exists(b, eb);
-    if (xa && xb) return fs::equivalent(a, b, ea);
-    if (xa != xb) return false;
-    return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
+bool sameFile(const std::string& a, const std::string& b) {
+  auto normal = [](const std::string& p) {
+    std::error_code ec;
+    fs::path c = fs::weakly_canonical(p, ec);
+    return ec ? fs::absolute(p, ec).lexically_normal() : c;
   };
+  std::error_code ea, eb;
+  const bool xa = fs::exists(a, ea), xb = fs::exists(b, eb);
+  if (xa && xb) {
+    const bool same = fs::equivalent(a, b, ea);
+    if (!ea) return same;
+  }
+  if (xa != xb) return false;
+  return normal(a) == normal(b);
+}
+
+void requireDistinctFiles(const std::vector<NamedPath>& paths) {
   for (std::size_t j = 1; j < paths.size(); ++j)
     for (std::size_t i = 0; i < j; ++i)
-      if (!paths[i].path.empty() && !paths[j].path.empty() && same(paths[i].path, paths[j].path))
+      if (!paths[i].path.empty() && !paths[j].path.empty() && sameFile(paths[i].path, paths[j].path))
         throw InputError(paths[j].path, paths[j].name,
                          "is the same file as " + paths[i].name +
                              (paths[i].path == paths[j].path ? "" : " (" + paths[i].path + ")") +

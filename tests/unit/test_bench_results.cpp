@@ -276,12 +276,12 @@ TEST_CASE("option checks refuse NaN, infinities, empty items and outputs that wo
   CHECK_NOTHROW(requireNonNegative(0, "--wall-margin"));
   CHECK_THROWS_AS(requireAtLeast(0, 1, "--repeats"), InputError);
   CHECK_NOTHROW(requireAtLeast(1, 1, "--repeats"));
-  CHECK_THROWS_WITH(requirePositive(std::nan(""), "--time-limit"), "<input>: --time-limit: nan is not a positive number");
+  CHECK_THROWS_WITH(requirePositive(std::nan(""), "--time-limit"), "--time-limit: nan is not a positive number");
 
   CHECK(splitOptionList("2,4", "--robots") == std::vector<std::string>{"2", "4"});
   for (const char* bad : {"2,,4", "2,", ",2", ",", ""}) CHECK_THROWS_AS(splitOptionList(bad, "--robots"), InputError);
-  CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "<input>: --robots: empty item in '2,,4'");
-  CHECK_THROWS_WITH(suiteByName("bogus", "--suite"), doctest::Contains("<input>: --suite: unknown suite 'bogus'"));
+  CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "--robots: empty item in '2,,4'");
+  CHECK_THROWS_WITH(suiteByName("bogus", "--suite"), doctest::Contains("--suite: unknown suite 'bogus'"));
 
   TempPath dir("earc-same-file");
   std::filesystem::create_directories(dir.path);

@@ -24,10 +24,6 @@ void requireExecutable(const std::string& path, const std::string& option);
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option);
 
-// Whether two paths name one file: std::filesystem::equivalent when both
-// exist, else their weakly_canonical forms compared.
-bool sameFile(const std::string& a, const std::string& b);
-
 // An exception's message without the "PATH: " it may start with, for an
 // InputError that names the file itself.
 std::string reasonAbout(const std::exception& e, const std::string& path);

@@ -40,6 +40,9 @@ struct NamedPath {
   std::string name;
   std::string path;
 };
+// Whether two paths name one file: by identity (links included) when both
+// exist, else by their absolute normal forms.
+bool sameFile(const std::string& a, const std::string& b);
 // Refuses (InputError naming the later path) when two of the paths are
 // one file, so that an output never overwrites an input or another
 // output. Empty paths are ignored. Existing files are compared by
