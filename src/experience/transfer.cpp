@@ -114,6 +114,19 @@ std::vector<Experience> readJsonl(const std::string& path) {
   }
   if (!header.is_object() || header.value("format", json()) != kExportFormat)
     throw InputError(path, "line 1", std::string("not an earc experience export (expected format \"") + kExportFormat + "\")");
+  // Like a database file: an export of a newer schema may hold what this
+  // program would not understand.
+  if (header.contains("schema_version")) {
+    const json& v = header["schema_version"];
+    if (!v.is_number_integer() || v.get<std::int64_t>() < 1)
+      throw InputError(path, "line 1", "schema_version must be a positive integer, not " + v.dump());
+    if (v.get<std::int64_t>() > currentSchemaVersion())
+      throw InputError(path, "line 1",
+                       "exported from schema version " + v.dump() + ", newer than this program's version " +
+                           std::to_string(currentSchemaVersion()) + "; use a newer earc");
+  }
+  if (header.contains("rows") && !(header["rows"].is_number_integer() && header["rows"].get<std::int64_t>() >= 0))
+    throw InputError(path, "line 1", "rows must be a count of rows, not " + header["rows"].dump());
   std::vector<Experience> rows;
   BadRows bad{path, {}, {}, {}, 0};
   std::size_t number = 1;
@@ -132,8 +145,7 @@ std::vector<Experience> readJsonl(const std::string& path) {
     }
   }
   bad.throwIfAny();
-  if (header.contains("rows") && header["rows"].is_number_integer() &&
-      header["rows"].get<std::int64_t>() != static_cast<std::int64_t>(rows.size()))
+  if (header.contains("rows") && header["rows"].get<std::int64_t>() != static_cast<std::int64_t>(rows.size()))
     throw InputError(path, "line 1", "header announces " + header["rows"].dump() + " rows, the file holds " +
                                          std::to_string(rows.size()) + " (truncated?)");
   return rows;

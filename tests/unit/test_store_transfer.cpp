@@ -156,6 +156,28 @@ TEST_CASE("a truncated export is refused by its announced row count") {
   CHECK(importError(dir.file("b.db"), {jsonl}).find("truncated") != std::string::npos);
 }
 
+TEST_CASE("an export from a newer schema, or with a header count that is no count, is refused") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
+  fill(a, 5, 2);
+  exportJsonl(a, jsonl);
+  const auto lines = readLines(jsonl);
+  auto withHeader = [&](const char* key, const nlohmann::json& value) {
+    auto changed = lines;
+    auto header = nlohmann::json::parse(changed[0]);
+    header[key] = value;
+    changed[0] = header.dump();
+    writeLines(jsonl, changed);
+    return importError(dir.file("b.db"), {jsonl});
+  };
+  CHECK(withHeader("schema_version", 99).find("newer than this program's version") != std::string::npos);
+  CHECK(withHeader("schema_version", "3").find("schema_version must be a positive integer") != std::string::npos);
+  CHECK(withHeader("rows", "10").find("rows must be a count of rows") != std::string::npos);
+  writeLines(jsonl, lines);  // the header as written imports
+  ExperienceStore b(dir.file("b.db"));
+  CHECK(importInto(b, {jsonl}).inserted == static_cast<std::size_t>(nlohmann::json::parse(lines[0])["rows"].get<int>()));
+}
+
 TEST_CASE("a database with a corrupt blob is refused as an import source, naming the row id") {
   ScratchDirectory dir("transfer");
   const std::string a = dir.file("a.db"), b = dir.file("b.db");

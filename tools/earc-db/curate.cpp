@@ -38,10 +38,11 @@ void setupCurate(CLI::App& app) {
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
                   "Keep one entry per key-distance ball of this radius in each class (the most successful)")
       ->check(earc::cli::kFiniteNonNegative);
-  sub->add_flag("--drop-unused", opt->settings.drop_unused, "Delete entries never retrieved");
+  CLI::Option* drop = sub->add_flag("--drop-unused", opt->settings.drop_unused, "Delete entries never retrieved");
   sub->add_option("--older-than-sessions", opt->settings.older_than_sessions,
                   "With --drop-unused: only entries created at least this many planning sessions ago")
-      ->check(earc::cli::kFiniteNonNegative);
+      ->check(earc::cli::kFiniteNonNegative)
+      ->needs(drop);
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
   sub->callback([opt] { runCurate(*opt, std::cout); });
