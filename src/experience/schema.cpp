@@ -12,6 +12,30 @@ std::string hex32(std::int64_t v) {
   return buf;
 }
 
+// The tables each schema version has (a migration adds, never drops one).
+struct TableSince {
+  const char* name;
+  int version;
+};
+constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}};
+
+// A table of the file's version that is not there means the file was
+// damaged or edited: refused before any statement needs it (which would
+// fail with SQL text, after the session count was already written).
+void requireTables(Connection& db, int version) {
+  Statement s = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?1");
+  for (const TableSince& t : kTables) {
+    if (t.version > version) continue;
+    s.bind(1, std::string_view(t.name));
+    s.step();
+    const bool there = s.int64At(0) == 1;
+    s.reset();
+    if (!there)
+      throw DamagedDatabaseError(db.path() + ": damaged database file (table " + t.name +
+                                 " is missing; schema version " + std::to_string(version) + " has it)");
+  }
+}
+
 }  // namespace
 
 int checkIdentity(Connection& db) {
@@ -35,6 +59,7 @@ int checkIdentity(Connection& db) {
     if (version < 1)
       throw ForeignDatabaseError(db.path() + ": earc application_id but schema version " +
                                  std::to_string(version) + "; the file was not created by earc");
+    requireTables(db, version);
     return version;
   }
   if (app == 0 && version == 0 && objects == 0) return 0;  // empty or new file

@@ -11,6 +11,7 @@
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/sampling.hpp"
+#include "earc/experience/schema.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/experience/transfer.hpp"
@@ -144,6 +145,28 @@ TEST_CASE("a truncated database is refused as damaged by the store, verify and i
     CHECK(std::string(e.what()).find(path) == 0);
   }
   CHECK_THROWS_WITH_AS(readImportSource(path), doctest::Contains("damaged database file"), InputError);
+}
+
+TEST_CASE("a database missing one of its tables is refused as damaged before anything is written") {
+  ScratchDirectory dir("hostile");
+  for (const char* table : {"experiences", "store_meta"}) {
+    const std::string path = dir.file(std::string("no-") + table + ".db");
+    makeDatabase(path, 3);
+    {
+      Connection c(path, OpenMode::ReadWrite);
+      c.exec(std::string("DROP TABLE ") + table);
+    }
+    const std::vector<unsigned char> before = readBytes(path);
+    for (bool read_only : {true, false}) {
+      const std::string msg = openError<DamagedDatabaseError>(path, read_only);
+      CHECK(msg == path + ": damaged database file (table " + table + " is missing; schema version " +
+                       std::to_string(currentSchemaVersion()) + " has it)");
+    }
+    CHECK(readBytes(path) == before);  // no session counted, nothing migrated
+    // verify refuses the file as a whole (earc-db verify: exit 2).
+    const std::string missing = std::string("table ") + table + " is missing";
+    CHECK_THROWS_WITH_AS(verifyDatabase(path), doctest::Contains(missing.c_str()), InputError);
+  }
 }
 
 TEST_CASE("a torn WAL keeps the whole transactions before the tear and loses nothing else") {
