@@ -15,6 +15,15 @@ using namespace io;  // JsonReader, member, element, json
 // Longest straight path across the workspace, in translation steps.
 constexpr double kMaxStepsAcrossWorkspace = 1e7;
 
+// Headings are compared modulo 2 pi; beyond this a double has too few
+// digits left below the radian for that (at 1e6 its spacing is 1e-10).
+constexpr double kMaxHeading = 1e6;
+
+void requireHeading(const JsonReader& r, double theta, const std::string& path) {
+  if (!(std::abs(theta) <= kMaxHeading))
+    r.fail(path, "heading " + io::formatNumber(theta) + " is beyond +-1e6 rad; give it modulo 2 pi");
+}
+
 Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) {
   r.object(v, p);
   Obstacle o;
@@ -55,6 +64,8 @@ void readMobile(const JsonReader& r, const json& v, const std::string& p, RobotS
   }
   spec.start = r.numbers(r.required(v, "start", p), 3, member(p, "start"), "x, y, theta");
   spec.goal = r.numbers(r.required(v, "goal", p), 3, member(p, "goal"), "x, y, theta");
+  requireHeading(r, spec.start[2], element(member(p, "start"), 2));
+  requireHeading(r, spec.goal[2], element(member(p, "goal"), 2));
 }
 
 void readManipulator(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
@@ -62,6 +73,7 @@ void readManipulator(const JsonReader& r, const json& v, const std::string& p, R
   const auto base = r.numbers(r.required(v, "base", p), 3, member(p, "base"), "x, y, theta0");
   spec.base_position = {base[0], base[1]};
   spec.base_angle = base[2];
+  requireHeading(r, spec.base_angle, element(member(p, "base"), 2));
   const std::string lp = member(p, "links");
   const json& links = r.array(r.required(v, "links", p), lp);
   if (links.empty()) r.fail(lp, "an arm needs at least one link");

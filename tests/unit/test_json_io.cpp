@@ -265,6 +265,18 @@ TEST_CASE("a workspace too large to count steps across is refused naming it") {
   CHECK(scenarioError(doc).empty());
 }
 
+TEST_CASE("a heading too large to compare modulo 2 pi is refused naming it") {
+  json doc = validScenario();
+  doc["robots"][1]["goal"][2] = 1e300;
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].goal[2]", "heading 1e+300 is beyond +-1e6 rad");
+  doc = validScenario();
+  doc["robots"][2]["base"][2] = -2e6;
+  CHECK_ERROR(scenarioError(doc), "$.robots[2].base[2]", "beyond +-1e6 rad");
+  doc = validScenario();
+  doc["robots"][0]["start"][2] = 999999.0;  // many turns, but exact enough
+  CHECK(scenarioError(doc).empty());
+}
+
 TEST_CASE("unknown robot, obstacle and shape types are refused") {
   json doc = validScenario();
   doc["robots"][1]["type"] = "drone";
