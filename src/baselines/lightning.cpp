@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <set>
@@ -208,11 +207,7 @@ void LightningDatabase::load(const std::string& path) {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
-  for (std::size_t done = 0; done < at;) {
-    const ssize_t n = ::write(fd, bytes.data() + done, at - done);
-    if (n <= 0) throw std::runtime_error(path + ": cannot load the Lightning database (writing it to memory failed)");
-    done += static_cast<std::size_t>(n);
-  }
+  writeAll(fd, std::string_view(bytes).substr(0, at), path + " (in memory)");
   ot::LightningDB fresh(impl_->composite.space());
   if (!fresh.load("/proc/self/fd/" + std::to_string(fd))) throw InputError(path, "", refusal);
   std::vector<ob::PlannerDataPtr> paths;

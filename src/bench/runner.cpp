@@ -117,11 +117,13 @@ std::int64_t fileSize(const std::string& path) {
   return ec ? -1 : static_cast<std::int64_t>(n);
 }
 
+// Scenarios, logs and built databases: the one given, or RESULTS.work.
+std::string workDir(const RunOptions& o) { return o.work_dir.empty() ? o.results + ".work" : o.work_dir; }
+
 // The E-ARC database of a family: the one given, or WORK/earc-FAMILY.sqlite.
 std::string earcDbPath(const RunOptions& o, const std::string& family) {
   const std::string& given = family == "arms" ? o.db_arms : o.db_mobile;
-  if (!given.empty()) return given;
-  return (o.work_dir.empty() ? o.results + ".work" : o.work_dir) + "/earc-" + family + ".sqlite";
+  return given.empty() ? workDir(o) + "/earc-" + family + ".sqlite" : given;
 }
 
 // The entries of an existing E-ARC database, opened read-only as the
@@ -148,7 +150,7 @@ std::int64_t earcDbEntries(const RunOptions& o, const std::string& family) {
 class Runner {
  public:
   Runner(const RunOptions& o, std::ostream& log) : o_(o), log_(log), db_(o.results) {
-    work_ = o.work_dir.empty() ? o.results + ".work" : o.work_dir;
+    work_ = workDir(o);
     lightning_dir_ = o.lightning_dir.empty() ? work_ + "/lightning" : o.lightning_dir;
     const std::string here = executableDir();
     plan_ = o.plan_program.empty() ? here + "/earc-plan" : o.plan_program;

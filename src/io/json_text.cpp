@@ -147,39 +147,55 @@ std::string throughLinks(const std::string& path) {
   return ec ? path : target.string();
 }
 
-void writeAll(int fd, const std::string& text, const std::string& path) {
-  const char* p = text.data();
-  std::size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string why = std::strerror(n < 0 ? errno : EIO);
-      ::close(fd);
-      throw std::runtime_error(path + ": cannot write: " + why);
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+// Where an output's bytes go: the path to write (a link's target), and
+// whether that is a device or FIFO, to be written directly. Throws
+// InputError naming the output for a directory or a missing directory.
+struct OutputTarget {
+  std::string path;
+  bool special = false;
+};
+
+OutputTarget outputTarget(const NamedPath& output) {
+  OutputTarget target{throughLinks(output.path)};
+  std::error_code ec;
+  const fs::file_status st = fs::status(target.path, ec);
+  if (fs::is_directory(st)) throw InputError(output.path, output.name, "is a directory, not a file");
+  target.special = fs::exists(st) && !fs::is_regular_file(st);
+  if (!target.special) {
+    const std::string dir = directoryOf(target.path);
+    if (!fs::is_directory(dir, ec)) throw InputError(output.path, output.name, "cannot write: no directory " + dir);
   }
+  return target;
 }
 
 }  // namespace
 
+void writeAll(int fd, std::string_view bytes, const std::string& path) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw std::runtime_error(path + ": cannot write: " + std::strerror(n < 0 ? errno : EIO));
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
 void writeTextFileAtomic(const std::string& given, const std::string& text) {
-  const std::string path = throughLinks(given);
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (fs::is_directory(st)) throw InputError(given, "", "is a directory, not a file");
-  if (fs::exists(st) && !fs::is_regular_file(st)) {
+  const OutputTarget target = outputTarget({"", given});
+  const std::string& path = target.path;
+  if (target.special) {
     // A device or FIFO: renaming a file over it would destroy it.
     const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) throw InputError(given, "", std::string("cannot open for writing: ") + std::strerror(errno));
-    writeAll(fd, text, given);
+    try {
+      writeAll(fd, text, given);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
     ::close(fd);
     return;
   }
   const std::string dir = directoryOf(path);
-  if (!fs::is_directory(dir, ec)) throw InputError(given, "", "cannot write: no directory " + dir);
   // Same directory, so the rename stays on one file system and is atomic.
   std::random_device rd;
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
@@ -188,6 +204,7 @@ void writeTextFileAtomic(const std::string& given, const std::string& text) {
   try {
     writeAll(fd, text, given);
   } catch (...) {
+    ::close(fd);
     ::unlink(tmp.c_str());
     throw;
   }
@@ -242,13 +259,9 @@ void requireDistinctFiles(const std::vector<NamedPath>& paths) {
 
 void requireWritableOutput(const NamedPath& output) {
   if (output.path.empty()) return;
-  const std::string path = throughLinks(output.path);
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (fs::is_directory(st)) throw InputError(output.path, output.name, "is a directory, not a file");
-  if (fs::exists(st) && !fs::is_regular_file(st)) return;  // a device or FIFO, written to directly
-  const std::string dir = directoryOf(path);
-  if (!fs::is_directory(dir, ec)) throw InputError(output.path, output.name, "cannot write: no directory " + dir);
+  const OutputTarget target = outputTarget(output);
+  if (target.special) return;  // a device or FIFO, written to directly
+  const std::string dir = directoryOf(target.path);
   if (::access(dir.c_str(), W_OK) != 0)
     throw InputError(output.path, output.name, "cannot write in " + dir + ": " + std::strerror(errno));
 }

@@ -52,14 +52,10 @@ int runProgram(const std::string& program, const std::string& description, int a
     if (e.program == program) e.setup(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line and the bad-input status, like every other input error.
+    // --help (and the like) "fail" with success: CLI11 prints what was asked.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    // Otherwise one line and the bad-input status, like every other input error.
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
     std::string help = program;  // and the subcommand, when one was named

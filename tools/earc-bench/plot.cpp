@@ -2,12 +2,11 @@
 // tools/plots/plot_results.py (matplotlib) run with /usr/bin/python3.
 //
 //   earc-bench plot --results FILE -o DIR [--python PATH] [--script PATH]
-#include <unistd.h>
-
 #include <filesystem>
 #include <iostream>
 
 #include "earc/bench/child.hpp"
+#include "earc/bench/options.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/subcommands.hpp"
@@ -40,8 +39,7 @@ void setupPlot(CLI::App& app) {
     if (std::filesystem::exists(o->output) && !std::filesystem::is_directory(o->output))
       throw InputError(o->output, "-o", "exists and is not a directory");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
-    if (::access(o->python.c_str(), X_OK) != 0 || std::filesystem::is_directory(o->python))
-      throw InputError(o->python, "--python", "not an executable program");
+    bench::requireExecutable(o->python, "--python");
     bench::ChildSpec spec;
     spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
     spec.wall_limit_s = kPlotWallLimitS;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "earc/io/input_error.hpp"
@@ -29,6 +30,10 @@ std::string readTextFile(const std::string& path);
 // /dev/stdout) is written to directly, never replaced by a file. Throws
 // InputError naming the file when it cannot be written.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
+
+// Writes all of `bytes` to fd (retrying short writes); throws naming `path`.
+// The caller closes fd.
+void writeAll(int fd, std::string_view bytes, const std::string& path);
 
 // fsync the directory holding `path`, so that a rename into it survives a
 // crash (best effort).
