@@ -41,6 +41,16 @@ const CLI::Validator kFinite = finiteNumber(Sign::Any);
 const CLI::Validator kFiniteNonNegative = finiteNumber(Sign::NonNegative);
 const CLI::Validator kFinitePositive = finiteNumber(Sign::Positive);
 
+// CLI11 converts "-1" into an unsigned option by wrapping it to 2^64-1, so a
+// seed of -1 silently became 18446744073709551615. Only digits pass.
+const CLI::Validator kWholeNumber(
+    [](std::string& text) -> std::string {
+      if (text.empty() || !std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; }))
+        return "'" + text + "' is not a whole number >= 0";
+      return {};
+    },
+    "N >= 0");
+
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);

@@ -4,7 +4,8 @@
 # any work, with one line naming it and exit 2, and every file is left as
 # it was; an output in a missing directory is refused before planning; a
 # FIFO or a symbolic link given as the output stays what it is; a
-# command-line parse error is one line and exit 2 too.
+# command-line parse error is one line and exit 2 too, and an unsigned
+# option refuses a negative number.
 set -u
 BUILD=$1
 SRC=$2
@@ -63,6 +64,14 @@ refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
 refused "--window" "$PLAN" plan s.json -o x.json --window 0
 refused "--time-per-problem" "$DB" build --db other.db --time-per-problem nan
 refused "--size: needs --shape" "$DB" build --db other.db --size 1x1
+# Unsigned options refuse a sign instead of wrapping -1 to 2^64-1.
+refused "--seed: '-1' is not a whole number" "$DB" build --db other.db --seed -1
+refused "--seed: '-1' is not a whole number" "$PLAN" plan s.json -o x.json --seed -1
+refused "--seed: '-1' is not a whole number" "$GEN" generate -n 2 -o x.json --seed -1
+refused "--seed: '+3' is not a whole number" "$GEN" movingai m.map -n 2 -o x.json --seed +3
+refused "--step: '-1' is not a whole number" "$PLAN" render s.json sol.json -o x.svg --step -1
+refused "--seed: '-2' is not a whole number" "$BUILD/earc-bench" run --seed -2 --db x.sqlite
+[ -e x.json ] && fail "a refused command wrote x.json"
 [ -e other.db ] && fail "a refused build made other.db"
 
 # A symbolic link given as the output stays a link; its target is written.

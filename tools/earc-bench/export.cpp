@@ -39,7 +39,7 @@ void setupExport(CLI::App& app) {
   cmd->add_option("--csv", o->csv, "One row per trial");
   cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
   cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");
-  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed");
+  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
   auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
   cmd->callback([o, seed, limit] {
     if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())

@@ -110,7 +110,7 @@ void setupLightningDb(CLI::App& app) {
   cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
   cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");
   cmd->add_option("--count", o->count, "Problems to plan")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed of the problems and the planners")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the problems and the planners")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->required();
   cmd->add_flag("--append", o->append, "Grow an existing database");

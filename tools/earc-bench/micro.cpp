@@ -174,7 +174,7 @@ void runMicro(const MicroOptions& o) {
 void setupMicro(CLI::App& app) {
   auto opts = std::make_shared<MicroOptions>();
   auto* cmd = app.add_subcommand("micro", "Collision-checking micro benchmark (checks per second, plain text)");
-  cmd->add_option("--seed", opts->seed, "Seed for the random poses and obstacles")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed for the random poses and obstacles")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--repeats", opts->repeats, "Batches per measurement; the median is reported")->capture_default_str();
   cmd->add_option("--batch-seconds", opts->batch_seconds, "Least duration of one batch")->capture_default_str();
   cmd->callback([opts] {

@@ -57,7 +57,7 @@ void setupRun(CLI::App& app) {
                                   "Methods: earc, arc, lightning, prioritized, coupled (default earc,arc,lightning,prioritized)");
   auto* trials = cmd->add_option("--trials", r.trials, "Trials per cell (default 2; --full: 20)");
   cmd->add_option("--time-limit", r.time_limit_s, "Planning time limit per trial, seconds")->capture_default_str();
-  cmd->add_option("--seed", r.seed, "Seed of the run: scenarios and planner seeds derive from it")->capture_default_str();
+  cmd->add_option("--seed", r.seed, "Seed of the run: scenarios and planner seeds derive from it")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--results", r.results, "Results database (SQLite), appended to and resumed from")->capture_default_str();
   cmd->add_option("--work-dir", r.work_dir, "Scenarios, failed trials' solutions and logs (default RESULTS.work)");
   cmd->add_option("--db-mobile", r.db_mobile,

@@ -168,7 +168,7 @@ void setupBenchRetrieval(CLI::App& app) {
   sub->add_option("--entries", opt->entries, "Entries per class")->check(CLI::Range(1, 10000000));
   sub->add_option("--queries", opt->queries, "Queries per class")->check(CLI::Range(1, 1000000));
   sub->add_option("--k", opt->k, "Experiences retrieved per query")->check(CLI::Range(1, 1000));
-  sub->add_option("--seed", opt->seed, "Random seed");
+  sub->add_option("--seed", opt->seed, "Random seed")->check(earc::cli::kWholeNumber);
   sub->callback([opt] { runBenchRetrieval(*opt, std::cout); });
 }
 

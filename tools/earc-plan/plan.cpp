@@ -86,7 +86,7 @@ void setupPlan(CLI::App& app) {
                   "Experience database (method earc, SQLite); Lightning database (method lightning, OMPL's "
                   "format, created when missing unless --no-learn; without it Lightning starts empty)");
   cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Seed for every random choice")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed for every random choice")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")
       ->check(CLI::Range(1, 1000000));

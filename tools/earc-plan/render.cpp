@@ -64,7 +64,7 @@ void setupRender(CLI::App& app) {
   sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)");
   sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->required();
   CLI::Option* step = sub->add_option_function<std::size_t>(
-      "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T");
+      "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T")->check(earc::cli::kWholeNumber);
   sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")
       ->delimiter(',')
       ->excludes(step);

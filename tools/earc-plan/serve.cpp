@@ -263,7 +263,7 @@ void setupServe(CLI::App& app) {
   cmd->add_option("--method", opts->method, "Method for requests that name none")->capture_default_str();
   cmd->add_option("--time-limit", opts->time_limit, "Time limit for requests that give none (s)")
       ->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Seed for requests that give none")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed for requests that give none")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
 }
 

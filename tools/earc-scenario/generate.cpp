@@ -70,7 +70,7 @@ void setupGenerate(CLI::App& app) {
       ->option_text("[K]")
       ->check(CLI::Range(kFamilyDefault, 1000));
   sub->add_flag("--rotated", opt->rotated, "Turn obstacles by random angles");
-  sub->add_option("--seed,-s", opt->seed, "Random seed")->capture_default_str();
+  sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Mobile footprint: box (0.6 x 0.4) or disc")
       ->check(CLI::IsMember({"box", "disc"}))
       ->capture_default_str();

@@ -46,5 +46,8 @@ void setExitCode(int code);
 extern const CLI::Validator kFinite;
 extern const CLI::Validator kFiniteNonNegative;
 extern const CLI::Validator kFinitePositive;
+// For unsigned options (seeds, steps): digits only, so "-1" is refused
+// instead of wrapping around.
+extern const CLI::Validator kWholeNumber;
 
 }  // namespace earc::cli
