@@ -98,14 +98,6 @@ class SharedDbLightning : public ot::Lightning {
 };
 
 // The robots of a scenario as models, in the scenario's order.
-struct Robots {
-  std::vector<std::shared_ptr<const RobotModel>> owned;
-  std::vector<const RobotModel*> models;
-  explicit Robots(const Scenario& s) : owned(makeRobotModels(s)) {
-    for (const auto& m : owned) models.push_back(m.get());
-  }
-};
-
 CompositeState starts(const Scenario& s) {
   CompositeState q;
   for (const auto& r : s.robots) q.push_back(r.start);
@@ -141,7 +133,7 @@ bool sameSpace(const Scenario& a, const Scenario& b) {
 
 struct LightningDatabase::Impl {
   Scenario prototype;
-  Robots robots;
+  RobotModels robots;
   CollisionWorld world;
   CompositeChecker checker;
   OmplComposite composite;
@@ -151,8 +143,8 @@ struct LightningDatabase::Impl {
       : prototype(s),
         robots(s),
         world(s),
-        checker(world, robots.models),
-        composite(checker, compositeBounds(world, robots.models, {}, {starts(s), goals(s)})),
+        checker(world, robots.raw),
+        composite(checker, compositeBounds(world, robots.raw, {}, {starts(s), goals(s)})),
         db(std::make_shared<EditableLightningDB>(composite.space())) {}
 };
 
@@ -167,12 +159,16 @@ LightningDatabase::~LightningDatabase() = default;
 // space and carrying a checksum of everything before it, and a file is
 // handed to OMPL only when that line is there and agrees.
 namespace {
-constexpr std::string_view kTrailerTag = "earc-lightning v1 fnv1a64=";
+// v2: one flat OMPL space for all robots (v1 had a compound of per-robot
+// spaces, whose files OMPL's loader cannot read into a v2 space).
+constexpr int kFormat = 2;
+constexpr std::string_view kTrailerPrefix = "earc-lightning v";
+const std::string kTrailerTag = std::string(kTrailerPrefix) + std::to_string(kFormat) + " fnv1a64=";
 
 std::string trailer(std::string_view body, const std::string& space) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(body)));
-  return "\n" + std::string(kTrailerTag) + hex + " space=" + space + "\n";
+  return "\n" + kTrailerTag + hex + " space=" + space + "\n";
 }
 }  // namespace
 
@@ -181,9 +177,17 @@ void LightningDatabase::load(const std::string& path) {
   const std::string rebuild = " (build one with earc-bench lightning-db)";
   const std::string refusal = "not a Lightning database of " + space + rebuild;
   const std::string bytes = readTextFile(path);
-  const std::size_t at = bytes.rfind("\n" + std::string(kTrailerTag));
-  if (at == std::string::npos || bytes.back() != '\n')
+  const std::size_t at = bytes.rfind("\n" + kTrailerTag);
+  if (at == std::string::npos || bytes.back() != '\n') {
+    const std::size_t other = bytes.rfind("\n" + std::string(kTrailerPrefix));
+    if (other != std::string::npos && bytes.back() == '\n') {
+      const std::size_t from = other + 1 + kTrailerPrefix.size();
+      const std::string version = bytes.substr(from, bytes.find(' ', from) - from);
+      throw InputError(path, "", "Lightning database format v" + version + ", this earc reads v" +
+                                     std::to_string(kFormat) + rebuild);
+    }
     throw InputError(path, "", "no earc checksum line at the end: cut short, or not written by earc" + rebuild);
+  }
   if (bytes.compare(at, std::string::npos, trailer(std::string_view(bytes).substr(0, at), space)) != 0) {
     const std::string line = bytes.substr(at + 1, bytes.size() - at - 2);
     if (line.find(" space=" + space) == std::string::npos) throw InputError(path, "", refusal);
@@ -256,11 +260,11 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   if (!sameSpace(scenario, impl_->prototype))
     throw std::invalid_argument("Lightning database of " + spaceDescription(impl_->prototype) + " used for " +
                                 spaceDescription(scenario));
-  Robots robots(scenario);
+  RobotModels robots(scenario);
   CollisionWorld world(scenario);
-  CompositeChecker checker(world, robots.models);
+  CompositeChecker checker(world, robots.raw);
   const CompositeState start = starts(scenario), goal = goals(scenario);
-  OmplComposite composite(checker, compositeBounds(world, robots.models, {}, {start, goal}));
+  OmplComposite composite(checker, compositeBounds(world, robots.raw, {}, {start, goal}));
   composite.setSeed(settings.seed);
   // OMPL seeds the generators of its path simplifiers from a global one;
   // reset it (OMPL complains once generators exist, but does reseed).
@@ -319,12 +323,12 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     for (std::size_t i = 1; i + 1 < waypoints.size(); ++i)
       if (checker.stateValid(waypoints[i])) kept.push_back(waypoints[i]);
     kept.push_back(waypoints.back());
-    std::vector<Path> paths = timeStampComposite(robots.models, kept).paths;
+    std::vector<Path> paths = timeStampComposite(robots.raw, kept).paths;
     const std::vector<StepRun> runs = invalidRuns(checker, paths);
     std::string refused;
     if (!runs.empty()) {
       const Deadline deadline(settings.time_limit_s - clock.seconds());
-      RunRepair fix = repairRuns(world, robots.models, paths, runs, {}, deadline.remaining(), deadline,
+      RunRepair fix = repairRuns(world, robots.raw, paths, runs, {}, deadline.remaining(), deadline,
                                  splitSeed(settings.seed, kRepairPathStream));
       st["lightning_repaired_runs"] = runs.size();
       if (fix.paths && invalidRuns(checker, *fix.paths).empty())

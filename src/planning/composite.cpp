@@ -12,12 +12,42 @@ int compositeSteps(const std::vector<const RobotModel*>& robots, const Composite
   return n;
 }
 
+namespace {
+// Above this many robots, pairs are found by sweeping bounding discs along
+// x instead of testing all n(n-1)/2 of them: the coupled method on a whole
+// scenario of thousands of robots spent minutes here.
+constexpr std::size_t kSweepAbove = 8;
+// The clock is read once per this many instants of a motion.
+constexpr int kInstantsPerClockRead = 8;
+
+struct Extent {
+  double lo, hi;
+  std::size_t robot;
+};
+}  // namespace
+
 bool CompositeChecker::stateValid(const CompositeState& q) const {
-  for (std::size_t r = 0; r < robots_.size(); ++r)
+  const std::size_t n = robots_.size();
+  for (std::size_t r = 0; r < n; ++r)
     if (!world_.stateValid(*robots_[r], q[r].data())) return false;
-  for (std::size_t i = 0; i < robots_.size(); ++i)
-    for (std::size_t j = i + 1; j < robots_.size(); ++j)
-      if (robotsTouch(*robots_[i], q[i].data(), *robots_[j], q[j].data())) return false;
+  if (n <= kSweepAbove) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (robotsTouch(*robots_[i], q[i].data(), *robots_[j], q[j].data())) return false;
+    return true;
+  }
+  std::vector<Extent> ext(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    const geo::Vec2 c = robots_[r]->boundingCenter(q[r].data());
+    const double rad = robots_[r]->boundingRadius();
+    ext[r] = {c.x - rad, c.x + rad, r};
+  }
+  std::sort(ext.begin(), ext.end(), [](const Extent& a, const Extent& b) { return a.lo < b.lo; });
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n && ext[j].lo <= ext[i].hi; ++j) {
+      const std::size_t a = ext[i].robot, b = ext[j].robot;
+      if (robotsTouch(*robots_[a], q[a].data(), *robots_[b], q[b].data())) return false;
+    }
   return true;
 }
 
@@ -45,11 +75,13 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
   const int instants = 2 * n;
   int first_bad = instants + 1;
   std::vector<char> tested(static_cast<std::size_t>(instants + 1), 0);
+  int tests = 0;
   for (int stride = instants; stride >= 1; stride /= 2) {
     for (int k = 0; k <= instants; k += stride) {
       if (tested[static_cast<std::size_t>(k)]) continue;
       tested[static_cast<std::size_t>(k)] = 1;
       if (k >= first_bad) continue;
+      if (deadline_ && ++tests % kInstantsPerClockRead == 0 && deadline_->expired()) return 0.0;
       if (!instantValid(a, b, static_cast<double>(k) / instants, scratch)) first_bad = k;
     }
     if (stride == 1) break;  // every instant below first_bad has now been tested

@@ -109,7 +109,10 @@ RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotM
 std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const CoupledQuery& query,
                                           const CoupledSettings& settings, std::uint64_t seed) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  CompositeChecker checker(world, query.robots);
+  // The limit covers the checks and the setup before OMPL's search too: on
+  // thousands of robots they are not negligible.
+  const Deadline deadline(settings.time_limit_s);
+  CompositeChecker checker(world, query.robots, deadline);
   if (!checker.stateValid(query.starts) || !checker.stateValid(query.goals)) return std::nullopt;
   std::vector<std::vector<std::vector<double>>> waypoints;
   // The straight composite motion is the common answer for small, local
@@ -118,6 +121,7 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
     waypoints = {query.starts, query.goals};
     return timeStampComposite(query.robots, waypoints);
   }
+  if (deadline.expired()) return std::nullopt;
 
   OmplComposite composite(checker, compositeBounds(world, query.robots, query.region, {query.starts, query.goals}));
   composite.setSeed(seed);
@@ -133,10 +137,8 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   planner->setProblemDefinition(pdef);
   planner->setup();
   // The time limit, or sooner when the process is asked to stop (a signal
-  // to `earc-plan serve`, see requestStop in earc/util/deadline.hpp).
-  const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
-      ob::timedPlannerTerminationCondition(settings.time_limit_s),
-      ob::PlannerTerminationCondition([] { return stopRequested(); }));
+  // to `earc-plan serve`; Deadline::expired sees requestStop too).
+  const ob::PlannerTerminationCondition ptc([&deadline] { return deadline.expired(); });
   ob::PlannerStatus status = planner->solve(ptc);
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
 
@@ -149,7 +151,7 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   waypoints.back() = query.goals;
   if (settings.simplify) {
     std::mt19937_64 rng(splitSeed(seed, 0x5c07));
-    shortcutComposite(checker, waypoints, kShortcutIterations, rng);
+    shortcutComposite(checker, waypoints, kShortcutIterations, rng, deadline);
   }
   return timeStampComposite(query.robots, waypoints);
 }

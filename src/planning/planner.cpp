@@ -53,9 +53,8 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   PlanResult result;
   result.solution.scenario = scenario.name;
   CollisionWorld world(scenario);
-  auto owned = makeRobotModels(scenario);
-  std::vector<const RobotModel*> models;
-  for (const auto& m : owned) models.push_back(m.get());
+  const RobotModels robots(scenario);
+  const std::vector<const RobotModel*>& models = robots.raw;
   Deadline deadline(settings.time_limit_s);
   RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
                       splitSeed(settings.seed, 1));
@@ -107,16 +106,16 @@ PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings
   PlanResult result;
   result.solution.scenario = scenario.name;
   CollisionWorld world(scenario);
-  auto owned = makeRobotModels(scenario);
+  const RobotModels robots(scenario);
   CoupledQuery q;
-  for (std::size_t r = 0; r < owned.size(); ++r) {
-    q.robots.push_back(owned[r].get());
+  q.robots = robots.raw;
+  for (std::size_t r = 0; r < robots.raw.size(); ++r) {
     q.starts.push_back(scenario.robots[r].start);
     q.goals.push_back(scenario.robots[r].goal);
   }
   CoupledSettings cs;
-  cs.time_limit_s = settings.time_limit_s;
-  auto sol = solveCoupled(world, q, cs, settings.seed);
+  cs.time_limit_s = settings.time_limit_s - clock.seconds();  // the world's setup counts
+  auto sol = cs.time_limit_s > 0 ? solveCoupled(world, q, cs, settings.seed) : std::nullopt;
   if (sol) {
     result.solution.solved = true;
     result.solution.paths = std::move(sol->paths);

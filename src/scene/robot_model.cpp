@@ -258,6 +258,11 @@ std::vector<std::shared_ptr<const RobotModel>> makeRobotModels(const Scenario& s
   return models;
 }
 
+RobotModels::RobotModels(const Scenario& scenario) : owned(makeRobotModels(scenario)) {
+  raw.reserve(owned.size());
+  for (const auto& m : owned) raw.push_back(m.get());
+}
+
 void armJointPositions(const RobotSpec& arm, const double* q, std::vector<geo::Vec2>& out) {
   out.clear();
   out.push_back(arm.base_position);

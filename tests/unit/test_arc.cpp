@@ -53,13 +53,6 @@ Path line(std::vector<std::vector<double>> states) {
   return p;
 }
 
-struct Models {
-  std::vector<std::shared_ptr<const RobotModel>> owned;
-  std::vector<const RobotModel*> raw;
-  explicit Models(const Scenario& s) : owned(makeRobotModels(s)) {
-    for (auto& m : owned) raw.push_back(m.get());
-  }
-};
 
 }  // namespace
 
@@ -67,7 +60,7 @@ TEST_CASE("FindConflict catches two discs that touch only at the midpoint of a s
   Scenario s = openScenario(5);
   s.resolution.translation = 0.5;
   s.robots = {disc("a", 0.1, {1.0, 1.0, 0}, {1.4, 1.0, 0}), disc("b", 0.1, {1.4, 1.0, 0}, {1.0, 1.0, 0})};
-  Models m(s);
+  RobotModels m(s);
   std::vector<Path> paths{line({{1.0, 1.0, 0}, {1.4, 1.0, 0}}), line({{1.4, 1.0, 0}, {1.0, 1.0, 0}})};
   ConflictDetector det(m.raw);
   auto c = det.first(pathPointers(paths));
@@ -81,7 +74,7 @@ TEST_CASE("FindConflict catches two discs that touch only at the midpoint of a s
 TEST_CASE("FindConflict reports nothing for discs that pass with clearance") {
   Scenario s = openScenario(5);
   s.robots = {disc("a", 0.1, {1, 1, 0}, {2, 1, 0}), disc("b", 0.1, {1, 1.3, 0}, {2, 1.3, 0})};
-  Models m(s);
+  RobotModels m(s);
   std::vector<Path> paths{line({{1, 1, 0}, {1.05, 1, 0}, {1.1, 1, 0}}), line({{1, 1.3, 0}, {1.05, 1.3, 0}})};
   ConflictDetector det(m.raw);
   CHECK_FALSE(det.first(pathPointers(paths)).has_value());
@@ -90,7 +83,7 @@ TEST_CASE("FindConflict reports nothing for discs that pass with clearance") {
 TEST_CASE("FindConflict sees a robot that waits at its goal after its path ends") {
   Scenario s = openScenario(5);
   s.robots = {disc("a", 0.2, {1, 1, 0}, {1, 1, 0}), disc("b", 0.2, {2, 1, 0}, {1.3, 1, 0})};
-  Models m(s);
+  RobotModels m(s);
   std::vector<Path> paths{line({{1, 1, 0}}), line({{2, 1, 0}, {1.8, 1, 0}, {1.6, 1, 0}, {1.3, 1, 0}})};
   ConflictDetector det(m.raw);
   auto c = det.first(pathPointers(paths));
@@ -116,7 +109,7 @@ TEST_CASE("FindConflict with its broad phase agrees with all-pairs checking on r
     }
     paths.push_back(std::move(p));
   }
-  Models m(s);
+  RobotModels m(s);
   // Brute force: earliest instant, then lowest pair.
   std::optional<std::tuple<double, int, int>> expect;
   for (int k = 0; k <= 2 * steps && !expect; ++k) {
@@ -164,7 +157,7 @@ struct CrossingFixture {
 
 TEST_CASE("A subproblem's window spans the conflict and its local query lies on the paths") {
   CrossingFixture f;
-  Models m(f.s);
+  RobotModels m(f.s);
   CollisionWorld world(f.s);
   PlannerSettings settings;
   settings.initial_window = 8;
@@ -186,7 +179,7 @@ TEST_CASE("A subproblem's window spans the conflict and its local query lies on 
 
 TEST_CASE("Expanding a subproblem doubles its window and grows its region until it is the whole problem") {
   CrossingFixture f;
-  Models m(f.s);
+  RobotModels m(f.s);
   CollisionWorld world(f.s);
   PlannerSettings settings;
   settings.initial_window = 4;
@@ -338,7 +331,7 @@ TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle
               arm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
               arm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
   s.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {0.4, 0.4}));  // within c's reach (2.55)
-  Models m(s);
+  RobotModels m(s);
   CollisionWorld world(s);
   RoadmapSet roadmaps(world, m.raw, 50, 10, 1);
   CHECK(&roadmaps.forRobot(0) == &roadmaps.forRobot(1));  // facing each other, yet the same valid joint space

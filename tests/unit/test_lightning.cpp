@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include "earc/baselines/lightning.hpp"
@@ -132,6 +133,22 @@ TEST_CASE("a Lightning database of another state space is refused with a message
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find(file.path) != std::string::npos);
     CHECK(std::string(e.what()).find("2 robots (2 arms)") != std::string::npos);
+  }
+  // A file of an older format (v1: a compound OMPL space, which OMPL's
+  // loader cannot read into today's space) is refused by its version.
+  {
+    std::string bytes;
+    {
+      std::ifstream in(file.path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t tag = bytes.rfind("\nearc-lightning v2 ");
+    REQUIRE(tag != std::string::npos);
+    bytes[tag + 17] = '1';
+    std::ofstream(file.path, std::ios::binary) << bytes;
+    LightningDatabase older(mobile);
+    CHECK_THROWS_WITH_AS(older.load(file.path), doctest::Contains("Lightning database format v1, this earc reads v2"),
+                         InputError);
   }
   std::ofstream(file.path) << "not a database\n";
   LightningDatabase m(mobile);

@@ -21,13 +21,21 @@ class CompositeChecker {
  public:
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots)
       : world_(world), robots_(std::move(robots)) {}
+  // Motions checked after `deadline` has expired read as invalid from the
+  // first instant (safe: nothing unchecked is ever called valid). One
+  // motion of thousands of robots can take seconds; the planner's own
+  // checks of its time limit come only between motions. The deadline must
+  // outlive this.
+  CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots, const Deadline& deadline)
+      : world_(world), robots_(std::move(robots)), deadline_(&deadline) {}
 
   // Every robot valid and no pair touching.
   bool stateValid(const CompositeState& q) const;
   // Valid at every instant k/(2n), k = 0..2n, n = compositeSteps(a, b): the
   // steps and midpoints of the time-stamped motion.
   bool motionValid(const CompositeState& a, const CompositeState& b) const;
-  // Fraction of a -> b before the first invalid instant (1 when valid).
+  // Fraction of a -> b before the first invalid instant (1 when valid; 0
+  // once the deadline, if any, has expired).
   double lastValidFraction(const CompositeState& a, const CompositeState& b) const;
 
   const std::vector<const RobotModel*>& robots() const { return robots_; }
@@ -36,6 +44,7 @@ class CompositeChecker {
   bool instantValid(const CompositeState& a, const CompositeState& b, double s, CompositeState& scratch) const;
   const CollisionWorld& world_;
   std::vector<const RobotModel*> robots_;
+  const Deadline* deadline_ = nullptr;
 };
 
 // Random shortcutting of a composite waypoint sequence: replace the part

@@ -1,5 +1,7 @@
 // The composite configuration space of a set of robots as an OMPL space:
-// one SE2StateSpace per mobile robot and one RealVectorStateSpace per arm,
+// one flat vector of every robot's coordinates, with the metric of a
+// compound of one SE2StateSpace per mobile robot and one
+// RealVectorStateSpace per arm,
 // validity and motion checking delegated to our CompositeChecker (motions
 // at exactly the instants at which timeStampComposite places the robots,
 // so a time-stamped result is valid by construction), sampling from our
@@ -56,6 +58,7 @@ class OmplComposite {
  private:
   const CompositeChecker& checker_;
   std::vector<ConfigBox> bounds_;
+  std::vector<unsigned> offsets_;  // of each robot's coordinates in a state
   ompl::base::StateSpacePtr space_;
   ompl::base::SpaceInformationPtr si_;
   std::uint64_t seed_ = 1;

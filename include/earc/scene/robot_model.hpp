@@ -78,6 +78,13 @@ std::unique_ptr<RobotModel> makeRobotModel(const RobotSpec& spec, const Resoluti
 // Models for every robot of a scenario, in the scenario's order.
 std::vector<std::shared_ptr<const RobotModel>> makeRobotModels(const Scenario& scenario);
 
+// A scenario's models, owned, beside the plain pointers planners take.
+struct RobotModels {
+  std::vector<std::shared_ptr<const RobotModel>> owned;
+  std::vector<const RobotModel*> raw;
+  explicit RobotModels(const Scenario& scenario);
+};
+
 // Forward kinematics of a planar arm: joint positions (n+1 points, the base
 // first) for configuration q.
 void armJointPositions(const RobotSpec& arm, const double* q, std::vector<geo::Vec2>& out);

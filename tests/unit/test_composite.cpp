@@ -1,0 +1,181 @@
+// The composite space of several robots: the validity check (with its
+// broad phase for many robots), its deadline, and the flat OMPL space
+// against the compound of per-robot OMPL spaces whose metric it keeps.
+#include <doctest/doctest.h>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+
+#include <numbers>
+#include <random>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/composite.hpp"
+#include "earc/planning/ompl_composite.hpp"
+#include "earc/scene/robot_model.hpp"
+
+using namespace earc;
+namespace ob = ompl::base;
+
+namespace {
+
+RobotSpec arm(const std::string& name, geo::Vec2 base) {
+  RobotSpec s;
+  s.name = name;
+  s.kind = RobotKind::Manipulator;
+  s.base_position = base;
+  s.links = {0.5, 0.5, 0.5};
+  s.link_radius = 0.05;
+  s.joint_limits = {{-3.0, 3.0}, {-2.6, 2.6}, {-2.6, 2.6}};
+  s.start = s.goal = {0, 0, 0};
+  return s;
+}
+
+// n mobile robots, discs and boxes alternating, in a size x size workspace.
+Scenario crowd(int n, double size = 10) {
+  Scenario s;
+  s.name = "crowd";
+  s.workspace = {{0, 0}, {size, size}};
+  for (int i = 0; i < n; ++i) {
+    RobotSpec r = i % 2 ? RobotSpec::mobileBox("b" + std::to_string(i), {0.6, 0.4}) : RobotSpec{};
+    if (i % 2 == 0) {
+      r.name = "d" + std::to_string(i);
+      r.kind = RobotKind::Mobile;
+      r.shape = MobileShape::Disc;
+      r.radius = 0.3;
+    }
+    r.start = r.goal = {1, 1, 0};
+    s.robots.push_back(r);
+  }
+  return s;
+}
+
+
+}  // namespace
+
+TEST_CASE("The composite validity check with its broad phase agrees with testing every pair") {
+  const int n = 40;
+  const double size = 40;
+  Scenario s = crowd(n, size);
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> xy(-1.0, 1.0), th(-3.14, 3.14);
+  int valid = 0, invalid = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // Spread the robots over squares of different sizes: from mostly clear
+    // to mostly touching.
+    const double half = (size / 2 - 0.6) * (0.1 + 0.9 * (trial % 20) / 19.0);
+    CompositeState q(n);
+    for (auto& c : q) c = {size / 2 + xy(rng) * half, size / 2 + xy(rng) * half, th(rng)};
+    bool expect = true;
+    for (int i = 0; i < n && expect; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (robotsTouch(*m.raw[i], q[i].data(), *m.raw[j], q[j].data())) {
+          expect = false;
+          break;
+        }
+    CHECK(checker.stateValid(q) == expect);
+    (expect ? valid : invalid) += 1;
+  }
+  // Both answers were exercised.
+  CHECK(valid > 20);
+  CHECK(invalid > 20);
+}
+
+TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {
+  Scenario s = crowd(2);
+  RobotModels m(s);
+  CollisionWorld world(s);
+  const CompositeState a = {{2, 2, 0}, {6, 6, 0}}, b = {{3, 2, 0}, {7, 6, 0}};
+  CompositeChecker unlimited(world, m.raw);
+  CHECK(unlimited.motionValid(a, b));
+  const Deadline later(1e6);
+  CHECK(CompositeChecker(world, m.raw, later).motionValid(a, b));
+  const Deadline past(-1.0);
+  CompositeChecker late(world, m.raw, past);
+  CHECK_FALSE(late.motionValid(a, b));
+  CHECK(late.lastValidFraction(a, b) == 0.0);
+}
+
+TEST_CASE("The flat composite space measures and interpolates exactly as a compound of SE2 and joint spaces") {
+  // Two mobile robots around an arm: the layout the compound would have
+  // had as SE2, RealVector(3), SE2.
+  Scenario s = crowd(2);
+  s.robots.insert(s.robots.begin() + 1, arm("a", {5, 5}));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  std::vector<ConfigBox> bounds = {{{0.5, 1.0, -std::numbers::pi}, {9.0, 8.0, std::numbers::pi}},
+                                   {{-3.0, -2.6, -2.6}, {3.0, 2.6, 2.6}},
+                                   {{2.0, 0.5, -std::numbers::pi}, {7.5, 9.5, std::numbers::pi}}};
+  OmplComposite flat(checker, bounds);
+
+  auto compound = std::make_shared<ob::CompoundStateSpace>();
+  for (const ConfigBox& b : bounds) {
+    if (b.lo.size() == 3 && b.lo[2] == -std::numbers::pi) {
+      auto se2 = std::make_shared<ob::SE2StateSpace>();
+      ob::RealVectorBounds box(2);
+      for (unsigned j = 0; j < 2; ++j) box.setLow(j, b.lo[j]), box.setHigh(j, b.hi[j]);
+      se2->setBounds(box);
+      compound->addSubspace(se2, 1.0);
+    } else {
+      auto rv = std::make_shared<ob::RealVectorStateSpace>(3);
+      ob::RealVectorBounds box(3);
+      for (unsigned j = 0; j < 3; ++j) box.setLow(j, b.lo[j]), box.setHigh(j, b.hi[j]);
+      rv->setBounds(box);
+      compound->addSubspace(rv, 1.0);
+    }
+  }
+  compound->lock();
+  auto toCompound = [&](const CompositeState& q, ob::State* st) {
+    auto* cs = st->as<ob::CompoundState>();
+    for (unsigned r : {0u, 2u}) {
+      auto* se2 = cs->as<ob::SE2StateSpace::StateType>(r);
+      se2->setXY(q[r][0], q[r][1]);
+      se2->setYaw(geo::wrapAngle(q[r][2]));
+    }
+    std::copy(q[1].begin(), q[1].end(), cs->as<ob::RealVectorStateSpace::StateType>(1)->values);
+  };
+  auto fromCompound = [&](const ob::State* st) {
+    const auto* cs = st->as<ob::CompoundState>();
+    CompositeState q(3);
+    for (unsigned r : {0u, 2u}) {
+      const auto* se2 = cs->as<ob::SE2StateSpace::StateType>(r);
+      q[r] = {se2->getX(), se2->getY(), se2->getYaw()};
+    }
+    const double* v = cs->as<ob::RealVectorStateSpace::StateType>(1)->values;
+    q[1].assign(v, v + 3);
+    return q;
+  };
+
+  CHECK(flat.space()->getMaximumExtent() == compound->getMaximumExtent());
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto sample = [&] {
+    CompositeState q(3);
+    for (std::size_t r = 0; r < 3; ++r)
+      for (std::size_t j = 0; j < 3; ++j) q[r].push_back(bounds[r].lo[j] + u(rng) * (bounds[r].hi[j] - bounds[r].lo[j]));
+    return q;
+  };
+  ob::ScopedState<> fa(flat.space()), fb(flat.space()), fm(flat.space());
+  ob::ScopedState<> ca(compound), cb(compound), cm(compound);
+  CompositeState got;
+  for (int i = 0; i < 500; ++i) {
+    const CompositeState a = sample(), b = sample();
+    flat.fromComposite(a, fa.get());
+    flat.fromComposite(b, fb.get());
+    toCompound(a, ca.get());
+    toCompound(b, cb.get());
+    // Bit for bit, so that planners take exactly the steps they took on the
+    // compound space.
+    REQUIRE(flat.space()->distance(fa.get(), fb.get()) == compound->distance(ca.get(), cb.get()));
+    const double t = u(rng);
+    flat.space()->interpolate(fa.get(), fb.get(), t, fm.get());
+    compound->interpolate(ca.get(), cb.get(), t, cm.get());
+    flat.toComposite(fm.get(), got);
+    REQUIRE(got == fromCompound(cm.get()));
+  }
+}
