@@ -224,6 +224,8 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
     }
     e.paths.push_back(std::move(p));
   }
+  // findProblem checks it too; here the message can name the field.
+  if (auto problem = signatureProblem(e.cls, e.paths)) throw InputError(file, w + ".signature", *problem);
   e.cost = numberField(row, "cost", file, w);
   auto source = sourceFromName(textField(row, "source", file, w));
   if (!source) throw InputError(file, w + ".source", "not \"build\", \"planner\" or \"import\"");

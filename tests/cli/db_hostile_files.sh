@@ -4,7 +4,8 @@
 # (verify may instead list problems and exit 1); never a crash, a signal or
 # a screen of text; an import with any bad row changes nothing.
 #   truncated database, truncated WAL, foreign SQLite file, newer schema,
-#   import sources with bad rows (JSON: wrong dimension, NaN; SQLite: path
+#   import sources with bad rows (JSON: wrong dimension, NaN, a signature
+#   that does not parse or names another kind of robot; SQLite: path
 #   blob with a wrong header or length, NaN in a blob, wrong key length),
 #   and a seeded loop that flips random bytes of a real database.
 # EARC_HOSTILE_FLIPS sets the loop's rounds (default 15; the unit test
@@ -137,13 +138,21 @@ def write(name, line_no, edit):
 def dim(r): r["paths"][0][1] = r["paths"][0][1][:2]
 def nan(r): r["paths"][1][2][0] = float("nan")   # json.dumps writes NaN
 def key(r): r["key"] = r["key"][:-1]
+def sig(r): r["signature"] = "|".join(["mobile:disc:-1"] * r["robot_count"])
+def sig_kind(r): r["signature"] = "|".join(["arm:links=1:r=0.1:limits=-1/1"] * r["robot_count"])
 write("bad-dimension", 3, dim)
 write("bad-nan", 5, nan)
 write("bad-key", 2, key)
+write("bad-signature", 4, sig)
+write("bad-signature-kind", 4, sig_kind)
 EOF
 bad_import "export with a wrong dimension" "$WORK/bad-dimension.jsonl" "line 4 .*dimension differs"
 bad_import "export with a NaN" "$WORK/bad-nan.jsonl" "line 6 .*(NaN|not valid JSON|parse)"
 bad_import "export with a short key" "$WORK/bad-key.jsonl" "line 3 .*key has"
+bad_import "export with a malformed signature" "$WORK/bad-signature.jsonl" \
+  'line 5 \(id [0-9]+\)\.signature: robot 0: "mobile:disc:-1" is not a geometry signature'
+bad_import "export with an arm's signature in a mobile row" "$WORK/bad-signature-kind.jsonl" \
+  'line 5 \(id [0-9]+\)\.signature: robot 0: .* is an arm, in a mobile class'
 "$PY" - "$WORK/good.db" "$WORK" <<'EOF' || fail "making bad databases"
 import shutil, sqlite3, struct, sys
 src, work = sys.argv[1], sys.argv[2]
