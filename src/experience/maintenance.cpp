@@ -138,7 +138,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries) {
 
 VerifyReport verifyDatabase(const std::string& path) {
   VerifyReport r;
-  if (!std::filesystem::exists(path)) throw InputError(path, "", "no such file");
+  requireDatabaseFile(path);
   std::unique_ptr<Connection> db;
   // A file that cannot be read as an earc database at all (not SQLite,
   // foreign, newer, damaged where the schema lives) is bad input: one line,
@@ -147,7 +147,7 @@ VerifyReport verifyDatabase(const std::string& path) {
     db = std::make_unique<Connection>(path, OpenMode::Hostile);
     r.schema_version = checkIdentity(*db);
   });
-  if (r.schema_version == 0) throw InputError(path, "", "empty file, not an earc experience database");
+  if (r.schema_version == 0) throw notYetADatabase(path);
   if (r.schema_version < currentSchemaVersion())
     r.notes.push_back("schema version " + std::to_string(r.schema_version) + " (this program: " +
                       std::to_string(currentSchemaVersion()) + "); migrated on the next read-write open");
@@ -231,6 +231,10 @@ void removeDatabaseFiles(const std::string& path) {
 }  // namespace
 
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+  // Every input before anything is written; curating in place writes, so a
+  // 0-byte file becomes a database there, as it would with build.
+  requireDatabaseFile(path, settings.output.empty());
+  for (const std::string& in : settings.merge) requireDatabaseFile(in);
   if (settings.output.empty()) return curateFile(path, settings);
   // The copy is curated under a temporary name and appears under its own
   // name only when complete: a crash or an error part way never leaves a

@@ -155,7 +155,7 @@ std::vector<Experience> readSqlite(const std::string& path) {
   try {
     Connection db(path, OpenMode::Hostile);
     const int version = checkIdentity(db);  // foreign or newer: refused before reading rows
-    if (version == 0) throw InputError(path, "", "empty database");
+    if (version == 0) throw notYetADatabase(path);
     // quick_check before reading rows: a damaged file is refused as a whole.
     db.requireQuickCheck();
     Statement table = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'experiences'");
@@ -264,6 +264,7 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path)
 }
 
 std::vector<Experience> readImportSource(const std::string& path) {
+  requireDatabaseFile(path);
   return looksLikeSqlite(path) ? readSqlite(path) : readJsonl(path);
 }
 

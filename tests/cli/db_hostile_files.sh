@@ -3,7 +3,8 @@
 # works or exits 2 with one line on stderr naming the file and what is wrong
 # (verify may instead list problems and exit 1); never a crash, a signal or
 # a screen of text; an import with any bad row changes nothing.
-#   truncated database, truncated WAL, foreign SQLite file, newer schema,
+#   missing and 0-byte files (one wording each for every command that only
+#   reads), truncated database, truncated WAL, foreign SQLite file, newer schema,
 #   import sources with bad rows (JSON: wrong dimension, NaN, a signature
 #   that does not parse or names another kind of robot; SQLite: path
 #   blob with a wrong header or length, NaN in a blob, wrong key length),
@@ -82,6 +83,36 @@ before=$(md5sum < "$WORK/newer-target.db")
 run "newer target" "$WORK/newer-target.db" "$DB" import --db "$WORK/newer-target.db" "$WORK/good.db"
 refused "import into a newer file" "$WORK/newer-target.db" "schema version 99 is newer"
 [ "$(md5sum < "$WORK/newer-target.db")" = "$before" ] || fail "import modified a newer file"
+
+# --- A missing file and a 0-byte file: every command that only reads says
+# the same about each (SQLite would take a 0-byte file for an empty
+# database); commands that write make a 0-byte file a database.
+# read_only_commands CASE FILE PATTERN
+read_only_commands() {
+  local name=$1 file=$2 pattern=$3
+  rm -f "$WORK/target.db"* "$WORK/copy.db"*
+  run "$name" "$file" "$DB" inspect --db "$file"; refused "$name: inspect" "$file" "$pattern"
+  run "$name" "$file" "$DB" verify --db "$file"; refused "$name: verify" "$file" "$pattern"
+  run "$name" "$file" "$DB" export --db "$file" -o "$WORK/x.jsonl"; refused "$name: export" "$file" "$pattern"
+  run "$name" "$file" "$DB" import --db "$WORK/target.db" "$file"; refused "$name: import" "$file" "$pattern"
+  [ -e "$WORK/target.db" ] && fail "$name: a refused import made its target"
+  run "$name" "$file" "$DB" curate --db "$file" -o "$WORK/copy.db"; refused "$name: curate -o" "$file" "$pattern"
+  run "$name" "$file" "$DB" curate --db "$WORK/good.db" --merge "$file" -o "$WORK/copy.db"
+  refused "$name: curate --merge" "$file" "$pattern"
+  [ -e "$WORK/x.jsonl" ] || [ -e "$WORK/copy.db" ] && fail "$name: a refused command wrote its output"
+  return 0
+}
+read_only_commands "missing file" "$WORK/missing.db" "^earc-db: error: $WORK/missing.db: no such file\$"
+run "missing file" x "$DB" curate --db "$WORK/missing.db"; refused "missing file: curate" "$WORK/missing.db" "no such file\$"
+[ -e "$WORK/missing.db" ] && fail "curate made a missing database"
+: > "$WORK/zero.db"
+read_only_commands "0-byte file" "$WORK/zero.db" \
+  "^earc-db: error: $WORK/zero.db: empty file \(0 bytes\), not an earc database yet\$"
+[ -s "$WORK/zero.db" ] && fail "a read-only command wrote into the 0-byte file"
+"$DB" curate --db "$WORK/zero.db" > /dev/null || fail "curate in place of a 0-byte file"
+: > "$WORK/zero.db"
+"$DB" import --db "$WORK/zero.db" "$WORK/good.db" > /dev/null || fail "import into a 0-byte file"
+[ "$(rows "$WORK/zero.db")" -eq 24 ] || fail "import into a 0-byte file: not 24 rows"
 
 # --- Truncated WAL: committed transactions in whole frames survive, a torn
 # last frame is ignored; every command works.

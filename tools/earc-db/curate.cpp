@@ -32,9 +32,8 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
 void setupCurate(CLI::App& app) {
   auto opt = std::make_shared<CurateOptions>();
   CLI::App* sub = app.add_subcommand("curate", "Merge databases, remove near-duplicates and unused entries");
-  sub->add_option("--db", opt->db, "Experience database file")->required()->check(CLI::ExistingFile);
-  sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)")
-      ->check(CLI::ExistingFile);
+  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)");
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
                   "Keep one entry per key-distance ball of this radius in each class (the most successful)")
       ->check(earc::cli::kFiniteNonNegative);

@@ -60,7 +60,9 @@ inline constexpr std::chrono::seconds kCheckpointInterval{30};
 class ExperienceStore {
  public:
   // Opens (creating when missing, unless read_only) and loads the index.
-  // Throws ForeignDatabaseError, SchemaVersionError, StoreError.
+  // Throws ForeignDatabaseError, SchemaVersionError, StoreError; read_only,
+  // InputError for a file that is missing or no database yet
+  // (requireDatabaseFile).
   explicit ExperienceStore(const std::string& path, const StoreOptions& options = {});
   // Flushes pending counters; errors are reported on stderr, not thrown.
   ~ExperienceStore();
