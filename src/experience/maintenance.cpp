@@ -23,12 +23,6 @@ namespace earc::exp {
 
 namespace {
 
-StoreOptions readOnlyOptions() {
-  StoreOptions o;
-  o.read_only = true;
-  return o;
-}
-
 std::int64_t fileSize(const std::string& path) {
   std::error_code ec;
   auto n = std::filesystem::file_size(path, ec);
@@ -92,7 +86,7 @@ std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
 }  // namespace
 
 InspectReport inspectDatabase(const std::string& path, int sample_entries) {
-  ExperienceStore store(path, readOnlyOptions());
+  ExperienceStore store(path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   InspectReport r;
   r.path = path;
@@ -196,9 +190,7 @@ namespace {
 CurateReport curateFile(const std::string& target, const CurateSettings& settings) {
   CurateReport r;
   r.curated_path = target;
-  StoreOptions options;
-  options.new_session = false;  // curation is not a planning session
-  ExperienceStore store(target, options);
+  ExperienceStore store(target, wholeFileStoreOptions(false));  // curation is not a planning session
   Connection& db = store.connection();
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
   if (!settings.merge.empty()) {
@@ -219,6 +211,13 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     });
   if (settings.vacuum) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
+  // Rows the index left out and curation did not delete.
+  Statement still = db.prepare("SELECT count(*) FROM experiences WHERE id = ?1");
+  for (std::int64_t id : store.skippedRows()) {
+    still.bind(1, id);
+    r.unreadable_keys += still.step() ? still.int64At(0) : 0;
+    still.reset();
+  }
   store.close();  // checkpointed: the main file holds everything
   return r;
 }
@@ -263,7 +262,7 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
 
 void copyDatabase(const std::string& from, const std::string& to) {
   if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
-  ExperienceStore source(from, readOnlyOptions());  // identity and version checked
+  ExperienceStore source(from, wholeFileStoreOptions(true));  // identity and version checked
   Statement vacuum = source.connection().prepare("VACUUM INTO ?1");
   vacuum.bind(1, std::string_view(to));
   vacuum.run();

@@ -146,6 +146,7 @@ void ExperienceStore::loadTailLocked() {
 }
 
 void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
+  if (!options_.warn_skipped) return;
   static std::mutex warn_mutex;
   static std::set<std::pair<std::string, std::int64_t>> warned;
   std::lock_guard lock(warn_mutex);

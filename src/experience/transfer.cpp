@@ -240,9 +240,7 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
 }
 
 std::size_t exportJsonl(const std::string& db_path, const std::string& out_path) {
-  StoreOptions options;
-  options.read_only = true;
-  ExperienceStore store(db_path, options);
+  ExperienceStore store(db_path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   std::ostringstream out;
   // One read transaction: the header's count and the rows are one snapshot.

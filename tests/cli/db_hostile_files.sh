@@ -210,6 +210,21 @@ bad_import "database with a long blob" "$WORK/blob-long.db" "row 5: path blob: .
 bad_import "database with a NaN in a blob" "$WORK/blob-nan.db" "row 5: path blob: .*not finite"
 bad_import "database with a short key" "$WORK/key-length.db" "row 7: key"
 bad_import "database with two bad rows" "$WORK/two-bad.db" "row 2: path blob.*1 more bad row \(row 9\)"
+# Whole-file commands on such a database: export and curate refuse it in one
+# line (no warning about the row first), inspect shows it with no warning.
+for bad in blob-magic:5 key-length:7; do
+  file="$WORK/${bad%%:*}.db" row=${bad##*:}
+  rm -f "$WORK/x.jsonl" "$WORK/copy.db"*
+  run export "$file" "$DB" export --db "$file" -o "$WORK/x.jsonl"; refused "export of $file" "$file" "row $row: "
+  run curate "$file" "$DB" curate --db "$file" -o "$WORK/copy.db" --dedupe 0.01
+  refused "curate of $file" "$file" "row $row: "
+  [ -e "$WORK/x.jsonl" ] || [ -e "$WORK/copy.db" ] && fail "a refused command wrote its output"
+  run inspect "$file" "$DB" inspect --db "$file"
+  [ $code -eq 0 ] && [ ! -s "$WORK/err" ] || fail "inspect of $file: exit $code: $(cat "$WORK/err")"
+done
+run curate x "$DB" curate --db "$WORK/key-length.db" -o "$WORK/copy.db"
+[ $code -eq 0 ] && [ ! -s "$WORK/err" ] || fail "curate with a bad key: exit $code: $(cat "$WORK/err")"
+grep -q "(1 with an unreadable key; earc-db verify names them)" "$WORK/out" || fail "curate: $(cat "$WORK/out")"
 
 # --- Random bytes flipped in a real database, seeded: every command works
 # or refuses the file cleanly. Each round damages a fresh copy in 1..8 places
