@@ -152,8 +152,12 @@ std::optional<std::string> findProblem(const Experience& e) {
     if (std::abs(e.key[i] - expected[i]) > kKeyTolerance)
       return "key value " + std::to_string(i) + " disagrees with the paths' start/goal";
   }
-  if (!std::isfinite(e.cost) || std::abs(e.cost - pathCost(e.paths)) > 1e-9)
-    return "cost " + std::to_string(e.cost) + " is not the paths' length in steps " + std::to_string(pathCost(e.paths));
+  if (!std::isfinite(e.cost) || std::abs(e.cost - pathCost(e.paths)) > 1e-9) {
+    // %.17g: exact and short; std::to_string writes 1e308 in 309 digits.
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "cost %.17g is not the paths' length in steps %.17g", e.cost, pathCost(e.paths));
+    return buf;
+  }
   if (!std::isfinite(e.solve_time_s) || e.solve_time_s < 0) return "solve_time_s is negative or not finite";
   if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved)
     return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +
