@@ -1,6 +1,7 @@
 #include "earc/experience/maintenance.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "earc/experience/key_index.hpp"
 #include "earc/experience/rows.hpp"
@@ -222,9 +224,41 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
   return r;
 }
 
+constexpr const char* kDatabaseFileSuffixes[] = {"-wal", "-shm", "-journal"};
+
 void removeDatabaseFiles(const std::string& path) {
   std::error_code ignored;
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path + suffix, ignored);
+  std::filesystem::remove(path, ignored);
+  for (const char* suffix : kDatabaseFileSuffixes) std::filesystem::remove(path + suffix, ignored);
+}
+
+// The temporary a curate of process `pid` works in.
+std::string curateTemporary(const std::string& out, const std::string& pid) { return out + ".tmp." + pid; }
+
+// A curate killed part way leaves OUT.tmp.PID (and its -wal, -shm or
+// -journal) beside OUT; the next curate to OUT removes those whose process
+// is gone (kill(pid, 0): ESRCH). A live process's temporary is left alone:
+// it may be curating right now. (A PID is only meaningful on this host; a
+// curate run on another machine into a shared directory is not expected.)
+void removeStaleTemporaries(const std::string& out) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
+  const std::string prefix = fs::path(out).filename().string() + ".tmp.";
+  std::set<std::string> gone;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    std::string pid = name.substr(prefix.size());
+    for (std::string_view suffix : kDatabaseFileSuffixes)
+      if (pid.ends_with(suffix)) pid.erase(pid.size() - suffix.size());
+    // A PID, nothing else: export's OUT.tmp.PID.RANDOM is not ours.
+    if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
+    const pid_t p = static_cast<pid_t>(std::stol(pid));
+    if (p > 0 && ::kill(p, 0) != 0 && errno == ESRCH) gone.insert(pid);
+  }
+  for (const std::string& pid : gone) removeDatabaseFiles(curateTemporary(out, pid));
 }
 
 }  // namespace
@@ -240,7 +274,8 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   // half-curated copy that looks like a database.
   const std::string& out = settings.output;
   if (std::filesystem::exists(out)) throw InputError(out, "", "already exists; not overwriting it");
-  const std::string tmp = out + ".tmp." + std::to_string(::getpid());
+  removeStaleTemporaries(out);
+  const std::string tmp = curateTemporary(out, std::to_string(::getpid()));
   removeDatabaseFiles(tmp);
   try {
     copyDatabase(path, tmp);
