@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "earc/experience/keys.hpp"
+#include "earc/scene/robot_signature.hpp"
 
 namespace earc::exp {
 
@@ -18,6 +19,19 @@ std::size_t countParts(const std::string& s, char sep) {
   for (char ch : s) n += ch == sep;
   return n;
 }
+
+// A piece of a row quoted in a message: a hostile file's signature may be
+// megabytes long, the message stays one readable line.
+std::string quoted(std::string_view s) {
+  constexpr std::size_t kShown = 60;
+  return "\"" + std::string(s.substr(0, kShown)) + (s.size() > kShown ? "...\"" : "\"");
+}
+
+// What a geometry signature says about its robot that a row must agree with.
+struct SignedRobot {
+  RobotKind kind;
+  int dim;
+};
 
 // A base class string is well formed when it is what baseClassString
 // prints for some transform: three numbers with three decimals, the angle
@@ -71,14 +85,47 @@ double pathCost(const std::vector<Path>& paths) {
   return c;
 }
 
+std::optional<std::string> signatureProblem(const ExperienceClass& c, const std::vector<Path>& paths) {
+  const std::size_t count = c.signature.empty() ? 0 : countParts(c.signature, '|');
+  if (count != static_cast<std::size_t>(c.robot_count))
+    return "names " + std::to_string(count) + " robots, expected " + std::to_string(c.robot_count);
+  std::vector<std::string_view> parts;
+  for (std::size_t at = 0;;) {
+    const std::size_t end = c.signature.find('|', at);
+    parts.push_back(std::string_view(c.signature).substr(at, end - at));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  // Reading a signature builds robot models, which costs more than decoding
+  // the row; rows come class by class, so the last good one is remembered.
+  thread_local std::string known;
+  thread_local std::vector<SignedRobot> robots;
+  if (c.signature != known) {
+    std::vector<SignedRobot> read;
+    for (std::size_t r = 0; r < parts.size(); ++r) {
+      auto spec = robotFromSignature(parts[r]);
+      if (!spec) return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " is not a geometry signature earc writes";
+      read.push_back({spec->kind, spec->dim()});
+    }
+    known = c.signature;
+    robots = std::move(read);
+  }
+  for (std::size_t r = 0; r < parts.size(); ++r) {
+    if (robots[r].kind != c.kind)
+      return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " is " +
+             (robots[r].kind == RobotKind::Mobile ? "a mobile robot" : "an arm") + ", in a " + kindName(c.kind) + " class";
+    if (r < paths.size() && paths[r].dim() != robots[r].dim)
+      return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " has " + std::to_string(robots[r].dim) +
+             " coordinates, its path " + std::to_string(paths[r].dim());
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> findProblem(const Experience& e) {
   const ExperienceClass& c = e.cls;
   if (c.robot_count < 1 || c.robot_count > 64) return "robot_count " + std::to_string(c.robot_count) + " outside 1..64";
   if (e.paths.size() != static_cast<std::size_t>(c.robot_count))
     return std::to_string(e.paths.size()) + " paths for robot_count " + std::to_string(c.robot_count);
-  if (c.signature.empty() || countParts(c.signature, '|') != e.paths.size())
-    return "signature names " + std::to_string(c.signature.empty() ? 0 : countParts(c.signature, '|')) +
-           " robots, expected " + std::to_string(c.robot_count);
   const int dim = e.paths.front().dim();
   const std::size_t steps = e.paths.front().size();
   for (std::size_t r = 0; r < e.paths.size(); ++r) {
@@ -95,6 +142,7 @@ std::optional<std::string> findProblem(const Experience& e) {
     if (c.robot_count != 2) return "manipulator classes hold pairs, not " + std::to_string(c.robot_count) + " arms";
     if (!wellFormedBaseClass(c.base_class)) return "malformed base class \"" + c.base_class + "\"";
   }
+  if (auto problem = signatureProblem(c, e.paths)) return "signature: " + *problem;
   const int kd = keyDimension(c.kind, c.robot_count, dim);
   if (e.key.size() != static_cast<std::size_t>(kd))
     return "key has " + std::to_string(e.key.size()) + " values, the class needs " + std::to_string(kd);
@@ -104,8 +152,12 @@ std::optional<std::string> findProblem(const Experience& e) {
     if (std::abs(e.key[i] - expected[i]) > kKeyTolerance)
       return "key value " + std::to_string(i) + " disagrees with the paths' start/goal";
   }
-  if (!std::isfinite(e.cost) || std::abs(e.cost - pathCost(e.paths)) > 1e-9)
-    return "cost " + std::to_string(e.cost) + " is not the paths' length in steps " + std::to_string(pathCost(e.paths));
+  if (!std::isfinite(e.cost) || std::abs(e.cost - pathCost(e.paths)) > 1e-9) {
+    // %.17g: exact and short; std::to_string writes 1e308 in 309 digits.
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "cost %.17g is not the paths' length in steps %.17g", e.cost, pathCost(e.paths));
+    return buf;
+  }
   if (!std::isfinite(e.solve_time_s) || e.solve_time_s < 0) return "solve_time_s is negative or not finite";
   if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved)
     return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +

@@ -1,6 +1,7 @@
 #include "earc/experience/maintenance.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "earc/experience/key_index.hpp"
 #include "earc/experience/rows.hpp"
@@ -22,12 +24,6 @@
 namespace earc::exp {
 
 namespace {
-
-StoreOptions readOnlyOptions() {
-  StoreOptions o;
-  o.read_only = true;
-  return o;
-}
 
 std::int64_t fileSize(const std::string& path) {
   std::error_code ec;
@@ -92,7 +88,7 @@ std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
 }  // namespace
 
 InspectReport inspectDatabase(const std::string& path, int sample_entries) {
-  ExperienceStore store(path, readOnlyOptions());
+  ExperienceStore store(path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   InspectReport r;
   r.path = path;
@@ -138,7 +134,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries) {
 
 VerifyReport verifyDatabase(const std::string& path) {
   VerifyReport r;
-  if (!std::filesystem::exists(path)) throw InputError(path, "", "no such file");
+  requireDatabaseFile(path);
   std::unique_ptr<Connection> db;
   // A file that cannot be read as an earc database at all (not SQLite,
   // foreign, newer, damaged where the schema lives) is bad input: one line,
@@ -147,7 +143,7 @@ VerifyReport verifyDatabase(const std::string& path) {
     db = std::make_unique<Connection>(path, OpenMode::Hostile);
     r.schema_version = checkIdentity(*db);
   });
-  if (r.schema_version == 0) throw InputError(path, "", "empty file, not an earc experience database");
+  if (r.schema_version == 0) throw notYetADatabase(path);
   if (r.schema_version < currentSchemaVersion())
     r.notes.push_back("schema version " + std::to_string(r.schema_version) + " (this program: " +
                       std::to_string(currentSchemaVersion()) + "); migrated on the next read-write open");
@@ -196,9 +192,7 @@ namespace {
 CurateReport curateFile(const std::string& target, const CurateSettings& settings) {
   CurateReport r;
   r.curated_path = target;
-  StoreOptions options;
-  options.new_session = false;  // curation is not a planning session
-  ExperienceStore store(target, options);
+  ExperienceStore store(target, wholeFileStoreOptions(false));  // curation is not a planning session
   Connection& db = store.connection();
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
   if (!settings.merge.empty()) {
@@ -219,25 +213,69 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     });
   if (settings.vacuum) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
+  // Rows the index left out and curation did not delete.
+  Statement still = db.prepare("SELECT count(*) FROM experiences WHERE id = ?1");
+  for (std::int64_t id : store.skippedRows()) {
+    still.bind(1, id);
+    r.unreadable_keys += still.step() ? still.int64At(0) : 0;
+    still.reset();
+  }
   store.close();  // checkpointed: the main file holds everything
   return r;
 }
 
+constexpr const char* kDatabaseFileSuffixes[] = {"-wal", "-shm", "-journal"};
+
 void removeDatabaseFiles(const std::string& path) {
   std::error_code ignored;
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path + suffix, ignored);
+  std::filesystem::remove(path, ignored);
+  for (const char* suffix : kDatabaseFileSuffixes) std::filesystem::remove(path + suffix, ignored);
+}
+
+// The temporary a curate of process `pid` works in.
+std::string curateTemporary(const std::string& out, const std::string& pid) { return out + ".tmp." + pid; }
+
+// A curate killed part way leaves OUT.tmp.PID (and its -wal, -shm or
+// -journal) beside OUT; the next curate to OUT removes those whose process
+// is gone (kill(pid, 0): ESRCH). A live process's temporary is left alone:
+// it may be curating right now. (A PID is only meaningful on this host; a
+// curate run on another machine into a shared directory is not expected.)
+void removeStaleTemporaries(const std::string& out) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
+  const std::string prefix = fs::path(out).filename().string() + ".tmp.";
+  std::set<std::string> gone;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    std::string pid = name.substr(prefix.size());
+    for (std::string_view suffix : kDatabaseFileSuffixes)
+      if (pid.ends_with(suffix)) pid.erase(pid.size() - suffix.size());
+    // A PID, nothing else: export's OUT.tmp.PID.RANDOM is not ours.
+    if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
+    const pid_t p = static_cast<pid_t>(std::stol(pid));
+    if (p > 0 && ::kill(p, 0) != 0 && errno == ESRCH) gone.insert(pid);
+  }
+  for (const std::string& pid : gone) removeDatabaseFiles(curateTemporary(out, pid));
 }
 
 }  // namespace
 
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+  // Every input before anything is written; curating in place writes, so a
+  // 0-byte file becomes a database there, as it would with build.
+  requireDatabaseFile(path, settings.output.empty());
+  for (const std::string& in : settings.merge) requireDatabaseFile(in);
   if (settings.output.empty()) return curateFile(path, settings);
   // The copy is curated under a temporary name and appears under its own
   // name only when complete: a crash or an error part way never leaves a
   // half-curated copy that looks like a database.
   const std::string& out = settings.output;
   if (std::filesystem::exists(out)) throw InputError(out, "", "already exists; not overwriting it");
-  const std::string tmp = out + ".tmp." + std::to_string(::getpid());
+  removeStaleTemporaries(out);
+  const std::string tmp = curateTemporary(out, std::to_string(::getpid()));
   removeDatabaseFiles(tmp);
   try {
     copyDatabase(path, tmp);
@@ -259,7 +297,7 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
 
 void copyDatabase(const std::string& from, const std::string& to) {
   if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
-  ExperienceStore source(from, readOnlyOptions());  // identity and version checked
+  ExperienceStore source(from, wholeFileStoreOptions(true));  // identity and version checked
   Statement vacuum = source.connection().prepare("VACUUM INTO ?1");
   vacuum.bind(1, std::string_view(to));
   vacuum.run();

@@ -1,6 +1,7 @@
 #include "earc/experience/schema.hpp"
 
 #include <cstdio>
+#include <filesystem>
 
 namespace earc::exp {
 
@@ -37,6 +38,26 @@ void requireTables(Connection& db, int version) {
 }
 
 }  // namespace
+
+InputError notYetADatabase(const std::string& path) {
+  std::error_code ec;
+  const bool zero = std::filesystem::file_size(path, ec) == 0 && !ec;
+  return InputError(path, "", zero ? "empty file (0 bytes), not an earc database yet"
+                                   : "empty SQLite database (no tables), not an earc database yet");
+}
+
+void requireDatabaseFile(const std::string& path, bool may_be_empty) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw InputError(path, "", "no such file");
+  if (fs::is_directory(st)) throw InputError(path, "", "is a directory, not a file");
+  // SQLite reads a 0-byte file as an empty database; one whose pages are
+  // all still in its WAL is not empty.
+  if (!may_be_empty && fs::is_regular_file(st) && fs::file_size(path, ec) == 0 && !ec &&
+      !(fs::file_size(path + "-wal", ec) > 0 && !ec))
+    throw notYetADatabase(path);
+}
 
 int checkIdentity(Connection& db) {
   // One statement, one snapshot: another process may be creating the file

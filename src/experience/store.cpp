@@ -56,6 +56,7 @@ ExperienceStore::~ExperienceStore() {
 
 void ExperienceStore::openLocked() {
   const OpenMode mode = options_.read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite;
+  if (options_.read_only) requireDatabaseFile(path_);  // else SQLite's "unable to open database file"
   conn_ = std::make_unique<Connection>(path_, mode, options_.connection);
   // Identity first: never switch a foreign file to WAL or write to it.
   // Another process creating the same file may make these steps busy.
@@ -65,7 +66,7 @@ void ExperienceStore::openLocked() {
   // problem, instead of failing some later query mid-plan.
   conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
   if (options_.read_only) {
-    if (version_ == 0) throw ForeignDatabaseError(path_ + ": empty file, not an earc experience database");
+    if (version_ == 0) throw notYetADatabase(path_);
   } else {
     conn_->retryWhileBusy([&] { conn_->enableWal(); });
     version_ = migrate(*conn_);
@@ -145,6 +146,7 @@ void ExperienceStore::loadTailLocked() {
 }
 
 void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
+  if (!options_.warn_skipped) return;
   static std::mutex warn_mutex;
   static std::set<std::pair<std::string, std::int64_t>> warned;
   std::lock_guard lock(warn_mutex);

@@ -155,7 +155,7 @@ std::vector<Experience> readSqlite(const std::string& path) {
   try {
     Connection db(path, OpenMode::Hostile);
     const int version = checkIdentity(db);  // foreign or newer: refused before reading rows
-    if (version == 0) throw InputError(path, "", "empty database");
+    if (version == 0) throw notYetADatabase(path);
     // quick_check before reading rows: a damaged file is refused as a whole.
     db.requireQuickCheck();
     Statement table = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'experiences'");
@@ -224,6 +224,8 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
     }
     e.paths.push_back(std::move(p));
   }
+  // findProblem checks it too; here the message can name the field.
+  if (auto problem = signatureProblem(e.cls, e.paths)) throw InputError(file, w + ".signature", *problem);
   e.cost = numberField(row, "cost", file, w);
   auto source = sourceFromName(textField(row, "source", file, w));
   if (!source) throw InputError(file, w + ".source", "not \"build\", \"planner\" or \"import\"");
@@ -238,9 +240,7 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
 }
 
 std::size_t exportJsonl(const std::string& db_path, const std::string& out_path) {
-  StoreOptions options;
-  options.read_only = true;
-  ExperienceStore store(db_path, options);
+  ExperienceStore store(db_path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   std::ostringstream out;
   // One read transaction: the header's count and the rows are one snapshot.
@@ -262,6 +262,7 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path)
 }
 
 std::vector<Experience> readImportSource(const std::string& path) {
+  requireDatabaseFile(path);
   return looksLikeSqlite(path) ? readSqlite(path) : readJsonl(path);
 }
 

@@ -250,8 +250,13 @@ void syncDirectoryOf(const std::string& path) {
 bool sameFile(const std::string& a, const std::string& b) {
   auto normal = [](const std::string& p) {
     std::error_code ec;
-    fs::path c = fs::weakly_canonical(p, ec);
-    return ec ? fs::absolute(p, ec).lexically_normal() : c;
+    // Absolute first: of a relative path none of whose parts exists
+    // ("r.db"), weakly_canonical gives it back relative, and "./r.db"
+    // absolute, and the two would differ.
+    fs::path absolute = fs::absolute(p, ec).lexically_normal();
+    if (ec) absolute = fs::path(p).lexically_normal();
+    fs::path c = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute : c;
   };
   std::error_code ea, eb;
   const bool xa = fs::exists(a, ea), xb = fs::exists(b, eb);

@@ -3,9 +3,12 @@
 // Kinematics follow shared/tools/check_solution.py operation by operation.
 #include "earc/scene/robot_model.hpp"
 
+#include <charconv>
 #include <climits>
 #include <cstdio>
 #include <stdexcept>
+
+#include "earc/scene/robot_signature.hpp"
 
 namespace earc {
 namespace {
@@ -19,6 +22,14 @@ std::string fmt6(double v) {
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
+
+// The fixed parts of geometry signatures, for the writers below and the
+// reader (robotFromSignature).
+constexpr std::string_view kDiscPrefix = "mobile:disc:r=";
+constexpr std::string_view kBoxPrefix = "mobile:box:";
+constexpr std::string_view kArmPrefix = "arm:links=";
+constexpr std::string_view kArmRadius = ":r=";
+constexpr std::string_view kArmLimits = ":limits=";
 
 void requireNonNegative(double v, const char* what, const RobotSpec& spec) {
   if (!(v >= 0.0) || !std::isfinite(v))
@@ -99,12 +110,12 @@ class MobileRobot final : public RobotModel {
   geo::Vec2 boundingCenter(const double* q) const override { return {q[0], q[1]}; }
 
   std::string geometrySignature() const override {
-    std::string s = "mobile:";
+    std::string s;
     if (spec_.shape == MobileShape::Disc) {
-      s += "disc:r=";
+      s += kDiscPrefix;
       s += fmt6(spec_.radius);
     } else {
-      s += "box:";
+      s += kBoxPrefix;
       s += fmt6(spec_.box_size.x);
       s += 'x';
       s += fmt6(spec_.box_size.y);
@@ -201,14 +212,14 @@ class ArmRobot final : public RobotModel {
 
   std::string geometrySignature() const override {
     // Appended piece by piece: "lit" + std::string&& trips GCC 12's -Wrestrict.
-    std::string s = "arm:links=";
+    std::string s(kArmPrefix);
     for (std::size_t i = 0; i < spec_.links.size(); ++i) {
       if (i) s += ',';
       s += fmt6(spec_.links[i]);
     }
-    s += ":r=";
+    s += kArmRadius;
     s += fmt6(spec_.link_radius);
-    s += ":limits=";
+    s += kArmLimits;
     for (std::size_t i = 0; i < spec_.joint_limits.size(); ++i) {
       if (i) s += ',';
       s += fmt6(spec_.joint_limits[i].first);
@@ -233,7 +244,70 @@ class ArmRobot final : public RobotModel {
   double reach_ = 0.0;  // sum of link lengths plus the link radius
 };
 
+// Reads the pieces geometrySignature writes, front to back; any mismatch
+// makes it fail for good.
+class SignatureReader {
+ public:
+  explicit SignatureReader(std::string_view text) : rest_(text) {}
+  bool skip(std::string_view piece) {
+    if (!ok_ || !rest_.starts_with(piece)) return false;
+    rest_.remove_prefix(piece.size());
+    return true;
+  }
+  void expect(std::string_view piece) { ok_ = skip(piece); }
+  // from_chars, not strtod: "0x0.4" (a box of length 0) is not hexadecimal.
+  double number() {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(rest_.data(), rest_.data() + rest_.size(), v);
+    if (!ok_ || ec != std::errc() || !std::isfinite(v)) {
+      ok_ = false;
+      return 0.0;
+    }
+    rest_.remove_prefix(static_cast<std::size_t>(end - rest_.data()));
+    return v;
+  }
+  bool done() const { return ok_ && rest_.empty(); }
+
+ private:
+  std::string_view rest_;
+  bool ok_ = true;
+};
+
 }  // namespace
+
+std::optional<RobotSpec> robotFromSignature(std::string_view signature) {
+  SignatureReader in(signature);
+  RobotSpec spec;
+  if (in.skip(kDiscPrefix)) {
+    spec.shape = MobileShape::Disc;
+    spec.radius = in.number();
+  } else if (in.skip(kBoxPrefix)) {
+    spec.shape = MobileShape::Box;
+    spec.box_size.x = in.number();
+    in.expect("x");
+    spec.box_size.y = in.number();
+  } else if (in.skip(kArmPrefix)) {
+    spec.kind = RobotKind::Manipulator;
+    do {
+      spec.links.push_back(in.number());
+    } while (in.skip(","));
+    in.expect(kArmRadius);
+    spec.link_radius = in.number();
+    in.expect(kArmLimits);
+    do {
+      const double lo = in.number();
+      in.expect("/");
+      spec.joint_limits.emplace_back(lo, in.number());
+    } while (in.skip(","));
+  }
+  if (!in.done()) return std::nullopt;
+  try {
+    if (makeRobotModel(spec, Resolution{})->geometrySignature() != signature) return std::nullopt;
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // a negative radius, limits lo > hi, ...
+  }
+  return spec;
+}
 
 int RobotModel::stepsBetween(const double* a, const double* b) const {
   const double d = distance(a, b);

@@ -1,7 +1,8 @@
 #!/bin/bash
 # Export then import gives the same rows (every number bit for bit); an
 # import with one bad row anywhere applies nothing and names the row; a
-# database can be imported directly and merged by curate.
+# database can be imported directly and merged by curate; inspect prints
+# extreme numbers in bounded form, export keeps them exactly.
 set -u
 BUILD=$1
 DB="$BUILD/earc-db"
@@ -25,6 +26,30 @@ head -1 "$WORK/a.jsonl" | grep -q '"format":"earc.experiences.v1"' || fail "no f
 grep -q "imported 40 of 40 rows" "$WORK/out" || fail "import summary: $(cat "$WORK/out")"
 "$DB" export --db "$WORK/b.db" -o "$WORK/b.jsonl" > /dev/null || fail "re-export"
 cmp -s <(tail -n +2 "$WORK/a.jsonl") <(tail -n +2 "$WORK/b.jsonl") || fail "export -> import -> export changed rows"
+
+# Extreme numbers a row may hold (a solve time of 1e308 s): inspect prints
+# them in bounded form, export keeps every digit. A cost of 1e308 is refused
+# (not the paths' length) in a message of normal length.
+"$PY" - "$WORK/a.jsonl" "$WORK/big.jsonl" "$WORK/bigcost.jsonl" <<'PY'
+import json, sys
+lines = open(sys.argv[1]).read().splitlines()
+header = json.loads(lines[0]); header["rows"] = 1
+row = json.loads(lines[1]); row["solve_time_s"] = 1e308
+open(sys.argv[2], "w").write(json.dumps(header) + "\n" + json.dumps(row) + "\n")
+row["solve_time_s"] = 0.5; row["cost"] = 1e308
+open(sys.argv[3], "w").write(json.dumps(header) + "\n" + json.dumps(row) + "\n")
+PY
+"$DB" import --db "$WORK/big.db" "$WORK/big.jsonl" > /dev/null || fail "import of a 1e308 solve time"
+"$DB" inspect --db "$WORK/big.db" > "$WORK/out" || fail "inspect exited $?"
+grep -q "solve 1e+308 s" "$WORK/out" || fail "inspect: no bounded solve time: $(cat "$WORK/out")"
+[ "$(awk 'length > 200' "$WORK/out" | wc -l)" -eq 0 ] || fail "inspect printed a line over 200 characters: $(cat "$WORK/out")"
+"$DB" export --db "$WORK/big.db" -o "$WORK/big2.jsonl" > /dev/null || fail "export of a 1e308 solve time"
+"$PY" -c 'import json,sys; r = json.loads(open(sys.argv[1]).read().splitlines()[1]); sys.exit(r["solve_time_s"] != 1e308)' \
+  "$WORK/big2.jsonl" || fail "export changed the 1e308 solve time"
+"$DB" import --db "$WORK/bigcost.db" "$WORK/bigcost.jsonl" > /dev/null 2> "$WORK/err"
+[ $? -eq 2 ] || fail "a cost of 1e308 was imported"
+grep -q "cost 1e+308 is not the paths' length" "$WORK/err" && [ "$(wc -c < "$WORK/err")" -lt 300 ] \
+  || fail "unclear or overlong refusal of a 1e308 cost: $(head -c 600 "$WORK/err")"
 
 # One bad line (a string where a coordinate belongs) in the second of two
 # inputs: exit 2, the line named, nothing imported.

@@ -3,8 +3,10 @@
 # works or exits 2 with one line on stderr naming the file and what is wrong
 # (verify may instead list problems and exit 1); never a crash, a signal or
 # a screen of text; an import with any bad row changes nothing.
-#   truncated database, truncated WAL, foreign SQLite file, newer schema,
-#   import sources with bad rows (JSON: wrong dimension, NaN; SQLite: path
+#   missing and 0-byte files (one wording each for every command that only
+#   reads), truncated database, truncated WAL, foreign SQLite file, newer schema,
+#   import sources with bad rows (JSON: wrong dimension, NaN, a signature
+#   that does not parse or names another kind of robot; SQLite: path
 #   blob with a wrong header or length, NaN in a blob, wrong key length),
 #   and a seeded loop that flips random bytes of a real database.
 # EARC_HOSTILE_FLIPS sets the loop's rounds (default 15; the unit test
@@ -82,6 +84,36 @@ run "newer target" "$WORK/newer-target.db" "$DB" import --db "$WORK/newer-target
 refused "import into a newer file" "$WORK/newer-target.db" "schema version 99 is newer"
 [ "$(md5sum < "$WORK/newer-target.db")" = "$before" ] || fail "import modified a newer file"
 
+# --- A missing file and a 0-byte file: every command that only reads says
+# the same about each (SQLite would take a 0-byte file for an empty
+# database); commands that write make a 0-byte file a database.
+# read_only_commands CASE FILE PATTERN
+read_only_commands() {
+  local name=$1 file=$2 pattern=$3
+  rm -f "$WORK/target.db"* "$WORK/copy.db"*
+  run "$name" "$file" "$DB" inspect --db "$file"; refused "$name: inspect" "$file" "$pattern"
+  run "$name" "$file" "$DB" verify --db "$file"; refused "$name: verify" "$file" "$pattern"
+  run "$name" "$file" "$DB" export --db "$file" -o "$WORK/x.jsonl"; refused "$name: export" "$file" "$pattern"
+  run "$name" "$file" "$DB" import --db "$WORK/target.db" "$file"; refused "$name: import" "$file" "$pattern"
+  [ -e "$WORK/target.db" ] && fail "$name: a refused import made its target"
+  run "$name" "$file" "$DB" curate --db "$file" -o "$WORK/copy.db"; refused "$name: curate -o" "$file" "$pattern"
+  run "$name" "$file" "$DB" curate --db "$WORK/good.db" --merge "$file" -o "$WORK/copy.db"
+  refused "$name: curate --merge" "$file" "$pattern"
+  [ -e "$WORK/x.jsonl" ] || [ -e "$WORK/copy.db" ] && fail "$name: a refused command wrote its output"
+  return 0
+}
+read_only_commands "missing file" "$WORK/missing.db" "^earc-db: error: $WORK/missing.db: no such file\$"
+run "missing file" x "$DB" curate --db "$WORK/missing.db"; refused "missing file: curate" "$WORK/missing.db" "no such file\$"
+[ -e "$WORK/missing.db" ] && fail "curate made a missing database"
+: > "$WORK/zero.db"
+read_only_commands "0-byte file" "$WORK/zero.db" \
+  "^earc-db: error: $WORK/zero.db: empty file \(0 bytes\), not an earc database yet\$"
+[ -s "$WORK/zero.db" ] && fail "a read-only command wrote into the 0-byte file"
+"$DB" curate --db "$WORK/zero.db" > /dev/null || fail "curate in place of a 0-byte file"
+: > "$WORK/zero.db"
+"$DB" import --db "$WORK/zero.db" "$WORK/good.db" > /dev/null || fail "import into a 0-byte file"
+[ "$(rows "$WORK/zero.db")" -eq 24 ] || fail "import into a 0-byte file: not 24 rows"
+
 # --- Truncated WAL: committed transactions in whole frames survive, a torn
 # last frame is ignored; every command works.
 cp "$WORK/good.db" "$WORK/wal.db"
@@ -137,13 +169,21 @@ def write(name, line_no, edit):
 def dim(r): r["paths"][0][1] = r["paths"][0][1][:2]
 def nan(r): r["paths"][1][2][0] = float("nan")   # json.dumps writes NaN
 def key(r): r["key"] = r["key"][:-1]
+def sig(r): r["signature"] = "|".join(["mobile:disc:-1"] * r["robot_count"])
+def sig_kind(r): r["signature"] = "|".join(["arm:links=1:r=0.1:limits=-1/1"] * r["robot_count"])
 write("bad-dimension", 3, dim)
 write("bad-nan", 5, nan)
 write("bad-key", 2, key)
+write("bad-signature", 4, sig)
+write("bad-signature-kind", 4, sig_kind)
 EOF
 bad_import "export with a wrong dimension" "$WORK/bad-dimension.jsonl" "line 4 .*dimension differs"
 bad_import "export with a NaN" "$WORK/bad-nan.jsonl" "line 6 .*(NaN|not valid JSON|parse)"
 bad_import "export with a short key" "$WORK/bad-key.jsonl" "line 3 .*key has"
+bad_import "export with a malformed signature" "$WORK/bad-signature.jsonl" \
+  'line 5 \(id [0-9]+\)\.signature: robot 0: "mobile:disc:-1" is not a geometry signature'
+bad_import "export with an arm's signature in a mobile row" "$WORK/bad-signature-kind.jsonl" \
+  'line 5 \(id [0-9]+\)\.signature: robot 0: .* is an arm, in a mobile class'
 "$PY" - "$WORK/good.db" "$WORK" <<'EOF' || fail "making bad databases"
 import shutil, sqlite3, struct, sys
 src, work = sys.argv[1], sys.argv[2]
@@ -170,6 +210,21 @@ bad_import "database with a long blob" "$WORK/blob-long.db" "row 5: path blob: .
 bad_import "database with a NaN in a blob" "$WORK/blob-nan.db" "row 5: path blob: .*not finite"
 bad_import "database with a short key" "$WORK/key-length.db" "row 7: key"
 bad_import "database with two bad rows" "$WORK/two-bad.db" "row 2: path blob.*1 more bad row \(row 9\)"
+# Whole-file commands on such a database: export and curate refuse it in one
+# line (no warning about the row first), inspect shows it with no warning.
+for bad in blob-magic:5 key-length:7; do
+  file="$WORK/${bad%%:*}.db" row=${bad##*:}
+  rm -f "$WORK/x.jsonl" "$WORK/copy.db"*
+  run export "$file" "$DB" export --db "$file" -o "$WORK/x.jsonl"; refused "export of $file" "$file" "row $row: "
+  run curate "$file" "$DB" curate --db "$file" -o "$WORK/copy.db" --dedupe 0.01
+  refused "curate of $file" "$file" "row $row: "
+  [ -e "$WORK/x.jsonl" ] || [ -e "$WORK/copy.db" ] && fail "a refused command wrote its output"
+  run inspect "$file" "$DB" inspect --db "$file"
+  [ $code -eq 0 ] && [ ! -s "$WORK/err" ] || fail "inspect of $file: exit $code: $(cat "$WORK/err")"
+done
+run curate x "$DB" curate --db "$WORK/key-length.db" -o "$WORK/copy.db"
+[ $code -eq 0 ] && [ ! -s "$WORK/err" ] || fail "curate with a bad key: exit $code: $(cat "$WORK/err")"
+grep -q "(1 with an unreadable key; earc-db verify names them)" "$WORK/out" || fail "curate: $(cat "$WORK/out")"
 
 # --- Random bytes flipped in a real database, seeded: every command works
 # or refuses the file cleanly. Each round damages a fresh copy in 1..8 places

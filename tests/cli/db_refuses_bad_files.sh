@@ -1,7 +1,8 @@
 #!/bin/bash
 # Files earc-db must not use: a foreign SQLite file and a newer-schema file
 # are refused with one clear line (exit 2) and left untouched; verify
-# names damaged rows (exit 1) and passes a sound file (exit 0).
+# names damaged rows (blobs, signatures; exit 1) and passes a sound file
+# (exit 0).
 set -u
 BUILD=$1
 DB="$BUILD/earc-db"
@@ -43,6 +44,17 @@ sql "$WORK/ok.db" "update experiences set paths = x'00' where id = 3" "update ex
 [ $? -eq 1 ] || fail "verify of a damaged file did not exit 1"
 grep -q "row 3: path blob" "$WORK/out" || fail "row 3 not named: $(cat "$WORK/out")"
 grep -q "row 7: key blob" "$WORK/out" || fail "row 7 not named: $(cat "$WORK/out")"
+
+# Signatures that do not parse, or name robots of another kind or dimension.
+"$DB" build --db "$WORK/sig.db" --count 10 > /dev/null 2>&1 || fail "build"
+sql "$WORK/sig.db" "update experiences set signature = replace(signature, 'mobile:box:0.6x0.4', 'mobile:disc:-1') where id = 2" \
+  "update experiences set signature = replace(signature, 'mobile:box:0.6x0.4', 'arm:links=1:r=0.1:limits=-1/1') where id = 5" \
+  "update experiences set signature = signature || '|mobile:disc:r=0.3' where id = 8"
+"$DB" verify --db "$WORK/sig.db" > "$WORK/out"
+[ $? -eq 1 ] || fail "verify passed bad signatures: $(cat "$WORK/out")"
+grep -q 'row 2: signature: robot 0: "mobile:disc:-1" is not a geometry signature' "$WORK/out" || fail "row 2 not named: $(cat "$WORK/out")"
+grep -q 'row 5: signature: robot 0: .* is an arm, in a mobile class' "$WORK/out" || fail "row 5 not named: $(cat "$WORK/out")"
+grep -q 'row 8: signature: names [0-9]* robots, expected' "$WORK/out" || fail "row 8 not named: $(cat "$WORK/out")"
 
 "$DB" verify --db "$WORK/missing.db" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "verify of a missing file did not exit 2"

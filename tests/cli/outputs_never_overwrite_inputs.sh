@@ -47,6 +47,10 @@ refused "e.db: -o: is the same file as --db" "$DB" export --db e.db -o e.db
 refused "e.db: input: is the same file as --db" "$DB" import --db e.db e.db
 refused "e.db: -o: is the same file as --db" "$DB" curate --db e.db -o e.db
 refused "m.map: -o: is the same file as the map" "$GEN" movingai m.map -o m.map
+refused "e.db: --report: is the same file as --db" "$DB" build --db e.db --report e.db --count 1
+refused "./new.db: --report: is the same file as --db (new.db)" "$DB" build --db new.db --report ./new.db --count 1
+refused "s.json: --report: is the same file as --scenario" "$DB" build --db new.db --scenario s.json --report s.json --count 1
+[ -e new.db ] && fail "a refused build made new.db"
 ln -s s.json link.json
 refused "link.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan s.json -o link.json
 [ -e new.json ] && fail "a refused plan wrote new.json"
@@ -58,12 +62,17 @@ refused "nodir/t.json: --trace: cannot write: no directory nodir" "$PLAN" plan s
 mkdir adir
 refused "adir: -o: is a directory, not a file" "$PLAN" plan s.json -o adir
 refused "adir: -o: is a directory, not a file" "$GEN" generate -n 2 -o adir
+refused "adir: --report: is a directory, not a file" "$DB" build --db new.db --report adir --count 1
+refused "nodir/r.txt: --report: cannot write: no directory nodir" "$DB" build --db new.db --report nodir/r.txt --count 1
+[ -e new.db ] && fail "a refused build made new.db"
 
 # Parse errors: one line, exit 2.
 refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
 refused "--window" "$PLAN" plan s.json -o x.json --window 0
 refused "--time-per-problem" "$DB" build --db other.db --time-per-problem nan
 refused "--size: needs --shape" "$DB" build --db other.db --size 1x1
+refused "--size: needs --shape" "$DB" build --db other.db --size 1x1 --report r.txt
+[ -e r.txt ] && fail "a refused build made its report"
 # Unsigned options refuse a sign instead of wrapping -1 to 2^64-1.
 refused "--seed: '-1' is not a whole number" "$DB" build --db other.db --seed -1
 refused "--seed: '-1' is not a whole number" "$PLAN" plan s.json -o x.json --seed -1

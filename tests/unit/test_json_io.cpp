@@ -520,6 +520,15 @@ TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("two spellings of one relative path that does not exist yet are one file") {
+  const std::string name = "earc-same-file-" + std::to_string(::getpid()) + ".db";
+  REQUIRE_FALSE(std::filesystem::exists(name));
+  CHECK(earc::sameFile(name, "./" + name));
+  CHECK(earc::sameFile("./" + name, name));
+  CHECK_THROWS_AS(earc::requireDistinctFiles({{"--db", name}, {"--report", "./" + name}}), InputError);
+  CHECK_FALSE(earc::sameFile(name, "other-" + name));
+}
+
 TEST_CASE("makespan and sum of costs count steps, not states") {
   earc::Solution s;
   earc::Path a(1), b(1), empty(1);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "earc/scene/robot_model.hpp"
+#include "earc/scene/robot_signature.hpp"
 
 using namespace earc;
 
@@ -165,6 +166,30 @@ TEST_CASE("geometry signatures name the shape with six significant digits") {
   arm.joint_limits = {{-3.14159265, 3.14159265}, {-2.6, 2.6}};
   CHECK(makeRobotModel(arm, kRes)->geometrySignature() ==
         "arm:links=0.5,0.5:r=0.05:limits=-3.14159/3.14159,-2.6/2.6");
+}
+
+TEST_CASE("a geometry signature reads back to its robot, and no other text does") {
+  RobotSpec arm = armSpec({0.5, 0.25, 1e-7}, 0.05, {3, 4}, 1.0);
+  arm.joint_limits = {{-3.14159265, 3.14159265}, {-2.6, 2.6}, {0, 0}};
+  for (const RobotSpec& spec : {discSpec(0.3), boxSpec(0.6, 0.4), boxSpec(0, 0.4), arm}) {
+    const std::string signature = makeRobotModel(spec, kRes)->geometrySignature();
+    CAPTURE(signature);
+    const auto read = robotFromSignature(signature);
+    REQUIRE(read.has_value());
+    CHECK(read->kind == spec.kind);
+    CHECK(read->dim() == spec.dim());
+    CHECK(makeRobotModel(*read, kRes)->geometrySignature() == signature);
+  }
+  // "0x0.4" is a box of length 0, not a hexadecimal number.
+  CHECK(robotFromSignature("mobile:box:0x0.4")->box_size.y == 0.4);
+  for (const char* bad : {"", "spaceship", "mobile:disc:-1", "mobile:disc:r=-1", "mobile:disc:r=0.30",
+                          "mobile:disc:r=nan", "mobile:disc:r=inf", "mobile:disc:r=0.3 ", "mobile:disc:r=0.3|",
+                          "mobile:box:0.6x", "mobile:box:0.6", "arm:links=:r=0.05:limits=",
+                          "arm:links=1,1:r=0.05:limits=-1/1", "arm:links=1:r=0.05:limits=1/-1",
+                          "arm:links=1:r=0.05", "arm:links=-1:r=0.05:limits=-1/1"}) {
+    CAPTURE(bad);
+    CHECK_FALSE(robotFromSignature(bad).has_value());
+  }
 }
 
 TEST_CASE("arms placed at different bases share a geometry signature") {

@@ -13,6 +13,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/experience/transfer.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/scene/robot_signature.hpp"
 
 using namespace earc;
 using namespace earc::exp;
@@ -130,6 +131,70 @@ TEST_CASE("an export line with a bad row makes the import apply nothing and name
   CHECK(msg.find("line 6") != std::string::npos);
   CHECK(msg.find("nothing was imported") != std::string::npos);
   CHECK(rowCount(b) == 0);
+}
+
+// Signatures that do not parse, or that disagree with the row's kind or
+// dimension, for the rows fill() writes first: a mobile pair (id 1) and an
+// arm pair (id 3).
+std::vector<std::pair<std::int64_t, std::string>> badSignatures(const std::string& arm_signature) {
+  RobotSpec shorter = *robotFromSignature(arm_signature.substr(0, arm_signature.find('|')));
+  shorter.links.pop_back();
+  shorter.joint_limits.pop_back();
+  const std::string short_arm = makeRobotModel(shorter, Resolution{})->geometrySignature();
+  return {{1, "mobile:disc:-1|mobile:disc:-1"},
+          {1, "mobile:disc:r=0.3|spaceship"},
+          {1, "mobile:disc:r=0.3"},
+          {1, arm_signature},
+          {3, "mobile:disc:r=0.3|mobile:disc:r=0.3"},
+          {3, short_arm + "|" + short_arm}};
+}
+
+TEST_CASE("an export row whose signature does not parse or disagrees with the row is refused, naming the field") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
+  fill(a, 4, 2);
+  exportJsonl(a, jsonl);
+  const auto lines = readLines(jsonl);
+  const std::string arm_signature = nlohmann::json::parse(lines[3])["signature"];
+  for (const auto& [id, signature] : badSignatures(arm_signature)) {
+    CAPTURE(signature);
+    auto changed = lines;
+    auto row = nlohmann::json::parse(changed[static_cast<std::size_t>(id)]);
+    row["signature"] = signature;
+    changed[static_cast<std::size_t>(id)] = row.dump();
+    writeLines(jsonl, changed);
+    const std::string msg = importError(dir.file("b.db"), {jsonl});
+    CHECK(msg.find("line " + std::to_string(id + 1) + " (id " + std::to_string(id) + ").signature: ") != std::string::npos);
+    CHECK(rowCount(dir.file("b.db")) == 0);
+  }
+}
+
+TEST_CASE("verify names the rows whose signature does not parse or disagrees with the row") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 4, 2);
+  std::string arm_signature;
+  {
+    Connection c(a, OpenMode::ReadOnly);
+    Statement get = c.prepare("SELECT signature FROM experiences WHERE id = 3");
+    REQUIRE(get.step());
+    arm_signature = get.textAt(0);
+  }
+  int n = 0;
+  for (const auto& [id, signature] : badSignatures(arm_signature)) {
+    CAPTURE(signature);
+    const std::string copy = dir.file("bad-" + std::to_string(++n) + ".db");
+    copyDatabase(a, copy);
+    {
+      Connection c(copy, OpenMode::ReadWrite);
+      Statement put = c.prepare("UPDATE experiences SET signature = ?1 WHERE id = ?2");
+      put.bind(1, std::string_view(signature)).bind(2, id);
+      put.run();
+    }
+    VerifyReport r = verifyDatabase(copy);
+    REQUIRE(r.problems.size() == 1);
+    CHECK(r.problems[0].find("row " + std::to_string(id) + ": signature: ") != std::string::npos);
+  }
 }
 
 TEST_CASE("an export row whose key disagrees with its paths is refused") {

@@ -115,11 +115,10 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   s.threads = opt.threads;
   s.time_per_problem_s = opt.time_per_problem;
   s.near_duplicate_eps = opt.dedupe;
-  std::optional<CommitLog> log;
-  if (!opt.report.empty()) {
-    log.emplace(opt.report);
-    s.on_commit = [&log](const std::vector<std::int64_t>& ids) { log->committed(ids); };
-  }
+  // The report is appended to: as the database or the scenario it would
+  // write lines into that file.
+  earc::requireDistinctFiles({{"--scenario", opt.scenario}, {"--db", opt.db}, {"--report", opt.report}});
+  earc::requireWritableOutput({"--report", opt.report});
   std::optional<earc::Scenario> scenario;
   if (!opt.scenario.empty()) {
     scenario = earc::loadScenario(opt.scenario);
@@ -131,6 +130,12 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     for (const auto& r : scenario->robots)
       if (r.kind == earc::RobotKind::Manipulator) s.arms.push_back(r);
     if (s.arms.size() < 2) throw earc::InputError(opt.scenario, "$.robots", "fewer than two arms to build for");
+  }
+  // Opened (created) only once every input has been accepted.
+  std::optional<CommitLog> log;
+  if (!opt.report.empty()) {
+    log.emplace(opt.report);
+    s.on_commit = [&log](const std::vector<std::int64_t>& ids) { log->committed(ids); };
   }
   const int count = s.count > 0 ? s.count
                                 : (s.kind == earc::RobotKind::Mobile ? earc::exp::kDefaultMobileProblems

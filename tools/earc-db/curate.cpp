@@ -26,15 +26,16 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
   if (!opt.settings.merge.empty()) out << ", " << r.merged << " merged";
   if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";
   if (opt.settings.drop_unused) out << ", " << r.unused_removed << " unused removed";
-  out << ", " << r.rows_after << " rows after\n";
+  out << ", " << r.rows_after << " rows after";
+  if (r.unreadable_keys) out << " (" << r.unreadable_keys << " with an unreadable key; earc-db verify names them)";
+  out << "\n";
 }
 
 void setupCurate(CLI::App& app) {
   auto opt = std::make_shared<CurateOptions>();
   CLI::App* sub = app.add_subcommand("curate", "Merge databases, remove near-duplicates and unused entries");
-  sub->add_option("--db", opt->db, "Experience database file")->required()->check(CLI::ExistingFile);
-  sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)")
-      ->check(CLI::ExistingFile);
+  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)");
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
                   "Keep one entry per key-distance ball of this radius in each class (the most successful)")
       ->check(earc::cli::kFiniteNonNegative);

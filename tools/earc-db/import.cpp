@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/experience/schema.hpp"
 #include "earc/experience/transfer.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
@@ -23,6 +24,8 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
   std::vector<earc::NamedPath> files{{"--db", opt.db}};
   for (const auto& in : opt.inputs) files.push_back({"input", in});
   earc::requireDistinctFiles(files);
+  // Before the target is opened, which creates it.
+  for (const auto& in : opt.inputs) earc::exp::requireDatabaseFile(in);
   earc::exp::ImportSettings settings;
   settings.near_duplicate_eps = opt.dedupe;
   settings.mark_imported = opt.mark_imported;
@@ -41,7 +44,7 @@ void setupImport(CLI::App& app) {
   auto opt = std::make_shared<ImportOptions>();
   CLI::App* sub = app.add_subcommand("import", "Add experiences from exports (.jsonl) or other earc databases, all or nothing");
   sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
-  sub->add_option("inputs", opt->inputs, "Export files or earc databases")->required()->check(CLI::ExistingFile);
+  sub->add_option("inputs", opt->inputs, "Export files or earc databases")->required();
   sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)")
       ->check(earc::cli::kFinite);
   sub->add_flag("--mark-imported", opt->mark_imported, "Set every imported row's source to 'import'");

@@ -1,6 +1,7 @@
 // earc-db inspect --db FILE [--entries K]: what a database holds: schema
 // version, sizes, entries and hit rates per class, and a few entries in
 // readable form. Never writes.
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
@@ -23,6 +24,16 @@ std::string bytes(std::int64_t n) {
   return buf;
 }
 
+// A stored number in a bounded width: fixed with `decimals` as usual, %.6g
+// from 1e9 on (an imported solve time of 1e308 is 309 digits fixed).
+// Exports keep every digit; this is only for reading.
+std::string number(double v, int decimals) {
+  char buf[32];
+  if (std::abs(v) < 1e9) std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  else std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 std::string isoTime(std::int64_t unix_seconds) {
   std::time_t t = static_cast<std::time_t>(unix_seconds);
   std::tm tm{};
@@ -34,22 +45,15 @@ std::string isoTime(std::int64_t unix_seconds) {
 
 std::string state(const earc::Path& p, std::size_t t) {
   std::string s = "(";
-  for (int d = 0; d < p.dim(); ++d) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%s%.3f", d ? ", " : "", p.at(t)[d]);
-    s += buf;
-  }
+  for (int d = 0; d < p.dim(); ++d) s += (d ? ", " : "") + number(p.at(t)[d], 3);
   return s + ")";
 }
 
 void printEntry(const earc::exp::Experience& e, std::ostream& out) {
-  char head[256];
-  std::snprintf(head, sizeof head, "  #%lld %s x%d%s%s: cost %.0f steps, %s, %s, solve %.3f s, used %lld/%lld\n",
-                static_cast<long long>(e.id), earc::exp::kindName(e.cls.kind), e.cls.robot_count,
-                e.cls.base_class.empty() ? "" : " ", e.cls.base_class.c_str(), e.cost, earc::exp::sourceName(e.source),
-                isoTime(e.created_at).c_str(), e.solve_time_s, static_cast<long long>(e.succeeded),
-                static_cast<long long>(e.retrieved));
-  out << head;
+  out << "  #" << e.id << " " << earc::exp::kindName(e.cls.kind) << " x" << e.cls.robot_count
+      << (e.cls.base_class.empty() ? "" : " ") << e.cls.base_class << ": cost " << number(e.cost, 0) << " steps, "
+      << earc::exp::sourceName(e.source) << ", " << isoTime(e.created_at) << ", solve " << number(e.solve_time_s, 3)
+      << " s, used " << e.succeeded << "/" << e.retrieved << "\n";
   for (std::size_t r = 0; r < e.paths.size(); ++r)
     out << "     robot " << r << ": " << state(e.paths[r], 0) << " -> " << state(e.paths[r], e.paths[r].size() - 1)
         << " in " << e.paths[r].size() - 1 << " steps\n";
@@ -70,11 +74,13 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
   for (const auto& c : r.classes) {
     char rate[16] = "-";
     if (c.retrieved > 0) std::snprintf(rate, sizeof rate, "%.1f%%", 100.0 * c.succeeded / c.retrieved);
-    std::snprintf(line, sizeof line, "%-12s %5d %-28s %8lld %5lld %9.1f %8.3f %9lld %9lld %8s  %s\n",
+    // The signature after the buffer: 64 robots' signatures would not fit in it.
+    std::snprintf(line, sizeof line, "%-12s %5d %-28s %8lld %5lld %9s %8s %9lld %9lld %8s  ",
                   earc::exp::kindName(c.cls.kind), c.cls.robot_count, c.cls.base_class.empty() ? "-" : c.cls.base_class.c_str(),
-                  static_cast<long long>(c.entries), static_cast<long long>(c.key_dim), c.mean_cost, c.mean_solve_time_s,
-                  static_cast<long long>(c.retrieved), static_cast<long long>(c.succeeded), rate, c.cls.signature.c_str());
-    out << line;
+                  static_cast<long long>(c.entries), static_cast<long long>(c.key_dim), number(c.mean_cost, 1).c_str(),
+                  number(c.mean_solve_time_s, 3).c_str(), static_cast<long long>(c.retrieved),
+                  static_cast<long long>(c.succeeded), rate);
+    out << line << c.cls.signature << "\n";
   }
   if (!r.samples.empty()) {
     out << "\nfirst " << r.samples.size() << " entries:\n";

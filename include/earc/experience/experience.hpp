@@ -54,10 +54,16 @@ struct Experience {
 // Sum over robots of the path length in steps (states - 1).
 double pathCost(const std::vector<Path>& paths);
 
-// What is wrong with an experience, or nothing: robot count and signature
-// count, path dimensions and lengths, finite numbers, key dimension and
-// agreement with the paths' endpoints, cost, base class form. Used on every
-// insert and on every imported or verified row.
+// What is wrong with a class's signature for these paths, or nothing: it
+// must name robot_count robots ('|'-joined), each by a geometry signature
+// earc writes (robotFromSignature), of the class's kind and with its path's
+// dimension.
+std::optional<std::string> signatureProblem(const ExperienceClass& c, const std::vector<Path>& paths);
+
+// What is wrong with an experience, or nothing: robot count, path
+// dimensions and lengths, finite numbers, signature (signatureProblem), key
+// dimension and agreement with the paths' endpoints, cost, base class form.
+// Used on every insert and on every imported or verified row.
 std::optional<std::string> findProblem(const Experience& e);
 
 }  // namespace earc::exp

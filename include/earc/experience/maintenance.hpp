@@ -69,6 +69,7 @@ struct CurateReport {
   std::int64_t duplicates_removed = 0;
   std::int64_t unused_removed = 0;
   std::int64_t rows_after = 0;
+  std::int64_t unreadable_keys = 0;  // rows kept as they were, out of the index (verify names them)
   std::string curated_path;
 };
 

@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "earc/experience/sqlite.hpp"
+#include "earc/io/input_error.hpp"
 
 namespace earc::exp {
 
@@ -33,6 +35,18 @@ int currentSchemaVersion();
 // SQLite file or not a SQLite file at all, SchemaVersionError for a newer
 // schema. Returns the file's schema version (0 for an empty file).
 int checkIdentity(Connection& db);
+
+// A file with no earc database in it yet (0 bytes, or SQLite without
+// tables): commands that write make it one, commands that only read refuse
+// it with this error, in one wording: "FILE: empty file (0 bytes), not an
+// earc database yet".
+InputError notYetADatabase(const std::string& path);
+
+// Refuses, before SQLite sees it, a database file that a command only
+// reads (inspect, verify, export, import sources, curate's inputs) and that
+// is missing ("FILE: no such file"), a directory, or, unless may_be_empty
+// (a command that writes it), 0 bytes (notYetADatabase).
+void requireDatabaseFile(const std::string& path, bool may_be_empty = false);
 
 // Brings the file up to `target` (default: current), one migration per
 // BEGIN IMMEDIATE transaction with its user_version bump, so a crash

@@ -40,8 +40,22 @@ struct StoreOptions {
   // Count this open as a planning session (store_meta 'sessions'); rows
   // inserted remember it, and curate --older-than-sessions reads it.
   bool new_session = true;
+  // Report rows left out of the index on stderr (once per row and file).
+  // Whole-file commands turn it off: they read every row and report a bad
+  // one in their own single line, or list them (verify), or count them.
+  bool warn_skipped = true;
   ConnectionSettings connection;
 };
+
+// For whole-file commands (inspect, export, copy, curate): not a planning
+// session, and no warning line before their own report or error.
+inline StoreOptions wholeFileStoreOptions(bool read_only) {
+  StoreOptions o;
+  o.read_only = read_only;
+  o.new_session = false;
+  o.warn_skipped = false;
+  return o;
+}
 
 // One retrieved experience and its distance to the query key.
 struct Match {
@@ -60,7 +74,9 @@ inline constexpr std::chrono::seconds kCheckpointInterval{30};
 class ExperienceStore {
  public:
   // Opens (creating when missing, unless read_only) and loads the index.
-  // Throws ForeignDatabaseError, SchemaVersionError, StoreError.
+  // Throws ForeignDatabaseError, SchemaVersionError, StoreError; read_only,
+  // InputError for a file that is missing or no database yet
+  // (requireDatabaseFile).
   explicit ExperienceStore(const std::string& path, const StoreOptions& options = {});
   // Flushes pending counters; errors are reported on stderr, not thrown.
   ~ExperienceStore();
