@@ -266,7 +266,7 @@ std::vector<Experience> readImportSource(const std::string& path) {
   return looksLikeSqlite(path) ? readSqlite(path) : readJsonl(path);
 }
 
-ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& inputs, const ImportSettings& settings) {
+std::vector<Experience> readImportSources(const std::vector<std::string>& inputs, const ImportSettings& settings) {
   std::vector<Experience> all;
   for (const std::string& input : inputs) {
     std::vector<Experience> rows = readImportSource(input);
@@ -276,10 +276,19 @@ ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& 
     e.id = 0;
     if (settings.mark_imported) e.source = Source::Import;
   }
+  return all;
+}
+
+ImportReport insertImported(ExperienceStore& store, const std::vector<Experience>& rows,
+                            const ImportSettings& settings) {
   ImportReport report;
-  report.read = all.size();
-  for (const auto& id : store.insertAll(all, settings.near_duplicate_eps)) (id ? report.inserted : report.duplicates)++;
+  report.read = rows.size();
+  for (const auto& id : store.insertAll(rows, settings.near_duplicate_eps)) (id ? report.inserted : report.duplicates)++;
   return report;
+}
+
+ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& inputs, const ImportSettings& settings) {
+  return insertImported(store, readImportSources(inputs, settings), settings);
 }
 
 }  // namespace earc::exp

@@ -50,6 +50,7 @@ every_command() {
   [ -e "$WORK/x.jsonl" ] && fail "$name: export wrote a file"
   rm -f "$WORK/target.db"*
   run "$name" "$file" "$DB" import --db "$WORK/target.db" "$file"; refused "$name: import" "$file" "$pattern"
+  [ -e "$WORK/target.db" ] && fail "$name: a refused import made its target"
   run "$name" "$file" "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$file"
   refused "$name: plan" "$file" "$pattern"
   [ "$(md5sum < "$file")" = "$before" ] || fail "$name: the file was modified"

@@ -24,16 +24,17 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
   std::vector<earc::NamedPath> files{{"--db", opt.db}};
   for (const auto& in : opt.inputs) files.push_back({"input", in});
   earc::requireDistinctFiles(files);
-  // Before the target is opened, which creates it.
-  for (const auto& in : opt.inputs) earc::exp::requireDatabaseFile(in);
   earc::exp::ImportSettings settings;
   settings.near_duplicate_eps = opt.dedupe;
   settings.mark_imported = opt.mark_imported;
+  // Every input is read and checked before the target is opened, which
+  // creates it: a refused import leaves no empty database behind.
+  const std::vector<earc::exp::Experience> rows = earc::exp::readImportSources(opt.inputs, settings);
   const auto report = earc::exp::withInputErrors(opt.db, [&] {
     earc::exp::StoreOptions options;
     options.new_session = false;
     earc::exp::ExperienceStore store(opt.db, options);
-    return earc::exp::importInto(store, opt.inputs, settings);
+    return earc::exp::insertImported(store, rows, settings);
   });
   out << "imported " << report.inserted << " of " << report.read << " rows into " << opt.db;
   if (report.duplicates) out << " (" << report.duplicates << " near-duplicates skipped)";

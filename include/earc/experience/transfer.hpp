@@ -47,7 +47,13 @@ struct ImportReport {
   std::size_t duplicates = 0;
 };
 
-// Reads and validates every input, then inserts all rows in one transaction.
+// Every row of every input, validated and ready to insert (ids cleared,
+// sources set per the settings). Throws like readImportSource.
+std::vector<Experience> readImportSources(const std::vector<std::string>& inputs, const ImportSettings& settings = {});
+// Inserts rows read by readImportSources in one transaction.
+ImportReport insertImported(ExperienceStore& store, const std::vector<Experience>& rows,
+                            const ImportSettings& settings = {});
+// Both: reads and validates every input, then inserts all rows at once.
 ImportReport importInto(ExperienceStore& store, const std::vector<std::string>& inputs,
                         const ImportSettings& settings = {});
 
