@@ -5,12 +5,6 @@
 
 namespace earc::io {
 
-std::string formatNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::string describe(const json& v) {
   switch (v.type()) {
     case json::value_t::null: return "null";

@@ -9,6 +9,7 @@
 
 #include "earc/geometry/shapes.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::io {
 
@@ -18,8 +19,8 @@ using nlohmann::json;
 inline std::string member(const std::string& path, const char* key) { return path + "." + key; }
 inline std::string element(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
-// "%g" of a number, for messages.
-std::string formatNumber(double v);
+// Six significant digits of a number, for messages.
+using earc::formatNumber;
 
 // A short description of a JSON value's kind for "expected X, got Y".
 std::string describe(const json& v);

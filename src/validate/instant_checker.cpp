@@ -6,18 +6,13 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/util/format.hpp"
 #include "earc/validate/validator.hpp"
 
 namespace earc {
 namespace {
 
 constexpr double kTol = geo::kContactTolerance;
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // " (link 3)"-style naming of an arm's body part; nothing for a mobile robot.
 std::string linkSuffix(const RobotModel& m, std::size_t part, const char* before, const char* after) {
@@ -68,8 +63,8 @@ void InstantChecker::checkJointLimits(int robot, const double* q, double t, std:
     const auto [lo, hi] = spec.joint_limits[j];
     if (q[j] < lo - kTol || q[j] > hi + kTol)
       out.push_back({Violation::Type::JointLimit, t, {robot},
-                     spec.name + " joint " + std::to_string(j + 1) + " = " + fmt(q[j]) +
-                         " outside its limits [" + fmt(lo) + ", " + fmt(hi) + "]",
+                     spec.name + " joint " + std::to_string(j + 1) + " = " + formatNumber(q[j]) +
+                         " outside its limits [" + formatNumber(lo) + ", " + formatNumber(hi) + "]",
                      -1, static_cast<int>(j), q[j]});
   }
 }
@@ -95,7 +90,7 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
     if (worst > kTol)
       out.push_back({Violation::Type::Workspace, t, {robots[pos]},
                      name(pos) + linkSuffix(model(pos), worst_part, " (link ", ")") +
-                         " is outside the workspace by " + fmt(worst),
+                         " is outside the workspace by " + formatNumber(worst),
                      -1, -1, worst});
   }
 
@@ -119,7 +114,7 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
                      name(pos) + linkSuffix(model(pos), hit.part, " link ", "") + " overlaps obstacle #" +
                          std::to_string(hit.obstacle) + " (" +
                          obstacleKind(scenario_.obstacles[static_cast<std::size_t>(hit.obstacle)]) + ") by " +
-                         fmt(-hit.sd),
+                         formatNumber(-hit.sd),
                      hit.obstacle, -1, -hit.sd});
     }
   }
@@ -138,7 +133,7 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
     if (worst > 0.0)
       out.push_back({Violation::Type::SelfCollision, t, {robots[pos]},
                      name(pos) + " links " + std::to_string(wa + 1) + " and " + std::to_string(wb + 1) +
-                         " overlap by " + fmt(worst) + " (self-collision)",
+                         " overlap by " + formatNumber(worst) + " (self-collision)",
                      -1, -1, worst});
   }
 
@@ -163,7 +158,7 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
   for (auto [pa, pb] : s.pairs) {
     const double overlap = -robotDistance(model(pa), q[pa], model(pb), q[pb]);
     out.push_back({Violation::Type::RobotRobot, t, {robots[pa], robots[pb]},
-                   name(pa) + " overlaps " + name(pb) + " by " + fmt(overlap), -1, -1, overlap});
+                   name(pa) + " overlaps " + name(pb) + " by " + formatNumber(overlap), -1, -1, overlap});
   }
 }
 

@@ -12,6 +12,8 @@
 #include <thread>
 #include <unordered_map>
 
+#include "earc/util/format.hpp"
+
 namespace earc {
 namespace {
 
@@ -22,15 +24,9 @@ constexpr double kTol = geo::kContactTolerance;
 // scheduling, small enough to balance two cores on short solutions.
 constexpr std::size_t kInstantsPerBlock = 64;
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 std::string fmtState(std::span<const double> q) {
   std::string s = "[";
-  for (std::size_t i = 0; i < q.size(); ++i) s += (i ? ", " : "") + fmt(q[i]);
+  for (std::size_t i = 0; i < q.size(); ++i) s += (i ? ", " : "") + formatNumber(q[i]);
   return s + "]";
 }
 
@@ -155,7 +151,7 @@ void checkStep(const RobotSpec& spec, const Resolution& res, int r, const double
     const std::string j = joint >= 0 ? " (joint " + std::to_string(joint + 1) + ")" : "";
     out.push_back({k, code, r, -1,
                    {Type::Resolution, static_cast<double>(s), {r},
-                    spec.name + " changes " + quantity + " by " + fmt(amount) + j + between + fmt(limit), -1, joint,
+                    spec.name + " changes " + quantity + " by " + formatNumber(amount) + j + between + formatNumber(limit), -1, joint,
                     amount}});
   };
   if (spec.kind == RobotKind::Mobile) {
