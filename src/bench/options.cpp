@@ -46,6 +46,11 @@ void requireExecutable(const std::string& path, const std::string& option) {
     throw InputError(path, option, "not an executable program");
 }
 
+void requireOutputDirectory(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) throw InputError(path, option, "exists and is not a directory");
+}
+
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option) {
   if (list.empty()) throw InputError("", option, "empty list");
   std::vector<std::string> items = splitList(list);

@@ -266,6 +266,16 @@ TEST_CASE("export knows the OMPL logs' files before it writes them") {
   CHECK(std::count(names.begin(), names.end(), dir.path + "/mobile-4-tl30.log") == 1);
 }
 
+TEST_CASE("an output directory may be missing or a directory, never a file (plot -o, export --ompl-log)") {
+  TempPath dir("earc-out-dir");
+  std::filesystem::create_directories(dir.path);
+  CHECK_NOTHROW(requireOutputDirectory(dir.path, "-o"));
+  CHECK_NOTHROW(requireOutputDirectory(dir.path + "/new", "-o"));
+  std::ofstream(dir.path + "/a-file") << "x";
+  CHECK_THROWS_WITH_AS(requireOutputDirectory(dir.path + "/a-file", "--ompl-log"),
+                       (dir.path + "/a-file: --ompl-log: exists and is not a directory").c_str(), InputError);
+}
+
 TEST_CASE("option checks refuse NaN, infinities, empty items and outputs that would overwrite the input") {
   for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL, -1.0}) {
     CHECK_THROWS_AS(requirePositive(bad, "--time-limit"), InputError);

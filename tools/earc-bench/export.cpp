@@ -6,7 +6,6 @@
 // The OMPL logs (one per suite, robot count and time limit; planners are the
 // methods) load with ompl_benchmark_statistics.py DIR/*.log -d OUT.db and
 // so into Planner Arena.
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -54,8 +53,7 @@ void setupExport(CLI::App& app) {
     std::vector<std::pair<std::string, std::string>> outputs = {
         {o->csv, "--csv"}, {o->databases_csv, "--databases-csv"}, {o->ompl_dir, "--ompl-log"}};
     if (!o->ompl_dir.empty()) {
-      if (std::filesystem::exists(o->ompl_dir) && !std::filesystem::is_directory(o->ompl_dir))
-        throw InputError(o->ompl_dir, "--ompl-log", "exists and is not a directory");
+      bench::requireOutputDirectory(o->ompl_dir, "--ompl-log");
       for (const std::string& f : bench::omplLogFiles(trials, o->ompl_dir)) outputs.emplace_back(f, "--ompl-log");
     }
     bench::requireSeparateOutputs(o->results, "--results", outputs);

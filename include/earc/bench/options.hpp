@@ -21,6 +21,10 @@ void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& o
 // An executable regular file (e.g. --plan-program).
 void requireExecutable(const std::string& path, const std::string& option);
 
+// A directory to write files into (plot -o, export --ompl-log): missing
+// (it is made) or a directory, never an existing file.
+void requireOutputDirectory(const std::string& path, const std::string& option);
+
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option);
 
