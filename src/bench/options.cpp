@@ -48,7 +48,14 @@ void requireExecutable(const std::string& path, const std::string& option) {
 
 void requireOutputDirectory(const std::string& path, const std::string& option) {
   std::error_code ec;
-  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) throw InputError(path, option, "exists and is not a directory");
+  if (fs::exists(path, ec)) {
+    if (!fs::is_directory(path, ec)) throw InputError(path, option, "exists and is not a directory");
+    return;
+  }
+  const std::string ext = lowerExtension(path);
+  for (const char* file_ext : {".png", ".svg", ".pdf", ".csv", ".log"})
+    if (ext == file_ext)
+      throw InputError(path, option, "names the directory the files go into, not a " + ext + " file; give a directory name");
 }
 
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option) {

@@ -56,6 +56,19 @@ echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
 [ $? -eq 2 ] || fail "a solution of another scenario is not bad input"
 [ -e "$WORK/x.svg" ] && fail "a failed render left a picture"
 
+# The output's name says its format: one that ends in neither .svg nor
+# .png is refused (one line, exit 2) before the inputs are read; the case
+# of the extension does not matter, and a device gets SVG.
+for bad in x.txt x svg; do
+  "$PLAN" render "$WORK/bad.json" -o "$WORK/$bad" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "-o $bad is not bad input"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$WORK/$bad: -o: must end in .svg or .png" "$WORK/err" ||
+    fail "-o $bad: unexpected error: $(cat "$WORK/err")"
+  [ -e "$WORK/$bad" ] && fail "a refused render wrote $bad"
+done
+"$PLAN" render "$WORK/s.json" -o "$WORK/upper.SVG" > /dev/null && wellformed "$WORK/upper.SVG" || fail "-o upper.SVG is not SVG"
+"$PLAN" render "$WORK/s.json" -o /dev/stdout | grep -q "^<svg" || fail "-o /dev/stdout into a pipe did not write SVG"
+
 env PATH=/nonexistent "$PLAN" render "$WORK/s.json" -o "$WORK/x.png" > /dev/null 2> "$WORK/err"
 [ $? -eq 1 ] || fail "PNG without rsvg-convert did not exit 1"
 grep -q "librsvg2-bin" "$WORK/err" || fail "PNG error does not name librsvg2-bin: $(cat "$WORK/err")"

@@ -37,6 +37,7 @@ void requireKnownRobots(const earc::Scenario& sc, const earc::Solution& sol, con
 void runRender(const RenderOptions& opt) {
   earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"-o", opt.output}});
   earc::requireWritableOutput({"-o", opt.output});
+  earc::render::requireImageOutput(opt.output, "-o");
   // Structure only, no geometric check: a picture helps most when the
   // scenario is broken.
   const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);

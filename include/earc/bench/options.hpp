@@ -22,7 +22,9 @@ void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& o
 void requireExecutable(const std::string& path, const std::string& option);
 
 // A directory to write files into (plot -o, export --ompl-log): missing
-// (it is made) or a directory, never an existing file.
+// (it is made) or a directory, never an existing file, nor a new name that
+// ends like one of the files (plot -o fig.png would make a directory
+// fig.png holding the figures).
 void requireOutputDirectory(const std::string& path, const std::string& option);
 
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
