@@ -49,6 +49,20 @@ wellformed "$WORK/strip.svg" || fail "strip SVG is not well-formed"
   && fail "--step and --strip together accepted"
 "$PLAN" render "$WORK/s.json" -o "$WORK/x.svg" --step 1 > /dev/null 2>&1
 [ $? -eq 2 ] || fail "--step without a solution is not bad input"
+# A step past the makespan (20) is refused, naming it; the makespan itself is the last.
+bad_step() {  # bad_step TEXT ARGS...: exit 2 and one line containing TEXT
+  local want=$1
+  shift
+  "$PLAN" render "$@" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "render $* is not bad input: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF -- "$want" "$WORK/err" || fail "render $*: $(cat "$WORK/err")"
+}
+bad_step "s.sol.json: --step: step 21 is beyond the solution's makespan 20 (steps 0 to 20)" \
+  "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --step 21
+bad_step "--strip: step 99 is beyond the solution's makespan 20" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,99
+bad_step "--strip: '-1' is not a whole number" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,-1
+bad_step "--strip: a time step needs a SOLUTION file" "$WORK/s.json" -o "$WORK/x.svg" --strip 1,2
+"$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/last.svg" --step 20 > /dev/null || fail "--step 20 (the makespan) exited $?"
 echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
 "$PLAN" render "$WORK/bad.json" -o "$WORK/x.svg" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a broken scenario is not bad input"
