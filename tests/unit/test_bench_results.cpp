@@ -16,6 +16,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/experience/sqlite.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
@@ -98,6 +99,20 @@ TEST_CASE("a results database refuses files of other applications and newer sche
   TempPath file("earc-results-foreign");
   std::ofstream(file.path) << "plain text, not SQLite at all, long enough to have a header of its own........";
   CHECK_THROWS_AS(ResultsDb(file.path), InputError);
+}
+
+TEST_CASE("a results database without a table of its schema is refused as damaged, whatever the reader") {
+  for (const char* table : {"trials", "databases"}) {
+    TempPath file(std::string("earc-results-no-") + table);
+    { ResultsDb created(file.path); }
+    {
+      exp::Connection c(file.path, exp::OpenMode::ReadWrite);
+      c.exec(std::string("DROP TABLE ") + table);
+    }
+    const std::string want =
+        file.path + ": damaged database file (table " + table + " is missing; schema version 1 has it)";
+    for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
+  }
 }
 
 TEST_CASE("databases are recorded with their construction time, entries and size") {
