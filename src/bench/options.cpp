@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "earc/bench/suites.hpp"
@@ -14,30 +12,6 @@
 namespace fs = std::filesystem;
 
 namespace earc::bench {
-
-namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-}  // namespace
-
-void requirePositive(double value, const std::string& option) {
-  if (!std::isfinite(value) || value <= 0)
-    throw InputError("", option, number(value) + " is not a positive number");
-}
-
-void requireNonNegative(double value, const std::string& option) {
-  if (!std::isfinite(value) || value < 0)
-    throw InputError("", option, number(value) + " is not a finite number of 0 or more");
-}
-
-void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& option) {
-  if (value < least) throw InputError("", option, "must be at least " + std::to_string(least) + ", not " + std::to_string(value));
-}
 
 void requireExecutable(const std::string& path, const std::string& option) {
   std::error_code ec;

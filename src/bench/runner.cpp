@@ -637,17 +637,11 @@ namespace {
 // configuration error is not a trial failure. Returns the entries of the
 // E-ARC databases that exist, which it had to open to check.
 EarcDbEntries validateOptions(const RunOptions& o) {
-  requireAtLeast(o.trials, 1, "--trials");
-  requirePositive(o.time_limit_s, "--time-limit");
-  requireAtLeast(o.jobs, 1, "--jobs");
-  if (o.memory_limit_mb < 1) throw InputError("", "--memory-limit-mb", "must be at least 1 (MiB)");
+  // Single numbers were checked as the options were parsed (earc::cli's
+  // validators); what is left depends on more than one option or on the
+  // machine.
   if (o.memory_limit_mb > (std::numeric_limits<std::size_t>::max() >> 20))
     throw InputError("", "--memory-limit-mb", "too large");
-  if (o.wall_margin_s) requireNonNegative(*o.wall_margin_s, "--wall-margin");
-  if (o.earc_db_count) requireAtLeast(*o.earc_db_count, 1, "--earc-db-count");
-  if (o.lightning_problems) requireAtLeast(*o.lightning_problems, 1, "--lightning-problems");
-  requireAtLeast(o.lightning_problems_per_robot, 1, "--lightning-problems-per-robot");
-  requirePositive(o.lightning_problem_time_limit_s, "--lightning-problem-time-limit");
   for (const std::string& m : o.methods)
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");

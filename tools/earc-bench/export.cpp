@@ -39,7 +39,8 @@ void setupExport(CLI::App& app) {
   cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
   cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");
   auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
+                    ->check(earc::cli::kFinitePositive);
   cmd->callback([o, seed, limit] {
     if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())
       throw InputError("", "--csv/--databases-csv/--ompl-log", "nothing to export: give at least one");
