@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "earc/bench/suites.hpp"
@@ -15,35 +13,23 @@ namespace fs = std::filesystem;
 
 namespace earc::bench {
 
-namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-}  // namespace
-
-void requirePositive(double value, const std::string& option) {
-  if (!std::isfinite(value) || value <= 0)
-    throw InputError("", option, number(value) + " is not a positive number");
-}
-
-void requireNonNegative(double value, const std::string& option) {
-  if (!std::isfinite(value) || value < 0)
-    throw InputError("", option, number(value) + " is not a finite number of 0 or more");
-}
-
-void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& option) {
-  if (value < least) throw InputError("", option, "must be at least " + std::to_string(least) + ", not " + std::to_string(value));
-}
-
 void requireExecutable(const std::string& path, const std::string& option) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, option, "no such file");
   if (!fs::is_regular_file(path, ec) || ::access(path.c_str(), X_OK) != 0)
     throw InputError(path, option, "not an executable program");
+}
+
+void requireOutputDirectory(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    if (!fs::is_directory(path, ec)) throw InputError(path, option, "exists and is not a directory");
+    return;
+  }
+  const std::string ext = lowerExtension(path);
+  for (const char* file_ext : {".png", ".svg", ".pdf", ".csv", ".log"})
+    if (ext == file_ext)
+      throw InputError(path, option, "names the directory the files go into, not a " + ext + " file; give a directory name");
 }
 
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option) {

@@ -55,6 +55,11 @@ CREATE TABLE databases (
 );
 )sql";
 
+// What the file must be, checked as the experience store checks its own.
+constexpr exp::TableSince kResultsTables[] = {{"trials", 1}, {"databases", 1}};
+constexpr exp::FileIdentity kResultsIdentity{kResultsApplicationId, "earc-bench results database", "earc-bench",
+                                              kResultsSchemaVersion, kResultsTables};
+
 // Optional values are bound as '' and turned into NULL by NULLIF in SQL:
 // the statement wrapper has no bind for NULL.
 void bindOpt(Statement& s, int i, const std::optional<double>& v) {
@@ -93,16 +98,16 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     throw InputError(path, "", "cannot open the results database: " + reasonAbout(e, path));
   }
   Connection& c = impl_->conn;
-  std::int64_t app = 0, version = 0, tables = 0;
+  int version = 0;
   try {
-    app = c.pragmaInt("application_id");
-    version = c.pragmaInt("user_version");
-    Statement count = c.prepare("SELECT count(*) FROM sqlite_master");
-    if (count.step()) tables = count.int64At(0);
-  } catch (const exp::StoreError&) {
-    throw InputError(path, "", "not an SQLite file (expected an earc-bench results database)");
+    version = exp::checkFileIdentity(c, kResultsIdentity);
+  } catch (const exp::BusyError&) {
+    throw;  // another process, not the file, is in the way
+  } catch (const exp::StoreError& e) {
+    // Foreign, not SQLite, newer, or without a table: the file given.
+    throw InputError(path, "", reasonAbout(e, path));
   }
-  if (app == 0 && version == 0 && tables == 0) {
+  if (version == 0) {
     if (read_only) throw InputError(path, "", "empty file, not an earc-bench results database");
     c.enableWal();
     c.write([&] {
@@ -112,12 +117,6 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     });
     return;
   }
-  if (app != kResultsApplicationId)
-    throw InputError(path, "", "not an earc-bench results database (application_id " + std::to_string(app) + ")");
-  if (version > kResultsSchemaVersion)
-    throw InputError(path, "", "results schema version " + std::to_string(version) + " is newer than this program's " +
-                                   std::to_string(kResultsSchemaVersion) + "; use a newer earc-bench");
-  if (version < 1) throw InputError(path, "", "results database without a schema version");
   if (!read_only) c.enableWal();
 }
 

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <thread>
 #include <tuple>
+#include <utility>
 
 #include "earc/bench/child.hpp"
 #include "earc/bench/options.hpp"
@@ -147,9 +148,14 @@ std::int64_t earcDbEntries(const RunOptions& o, const std::string& family) {
   }
 }
 
+// Entries of the E-ARC databases that existed before the run, by family:
+// validateOptions opens each once to check it, and that count is recorded.
+using EarcDbEntries = std::map<std::string, std::int64_t>;
+
 class Runner {
  public:
-  Runner(const RunOptions& o, std::ostream& log) : o_(o), log_(log), db_(o.results) {
+  Runner(const RunOptions& o, EarcDbEntries existing, std::ostream& log)
+      : o_(o), log_(log), db_(o.results), existing_(std::move(existing)) {
     work_ = workDir(o);
     lightning_dir_ = o.lightning_dir.empty() ? work_ + "/lightning" : o.lightning_dir;
     const std::string here = executableDir();
@@ -308,7 +314,9 @@ class Runner {
         d.seed = o_.seed;
         if (o_.earc_db_count) d.problems = *o_.earc_db_count;
       }
-      d.entries = earcDbEntries(o_, family);
+      // One built here is new: opened now, for the first time.
+      const auto checked = existing_.find(family);
+      d.entries = construction || checked == existing_.end() ? earcDbEntries(o_, family) : checked->second;
       db_.addDatabase(d);
     }
   }
@@ -607,6 +615,7 @@ class Runner {
   const RunOptions& o_;
   std::ostream& log_;
   ResultsDb db_;
+  const EarcDbEntries existing_;
   std::string work_, lightning_dir_, plan_, bench_;
   RunSummary summary_;
   std::mutex record_mutex_, scenario_mutex_, lightning_mutex_;
@@ -625,19 +634,14 @@ double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
 namespace {
 
 // Every option checked before anything is created, run or recorded: a
-// configuration error is not a trial failure.
-void validateOptions(const RunOptions& o) {
-  requireAtLeast(o.trials, 1, "--trials");
-  requirePositive(o.time_limit_s, "--time-limit");
-  requireAtLeast(o.jobs, 1, "--jobs");
-  if (o.memory_limit_mb < 1) throw InputError("", "--memory-limit-mb", "must be at least 1 (MiB)");
+// configuration error is not a trial failure. Returns the entries of the
+// E-ARC databases that exist, which it had to open to check.
+EarcDbEntries validateOptions(const RunOptions& o) {
+  // Single numbers were checked as the options were parsed (earc::cli's
+  // validators); what is left depends on more than one option or on the
+  // machine.
   if (o.memory_limit_mb > (std::numeric_limits<std::size_t>::max() >> 20))
     throw InputError("", "--memory-limit-mb", "too large");
-  if (o.wall_margin_s) requireNonNegative(*o.wall_margin_s, "--wall-margin");
-  if (o.earc_db_count) requireAtLeast(*o.earc_db_count, 1, "--earc-db-count");
-  if (o.lightning_problems) requireAtLeast(*o.lightning_problems, 1, "--lightning-problems");
-  requireAtLeast(o.lightning_problems_per_robot, 1, "--lightning-problems-per-robot");
-  requirePositive(o.lightning_problem_time_limit_s, "--lightning-problem-time-limit");
   for (const std::string& m : o.methods)
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
@@ -658,17 +662,19 @@ void validateOptions(const RunOptions& o) {
       throw InputError("", "--robots", "no suite of this run has " + std::to_string(n) + " robots (" + counts + ")");
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
+  EarcDbEntries existing;
   if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
     for (const std::string& family : families)
-      if (fs::exists(earcDbPath(o, family))) earcDbEntries(o, family);
+      if (fs::exists(earcDbPath(o, family))) existing[family] = earcDbEntries(o, family);
+  return existing;
 }
 
 }  // namespace
 
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
-  validateOptions(options);
+  EarcDbEntries existing = validateOptions(options);
   InterruptGuard guard;
-  Runner runner(options, log);
+  Runner runner(options, std::move(existing), log);
   return runner.run();
 }
 

@@ -1,41 +1,13 @@
 #include "earc/experience/schema.hpp"
 
-#include <cstdio>
 #include <filesystem>
 
 namespace earc::exp {
 
 namespace {
 
-std::string hex32(std::int64_t v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "0x%08llx", static_cast<unsigned long long>(v) & 0xffffffffull);
-  return buf;
-}
-
-// The tables each schema version has (a migration adds, never drops one).
-struct TableSince {
-  const char* name;
-  int version;
-};
+// The tables each schema version has.
 constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}};
-
-// A table of the file's version that is not there means the file was
-// damaged or edited: refused before any statement needs it (which would
-// fail with SQL text, after the session count was already written).
-void requireTables(Connection& db, int version) {
-  Statement s = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?1");
-  for (const TableSince& t : kTables) {
-    if (t.version > version) continue;
-    s.bind(1, std::string_view(t.name));
-    s.step();
-    const bool there = s.int64At(0) == 1;
-    s.reset();
-    if (!there)
-      throw DamagedDatabaseError(db.path() + ": damaged database file (table " + t.name +
-                                 " is missing; schema version " + std::to_string(version) + " has it)");
-  }
-}
 
 }  // namespace
 
@@ -60,33 +32,7 @@ void requireDatabaseFile(const std::string& path, bool may_be_empty) {
 }
 
 int checkIdentity(Connection& db) {
-  // One statement, one snapshot: another process may be creating the file
-  // right now, and separate reads could mix its before and after.
-  Statement s = db.prepare(
-      "SELECT (SELECT application_id FROM pragma_application_id), (SELECT user_version FROM pragma_user_version), "
-      "(SELECT count(*) FROM sqlite_schema)");
-  s.step();  // NOTADB -> ForeignDatabaseError
-  const std::int64_t app = s.int64At(0);
-  const int version = static_cast<int>(s.int64At(1));
-  const std::int64_t objects = s.int64At(2);
-  s.reset();
-  const int program = currentSchemaVersion();
-  if (app == kApplicationId) {
-    if (version > program)
-      throw SchemaVersionError(db.path() + ": schema version " + std::to_string(version) +
-                                   " is newer than this program's version " + std::to_string(program) +
-                                   "; use a newer earc (this one would not understand the file)",
-                               version, program);
-    if (version < 1)
-      throw ForeignDatabaseError(db.path() + ": earc application_id but schema version " +
-                                 std::to_string(version) + "; the file was not created by earc");
-    requireTables(db, version);
-    return version;
-  }
-  if (app == 0 && version == 0 && objects == 0) return 0;  // empty or new file
-  throw ForeignDatabaseError(db.path() + ": not an earc experience database (application_id " + hex32(app) +
-                             ", expected " + hex32(kApplicationId) + " \"EARC\"; " + std::to_string(objects) +
-                             " schema objects, user_version " + std::to_string(version) + ")");
+  return checkFileIdentity(db, {kApplicationId, "earc experience database", "earc", currentSchemaVersion(), kTables});
 }
 
 int migrate(Connection& db, int target) {

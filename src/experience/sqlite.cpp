@@ -1,5 +1,6 @@
 #include "earc/experience/sqlite.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <thread>
@@ -244,6 +245,70 @@ void Connection::throwBusy(int attempts) const {
   throw BusyError(path_ + ": database stayed locked by another process through " + std::to_string(attempts) +
                   " attempts (busy_timeout " + std::to_string(settings_.busy_timeout_ms) +
                   " ms each); is a long transaction holding it?");
+}
+
+// ------------------------------------------------------------ file identity
+
+namespace {
+
+std::string hex32(std::int64_t v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "0x%08llx", static_cast<unsigned long long>(v) & 0xffffffffull);
+  return buf;
+}
+
+// The four characters an application_id spells ("EARC").
+std::string fourCharacters(std::int64_t v) {
+  std::string s;
+  for (int shift = 24; shift >= 0; shift -= 8) s += static_cast<char>((v >> shift) & 0xff);
+  return s;
+}
+
+void requireTables(Connection& db, int version, std::span<const TableSince> tables) {
+  Statement s = db.prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?1");
+  for (const TableSince& t : tables) {
+    if (t.version > version) continue;
+    s.bind(1, std::string_view(t.name));
+    s.step();
+    const bool there = s.int64At(0) == 1;
+    s.reset();
+    if (!there)
+      throw DamagedDatabaseError(db.path() + ": damaged database file (table " + t.name +
+                                 " is missing; schema version " + std::to_string(version) + " has it)");
+  }
+}
+
+}  // namespace
+
+int checkFileIdentity(Connection& db, const FileIdentity& identity) {
+  // One statement, one snapshot: another process may be creating the file
+  // right now, and separate reads could mix its before and after.
+  Statement s = db.prepare(
+      "SELECT (SELECT application_id FROM pragma_application_id), (SELECT user_version FROM pragma_user_version), "
+      "(SELECT count(*) FROM sqlite_schema)");
+  s.step();  // NOTADB -> ForeignDatabaseError
+  const std::int64_t app = s.int64At(0);
+  const int version = static_cast<int>(s.int64At(1));
+  const std::int64_t objects = s.int64At(2);
+  s.reset();
+  const std::string program = identity.program;
+  if (app == identity.application_id) {
+    if (version > identity.program_version)
+      throw SchemaVersionError(db.path() + ": schema version " + std::to_string(version) +
+                                   " is newer than this program's version " + std::to_string(identity.program_version) +
+                                   "; use a newer " + program + " (this one would not understand the file)",
+                               version, identity.program_version);
+    if (version < 1)
+      throw ForeignDatabaseError(db.path() + ": " + program + " application_id but schema version " +
+                                 std::to_string(version) + "; the file was not created by " + program);
+    requireTables(db, version, identity.tables);
+    return version;
+  }
+  if (app == 0 && version == 0 && objects == 0) return 0;  // empty or new file
+  throw ForeignDatabaseError(db.path() + ": not an " + identity.kind + " (application_id " + hex32(app) +
+                             ", expected " + hex32(identity.application_id) + " \"" +
+                             fourCharacters(identity.application_id) + "\"; " + std::to_string(objects) +
+                             " schema objects, user_version " + std::to_string(version) + ")");
 }
 
 }  // namespace earc::exp

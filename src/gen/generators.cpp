@@ -1,5 +1,6 @@
 #include "earc/gen/generators.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -33,8 +34,7 @@ std::string compact(double v) {
 
 void requireRange(const char* what, double v, double lo, double hi) {
   if (!(v >= lo && v <= hi))
-    throw std::invalid_argument(std::string(what) + " must be in [" + compact(lo) + ", " + compact(hi) + "], got " +
-                                compact(v));
+    throw SettingError(what, "must be in [" + compact(lo) + ", " + compact(hi) + "], got " + compact(v));
 }
 
 // "m7": built by appending, as "m" + std::to_string(i) trips GCC 12's
@@ -102,8 +102,12 @@ Scenario generateMobile(const MobileSettings& settings) {
   requireRange("robots", settings.robots, kMinRobots, kMaxRobots);
   requireRange("obstacles", settings.obstacles, 0, 1000);
   requireRange("workspace", settings.workspace, 2.0, 1000.0);
-  requireRange("obstacle_min_side", settings.obstacle_min_side, kMinObstacleSide, settings.obstacle_max_side);
-  requireRange("obstacle_max_side", settings.obstacle_max_side, settings.obstacle_min_side, settings.workspace);
+  // Sides of obstacles that are not drawn cannot be wrong; with obstacles,
+  // the largest must fit, said of the workspace, which a user sets.
+  if (settings.obstacles > 0) {
+    requireRange("obstacle_min_side", settings.obstacle_min_side, kMinObstacleSide, settings.obstacle_max_side);
+    requireRange("workspace", settings.workspace, std::max(2.0, settings.obstacle_max_side), 1000.0);
+  }
   const MobileFootprint& f = settings.footprint;
   if (f.shape == MobileShape::Disc) requireRange("radius", f.radius, 0.01, 0.25 * settings.workspace);
   else {
@@ -126,7 +130,7 @@ Scenario generateMobile(const MobileSettings& settings) {
     auto disc_free = [&world](geo::Vec2 c, double r) { return world.bodyFree(geo::Body::disc(c, r)); };
     if (placeMobileRobots(s, world, disc_free, rng)) return s;
   }
-  throw std::runtime_error("could not place " + std::to_string(settings.robots) + " robots in " +
+  throw CrowdedError("could not place " + std::to_string(settings.robots) + " robots in " +
                            std::to_string(kMaxLayouts) + " obstacle layouts: use fewer robots or obstacles");
 }
 
@@ -175,7 +179,7 @@ Scenario generateArms(const ArmSettings& settings) {
     const CollisionWorld world(s);
     if (placeStartsAndGoals(s, world, rng, {})) return s;
   }
-  throw std::runtime_error("could not place " + std::to_string(settings.robots) + " arms in " +
+  throw CrowdedError("could not place " + std::to_string(settings.robots) + " arms in " +
                            std::to_string(kMaxLayouts) + " obstacle layouts: use fewer obstacles");
 }
 

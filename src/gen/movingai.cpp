@@ -162,7 +162,7 @@ Obstacle cellRectObstacle(const GridMap& map, const CellRect& r) {
 
 Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings) {
   if (settings.robots < 1 || settings.robots > 1024)
-    throw std::invalid_argument("robots must be in [1, 1024], got " + std::to_string(settings.robots));
+    throw SettingError("robots", "must be in [1, 1024], got " + std::to_string(settings.robots));
   Scenario s;
   s.name = "movingai-" + map.name + "-" + std::to_string(settings.robots) + "-s" + std::to_string(settings.seed);
   s.workspace = {{0.0, 0.0}, {static_cast<double>(map.width), static_cast<double>(map.height)}};
@@ -177,7 +177,7 @@ Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings) 
   // The obstacles are the map's: a failed placement only draws again.
   for (int attempt = 0; attempt < kMaxPlacementTries; ++attempt)
     if (placeMobileRobots(s, world, disc_free, rng)) return s;
-  throw std::runtime_error("could not place " + std::to_string(settings.robots) + " robots on map " + map.name +
+  throw CrowdedError("could not place " + std::to_string(settings.robots) + " robots on map " + map.name +
                            ": use fewer robots or a smaller footprint");
 }
 

@@ -2,6 +2,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -285,6 +287,24 @@ void requireWritableOutput(const NamedPath& output) {
   const std::string dir = directoryOf(target.path);
   if (::access(dir.c_str(), W_OK) != 0)
     throw InputError(output.path, output.name, "cannot write in " + dir + ": " + std::strerror(errno));
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+std::string requireOutputExtension(const NamedPath& output, const std::vector<std::string>& extensions) {
+  const OutputTarget target = outputTarget(output);
+  if (target.special) return "";
+  // A link's target has a name too: -o /dev/stdout > x.svg writes x.svg.
+  std::string names;
+  for (const std::string& e : extensions) {
+    if (lowerExtension(output.path) == e || lowerExtension(target.path) == e) return e;
+    names += (names.empty() ? "" : " or ") + e;
+  }
+  throw InputError(output.path, output.name, "must end in " + names + ": the extension says the file's format");
 }
 
 }  // namespace earc

@@ -21,10 +21,6 @@ namespace {
 
 constexpr const char* kConverter = "rsvg-convert";
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 bool onPath(const std::string& program) {
   const char* path = std::getenv("PATH");
   if (!path) return false;
@@ -56,14 +52,19 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
+bool requireImageOutput(const std::string& path, const std::string& option) {
+  const bool png = requireOutputExtension({option, path}, {".svg", ".png"}) == ".png";
+  if (png && !onPath(kConverter))
+    throw std::runtime_error("writing " + path + " needs rsvg-convert, which is not on PATH: install librsvg2-bin "
+                             "(apt-get install librsvg2-bin) or write an .svg file");
+  return png;
+}
+
 void writeImage(const std::string& path, const std::string& svg) {
-  if (!endsWith(path, ".png")) {
+  if (!requireImageOutput(path, "")) {
     writeTextFileAtomic(path, svg);
     return;
   }
-  if (!onPath(kConverter))
-    throw std::runtime_error("writing " + path + " needs rsvg-convert, which is not on PATH: install librsvg2-bin "
-                             "(apt-get install librsvg2-bin) or write an .svg file");
   // Convert into a temporary file beside the target, then rename: a failed
   // conversion never leaves half a picture under the requested name.
   const std::string svg_tmp = path + ".tmp.svg", png_tmp = path + ".tmp.png";

@@ -41,15 +41,25 @@ const CLI::Validator kFinite = finiteNumber(Sign::Any);
 const CLI::Validator kFiniteNonNegative = finiteNumber(Sign::NonNegative);
 const CLI::Validator kFinitePositive = finiteNumber(Sign::Positive);
 
+namespace {
 // CLI11 converts "-1" into an unsigned option by wrapping it to 2^64-1, so a
 // seed of -1 silently became 18446744073709551615. Only digits pass.
-const CLI::Validator kWholeNumber(
-    [](std::string& text) -> std::string {
-      if (text.empty() || !std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; }))
-        return "'" + text + "' is not a whole number >= 0";
-      return {};
-    },
-    "N >= 0");
+CLI::Validator wholeNumber(bool positive) {
+  const std::string least = positive ? "1" : "0";
+  return CLI::Validator(
+      [positive, least](std::string& text) -> std::string {
+        const bool digits =
+            !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
+        if (!digits || (positive && text.find_first_not_of('0') == std::string::npos))
+          return "'" + text + "' is not a whole number >= " + least;
+        return {};
+      },
+      "N >= " + least);
+}
+}  // namespace
+
+const CLI::Validator kWholeNumber = wholeNumber(false);
+const CLI::Validator kPositiveWholeNumber = wholeNumber(true);
 
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};

@@ -32,4 +32,17 @@ dbs = con.execute("SELECT method, suite, robots, construction_time_s, entries, p
 assert [(d[0], d[1], d[2]) for d in dbs] == [("earc", "arms", 0), ("earc", "mobile", 0)], dbs
 assert all(d[3] > 0 and d[4] > 0 and d[5] == 30 for d in dbs), dbs
 PYEOF
+# A database that was given is recorded with the entries counted when it
+# was checked, and without a construction time.
+"$BENCH" run --suites mobile --robots 2 --methods earc --trials 1 --time-limit 10 --seed 9 \
+  --db-mobile "$WORK/r.sqlite.work/earc-mobile.sqlite" --results "$WORK/given.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
+  fail "run with a given database exited $?"
+"$PY" - "$WORK/r.sqlite" "$WORK/given.sqlite" <<'PYEOF' || fail "given database"
+import sqlite3, sys
+built = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(
+    "SELECT entries FROM databases WHERE suite = 'mobile'").fetchone()[0]
+rows = sqlite3.connect("file:%s?mode=ro" % sys.argv[2], uri=True).execute(
+    "SELECT suite, construction_time_s, entries FROM databases").fetchall()
+assert rows == [("mobile", None, built)], (rows, built)
+PYEOF
 echo "ok: E-ARC databases built and used"

@@ -95,7 +95,8 @@ refused "--robots: no suite of this run has 3 robots (mobile: 2, 4, 8, 16, 32; a
 refused "--methods: empty item in 'arc,'" run --suites mobile --robots 2 --methods arc, --results "$WORK/bad.sqlite"
 for bad in "--memory-limit-mb 0" "--memory-limit-mb -5" "--wall-margin -5" "--wall-margin nan" "--earc-db-count 0" "--earc-db-count -3" \
            "--lightning-problems -1" "--lightning-problems-per-robot 0" "--lightning-problem-time-limit -1" \
-           "--lightning-problem-time-limit nan" "--time-limit nan" "--time-limit -1" "--time-limit inf"; do
+           "--lightning-problem-time-limit nan" "--time-limit nan" "--time-limit -1" "--time-limit inf" "--trials 0" "--jobs 0" \
+           "--trials -2" "--lightning-problems 0"; do
   # shellcheck disable=SC2086  # "--option value" splits in two
   refused "${bad% *}:" "${R[@]}" --robots 2 $bad
 done
@@ -108,11 +109,11 @@ refused "--suite: unknown suite 'bogus'" lightning-db --suite bogus -o "$WORK/l.
 refused "$WORK/foreign.db: not an earc-bench results database" \
   lightning-db --suite mobile --robots 2 --count 1 -o "$WORK/l.lightning" --results "$WORK/foreign.db"
 [ -e "$WORK/l.lightning" ] && fail "lightning-db built its database before refusing --results"
-refused "--count: must be at least 1" lightning-db --suite mobile --count 0 -o "$WORK/l.lightning"
-refused "--problem-time-limit: nan is not a positive number" \
+refused "--count: '0' is not a whole number >= 1" lightning-db --suite mobile --count 0 -o "$WORK/l.lightning"
+refused "--problem-time-limit: 'nan' is not a finite number" \
   lightning-db --suite mobile --problem-time-limit nan -o "$WORK/l.lightning"
 refused "$WORK/l.lightning: -o: is the --results file" lightning-db --suite mobile -o "$WORK/l.lightning" --results "$WORK/l.lightning"
 # No micro benchmark of 0 batches or of batches 0 s long ("inf checks/s").
-refused "--repeats: must be at least 1" micro --repeats 0
+refused "--repeats: '0' is not a whole number >= 1" micro --repeats 0
 for bad in 0 nan -1 0.000001; do refused "--batch-seconds:" micro --batch-seconds $bad; done
 echo "ok: crash, hang and invalid solution are failures; configuration errors are not"

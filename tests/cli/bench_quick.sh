@@ -176,7 +176,7 @@ PYEOF
   refused "$WORK/a-file: -o: exists and is not a directory" plot --results "$WORK/r.sqlite" -o "$WORK/a-file"
   "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect(sys.argv[1]); c.execute("PRAGMA user_version = 99"); c.commit()' "$WORK/odd.sqlite"
-  refused "$WORK/odd.sqlite: results schema version 99 is newer than this program's 1" \
+  refused "$WORK/odd.sqlite: schema version 99 is newer than this program's version 1; use a newer earc-bench" \
     plot --results "$WORK/odd.sqlite" -o "$WORK/fig3"
   echo "not a database" > "$WORK/text.txt"
   refused "$WORK/text.txt: cannot open the results database: not a SQLite database" plot --results "$WORK/text.txt" -o "$WORK/fig3"

@@ -49,12 +49,39 @@ wellformed "$WORK/strip.svg" || fail "strip SVG is not well-formed"
   && fail "--step and --strip together accepted"
 "$PLAN" render "$WORK/s.json" -o "$WORK/x.svg" --step 1 > /dev/null 2>&1
 [ $? -eq 2 ] || fail "--step without a solution is not bad input"
+# A step past the makespan (20) is refused, naming it; the makespan itself is the last.
+bad_step() {  # bad_step TEXT ARGS...: exit 2 and one line containing TEXT
+  local want=$1
+  shift
+  "$PLAN" render "$@" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "render $* is not bad input: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF -- "$want" "$WORK/err" || fail "render $*: $(cat "$WORK/err")"
+}
+bad_step "s.sol.json: --step: step 21 is beyond the solution's makespan 20 (steps 0 to 20)" \
+  "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --step 21
+bad_step "--strip: step 99 is beyond the solution's makespan 20" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,99
+bad_step "--strip: '-1' is not a whole number" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,-1
+bad_step "--strip: a time step needs a SOLUTION file" "$WORK/s.json" -o "$WORK/x.svg" --strip 1,2
+"$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/last.svg" --step 20 > /dev/null || fail "--step 20 (the makespan) exited $?"
 echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
 "$PLAN" render "$WORK/bad.json" -o "$WORK/x.svg" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a broken scenario is not bad input"
 "$PLAN" render "$WORK/s.json" "$WORK/arms.sol.json" -o "$WORK/x.svg" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a solution of another scenario is not bad input"
 [ -e "$WORK/x.svg" ] && fail "a failed render left a picture"
+
+# The output's name says its format: one that ends in neither .svg nor
+# .png is refused (one line, exit 2) before the inputs are read; the case
+# of the extension does not matter, and a device gets SVG.
+for bad in x.txt x svg; do
+  "$PLAN" render "$WORK/bad.json" -o "$WORK/$bad" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "-o $bad is not bad input"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$WORK/$bad: -o: must end in .svg or .png" "$WORK/err" ||
+    fail "-o $bad: unexpected error: $(cat "$WORK/err")"
+  [ -e "$WORK/$bad" ] && fail "a refused render wrote $bad"
+done
+"$PLAN" render "$WORK/s.json" -o "$WORK/upper.SVG" > /dev/null && wellformed "$WORK/upper.SVG" || fail "-o upper.SVG is not SVG"
+"$PLAN" render "$WORK/s.json" -o /dev/stdout | grep -q "^<svg" || fail "-o /dev/stdout into a pipe did not write SVG"
 
 env PATH=/nonexistent "$PLAN" render "$WORK/s.json" -o "$WORK/x.png" > /dev/null 2> "$WORK/err"
 [ $? -eq 1 ] || fail "PNG without rsvg-convert did not exit 1"

@@ -53,8 +53,25 @@ fi
 "$GEN" generate --family mobile --robots 1 -o "$WORK/x.json" > /dev/null 2>&1 && fail "1 robot accepted"
 "$GEN" generate --family mobile --robots 129 -o "$WORK/x.json" > /dev/null 2>&1 && fail "129 robots accepted"
 "$GEN" generate --family arms --robots 4 --workspace 30 -o "$WORK/x.json" > /dev/null 2>&1 && fail "--workspace accepted for arms"
-"$GEN" generate --family mobile --robots 128 --workspace 4 -o "$WORK/x.json" > "$WORK/crowd.out" 2>&1
-[ $? -eq 1 ] || fail "an impossible request did not fail with exit 1"
-grep -q "could not place" "$WORK/crowd.out" || fail "no reason given for an impossible request"
-[ -e "$WORK/x.json" ] && fail "a failed run left an output file"
+# Every bad request is bad input: one line naming the option, exit 2, no
+# file; an impossible one (too crowded) too, as it is what was asked for.
+refused() {  # refused TEXT ARGS...
+  local want=$1
+  shift
+  "$GEN" "$@" -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "earc-scenario $* exited $rc, not 2: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF -- "$want" "$WORK/err" ||
+    fail "earc-scenario $*: expected one line with '$want': $(cat "$WORK/err")"
+  [ -e "$WORK/x.json" ] && fail "earc-scenario $* left an output file"
+}
+refused "--robots: could not place 128 robots in 50 obstacle layouts" generate --family mobile --robots 128 --workspace 4
+refused "--robots: could not place 2 robots" generate --robots 2 --obstacles 1000
+refused "--workspace: must be in [2, 1000], got 1" generate --workspace 1
+refused "--workspace: must be in [3, 1000], got 2.5" generate --workspace 2.5 --obstacles
+refused "--radius: must be in [0.01, 5], got 100" generate --shape disc --radius 100
+refused "--radius: applies to --shape disc only" generate --radius 0.2
+refused "--robots: Value 1 not in range 2 to 128" generate --robots 1
+refused "--seed: '-1' is not a whole number" generate --seed -1
+"$GEN" generate --robots 2 --workspace 2.5 -o "$WORK/small.json" > /dev/null || fail "a small workspace without obstacles exited $?"
 echo "ok"

@@ -30,6 +30,15 @@ printf 'type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n' > "$WORK/bad.map"
 grep -q "bad.map: line 6: column 2: unknown terrain character 'x'" "$WORK/err" || fail "unhelpful error: $(cat "$WORK/err")"
 "$GEN" movingai "$WORK/missing.map" --robots 1 -o "$WORK/x.json" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a missing map did not exit 2"
+# Robots that do not fit, and a radius for boxes, are bad input too.
+printf 'type octile\nheight 2\nwidth 2\nmap\n@@\n@@\n' > "$WORK/blocked.map"
+for args in "$WORK/blocked.map --robots 1" "random-32-32-20 --radius 0.2"; do
+  # shellcheck disable=SC2086  # map and options
+  "$GEN" movingai $args -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "movingai $args did not exit 2: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "movingai $args: not one line: $(cat "$WORK/err")"
+done
+grep -qF -- "--radius: applies to --shape disc only" "$WORK/err" || fail "--radius with boxes: $(cat "$WORK/err")"
 # A compiled-in map by name, from a directory without it: the same scenario.
 (cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||
   fail "the compiled-in map random-32-32-10 was not found by name"

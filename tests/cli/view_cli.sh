@@ -66,6 +66,9 @@ expect_bad_input "trace of another scenario" 'robots\[1\]: robot index 9 does no
 expect_bad_input "missing trace file" 'cannot open file' \
   "$PLAN" view "$DATA/scenarios/swap-discs.json" "$DATA/solutions/swap-discs__valid.json" --trace "$WORK/none.json" \
   -o "$WORK/x.html"
+expect_bad_input "an output not named .html" 'x.svg: -o: must end in .html or .htm' \
+  "$PLAN" view "$DATA/scenarios/swap-discs.json" "$DATA/solutions/swap-discs__valid.json" -o "$WORK/x.svg"
+[ -e "$WORK/x.svg" ] && fail "view wrote HTML into x.svg"
 [ -e "$WORK/x.html" ] && fail "a refused view still wrote its page"
 
 # Unsolved: the scenario with a banner (the page says so in its data).

@@ -16,10 +16,12 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/experience/sqlite.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/subcommands.hpp"
 
 using namespace earc;
 using namespace earc::bench;
@@ -98,6 +100,20 @@ TEST_CASE("a results database refuses files of other applications and newer sche
   TempPath file("earc-results-foreign");
   std::ofstream(file.path) << "plain text, not SQLite at all, long enough to have a header of its own........";
   CHECK_THROWS_AS(ResultsDb(file.path), InputError);
+}
+
+TEST_CASE("a results database without a table of its schema is refused as damaged, whatever the reader") {
+  for (const char* table : {"trials", "databases"}) {
+    TempPath file(std::string("earc-results-no-") + table);
+    { ResultsDb created(file.path); }
+    {
+      exp::Connection c(file.path, exp::OpenMode::ReadWrite);
+      c.exec(std::string("DROP TABLE ") + table);
+    }
+    const std::string want =
+        file.path + ": damaged database file (table " + table + " is missing; schema version 1 has it)";
+    for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
+  }
 }
 
 TEST_CASE("databases are recorded with their construction time, entries and size") {
@@ -266,18 +282,32 @@ TEST_CASE("export knows the OMPL logs' files before it writes them") {
   CHECK(std::count(names.begin(), names.end(), dir.path + "/mobile-4-tl30.log") == 1);
 }
 
-TEST_CASE("option checks refuse NaN, infinities, empty items and outputs that would overwrite the input") {
-  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL, -1.0}) {
-    CHECK_THROWS_AS(requirePositive(bad, "--time-limit"), InputError);
-    CHECK_THROWS_AS(requireNonNegative(bad, "--wall-margin"), InputError);
-  }
-  CHECK_THROWS_AS(requirePositive(0, "--time-limit"), InputError);
-  CHECK_NOTHROW(requirePositive(0.5, "--time-limit"));
-  CHECK_NOTHROW(requireNonNegative(0, "--wall-margin"));
-  CHECK_THROWS_AS(requireAtLeast(0, 1, "--repeats"), InputError);
-  CHECK_NOTHROW(requireAtLeast(1, 1, "--repeats"));
-  CHECK_THROWS_WITH(requirePositive(std::nan(""), "--time-limit"), "--time-limit: nan is not a positive number");
+// earc-bench's counts and limits are checked as they are parsed.
+TEST_CASE("count and limit validators refuse 0, signs, NaN and infinities") {
+  auto verdict = [](const CLI::Validator& v, std::string text) { return v(text); };
+  for (const char* bad : {"0", "00", "-1", "+1", "1.5", "", "x"})
+    CHECK(verdict(cli::kPositiveWholeNumber, bad) == "'" + std::string(bad) + "' is not a whole number >= 1");
+  CHECK(verdict(cli::kPositiveWholeNumber, "1").empty());
+  CHECK(verdict(cli::kPositiveWholeNumber, "010").empty());
+  CHECK(verdict(cli::kWholeNumber, "0").empty());
+  for (const char* bad : {"nan", "inf", "-inf", "x"})
+    CHECK(verdict(cli::kFinitePositive, bad) == "'" + std::string(bad) + "' is not a finite number");
+  CHECK(verdict(cli::kFinitePositive, "0") == "0 is not positive");
+  CHECK(verdict(cli::kFiniteNonNegative, "-1") == "-1 is negative");
+  CHECK(verdict(cli::kFiniteNonNegative, "0").empty());
+}
 
+TEST_CASE("an output directory may be missing or a directory, never a file (plot -o, export --ompl-log)") {
+  TempPath dir("earc-out-dir");
+  std::filesystem::create_directories(dir.path);
+  CHECK_NOTHROW(requireOutputDirectory(dir.path, "-o"));
+  CHECK_NOTHROW(requireOutputDirectory(dir.path + "/new", "-o"));
+  std::ofstream(dir.path + "/a-file") << "x";
+  CHECK_THROWS_WITH_AS(requireOutputDirectory(dir.path + "/a-file", "--ompl-log"),
+                       (dir.path + "/a-file: --ompl-log: exists and is not a directory").c_str(), InputError);
+}
+
+TEST_CASE("option checks refuse empty items and outputs that would overwrite the input") {
   CHECK(splitOptionList("2,4", "--robots") == std::vector<std::string>{"2", "4"});
   for (const char* bad : {"2,,4", "2,", ",2", ",", ""}) CHECK_THROWS_AS(splitOptionList(bad, "--robots"), InputError);
   CHECK_THROWS_WITH(splitOptionList("2,,4", "--robots"), "--robots: empty item in '2,,4'");

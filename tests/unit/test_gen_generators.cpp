@@ -198,10 +198,28 @@ TEST_CASE("generators refuse robot counts outside 2..128") {
   CHECK_THROWS_AS(arms(1, 0, 1), std::invalid_argument);
 }
 
+// earc-scenario names the option from setting(): a refusal is bad input.
+TEST_CASE("a setting out of range is a SettingError naming the setting") {
+  try {
+    mobile(1, 0, 1);
+    FAIL("1 robot accepted");
+  } catch (const SettingError& e) {
+    CHECK(e.setting() == "robots");
+    CHECK(e.reason() == "must be in [2, 128], got 1");
+    CHECK(std::string(e.what()) == "robots must be in [2, 128], got 1");
+  }
+  MobileSettings s;
+  s.robots = 2;
+  s.workspace = 2.5;  // smaller than the largest obstacle side (3)...
+  CHECK_NOTHROW(generateMobile(s));  // ...which does not matter without obstacles
+  s.obstacles = 1;
+  CHECK_THROWS_WITH_AS(generateMobile(s), "workspace must be in [3, 1000], got 2.5", SettingError);
+}
+
 TEST_CASE("a crowded mobile request fails with a message instead of looping") {
   MobileSettings s;
   s.robots = 128;
   s.workspace = 4.0;
   s.obstacle_max_side = 2.0;
-  CHECK_THROWS_AS(generateMobile(s), std::runtime_error);
+  CHECK_THROWS_AS(generateMobile(s), CrowdedError);
 }

@@ -6,7 +6,6 @@
 // The OMPL logs (one per suite, robot count and time limit; planners are the
 // methods) load with ompl_benchmark_statistics.py DIR/*.log -d OUT.db and
 // so into Planner Arena.
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -40,7 +39,8 @@ void setupExport(CLI::App& app) {
   cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
   cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");
   auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
+                    ->check(earc::cli::kFinitePositive);
   cmd->callback([o, seed, limit] {
     if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())
       throw InputError("", "--csv/--databases-csv/--ompl-log", "nothing to export: give at least one");
@@ -54,8 +54,7 @@ void setupExport(CLI::App& app) {
     std::vector<std::pair<std::string, std::string>> outputs = {
         {o->csv, "--csv"}, {o->databases_csv, "--databases-csv"}, {o->ompl_dir, "--ompl-log"}};
     if (!o->ompl_dir.empty()) {
-      if (std::filesystem::exists(o->ompl_dir) && !std::filesystem::is_directory(o->ompl_dir))
-        throw InputError(o->ompl_dir, "--ompl-log", "exists and is not a directory");
+      bench::requireOutputDirectory(o->ompl_dir, "--ompl-log");
       for (const std::string& f : bench::omplLogFiles(trials, o->ompl_dir)) outputs.emplace_back(f, "--ompl-log");
     }
     bench::requireSeparateOutputs(o->results, "--results", outputs);

@@ -46,8 +46,6 @@ const bench::Suite& chooseSuite(const LightningDbOptions& o) {
 
 void runLightningDb(const LightningDbOptions& o) {
   const bench::Suite& suite = chooseSuite(o);
-  bench::requireAtLeast(o.count, 1, "--count");
-  bench::requirePositive(o.problem_time_limit, "--problem-time-limit");
   const bool exists = std::filesystem::exists(o.output);
   if (exists && !o.append) throw InputError(o.output, "-o", "exists; pass --append to grow it");
   // The results database is opened (checked, or created) before the
@@ -109,9 +107,11 @@ void setupLightningDb(CLI::App& app) {
   cmd->add_option("--family", o->family, "mobile or arms")->check(CLI::IsMember({"mobile", "arms"}))->capture_default_str();
   cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
   cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");
-  cmd->add_option("--count", o->count, "Problems to plan")->capture_default_str();
+  cmd->add_option("--count", o->count, "Problems to plan")->check(earc::cli::kPositiveWholeNumber)->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the problems and the planners")->check(earc::cli::kWholeNumber)->capture_default_str();
-  cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")->capture_default_str();
+  cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")
+      ->check(earc::cli::kFinitePositive)
+      ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->required();
   cmd->add_flag("--append", o->append, "Grow an existing database");
   cmd->add_option("--results", o->results, "Record construction time, entries and size in this results database");

@@ -175,12 +175,14 @@ void setupMicro(CLI::App& app) {
   auto opts = std::make_shared<MicroOptions>();
   auto* cmd = app.add_subcommand("micro", "Collision-checking micro benchmark (checks per second, plain text)");
   cmd->add_option("--seed", opts->seed, "Seed for the random poses and obstacles")->check(earc::cli::kWholeNumber)->capture_default_str();
-  cmd->add_option("--repeats", opts->repeats, "Batches per measurement; the median is reported")->capture_default_str();
-  cmd->add_option("--batch-seconds", opts->batch_seconds, "Least duration of one batch")->capture_default_str();
+  // 0 batches or 0 seconds would time nothing: "inf checks/s".
+  cmd->add_option("--repeats", opts->repeats, "Batches per measurement; the median is reported")
+      ->check(earc::cli::kPositiveWholeNumber)
+      ->capture_default_str();
+  cmd->add_option("--batch-seconds", opts->batch_seconds, "Least duration of one batch")
+      ->check(earc::cli::kFinitePositive)
+      ->capture_default_str();
   cmd->callback([opts] {
-    // 0 batches or 0 seconds would time nothing: "inf checks/s".
-    bench::requireAtLeast(opts->repeats, 1, "--repeats");
-    bench::requirePositive(opts->batch_seconds, "--batch-seconds");
     if (opts->batch_seconds < 0.001)
       throw InputError("", "--batch-seconds", "must be at least 0.001 (a shorter batch may take 0 clock ticks)");
     runMicro(*opts);

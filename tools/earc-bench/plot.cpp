@@ -36,8 +36,7 @@ void setupPlot(CLI::App& app) {
     // The checks table and export make (a foreign file, a newer schema),
     // with their messages, before Python runs.
     { const bench::ResultsDb check(o->results, true); }
-    if (std::filesystem::exists(o->output) && !std::filesystem::is_directory(o->output))
-      throw InputError(o->output, "-o", "exists and is not a directory");
+    bench::requireOutputDirectory(o->output, "-o");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
     bench::requireExecutable(o->python, "--python");
     bench::ChildSpec spec;

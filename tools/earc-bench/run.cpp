@@ -25,8 +25,6 @@ constexpr int kFullTrials = 20;
 struct RunCli {
   bench::RunOptions run;
   std::string suites, robots, methods;
-  // Signed, so that "-5" is refused rather than read as 2^64 - 5.
-  std::int64_t memory_limit_mb = static_cast<std::int64_t>(bench::RunOptions{}.memory_limit_mb);
   bool full = false;
 };
 
@@ -55,8 +53,11 @@ void setupRun(CLI::App& app) {
   auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full every count of the suite)");
   auto* methods = cmd->add_option("--methods", o->methods,
                                   "Methods: earc, arc, lightning, prioritized, coupled (default earc,arc,lightning,prioritized)");
-  auto* trials = cmd->add_option("--trials", r.trials, "Trials per cell (default 2; --full: 20)");
-  cmd->add_option("--time-limit", r.time_limit_s, "Planning time limit per trial, seconds")->capture_default_str();
+  auto* trials = cmd->add_option("--trials", r.trials, "Trials per cell (default 2; --full: 20)")
+                     ->check(earc::cli::kPositiveWholeNumber);
+  cmd->add_option("--time-limit", r.time_limit_s, "Planning time limit per trial, seconds")
+      ->check(earc::cli::kFinitePositive)
+      ->capture_default_str();
   cmd->add_option("--seed", r.seed, "Seed of the run: scenarios and planner seeds derive from it")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--results", r.results, "Results database (SQLite), appended to and resumed from")->capture_default_str();
   cmd->add_option("--work-dir", r.work_dir, "Scenarios, failed trials' solutions and logs (default RESULTS.work)");
@@ -64,21 +65,31 @@ void setupRun(CLI::App& app) {
                   "E-ARC database for the mobile suites (earc-plan --db); built with earc-db build when missing "
                   "(default WORK/earc-mobile.sqlite)");
   cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites (default WORK/earc-arms.sqlite)");
-  cmd->add_option("--earc-db-count", r.earc_db_count, "Problems for an E-ARC database built here (default: earc-db's)");
+  cmd->add_option("--earc-db-count", r.earc_db_count, "Problems for an E-ARC database built here (default: earc-db's)")
+      ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--lightning-dir", r.lightning_dir,
                   "Lightning databases SUITE-ROBOTS.lightning, built here when missing (default WORK/lightning)");
-  cmd->add_option("--lightning-problems", r.lightning_problems, "Problems per Lightning database (default 4 x robots)");
+  cmd->add_option("--lightning-problems", r.lightning_problems, "Problems per Lightning database (default 4 x robots)")
+      ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--lightning-problems-per-robot", r.lightning_problems_per_robot,
-                  "Problems per robot for a Lightning database")->capture_default_str();
+                  "Problems per robot for a Lightning database")
+      ->check(earc::cli::kPositiveWholeNumber)
+      ->capture_default_str();
   cmd->add_option("--lightning-problem-time-limit", r.lightning_problem_time_limit_s,
-                  "Time limit per problem while building a Lightning database")->capture_default_str();
+                  "Time limit per problem while building a Lightning database")
+      ->check(earc::cli::kFinitePositive)
+      ->capture_default_str();
   cmd->add_option("--jobs", r.jobs,
                   "Trials run at once. Default 1: concurrent trials share cores and memory bandwidth and disturb "
-                  "each other's timings")->capture_default_str();
-  cmd->add_option("--memory-limit-mb", o->memory_limit_mb, "Address-space limit of each trial's process (MiB)")
+                  "each other's timings")
+      ->check(earc::cli::kPositiveWholeNumber)
+      ->capture_default_str();
+  cmd->add_option("--memory-limit-mb", r.memory_limit_mb, "Address-space limit of each trial's process (MiB)")
+      ->check(earc::cli::kPositiveWholeNumber)
       ->capture_default_str();
   cmd->add_option("--wall-margin", r.wall_margin_s,
-                  "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)");
+                  "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)")
+      ->check(earc::cli::kFiniteNonNegative);
   cmd->add_option("--plan-program", r.plan_program, "The earc-plan to run (default: the one next to earc-bench)");
   cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
                 "(with --suites: those suites instead)");
@@ -102,8 +113,6 @@ void setupRun(CLI::App& app) {
     if (methods->count()) r.methods = bench::splitOptionList(o->methods, "--methods");
     if (r.suites.empty()) throw InputError("", "--suites", "no suite given");
     if (r.methods.empty()) throw InputError("", "--methods", "no method given");
-    bench::requireAtLeast(o->memory_limit_mb, 1, "--memory-limit-mb");
-    r.memory_limit_mb = static_cast<std::size_t>(o->memory_limit_mb);
     bench::RunSummary s = bench::runBenchmark(r, std::cout);
     cli::setExitCode(s.interrupted ? 130 : s.invalid ? 1 : 0);
   });

@@ -24,7 +24,8 @@ void setupTable(CLI::App& app) {
   auto* cmd = app.add_subcommand("table", "Print the results as a markdown table");
   cmd->add_option("--results", o->results, "Results database")->required();
   auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit");
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
+                    ->check(earc::cli::kFinitePositive);
   cmd->add_flag("--wide", o->wide,
                 "One table per suite laid out like the paper's figures: a row per robot count, a column per method, "
                 "the paired E-ARC/ARC ratio and E-ARC's hit rate");

@@ -18,6 +18,7 @@ struct RenderOptions {
   std::string solution;
   std::string output;
   std::vector<std::size_t> steps;  // --step T or --strip T1,T2,...
+  std::string steps_option;        // which of the two, for errors
   double width = 800.0;
   bool no_labels = false;
 };
@@ -37,6 +38,7 @@ void requireKnownRobots(const earc::Scenario& sc, const earc::Solution& sol, con
 void runRender(const RenderOptions& opt) {
   earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"-o", opt.output}});
   earc::requireWritableOutput({"-o", opt.output});
+  earc::render::requireImageOutput(opt.output, "-o");
   // Structure only, no geometric check: a picture helps most when the
   // scenario is broken.
   const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
@@ -46,11 +48,18 @@ void runRender(const RenderOptions& opt) {
   o.labels = !opt.no_labels;
   std::string svg;
   if (opt.solution.empty()) {
-    if (!opt.steps.empty()) throw earc::InputError("", "--step/--strip", "a time step needs a SOLUTION file");
+    if (!opt.steps.empty()) throw earc::InputError("", opt.steps_option, "a time step needs a SOLUTION file");
     svg = earc::render::scenarioSvg(sc, o);
   } else {
     const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
     requireKnownRobots(sc, sol, opt.solution);
+    // A step past the makespan would draw every robot at its goal, as if
+    // the plan had been that long.
+    for (std::size_t t : opt.steps)
+      if (t > sol.makespan())
+        throw earc::InputError(opt.solution, opt.steps_option,
+                               "step " + std::to_string(t) + " is beyond the solution's makespan " +
+                                   std::to_string(sol.makespan()) + " (steps 0 to " + std::to_string(sol.makespan()) + ")");
     svg = earc::render::solutionSvg(sc, sol, o);
   }
   earc::render::writeImage(opt.output, svg);
@@ -65,14 +74,19 @@ void setupRender(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->required();
   CLI::Option* step = sub->add_option_function<std::size_t>(
       "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T")->check(earc::cli::kWholeNumber);
-  sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")
+  CLI::Option* strip = sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")
       ->delimiter(',')
+      ->check(earc::cli::kWholeNumber)
       ->excludes(step);
   sub->add_option("--width", opt->width, "Width of one panel in pixels")
       ->check(CLI::Range(100.0, 20000.0))
       ->capture_default_str();
   sub->add_flag("--no-labels", opt->no_labels, "Leave out the robot names");
-  sub->callback([opt] { runRender(*opt); });
+  sub->callback([opt, step, strip] {
+    if (step->count()) opt->steps_option = "--step";
+    if (strip->count()) opt->steps_option = "--strip";
+    runRender(*opt);
+  });
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ void runView(const ViewOptions& opt) {
   earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"--trace", opt.trace},
                               {"-o", opt.output}});
   earc::requireWritableOutput({"-o", opt.output});
+  earc::requireOutputExtension({"-o", opt.output}, {".html", ".htm"});
   // Structure only, as for render: the page is for looking, and the
   // planner already checked the scenario it solved.
   const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
@@ -46,7 +47,7 @@ void setupView(CLI::App& app) {
   sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
   sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->required();
   sub->add_option("--trace", opt->trace, "Trace written by `earc-plan plan --trace` (earc.trace.v1)");
-  sub->add_option("-o,--output", opt->output, "HTML page to write")->required();
+  sub->add_option("-o,--output", opt->output, "HTML page to write (.html or .htm)")->required();
   sub->callback([opt] { runView(*opt); });
 }
 

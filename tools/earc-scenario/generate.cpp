@@ -11,6 +11,7 @@
 #include "earc/gen/scenario_text.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
+#include "refusals.hpp"
 
 namespace {
 
@@ -51,7 +52,7 @@ earc::Scenario generate(const GenerateOptions& opt) {
 
 void runGenerate(const GenerateOptions& opt) {
   earc::requireWritableOutput({"-o", opt.output});
-  const earc::Scenario s = generate(opt);
+  const earc::Scenario s = earc::scenario_cli::generateOrRefuse("", [&] { return generate(opt); });
   earc::gen::writeScenarioFile(opt.output, s);
   std::cout << opt.output << ": " << earc::gen::scenarioSummary(s) << "\n";
 }
@@ -82,6 +83,7 @@ void setupGenerate(CLI::App& app) {
   sub->callback([opt, shape, radius, workspace] {
     if (opt->family == "arms" && (shape->count() || radius->count() || workspace->count()))
       throw CLI::ValidationError("--shape, --radius and --workspace", "apply to --family mobile only");
+    earc::scenario_cli::requireDiscForRadius(shape, opt->shape, radius);
     runGenerate(*opt);
   });
 }

@@ -14,6 +14,7 @@
 #include "earc/gen/scenario_text.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
+#include "refusals.hpp"
 
 namespace {
 
@@ -41,7 +42,8 @@ void runMovingAi(const MovingAiOptions& opt) {
   s.seed = opt.seed;
   s.footprint.shape = opt.shape == "disc" ? earc::MobileShape::Disc : earc::MobileShape::Box;
   s.footprint.radius = opt.radius;
-  const earc::Scenario sc = earc::gen::generateMovingAi(loadMap(opt.map), s);
+  const earc::gen::GridMap map = loadMap(opt.map);
+  const earc::Scenario sc = earc::scenario_cli::generateOrRefuse(opt.map, [&] { return earc::gen::generateMovingAi(map, s); });
   earc::gen::writeScenarioFile(opt.output, sc);
   std::cout << opt.output << ": " << earc::gen::scenarioSummary(sc) << "\n";
 }
@@ -52,12 +54,15 @@ void setupMovingAi(CLI::App& app) {
   sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (den520d, random-32-32-10, random-32-32-20)")->required();
   sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(CLI::Range(1, 1024))->capture_default_str();
   sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
-  sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
+  CLI::Option* shape = sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
       ->check(CLI::IsMember({"box", "disc"}))
       ->capture_default_str();
-  sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(earc::cli::kFinitePositive)->capture_default_str();
+  CLI::Option* radius = sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(earc::cli::kFinitePositive)->capture_default_str();
   sub->add_option("-o,--output", opt->output, "Scenario file to write")->required();
-  sub->callback([opt] { runMovingAi(*opt); });
+  sub->callback([opt, shape, radius] {
+    earc::scenario_cli::requireDiscForRadius(shape, opt->shape, radius);
+    runMovingAi(*opt);
+  });
 }
 
 }  // namespace

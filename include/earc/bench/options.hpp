@@ -1,10 +1,9 @@
 // Checks of earc-bench's command-line values, made before any work: each
 // throws InputError naming the option (and the file, for paths), so that
-// bad options end in one line and exit status 2. Numbers must be finite:
-// CLI11's PositiveNumber and NonNegativeNumber let NaN through.
+// bad options end in one line and exit status 2. Single numbers are
+// checked as they are parsed, by earc::cli's validators.
 #pragma once
 
-#include <cstdint>
 #include <exception>
 #include <string>
 #include <utility>
@@ -12,14 +11,14 @@
 
 namespace earc::bench {
 
-// A finite number > 0, or >= 0.
-void requirePositive(double value, const std::string& option);
-void requireNonNegative(double value, const std::string& option);
-// An integer >= least.
-void requireAtLeast(std::int64_t value, std::int64_t least, const std::string& option);
-
 // An executable regular file (e.g. --plan-program).
 void requireExecutable(const std::string& path, const std::string& option);
+
+// A directory to write files into (plot -o, export --ompl-log): missing
+// (it is made) or a directory, never an existing file, nor a new name that
+// ends like one of the files (plot -o fig.png would make a directory
+// fig.png holding the figures).
+void requireOutputDirectory(const std::string& path, const std::string& option);
 
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
 std::vector<std::string> splitOptionList(const std::string& list, const std::string& option);

@@ -71,9 +71,11 @@ using TrialKey = std::tuple<std::string, int, std::string, int>;
 
 class ResultsDb {
  public:
-  // Opens or creates the file. Throws InputError naming the file when it is
-  // not a results database of this program (another application_id, or a
-  // newer schema version: the message names both versions).
+  // Opens or creates the file. Throws InputError naming the file, before
+  // anything is read or written, when it is not a results database of this
+  // program (not SQLite, another application_id, a newer schema version:
+  // the message names both versions) or is damaged (a table of its schema
+  // missing), as exp::checkFileIdentity checks the experience store.
   explicit ResultsDb(const std::string& path, bool read_only = false);
   ~ResultsDb();
   ResultsDb(const ResultsDb&) = delete;

@@ -65,10 +65,11 @@ struct RunSummary {
 
 // Runs what is missing; progress on a terminal, `log` gets per-trial lines
 // (verbose) and the table of this run's cells at the end. Bad options
-// (a number out of range or not finite, a robot count no suite of the run
-// has, a --plan-program that cannot run, an E-ARC database that was given
-// but cannot be read) throw InputError before anything is run or recorded:
-// they are not trial failures.
+// (a robot count no suite of the run has, a --plan-program that cannot
+// run, an E-ARC database that was given but cannot be read) throw
+// InputError before anything is run or recorded: they are not trial
+// failures. Single numbers (positive, finite) are the caller's to check:
+// earc-bench run checks them as it parses its options.
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log);
 
 }  // namespace earc::bench

@@ -251,4 +251,30 @@ auto Connection::write(Body&& body) -> decltype(body()) {
   });
 }
 
+// A table of an application's file and the schema version that added it
+// (a migration adds, never drops one).
+struct TableSince {
+  const char* name;
+  int version;
+};
+
+// What makes a SQLite file one application's: the experience store's
+// ("EARC") and earc-bench's results ("EBNC") are checked alike.
+struct FileIdentity {
+  std::int64_t application_id;
+  const char* kind;     // "earc experience database", in messages
+  const char* program;  // "earc": the program whose newer version reads a newer file
+  int program_version;  // the newest schema version this program reads
+  std::span<const TableSince> tables;
+};
+
+// Checks that the connection's file is one of `identity` that this program
+// can use (or an empty file): ForeignDatabaseError for another
+// application's SQLite file or not a SQLite file at all,
+// SchemaVersionError for a newer schema, DamagedDatabaseError for a file
+// without a table its schema version has (damaged or edited: refused
+// before a statement needing the table fails with SQL text). Returns the
+// file's schema version (0 for an empty file).
+int checkFileIdentity(Connection& db, const FileIdentity& identity);
+
 }  // namespace earc::exp

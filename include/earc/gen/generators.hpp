@@ -6,12 +6,34 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 #include "earc/geometry/shapes.hpp"
 #include "earc/scene/scenario.hpp"
 
 namespace earc::gen {
+
+// A setting out of its range. setting() names the field ("robots",
+// "workspace", "radius"); what() reads "workspace must be in [2, 1000],
+// got 1", reason() the same without the field's name.
+class SettingError : public std::invalid_argument {
+ public:
+  SettingError(const std::string& setting, const std::string& reason)
+      : std::invalid_argument(setting + " " + reason), setting_(setting), reason_(reason) {}
+  const std::string& setting() const { return setting_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string setting_, reason_;
+};
+
+// No layout was found: the request is too crowded (too many robots or
+// obstacles for the space). what() says so and what to change.
+class CrowdedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // The body of a generated mobile robot.
 struct MobileFootprint {
@@ -37,8 +59,9 @@ struct MobileSettings {
   std::uint64_t seed = 1;
 };
 
-// Throws std::invalid_argument for settings out of range and
-// std::runtime_error when no valid layout was found (too crowded).
+// Throws SettingError for settings out of range and CrowdedError when no
+// valid layout was found. The obstacles' sides are checked only when there
+// are obstacles; then the workspace must be as large as the largest side.
 Scenario generateMobile(const MobileSettings& settings);
 
 // Arm layout: arm 2k is the lower arm of pair k, arm 2k+1 the upper one.
@@ -66,6 +89,7 @@ struct ArmSettings {
 // Default obstacle count for arms: one per pair.
 int defaultArmObstacles(int robots);
 
+// Throws SettingError and CrowdedError as generateMobile does.
 Scenario generateArms(const ArmSettings& settings);
 
 }  // namespace earc::gen

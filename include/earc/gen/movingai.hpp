@@ -60,7 +60,8 @@ struct MovingAiSettings {
 
 // Workspace [0, W] x [0, H], the merged obstacles, and robots m0.. with
 // random starts and goals; each robot's start and goal lie in one connected
-// free component. Throws std::runtime_error when the robots do not fit.
+// free component. Throws SettingError for a robot count out of [1, 1024]
+// and CrowdedError when the robots do not fit.
 Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings);
 
 }  // namespace earc::gen

@@ -56,6 +56,15 @@ void requireDistinctFiles(const std::vector<NamedPath>& paths);
 // Refuses an output path that cannot be written: a directory, or one whose
 // directory is missing or not writable. Cheap; call it before long work.
 void requireWritableOutput(const NamedPath& output);
+// A name's extension in lower case, with its dot ("R.SVG" -> ".svg").
+std::string lowerExtension(const std::string& path);
+// Refuses (InputError naming the output) a file name that does not end in
+// one of `extensions` (".svg", in any case): the name says what the file
+// holds, and SVG written to "r.txt" is mislabelled. The target of a
+// symbolic link may have it instead; a device or FIFO (-o /dev/stdout)
+// has no name to check. Returns the extension matched, "" for a device or
+// FIFO.
+std::string requireOutputExtension(const NamedPath& output, const std::vector<std::string>& extensions);
 
 // Structure and types only (no geometry).
 Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file);

@@ -38,9 +38,16 @@ std::string solutionSvg(const Scenario& scenario, const Solution& solution, cons
 // kept polyline.
 std::vector<geo::Vec2> decimatePolyline(const std::vector<geo::Vec2>& points, double tolerance);
 
+// The checks writeImage makes, for a command to make before its work:
+// InputError naming `option` for a name that ends in neither .svg nor .png
+// (any case; a device or FIFO gets SVG), std::runtime_error when a .png
+// needs rsvg-convert and it is not on PATH (naming the package
+// librsvg2-bin). True for PNG.
+bool requireImageOutput(const std::string& path, const std::string& option);
+
 // Writes the SVG to path, or for a path ending in ".png" converts it with
-// rsvg-convert. Throws std::runtime_error when rsvg-convert is needed and
-// not on PATH (it names the package librsvg2-bin) or fails.
+// rsvg-convert, after requireImageOutput's checks. Throws
+// std::runtime_error when rsvg-convert fails.
 void writeImage(const std::string& path, const std::string& svg);
 
 }  // namespace earc::render

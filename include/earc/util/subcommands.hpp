@@ -49,5 +49,7 @@ extern const CLI::Validator kFinitePositive;
 // For unsigned options (seeds, steps): digits only, so "-1" is refused
 // instead of wrapping around.
 extern const CLI::Validator kWholeNumber;
+// Counts (trials, jobs, repeats): the same, and not 0.
+extern const CLI::Validator kPositiveWholeNumber;
 
 }  // namespace earc::cli

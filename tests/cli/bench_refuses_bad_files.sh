@@ -1,0 +1,67 @@
+#!/bin/bash
+# earc-bench refuses, in one line with exit status 2 and before it changes
+# anything on disk, a results database that is not one (not SQLite, another
+# application's SQLite file) or is damaged (a table of its schema missing),
+# in every subcommand that reads one, and an output directory named like a
+# file (plot -o fig.png) or that is a file. Skipped (77) without
+# /usr/bin/python3.
+set -u
+BUILD=$1
+SRC=$2
+BENCH="$BUILD/earc-bench"
+PY=/usr/bin/python3
+[ -x "$BENCH" ] || { echo "FAIL: earc-bench not built in $BUILD"; exit 1; }
+[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+mkdir "$WORK/d" && cd "$WORK/d" || exit 1
+
+# A results database with one recorded Lightning database in it (a second).
+"$BENCH" lightning-db --suite mobile --robots 2 --count 1 --problem-time-limit 0.5 -o l.lightning --results r.sqlite \
+  > /dev/null || fail "lightning-db exited $?"
+touch a-file
+echo "not a database" > text.txt
+"$PY" - <<'PYEOF' || fail "could not make the bad databases"
+import sqlite3
+c = sqlite3.connect("foreign.sqlite"); c.execute("CREATE TABLE t(x)"); c.commit(); c.close()
+c = sqlite3.connect("r.sqlite"); c.execute("PRAGMA wal_checkpoint(TRUNCATE)"); c.close()
+for table in ("trials", "databases"):
+    c = sqlite3.connect("no-%s.sqlite" % table)
+    sqlite3.connect("r.sqlite").backup(c)
+    c.execute("DROP TABLE %s" % table); c.commit(); c.close()
+PYEOF
+# (A reader of a WAL database may leave an empty -wal and -shm beside it.)
+snapshot() { find . -mindepth 1 -printf '%p %s %T@\n' | grep -Ev -- '-(wal|shm) ' | sort; }
+snapshot > "$WORK/before"
+
+refused() {  # refused TEXT ARGS...: exit 2, one line on stderr containing TEXT, nothing changed
+  local want=$1
+  shift
+  "$BENCH" "$@" > "$WORK/out" 2> "$WORK/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "earc-bench $* exited $rc, not 2: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "earc-bench $*: not one line: $(cat "$WORK/err")"
+  grep -qF -- "$want" "$WORK/err" || fail "earc-bench $*: the error does not say '$want': $(cat "$WORK/err")"
+  snapshot | cmp -s - "$WORK/before" || fail "earc-bench $* changed the directory: $(snapshot | diff "$WORK/before" -)"
+}
+
+for f in no-trials no-databases foreign text; do
+  case $f in
+    no-*) file=$f.sqlite; want="$file: damaged database file (table ${f#no-} is missing; schema version 1 has it)" ;;
+    foreign) file=$f.sqlite; want="$file: not an earc-bench results database" ;;
+    text) file=text.txt; want="$file: cannot open the results database: not a SQLite database" ;;
+  esac
+  refused "$want" table --results "$file"
+  refused "$want" export --results "$file" --csv out.csv
+  refused "$want" plot --results "$file" -o figures
+  refused "$want" run --suites mobile --robots 2 --methods arc --trials 1 --results "$file"
+  refused "$want" lightning-db --suite mobile --robots 2 --count 1 -o new.lightning --results "$file"
+done
+
+refused "fig.png: -o: names the directory the files go into, not a .png file" plot --results r.sqlite -o fig.png
+refused "a-file: -o: exists and is not a directory" plot --results r.sqlite -o a-file
+refused "logs.log: --ompl-log: names the directory the files go into, not a .log file" \
+  export --results r.sqlite --ompl-log logs.log
+refused "a-file: --ompl-log: exists and is not a directory" export --results r.sqlite --ompl-log a-file
+echo "ok"
