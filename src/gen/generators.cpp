@@ -98,6 +98,15 @@ RobotSpec mobileRobot(int index, const MobileFootprint& f) {
   return r;
 }
 
+void requireFootprint(const MobileFootprint& f, double workspace_side) {
+  if (f.shape == MobileShape::Disc) {
+    requireRange("radius", f.radius, 0.01, 0.25 * workspace_side);
+  } else {
+    requireRange("box length", f.box_size.x, 0.01, 0.5 * workspace_side);
+    requireRange("box width", f.box_size.y, 0.01, 0.5 * workspace_side);
+  }
+}
+
 Scenario generateMobile(const MobileSettings& settings) {
   requireRange("robots", settings.robots, kMinRobots, kMaxRobots);
   requireRange("obstacles", settings.obstacles, 0, 1000);
@@ -109,11 +118,7 @@ Scenario generateMobile(const MobileSettings& settings) {
     requireRange("workspace", settings.workspace, std::max(2.0, settings.obstacle_max_side), 1000.0);
   }
   const MobileFootprint& f = settings.footprint;
-  if (f.shape == MobileShape::Disc) requireRange("radius", f.radius, 0.01, 0.25 * settings.workspace);
-  else {
-    requireRange("box length", f.box_size.x, 0.01, 0.5 * settings.workspace);
-    requireRange("box width", f.box_size.y, 0.01, 0.5 * settings.workspace);
-  }
+  requireFootprint(f, settings.workspace);
 
   Random rng(settings.seed);
   Scenario s;

@@ -169,6 +169,9 @@ Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings) 
   for (const CellRect& r : mergeBlockedCells(map)) s.obstacles.push_back(cellRectObstacle(map, r));
 
   const MobileFootprint& f = settings.footprint;
+  // A 1e-300 radius would pass placement; a radius wider than the map is
+  // named as itself, not as too many robots.
+  requireFootprint(f, std::min(map.width, map.height));
   for (int i = 0; i < settings.robots; ++i) s.robots.push_back(mobileRobot(i, f));
   const CollisionWorld world(s);
   // The map's own cell test is exact and much faster than the world's.

@@ -39,6 +39,13 @@ for args in "$WORK/blocked.map --robots 1" "random-32-32-20 --radius 0.2"; do
   [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "movingai $args: not one line: $(cat "$WORK/err")"
 done
 grep -qF -- "--radius: applies to --shape disc only" "$WORK/err" || fail "--radius with boxes: $(cat "$WORK/err")"
+# A disc radius has the bounds generate gives it: at least 0.01, at most a
+# quarter of the map's smaller side (a 1e-300 radius used to be placed).
+for r in 1e-300 20; do
+  "$GEN" movingai random-32-32-20 --robots 2 --shape disc --radius $r -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "--radius $r did not exit 2: $(cat "$WORK/err")"
+  grep -qF -- "--radius: must be in [0.01, 8], got $r" "$WORK/err" || fail "--radius $r: $(cat "$WORK/err")"
+done
 # A compiled-in map by name, from a directory without it: the same scenario.
 (cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||
   fail "the compiled-in map random-32-32-10 was not found by name"

@@ -45,6 +45,10 @@ struct MobileFootprint {
 // Robot "m<index>" with this footprint; start and goal left empty.
 RobotSpec mobileRobot(int index, const MobileFootprint& footprint);
 
+// A footprint's sizes must be at least 0.01 and at most a quarter (disc
+// radius) or half (box sides) of `workspace_side`; else SettingError.
+void requireFootprint(const MobileFootprint& footprint, double workspace_side);
+
 // Obstacle count used when obstacles are asked for without a count.
 inline constexpr int kDefaultMobileObstacles = 12;
 
