@@ -1,5 +1,6 @@
 // Strict JSON text in and atomic text out.
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <random>
 #include <regex>
@@ -287,6 +289,17 @@ void requireWritableOutput(const NamedPath& output) {
   const std::string dir = directoryOf(target.path);
   if (::access(dir.c_str(), W_OK) != 0)
     throw InputError(output.path, output.name, "cannot write in " + dir + ": " + std::strerror(errno));
+}
+
+std::ostream& summaryStream(const std::vector<std::string>& outputs) {
+  struct stat out_st {};
+  if (::fstat(STDOUT_FILENO, &out_st) != 0) return std::cout;
+  for (const std::string& path : outputs) {
+    struct stat st {};
+    if (!path.empty() && ::stat(path.c_str(), &st) == 0 && st.st_dev == out_st.st_dev && st.st_ino == out_st.st_ino)
+      return std::cerr;
+  }
+  return std::cout;
 }
 
 std::string lowerExtension(const std::string& path) {

@@ -98,4 +98,19 @@ reader=$!
 wait $reader
 [ -p pipe ] || fail "the FIFO was replaced by a file"
 "$PLAN" validate s.json from-pipe > /dev/null || fail "the FIFO's reader did not get the solution"
+
+# -o /dev/stdout: the file is all that reaches stdout; the summary line,
+# which used to follow it there, goes to stderr.
+"$PLAN" plan s.json -o /dev/stdout > piped.json 2> err || fail "plan -o /dev/stdout exited $?"
+"$PLAN" validate s.json piped.json > /dev/null || fail "plan -o /dev/stdout: stdout is not the solution"
+grep -q "^solution: /dev/stdout" err || fail "plan -o /dev/stdout: no summary on stderr: $(cat err)"
+"$GEN" generate -n 2 -o /dev/stdout > piped.json 2> /dev/null || fail "generate -o /dev/stdout exited $?"
+/usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' piped.json || fail "generate -o /dev/stdout: not JSON"
+"$DB" export --db e.db -o /dev/stdout > piped.jsonl 2> /dev/null || fail "export -o /dev/stdout exited $?"
+cmp -s piped.jsonl e.jsonl || fail "export -o /dev/stdout: stdout is not the export"
+"$PLAN" render s.json sol.json -o /dev/stdout > piped.svg 2> /dev/null || fail "render -o /dev/stdout exited $?"
+[ "$(tail -n 1 piped.svg)" = "</svg>" ] || fail "render -o /dev/stdout: stdout does not end with the picture"
+# A regular output still reports on stdout.
+"$PLAN" plan s.json -o again.json > out 2> err || fail "plan exited $?"
+grep -q "^solution: again.json" out || fail "plan: the summary left stdout: $(cat out)"
 echo "ok"

@@ -26,7 +26,7 @@ void setupExport(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("export", "Write every experience as JSON lines (" + std::string(earc::exp::kExportFormat) + ")");
   sub->add_option("--db", opt->db, "Experience database file")->required();
   sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->required();
-  sub->callback([opt] { runExport(*opt, std::cout); });
+  sub->callback([opt] { runExport(*opt, earc::summaryStream({opt->out})); });
 }
 
 }  // namespace

@@ -62,16 +62,17 @@ int runPlan(const PlanOptions& o) {
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {
     const auto& st = r.stats;
+    std::ostream& out = summaryStream({o.output, o.trace});
     if (r.solution.solved)
-      std::cout << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
+      out << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
                 << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0)
                 << ", makespan " << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0)
                 << "\n";
     else
-      std::cout << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
+      out << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
                 << st.value("planning_time_s", 0.0) << " s"
                 << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
-    std::cout << "solution: " << o.output << "\n";
+    out << "solution: " << o.output << "\n";
   }
   return r.solution.solved ? 0 : 1;
 }

@@ -63,7 +63,7 @@ void runRender(const RenderOptions& opt) {
     svg = earc::render::solutionSvg(sc, sol, o);
   }
   earc::render::writeImage(opt.output, svg);
-  std::cout << opt.output << "\n";
+  earc::summaryStream({opt.output}) << opt.output << "\n";
 }
 
 void setupRender(CLI::App& app) {

@@ -38,7 +38,7 @@ void runView(const ViewOptions& opt) {
   earc::view::checkSolutionMatches(sc, sol, opt.solution);
   const nlohmann::json trace = opt.trace.empty() ? nlohmann::json(nullptr) : earc::view::loadTrace(opt.trace, sc);
   earc::writeTextFileAtomic(opt.output, earc::view::viewerHtml(earc::view::viewerData(sc, sol, trace)));
-  std::cout << opt.output << "\n";
+  earc::summaryStream({opt.output}) << opt.output << "\n";
 }
 
 void setupView(CLI::App& app) {

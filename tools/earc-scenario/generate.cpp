@@ -54,7 +54,7 @@ void runGenerate(const GenerateOptions& opt) {
   earc::requireWritableOutput({"-o", opt.output});
   const earc::Scenario s = earc::scenario_cli::generateOrRefuse("", [&] { return generate(opt); });
   earc::gen::writeScenarioFile(opt.output, s);
-  std::cout << opt.output << ": " << earc::gen::scenarioSummary(s) << "\n";
+  earc::summaryStream({opt.output}) << opt.output << ": " << earc::gen::scenarioSummary(s) << "\n";
 }
 
 void setupGenerate(CLI::App& app) {

@@ -45,7 +45,7 @@ void runMovingAi(const MovingAiOptions& opt) {
   const earc::gen::GridMap map = loadMap(opt.map);
   const earc::Scenario sc = earc::scenario_cli::generateOrRefuse(opt.map, [&] { return earc::gen::generateMovingAi(map, s); });
   earc::gen::writeScenarioFile(opt.output, sc);
-  std::cout << opt.output << ": " << earc::gen::scenarioSummary(sc) << "\n";
+  earc::summaryStream({opt.output}) << opt.output << ": " << earc::gen::scenarioSummary(sc) << "\n";
 }
 
 void setupMovingAi(CLI::App& app) {

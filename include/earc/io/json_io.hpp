@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -65,6 +66,10 @@ std::string lowerExtension(const std::string& path);
 // has no name to check. Returns the extension matched, "" for a device or
 // FIFO.
 std::string requireOutputExtension(const NamedPath& output, const std::vector<std::string>& extensions);
+// Where a command's summary line goes: stdout, unless one of its outputs is
+// the file stdout writes to (-o /dev/stdout, or -o x.json > x.json), whose
+// contents a summary line there would corrupt: then stderr.
+std::ostream& summaryStream(const std::vector<std::string>& outputs);
 
 // Structure and types only (no geometry).
 Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file);
