@@ -219,24 +219,44 @@ void writeTextFileAtomic(const std::string& given, const std::string& text) {
   // Same directory, so the rename stays on one file system and is atomic.
   std::random_device rd;
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  // Written as an anonymous file (O_TMPFILE) and named only once complete
+  // and synced: a process killed while writing leaves nothing behind. A
+  // named temporary is the fallback where the file system has no O_TMPFILE.
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  const bool anonymous = fd >= 0;
+  if (!anonymous) fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) throw InputError(given, "", "cannot write in " + dir + ": " + std::strerror(errno));
+  bool named = !anonymous;  // whether `tmp` names the file
+  auto discard = [&] {
+    if (named) ::unlink(tmp.c_str());
+  };
   try {
     writeAll(fd, text, given);
   } catch (...) {
     ::close(fd);
-    ::unlink(tmp.c_str());
+    discard();
     throw;
   }
-  const bool synced = ::fsync(fd) == 0;
-  if (!synced || ::close(fd) != 0) {
-    const std::string why = std::strerror(errno);
-    if (!synced) ::close(fd);  // a failed close has released fd already
-    ::unlink(tmp.c_str());
+  bool ok = ::fsync(fd) == 0;
+  std::string why = ok ? "" : std::strerror(errno);
+  if (ok && anonymous) {
+    named = ::linkat(AT_FDCWD, ("/proc/self/fd/" + std::to_string(fd)).c_str(), AT_FDCWD, tmp.c_str(),
+                     AT_SYMLINK_FOLLOW) == 0;
+    if (!named) {
+      ok = false;
+      why = std::string("cannot name the written file: ") + std::strerror(errno);
+    }
+  }
+  if (::close(fd) != 0 && ok) {
+    ok = false;
+    why = std::strerror(errno);
+  }
+  if (!ok) {
+    discard();
     throw std::runtime_error(given + ": cannot flush: " + why);
   }
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
+    why = std::strerror(errno);
     ::unlink(tmp.c_str());
     throw InputError(given, "", "cannot replace it: " + why);
   }

@@ -8,6 +8,9 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "earc/io/json_io.hpp"
@@ -517,6 +520,38 @@ TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
   for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
   CHECK(files == 1);
   CHECK_THROWS_AS(earc::writeTextFileAtomic(dir + "/no/such/dir/f.txt", "x"), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a process killed while writing a file atomically leaves neither the file nor a temporary") {
+  const std::string dir = tempDir();
+  const std::string path = dir + "/big.json";
+  // Only a file system with anonymous files can promise this (elsewhere
+  // the writer falls back to a named temporary).
+  const int probe = ::open(dir.c_str(), O_TMPFILE | O_WRONLY, 0644);
+  if (probe < 0) {
+    MESSAGE("skipped: no O_TMPFILE in " << dir);
+    std::filesystem::remove_all(dir);
+    return;
+  }
+  ::close(probe);
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    // The kernel kills the writer with SIGXFSZ at 64 KiB into 1 MiB.
+    const rlimit size{64 * 1024, 64 * 1024}, core{0, 0};
+    ::setrlimit(RLIMIT_FSIZE, &size);
+    ::setrlimit(RLIMIT_CORE, &core);
+    try {
+      earc::writeTextFileAtomic(path, std::string(1 << 20, 'x'));
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()) == 0);
   std::filesystem::remove_all(dir);
 }
 
