@@ -73,5 +73,7 @@ refused "--radius: must be in [0.01, 5], got 100" generate --shape disc --radius
 refused "--radius: applies to --shape disc only" generate --radius 0.2
 refused "--robots: Value 1 not in range 2 to 128" generate --robots 1
 refused "--seed: '-1' is not a whole number" generate --seed -1
+refused "--obstacles: '-1' is not a count in [0, 1000]" generate --obstacles -1
+refused "--obstacles: '1001' is not a count in [0, 1000]" generate --obstacles 1001
 "$GEN" generate --robots 2 --workspace 2.5 -o "$WORK/small.json" > /dev/null || fail "a small workspace without obstacles exited $?"
 echo "ok"

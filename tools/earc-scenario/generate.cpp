@@ -3,6 +3,7 @@
 //   -o FILE
 // A random scenario of the paper's families (earc/gen/generators.hpp); the
 // same options give the same file on every platform.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -17,6 +18,7 @@ namespace {
 
 // --obstacles given without a count: the family's default.
 constexpr int kFamilyDefault = -1;
+constexpr const char* kFamilyDefaultText = "default";
 
 struct GenerateOptions {
   std::string family = "mobile";
@@ -64,12 +66,24 @@ void setupGenerate(CLI::App& app) {
       ->check(CLI::IsMember({"mobile", "arms"}))
       ->capture_default_str();
   sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(CLI::Range(2, 128))->capture_default_str();
-  sub->add_option("--obstacles", opt->obstacles,
-                  "Random box obstacles; the flag alone: 12 (mobile) or one per pair (arms); default none")
+  // The flag alone stands for "default", not for -1 (which a user could
+  // type, and which used to be taken as the family's default).
+  sub->add_option_function<std::string>(
+         "--obstacles",
+         [opt](const std::string& k) { opt->obstacles = k == kFamilyDefaultText ? kFamilyDefault : std::stoi(k); },
+         "Random box obstacles; the flag alone: 12 (mobile) or one per pair (arms); default none")
       ->expected(0, 1)
-      ->default_str(std::to_string(kFamilyDefault))
+      ->default_str(kFamilyDefaultText)
       ->option_text("[K]")
-      ->check(CLI::Range(kFamilyDefault, 1000));
+      ->check(CLI::Validator(
+          [](std::string& k) -> std::string {
+            if (k == kFamilyDefaultText) return {};
+            const bool digits = !k.empty() && k.size() <= 4 &&
+                                std::all_of(k.begin(), k.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
+            if (!digits || std::stoi(k) > 1000) return "'" + k + "' is not a count in [0, 1000]";
+            return {};
+          },
+          "K in [0, 1000]"));
   sub->add_flag("--rotated", opt->rotated, "Turn obstacles by random angles");
   sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Mobile footprint: box (0.6 x 0.4) or disc")
