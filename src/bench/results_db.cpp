@@ -85,10 +85,46 @@ std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std:
 
 }  // namespace
 
+// Every statement this program runs on a results database; each is
+// prepared once at open, so a file without a column they name is refused
+// before any work.
+constexpr const char* kInsertTrial =
+    "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
+    " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
+    " term_signal, failure, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
+    " NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''),"
+    " NULLIF(?18, ''), NULLIF(?19, ''), ?20) ON CONFLICT DO NOTHING";
+constexpr const char* kInsertDatabase =
+    "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
+    " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
+    " NULLIF(?8, ''), NULLIF(?9, ''), ?10)";
+constexpr const char* kFinishedTrials =
+    "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2";
+constexpr const char* kSelectTrials =
+    "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
+    " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
+    " term_signal, failure, finished_at FROM trials ORDER BY id";
+constexpr const char* kSelectDatabases =
+    "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
+    " FROM databases ORDER BY id";
+constexpr const char* kHasDatabase =
+    "SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1";
+constexpr const char* kStatements[] = {kInsertTrial,  kInsertDatabase,  kFinishedTrials,
+                                       kSelectTrials, kSelectDatabases, kHasDatabase};
+
 struct ResultsDb::Impl {
   std::string path;
   Connection conn;
   Impl(const std::string& p, bool read_only) : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite) {}
+  // A file whose tables lack a column this program reads or writes (edited
+  // or damaged) is bad input, named in one line like a missing table.
+  Statement prepare(std::string_view sql) {
+    try {
+      return conn.prepare(sql);
+    } catch (const exp::DamagedDatabaseError& e) {
+      throw InputError(path, "", reasonAbout(e, path));
+    }
+  }
 };
 
 ResultsDb::ResultsDb(const std::string& path, bool read_only) {
@@ -117,6 +153,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     });
     return;
   }
+  for (const char* sql : kStatements) impl_->prepare(sql);
   if (!read_only) c.enableWal();
 }
 
@@ -127,12 +164,7 @@ const std::string& ResultsDb::path() const { return impl_->path; }
 bool ResultsDb::addTrial(const TrialRecord& t) {
   Connection& c = impl_->conn;
   return c.write([&] {
-    Statement s = c.prepare(
-        "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
-        " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-        " term_signal, failure, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
-        " NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''),"
-        " NULLIF(?18, ''), NULLIF(?19, ''), ?20) ON CONFLICT DO NOTHING");
+    Statement s = impl_->prepare(kInsertTrial);
     s.bind(1, t.suite).bind(2, t.robots).bind(3, t.method).bind(4, t.trial);
     s.bind(5, std::to_string(t.seed)).bind(6, t.time_limit_s);
     s.bind(7, std::to_string(t.scenario_seed)).bind(8, std::to_string(t.planner_seed));
@@ -156,10 +188,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
 void ResultsDb::addDatabase(const DatabaseRecord& d) {
   Connection& c = impl_->conn;
   c.write([&] {
-    Statement s = c.prepare(
-        "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
-        " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
-        " NULLIF(?8, ''), NULLIF(?9, ''), ?10)");
+    Statement s = impl_->prepare(kInsertDatabase);
     s.bind(1, d.method).bind(2, d.suite).bind(3, d.robots).bind(4, d.path);
     bindOpt(s, 5, d.construction_time_s);
     bindOpt(s, 6, d.entries);
@@ -172,8 +201,7 @@ void ResultsDb::addDatabase(const DatabaseRecord& d) {
 }
 
 std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_limit_s) const {
-  Statement s = impl_->conn.prepare(
-      "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2");
+  Statement s = impl_->prepare(kFinishedTrials);
   s.bind(1, std::to_string(seed)).bind(2, time_limit_s);
   std::set<TrialKey> keys;
   while (s.step())
@@ -182,10 +210,7 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 }
 
 std::vector<TrialRecord> ResultsDb::trials() const {
-  Statement s = impl_->conn.prepare(
-      "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
-      " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-      " term_signal, failure, finished_at FROM trials ORDER BY id");
+  Statement s = impl_->prepare(kSelectTrials);
   std::vector<TrialRecord> out;
   while (s.step()) {
     TrialRecord t;
@@ -215,9 +240,7 @@ std::vector<TrialRecord> ResultsDb::trials() const {
 }
 
 std::vector<DatabaseRecord> ResultsDb::databases() const {
-  Statement s = impl_->conn.prepare(
-      "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
-      " FROM databases ORDER BY id");
+  Statement s = impl_->prepare(kSelectDatabases);
   std::vector<DatabaseRecord> out;
   while (s.step()) {
     DatabaseRecord d;
@@ -237,7 +260,7 @@ std::vector<DatabaseRecord> ResultsDb::databases() const {
 }
 
 bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) const {
-  Statement s = impl_->conn.prepare("SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1");
+  Statement s = impl_->prepare(kHasDatabase);
   s.bind(1, method).bind(2, path);
   return s.step();
 }

@@ -54,6 +54,17 @@ Statement::Statement(sqlite3* db, std::string_view sql, std::string file) : db_(
   sqlite3_stmt* raw = nullptr;
   int rc = sqlite3_prepare_v3(db, sql.data(), static_cast<int>(sql.size()), 0, &raw, nullptr);
   stmt_.reset(raw);
+  if (rc == SQLITE_ERROR) {
+    // The program's statements are fixed and the file's identity and
+    // tables were checked at open: a column or table they name that is not
+    // there means the file was edited or damaged. Said so in one line,
+    // without the statement's SQL.
+    const std::string message = sqlite3_errmsg(db);
+    if (message.starts_with("no such column") || message.starts_with("no such table") ||
+        message.find(" has no column named ") != std::string::npos)
+      throw DamagedDatabaseError((file_.empty() ? fileOf(db) : file_) + ": damaged database file (" + message +
+                                 "; its schema version has it)");
+  }
   if (rc != SQLITE_OK) throwFor(db, file_, rc, "preparing \"" + std::string(sql.substr(0, 60)) + "\"");
 }
 

@@ -1,7 +1,8 @@
 #!/bin/bash
 # earc-bench refuses, in one line with exit status 2 and before it changes
 # anything on disk, a results database that is not one (not SQLite, another
-# application's SQLite file) or is damaged (a table of its schema missing),
+# application's SQLite file) or is damaged (a table of its schema missing,
+# or a column),
 # in every subcommand that reads one, and an output directory named like a
 # file (plot -o fig.png) or that is a file. Skipped (77) without
 # /usr/bin/python3.
@@ -30,6 +31,9 @@ for table in ("trials", "databases"):
     c = sqlite3.connect("no-%s.sqlite" % table)
     sqlite3.connect("r.sqlite").backup(c)
     c.execute("DROP TABLE %s" % table); c.commit(); c.close()
+c = sqlite3.connect("no-column.sqlite")
+sqlite3.connect("r.sqlite").backup(c)
+c.execute("ALTER TABLE trials DROP COLUMN makespan"); c.commit(); c.close()
 PYEOF
 # (A reader of a WAL database may leave an empty -wal and -shm beside it.)
 snapshot() { find . -mindepth 1 -printf '%p %s %T@\n' | grep -Ev -- '-(wal|shm) ' | sort; }
@@ -58,6 +62,12 @@ for f in no-trials no-databases foreign text; do
   refused "$want" run --suites mobile --robots 2 --methods arc --trials 1 --results "$file"
   refused "$want" lightning-db --suite mobile --robots 2 --count 1 -o new.lightning --results "$file"
 done
+# A table without a column this program reads: named in one line, no SQL.
+want="no-column.sqlite: damaged database file (table trials has no column named makespan; its schema version has it)"
+refused "$want" table --results no-column.sqlite
+refused "$want" export --results no-column.sqlite --csv out.csv
+refused "$want" run --suites mobile --robots 2 --methods arc --trials 1 --results no-column.sqlite
+refused "$want" lightning-db --suite mobile --robots 2 --count 1 -o new.lightning --results no-column.sqlite
 
 refused "fig.png: -o: names the directory the files go into, not a .png file" plot --results r.sqlite -o fig.png
 refused "a-file: -o: exists and is not a directory" plot --results r.sqlite -o a-file

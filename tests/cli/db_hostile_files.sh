@@ -85,6 +85,19 @@ run "newer target" "$WORK/newer-target.db" "$DB" import --db "$WORK/newer-target
 refused "import into a newer file" "$WORK/newer-target.db" "schema version 99 is newer"
 [ "$(md5sum < "$WORK/newer-target.db")" = "$before" ] || fail "import modified a newer file"
 
+# --- A column of the schema dropped (an edited file): one line naming it,
+# no SQL text; verify lists it as a problem (exit 1).
+cp "$WORK/good.db" "$WORK/no-cost.db"
+sql "$WORK/no-cost.db" "alter table experiences drop column cost"
+pattern="damaged database file \(no such column: cost; its schema version has it\)$"
+run "no column" "$WORK/no-cost.db" "$DB" inspect --db "$WORK/no-cost.db"; refused "no column: inspect" "$WORK/no-cost.db" "$pattern"
+run "no column" "$WORK/no-cost.db" "$DB" export --db "$WORK/no-cost.db" -o "$WORK/x.jsonl"
+refused "no column: export" "$WORK/no-cost.db" "$pattern"
+run "no column" "$WORK/no-cost.db" "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/no-cost.db"
+refused "no column: plan" "$WORK/no-cost.db" "$pattern"
+run "no column" "$WORK/no-cost.db" "$DB" verify --db "$WORK/no-cost.db"
+[ $code -eq 1 ] && grep -qE "$pattern" "$WORK/out" || fail "no column: verify exit $code: $(cat "$WORK/out" "$WORK/err")"
+
 # --- A missing file and a 0-byte file: every command that only reads says
 # the same about each (SQLite would take a 0-byte file for an empty
 # database); commands that write make a 0-byte file a database.
