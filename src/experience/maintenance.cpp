@@ -20,6 +20,7 @@
 #include "earc/experience/transfer.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::exp {
 
@@ -253,8 +254,7 @@ void removeStaleTemporaries(const std::string& out) {
     for (std::string_view suffix : kDatabaseFileSuffixes)
       if (pid.ends_with(suffix)) pid.erase(pid.size() - suffix.size());
     // A PID, nothing else: export's OUT.tmp.PID.RANDOM is not ours.
-    if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      continue;
+    if (!isDigits(pid) || pid.size() > 9) continue;
     const pid_t p = static_cast<pid_t>(std::stol(pid));
     if (p > 0 && ::kill(p, 0) != 0 && errno == ESRCH) gone.insert(pid);
   }

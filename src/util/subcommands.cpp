@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "earc/io/input_error.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::cli {
 
@@ -48,9 +49,7 @@ CLI::Validator wholeNumber(bool positive) {
   const std::string least = positive ? "1" : "0";
   return CLI::Validator(
       [positive, least](std::string& text) -> std::string {
-        const bool digits =
-            !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
-        if (!digits || (positive && text.find_first_not_of('0') == std::string::npos))
+        if (!isDigits(text) || (positive && text.find_first_not_of('0') == std::string::npos))
           return "'" + text + "' is not a whole number >= " + least;
         return {};
       },

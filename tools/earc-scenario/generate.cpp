@@ -3,7 +3,6 @@
 //   -o FILE
 // A random scenario of the paper's families (earc/gen/generators.hpp); the
 // same options give the same file on every platform.
-#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -11,6 +10,7 @@
 #include "earc/gen/generators.hpp"
 #include "earc/gen/scenario_text.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 #include "refusals.hpp"
 
@@ -78,9 +78,7 @@ void setupGenerate(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& k) -> std::string {
             if (k == kFamilyDefaultText) return {};
-            const bool digits = !k.empty() && k.size() <= 4 &&
-                                std::all_of(k.begin(), k.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
-            if (!digits || std::stoi(k) > 1000) return "'" + k + "' is not a count in [0, 1000]";
+            if (!earc::isDigits(k) || k.size() > 4 || std::stoi(k) > 1000) return "'" + k + "' is not a count in [0, 1000]";
             return {};
           },
           "K in [0, 1000]"));

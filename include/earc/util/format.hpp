@@ -1,9 +1,12 @@
-// Numbers in messages: six significant digits, never hundreds of digits
-// (a 1e308 read from a file prints as 1e+308).
+// Numbers as text: in messages, six significant digits, never hundreds of
+// digits (a 1e308 read from a file prints as 1e+308); in input, whole
+// numbers written as bare digits.
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 namespace earc {
 
@@ -11,6 +14,12 @@ inline std::string formatNumber(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
+}
+
+// Whether `text` is one or more decimal digits and nothing else: no sign,
+// space or point (a "-1" given to an unsigned option, a PID in a name).
+inline bool isDigits(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
 }
 
 }  // namespace earc
