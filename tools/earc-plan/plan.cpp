@@ -65,13 +65,12 @@ int runPlan(const PlanOptions& o) {
     std::ostream& out = summaryStream({o.output, o.trace});
     if (r.solution.solved)
       out << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
-                << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0)
-                << ", makespan " << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0)
-                << "\n";
+          << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0) << ", makespan "
+          << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0) << "\n";
     else
       out << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
-                << st.value("planning_time_s", 0.0) << " s"
-                << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
+          << st.value("planning_time_s", 0.0) << " s"
+          << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
     out << "solution: " << o.output << "\n";
   }
   return r.solution.solved ? 0 : 1;
