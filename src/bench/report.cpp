@@ -16,6 +16,7 @@
 
 #include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/hash.hpp"
 
 namespace earc::bench {
@@ -87,13 +88,6 @@ std::string fileNamePart(const std::string& name) {
   char hash[24];
   std::snprintf(hash, sizeof hash, "-%08llx", static_cast<unsigned long long>(fnv1a64(name) & 0xffffffffULL));
   return safe + hash;
-}
-
-// One line of text: a line break in a value would end a log line early.
-std::string oneLine(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  return s;
 }
 
 // OMPL's PlannerStatus for a trial: what ompl_benchmark_statistics.py

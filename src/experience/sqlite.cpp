@@ -5,6 +5,8 @@
 #include <random>
 #include <thread>
 
+#include "earc/util/format.hpp"
+
 namespace earc::exp {
 
 namespace {
@@ -22,7 +24,10 @@ std::string fileOf(sqlite3* db) {
 // Errors that say what is wrong with the file rather than which statement
 // met it: the user can act on "damaged" or "not a SQLite database", not on
 // the SQL that happened to read the bad page first.
-[[noreturn]] void throwForFile(const std::string& file, int rc, const std::string& message, std::string_view context) {
+[[noreturn]] void throwForFile(const std::string& file, int rc, const std::string& raw_message,
+                               std::string_view context) {
+  // SQLite quotes a damaged schema's SQL, line breaks and all.
+  const std::string message = oneLine(raw_message);
   const int primary = rc & 0xff;
   if (primary == SQLITE_NOTADB) throw ForeignDatabaseError(file + ": not a SQLite database");
   if (primary == SQLITE_CORRUPT)
@@ -59,7 +64,7 @@ Statement::Statement(sqlite3* db, std::string_view sql, std::string file) : db_(
     // tables were checked at open: a column or table they name that is not
     // there means the file was edited or damaged. Said so in one line,
     // without the statement's SQL.
-    const std::string message = sqlite3_errmsg(db);
+    const std::string message = oneLine(sqlite3_errmsg(db));
     if (message.starts_with("no such column") || message.starts_with("no such table") ||
         message.find(" has no column named ") != std::string::npos)
       throw DamagedDatabaseError((file_.empty() ? fileOf(db) : file_) + ": damaged database file (" + message +
@@ -196,7 +201,7 @@ void Connection::requireQuickCheck() {
   while (check.step()) {
     std::string line = check.textAt(0);
     if (line == "ok") continue;
-    if (problems++ == 0) first = std::move(line);
+    if (problems++ == 0) first = oneLine(std::move(line));
   }
   if (problems > 0)
     throw DamagedDatabaseError(path_ + ": damaged database file (quick_check: " + first +

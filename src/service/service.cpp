@@ -9,6 +9,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/deadline.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::service {
 
@@ -19,13 +20,6 @@ namespace {
 // Error messages quote what the client sent, which need not be UTF-8:
 // never let the reply itself fail to encode.
 std::string dumpLine(const json& doc) { return doc.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-// One line, so that a response stays one line whatever an error said.
-std::string oneLine(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
-}
 
 const json& field(const json& request, const char* name) {
   static const json missing;

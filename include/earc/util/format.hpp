@@ -1,6 +1,7 @@
-// Numbers as text: in messages, six significant digits, never hundreds of
-// digits (a 1e308 read from a file prints as 1e+308); in input, whole
-// numbers written as bare digits.
+// Text in messages and input: numbers in messages with six significant
+// digits, never hundreds of digits (a 1e308 read from a file prints as
+// 1e+308); whole numbers in input written as bare digits; one line of text
+// out of anything.
 #pragma once
 
 #include <algorithm>
@@ -20,6 +21,15 @@ inline std::string formatNumber(double v) {
 // space or point (a "-1" given to an unsigned option, a PID in a name).
 inline bool isDigits(std::string_view text) {
   return !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
+}
+
+// `text` on one line: line breaks become spaces. For text from elsewhere
+// (SQLite's messages quote a damaged schema's SQL) in an error, a log line
+// or a one-line reply.
+inline std::string oneLine(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
 }
 
 }  // namespace earc
