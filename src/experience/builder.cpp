@@ -153,6 +153,7 @@ ProblemResult solveProblem(const BuildSettings& s, const std::vector<std::pair<i
   const CollisionWorld world(problem->scenario);
   CoupledSettings cs;
   cs.time_limit_s = s.time_per_problem_s;
+  cs.polish = true;
   const auto t0 = Clock::now();
   auto solution = solveCoupled(world, problem->query, cs, splitSeed(s.seed ^ 0xb01dULL, index));
   const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();

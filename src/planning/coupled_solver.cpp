@@ -9,8 +9,10 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
+#include "earc/geometry/shapes.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/ompl_composite.hpp"
 #include "earc/util/deadline.hpp"
@@ -25,6 +27,37 @@ namespace {
 
 // Iterations of random shortcutting applied to a found composite path.
 constexpr int kShortcutIterations = 60;
+
+// Iterations of shortcutting on the time-stamped states when polishing
+// (on 4,944 stored mobile experiences 400 gave no shorter paths than 100).
+constexpr int kStateShortcutIterations = 100;
+
+// Every mobile robot's interior waypoint headings replaced by a steady turn
+// from its start heading to its goal heading (by distance travelled; by
+// waypoint for a robot that only turns), robot by robot, where the whole
+// sequence stays valid.
+void turnSteadily(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, const Deadline& deadline) {
+  const std::size_t n = waypoints.size();
+  if (n < 3) return;
+  const auto& robots = checker.robots();
+  for (std::size_t r = 0; r < robots.size() && !deadline.expired(); ++r) {
+    if (!robots[r]->isMobile()) continue;
+    std::vector<double> along(n, 0.0);
+    for (std::size_t w = 1; w < n; ++w)
+      along[w] = along[w - 1] + std::hypot(waypoints[w][r][0] - waypoints[w - 1][r][0],
+                                           waypoints[w][r][1] - waypoints[w - 1][r][1]);
+    const double h0 = waypoints.front()[r][2];
+    const double turn = geo::angleDiff(h0, waypoints.back()[r][2]);
+    std::vector<CompositeState> steady = waypoints;
+    for (std::size_t w = 1; w + 1 < n; ++w) {
+      const double f = along.back() > 0 ? along[w] / along.back() : static_cast<double>(w) / static_cast<double>(n - 1);
+      steady[w][r][2] = geo::wrapAngle(h0 + f * turn);
+    }
+    bool valid = true;
+    for (std::size_t w = 1; w < n && valid; ++w) valid = checker.motionValid(steady[w - 1], steady[w]);
+    if (valid) waypoints = std::move(steady);
+  }
+}
 
 // The stream of the planner's sampler (splitSeed of the solve's seed).
 constexpr std::uint64_t kSamplerStream = 0x5eed;
@@ -53,6 +86,18 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
     }
   }
   return sol;
+}
+
+void polishComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, std::mt19937_64& rng,
+                     const Deadline& deadline) {
+  turnSteadily(checker, waypoints, deadline);
+  shortcutComposite(checker, waypoints, kShortcutIterations, rng, deadline);
+  const LocalSolution stamped = timeStampComposite(checker.robots(), waypoints);
+  std::vector<CompositeState> states;
+  states.reserve(stamped.length());
+  for (std::size_t t = 0; t < stamped.length(); ++t) states.push_back(stateAt(stamped.paths, t));
+  shortcutComposite(checker, states, kStateShortcutIterations, rng, deadline);
+  waypoints = std::move(states);
 }
 
 CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
@@ -95,6 +140,7 @@ RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotM
     q.region = region;
     CoupledSettings cs;
     cs.time_limit_s = std::min(time_per_run_s, deadline.remaining());
+    cs.polish = true;
     if (cs.time_limit_s <= 0) return {std::nullopt, true, "no time left to repair"};
     auto fix = solveCoupled(world, q, cs, splitSeed(seed, a));
     if (!fix) return {std::nullopt, false, "repair failed"};
@@ -152,6 +198,7 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   if (settings.simplify) {
     std::mt19937_64 rng(splitSeed(seed, 0x5c07));
     shortcutComposite(checker, waypoints, kShortcutIterations, rng, deadline);
+    if (settings.polish) polishComposite(checker, waypoints, rng, deadline);
   }
   return timeStampComposite(query.robots, waypoints);
 }

@@ -323,6 +323,7 @@ SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
   q.region = sub.region;
   CoupledSettings cs;
   cs.time_limit_s = std::min(settings_.time_budget_s * ctx.budget_scale, ctx.deadline.remaining());
+  cs.polish = true;
   if (cs.time_limit_s <= 0) return {std::nullopt, name(), -1};
   auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
   if (!sol) return {std::nullopt, name(), -1};

@@ -1,6 +1,7 @@
 // The composite space of several robots: the validity check (with its
 // broad phase for many robots), its deadline, and the flat OMPL space
-// against the compound of per-robot OMPL spaces whose metric it keeps.
+// against the compound of per-robot OMPL spaces whose metric it keeps;
+// polishing a composite path.
 #include <doctest/doctest.h>
 
 #include <ompl/base/ScopedState.h>
@@ -12,6 +13,7 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/composite.hpp"
+#include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/ompl_composite.hpp"
 #include "earc/scene/robot_model.hpp"
 
@@ -177,5 +179,55 @@ TEST_CASE("The flat composite space measures and interpolates exactly as a compo
     compound->interpolate(ca.get(), cb.get(), t, cm.get());
     flat.toComposite(fm.get(), got);
     REQUIRE(got == fromCompound(cm.get()));
+  }
+}
+
+TEST_CASE("Polishing a path turns box robots steadily and makes it shorter, valid, with its ends kept") {
+  // Two boxes pass a wall on opposite sides; RRT-Connect's waypoints carry
+  // random headings, here a quarter turn back and forth at every one.
+  Scenario s;
+  s.name = "wall";
+  s.workspace = {{0, 0}, {10, 10}};
+  s.obstacles.push_back(Obstacle::makeBox({5, 5}, {1, 4}));
+  s.robots = {RobotSpec::mobileBox("a", {0.6, 0.4}), RobotSpec::mobileBox("b", {0.6, 0.4})};
+  s.robots[0].start = {1, 5, 0};
+  s.robots[0].goal = {9, 5, 0.4};
+  s.robots[1].start = {9, 4, 3.1};
+  s.robots[1].goal = {1, 4, 3.1};
+  const CollisionWorld world(s);
+  const auto models = makeRobotModels(s);
+  const std::vector<const RobotModel*> robots{models[0].get(), models[1].get()};
+  const CompositeChecker checker(world, robots);
+  REQUIRE_FALSE(checker.motionValid({s.robots[0].start, s.robots[1].start}, {s.robots[0].goal, s.robots[1].goal}));
+  // a: over the wall (y = 8), b: under it (y = 1), in steps of 0.5.
+  std::vector<CompositeState> waypoints;
+  const int n = 33;
+  for (int w = 0; w < n; ++w) {
+    const double f = static_cast<double>(w) / (n - 1);
+    const double lift = std::sin(f * std::numbers::pi);
+    const double zig = w % 2 ? std::numbers::pi / 2 : 0.0;
+    waypoints.push_back({{1 + 8 * f, 5 + 3 * lift, zig}, {9 - 8 * f, 4 - 3 * lift, 3.1 + zig}});
+  }
+  waypoints.front() = {s.robots[0].start, s.robots[1].start};
+  waypoints.back() = {s.robots[0].goal, s.robots[1].goal};
+  for (std::size_t w = 1; w < waypoints.size(); ++w) REQUIRE(checker.motionValid(waypoints[w - 1], waypoints[w]));
+  const std::size_t before = timeStampComposite(robots, waypoints).length();
+
+  std::vector<CompositeState> polished = waypoints;
+  std::mt19937_64 rng(7);
+  polishComposite(checker, polished, rng, Deadline());
+  const LocalSolution after = timeStampComposite(robots, polished);
+  CHECK(after.length() < before);
+  CHECK(polished.front() == waypoints.front());
+  CHECK(polished.back() == waypoints.back());
+  for (std::size_t w = 1; w < polished.size(); ++w) CHECK(checker.motionValid(polished[w - 1], polished[w]));
+  // Steady turns: a's heading moves from 0 to 0.4 and never back; b keeps 3.1.
+  double last = 0.0;
+  for (std::size_t t = 0; t < after.length(); ++t) {
+    const double h = after.paths[0].at(t)[2];
+    CHECK(h >= last - 1e-9);
+    CHECK(h <= 0.4 + 1e-9);
+    last = h;
+    CHECK(after.paths[1].at(t)[2] == doctest::Approx(3.1));
   }
 }

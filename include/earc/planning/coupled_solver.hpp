@@ -21,6 +21,10 @@ namespace earc {
 struct CoupledSettings {
   double time_limit_s = 1.0;
   bool simplify = true;        // shortcut the composite path before time-stamping
+  // After simplifying, polish the path (see polishComposite). For a few
+  // robots (subproblems, repairs, stored experiences); the whole-problem
+  // baseline keeps it off, as a motion of thousands of robots costs seconds.
+  bool polish = false;
 };
 
 struct CoupledQuery {
@@ -43,6 +47,16 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
 // arrive together. waypoints[w][r] is robot r's configuration at waypoint w.
 LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
                                  const std::vector<std::vector<std::vector<double>>>& waypoints);
+
+// Makes a valid composite waypoint sequence shorter in steps, keeping it
+// valid: every mobile robot turns steadily from its start heading to its
+// goal heading along the way, where that stays valid (RRT-Connect's
+// waypoints carry random headings, and turning on the spot costs steps);
+// then the sequence is shortcut, time-stamped, and shortcut again state by
+// state, which removes waits and detours between waypoints. The ends are
+// kept. Stops early at the deadline.
+void polishComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, std::mt19937_64& rng,
+                     const Deadline& deadline);
 
 // The composite state of time-stamped paths at step t.
 CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
