@@ -214,13 +214,16 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     });
   if (settings.vacuum) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
-  // Rows the index left out and curation did not delete.
-  Statement still = db.prepare("SELECT count(*) FROM experiences WHERE id = ?1");
-  for (std::int64_t id : store.skippedRows()) {
-    still.bind(1, id);
-    r.unreadable_keys += still.step() ? still.int64At(0) : 0;
-    still.reset();
+  // Damaged rows that curation kept: said, not passed on silently.
+  Statement rows = db.prepare(selectExperiencesSql(store.schemaVersion()));
+  while (rows.step()) {
+    try {
+      readExperience(rows);
+    } catch (const CorruptRowError&) {
+      ++r.damaged_rows;
+    }
   }
+  rows.reset();
   store.close();  // checkpointed: the main file holds everything
   return r;
 }

@@ -111,7 +111,6 @@ void ExperienceStore::refreshLocked() {
   if (deletions != loaded_deletions_) {
     // Rows were deleted somewhere: the index may point at them; reload all.
     index_.clear();
-    skipped_.clear();
     max_loaded_ = 0;
     loaded_deletions_ = deletions;
   }
@@ -138,7 +137,6 @@ void ExperienceStore::loadTailLocked() {
         throw CorruptRowError(id, "key dimension differs from the class's other rows");
       index_.add(cls, id, key);
     } catch (const CorruptRowError& e) {
-      skipped_.push_back(id);
       warnSkipped(id, e.reason());
     }
   }
@@ -338,11 +336,6 @@ std::vector<ExperienceStore::ClassInfo> ExperienceStore::classes() const {
 const ClassIndex* ExperienceStore::classIndex(const ExperienceClass& cls) const {
   std::lock_guard lock(mutex_);
   return index_.find(cls);
-}
-
-std::vector<std::int64_t> ExperienceStore::skippedRows() const {
-  std::lock_guard lock(mutex_);
-  return skipped_;
 }
 
 Connection& ExperienceStore::connection() {

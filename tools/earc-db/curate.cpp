@@ -27,7 +27,7 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
   if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";
   if (opt.settings.drop_unused) out << ", " << r.unused_removed << " unused removed";
   out << ", " << r.rows_after << " rows after";
-  if (r.unreadable_keys) out << " (" << r.unreadable_keys << " with an unreadable key; earc-db verify names them)";
+  if (r.damaged_rows) out << " (" << r.damaged_rows << " damaged, kept as they were; earc-db verify names them)";
   out << "\n";
 }
 

@@ -69,7 +69,9 @@ struct CurateReport {
   std::int64_t duplicates_removed = 0;
   std::int64_t unused_removed = 0;
   std::int64_t rows_after = 0;
-  std::int64_t unreadable_keys = 0;  // rows kept as they were, out of the index (verify names them)
+  // Rows kept as they were whose key or path blob cannot be read (verify
+  // names them; a near-duplicate pass refuses such a file instead).
+  std::int64_t damaged_rows = 0;
   std::string curated_path;
 };
 

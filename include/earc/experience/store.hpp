@@ -128,8 +128,6 @@ class ExperienceStore {
   };
   std::vector<ClassInfo> classes() const;
   const ClassIndex* classIndex(const ExperienceClass& cls) const;
-  // Rows left out of the index because their key was unreadable.
-  std::vector<std::int64_t> skippedRows() const;
 
   // The underlying connection, for maintenance commands (earc-db). Not for
   // the planner: bypasses the index and the mutex.
@@ -160,7 +158,6 @@ class ExperienceStore {
   std::int64_t max_loaded_ = 0;
   std::int64_t loaded_data_version_ = -1;
   std::int64_t loaded_deletions_ = -1;
-  std::vector<std::int64_t> skipped_;
   std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>> pending_uses_;  // id -> (retrieved, succeeded)
   int writes_since_checkpoint_ = 0;
   std::chrono::steady_clock::time_point last_checkpoint_;
