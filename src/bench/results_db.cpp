@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "earc/bench/options.hpp"
+#include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 
@@ -144,7 +145,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     throw InputError(path, "", reasonAbout(e, path));
   }
   if (version == 0) {
-    if (read_only) throw InputError(path, "", "empty file, not an earc-bench results database");
+    if (read_only) throw exp::notYetADatabase(path, "an earc-bench results database");
     c.enableWal();
     c.write([&] {
       c.exec(kSchemaV1);

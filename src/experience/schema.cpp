@@ -11,11 +11,12 @@ constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}};
 
 }  // namespace
 
-InputError notYetADatabase(const std::string& path) {
+InputError notYetADatabase(const std::string& path, std::string_view what) {
   std::error_code ec;
   const bool zero = std::filesystem::file_size(path, ec) == 0 && !ec;
-  return InputError(path, "", zero ? "empty file (0 bytes), not an earc database yet"
-                                   : "empty SQLite database (no tables), not an earc database yet");
+  return InputError(path, "",
+                    (zero ? "empty file (0 bytes), not " : "empty SQLite database (no tables), not ") +
+                        std::string(what) + " yet");
 }
 
 void requireDatabaseFile(const std::string& path, bool may_be_empty) {

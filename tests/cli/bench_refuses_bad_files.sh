@@ -1,8 +1,8 @@
 #!/bin/bash
 # earc-bench refuses, in one line with exit status 2 and before it changes
 # anything on disk, a results database that is not one (not SQLite, another
-# application's SQLite file) or is damaged (a table of its schema missing,
-# or a column),
+# application's SQLite file, a 0-byte file to a reader) or is damaged (a
+# table of its schema missing, or a column),
 # in every subcommand that reads one, and an output directory named like a
 # file (plot -o fig.png) or that is a file. Skipped (77) without
 # /usr/bin/python3.
@@ -21,7 +21,7 @@ mkdir "$WORK/d" && cd "$WORK/d" || exit 1
 # A results database with one recorded Lightning database in it (a second).
 "$BENCH" lightning-db --suite mobile --robots 2 --count 1 --problem-time-limit 0.5 -o l.lightning --results r.sqlite \
   > /dev/null || fail "lightning-db exited $?"
-touch a-file
+touch a-file empty.sqlite
 echo "not a database" > text.txt
 "$PY" - <<'PYEOF' || fail "could not make the bad databases"
 import sqlite3
@@ -62,6 +62,12 @@ for f in no-trials no-databases foreign text; do
   refused "$want" run --suites mobile --robots 2 --methods arc --trials 1 --results "$file"
   refused "$want" lightning-db --suite mobile --robots 2 --count 1 -o new.lightning --results "$file"
 done
+# A 0-byte file, in the experience store's words, by the commands that only
+# read results (run would make it a results database).
+want="empty.sqlite: empty file (0 bytes), not an earc-bench results database yet"
+refused "$want" table --results empty.sqlite
+refused "$want" export --results empty.sqlite --csv out.csv
+refused "$want" plot --results empty.sqlite -o figures
 # A table without a column this program reads: named in one line, no SQL.
 want="no-column.sqlite: damaged database file (table trials has no column named makespan; its schema version has it)"
 refused "$want" table --results no-column.sqlite

@@ -39,8 +39,9 @@ int checkIdentity(Connection& db);
 // A file with no earc database in it yet (0 bytes, or SQLite without
 // tables): commands that write make it one, commands that only read refuse
 // it with this error, in one wording: "FILE: empty file (0 bytes), not an
-// earc database yet".
-InputError notYetADatabase(const std::string& path);
+// earc database yet" (`what`: the kind of database, for earc-bench's
+// results).
+InputError notYetADatabase(const std::string& path, std::string_view what = "an earc database");
 
 // Refuses, before SQLite sees it, a database file that a command only
 // reads (inspect, verify, export, import sources, curate's inputs) and that
