@@ -214,16 +214,19 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     });
   if (settings.vacuum) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
-  // Damaged rows that curation kept: said, not passed on silently.
-  Statement rows = db.prepare(selectExperiencesSql(store.schemaVersion()));
-  while (rows.step()) {
-    try {
-      readExperience(rows);
-    } catch (const CorruptRowError&) {
-      ++r.damaged_rows;
+  // Damaged rows that curation kept: said, not passed on silently. The
+  // near-duplicate pass has read every row already, and refuses the file
+  // at the first damaged one, so only without it is there anything to count.
+  if (settings.dedupe_eps < 0) {
+    Statement rows = db.prepare(selectExperiencesSql(store.schemaVersion()));
+    while (rows.step()) {
+      try {
+        readExperience(rows);
+      } catch (const CorruptRowError&) {
+        ++r.damaged_rows;
+      }
     }
   }
-  rows.reset();
   store.close();  // checkpointed: the main file holds everything
   return r;
 }
