@@ -90,6 +90,15 @@ void writeLines(const std::string& path, const std::vector<std::string>& lines) 
   for (const auto& l : lines) out << l << "\n";
 }
 
+// The lines of `jsonl`, an export of a.db in `dir` filled with `seed`, 2
+// rows per class: what the tests of a damaged export start from.
+std::vector<std::string> exportedLines(const ScratchDirectory& dir, const std::string& jsonl, std::uint64_t seed) {
+  const std::string a = dir.file("a.db");
+  fill(a, seed, 2);
+  exportJsonl(a, jsonl);
+  return readLines(jsonl);
+}
+
 }  // namespace
 
 TEST_CASE("export then import gives the same rows, every double bit for bit") {
@@ -151,10 +160,8 @@ std::vector<std::pair<std::int64_t, std::string>> badSignatures(const std::strin
 
 TEST_CASE("an export row whose signature does not parse or disagrees with the row is refused, naming the field") {
   ScratchDirectory dir("transfer");
-  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
-  fill(a, 4, 2);
-  exportJsonl(a, jsonl);
-  const auto lines = readLines(jsonl);
+  const std::string jsonl = dir.file("a.jsonl");
+  const auto lines = exportedLines(dir, jsonl, 4);
   const std::string arm_signature = nlohmann::json::parse(lines[3])["signature"];
   for (const auto& [id, signature] : badSignatures(arm_signature)) {
     CAPTURE(signature);
@@ -199,10 +206,8 @@ TEST_CASE("verify names the rows whose signature does not parse or disagrees wit
 
 TEST_CASE("an export row whose key disagrees with its paths is refused") {
   ScratchDirectory dir("transfer");
-  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
-  fill(a, 4, 2);
-  exportJsonl(a, jsonl);
-  auto lines = readLines(jsonl);
+  const std::string jsonl = dir.file("a.jsonl");
+  auto lines = exportedLines(dir, jsonl, 4);
   auto row = nlohmann::json::parse(lines[1]);
   row["key"][0] = row["key"][0].get<double>() + 1.0;
   lines[1] = row.dump();
@@ -212,10 +217,8 @@ TEST_CASE("an export row whose key disagrees with its paths is refused") {
 
 TEST_CASE("a truncated export is refused by its announced row count") {
   ScratchDirectory dir("transfer");
-  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
-  fill(a, 5, 2);
-  exportJsonl(a, jsonl);
-  auto lines = readLines(jsonl);
+  const std::string jsonl = dir.file("a.jsonl");
+  auto lines = exportedLines(dir, jsonl, 5);
   lines.pop_back();
   writeLines(jsonl, lines);
   CHECK(importError(dir.file("b.db"), {jsonl}).find("truncated") != std::string::npos);
@@ -223,10 +226,8 @@ TEST_CASE("a truncated export is refused by its announced row count") {
 
 TEST_CASE("an export from a newer schema, or with a header count that is no count, is refused") {
   ScratchDirectory dir("transfer");
-  const std::string a = dir.file("a.db"), jsonl = dir.file("a.jsonl");
-  fill(a, 5, 2);
-  exportJsonl(a, jsonl);
-  const auto lines = readLines(jsonl);
+  const std::string jsonl = dir.file("a.jsonl");
+  const auto lines = exportedLines(dir, jsonl, 5);
   auto withHeader = [&](const char* key, const nlohmann::json& value) {
     auto changed = lines;
     auto header = nlohmann::json::parse(changed[0]);
