@@ -102,4 +102,49 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
   }
 }
 
+void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
+                    const Deadline& deadline) {
+  const auto& robots = checker.robots();
+  const std::size_t n = paths.size();
+  if (n == 0) return;
+  auto stateAtStep = [&](std::size_t t) {
+    CompositeState q(n);
+    for (std::size_t r = 0; r < n; ++r) q[r].assign(paths[r].at(t), paths[r].at(t) + paths[r].dim());
+    return q;
+  };
+  std::vector<double> q;
+  for (int it = 0; it < iterations && !deadline.expired(); ++it) {
+    const std::size_t r = uniformIndex(rng, n);
+    const std::size_t len = paths[r].size();
+    if (len < 3) continue;
+    const std::size_t i = uniformIndex(rng, len - 2);
+    const std::size_t j = i + 2 + uniformIndex(rng, len - i - 2);
+    if (j >= len) continue;
+    const RobotModel& m = *robots[r];
+    const auto d = static_cast<std::size_t>(m.stepsBetween(paths[r].at(i), paths[r].at(j)));
+    if (d >= j - i) continue;
+    // i, the straight motion to j in d steps, then j onwards.
+    Path shorter = paths[r].slice(0, i + 1);
+    q.resize(static_cast<std::size_t>(m.dim()));
+    for (std::size_t k = 1; k < d; ++k) {
+      m.interpolate(paths[r].at(i), paths[r].at(j), static_cast<double>(k) / static_cast<double>(d), q.data());
+      shorter.push(q.data());
+    }
+    shorter.append(paths[r], j);
+    std::swap(paths[r], shorter);
+    // From i on, robot r meets the others at different times: check every
+    // step to the end of the longest path.
+    std::size_t last = 0;
+    for (const auto& p : paths) last = std::max(last, p.size() - 1);
+    bool valid = true;
+    CompositeState a = stateAtStep(i);
+    for (std::size_t t = i; t < last && valid; ++t) {
+      CompositeState b = stateAtStep(t + 1);
+      valid = checker.motionValid(a, b);
+      a = std::move(b);
+    }
+    if (!valid) std::swap(paths[r], shorter);
+  }
+}
+
 }  // namespace earc

@@ -1,7 +1,7 @@
 // The composite space of several robots: the validity check (with its
 // broad phase for many robots), its deadline, and the flat OMPL space
 // against the compound of per-robot OMPL spaces whose metric it keeps;
-// polishing a composite path.
+// polishing and retiming a composite path.
 #include <doctest/doctest.h>
 
 #include <ompl/base/ScopedState.h>
@@ -230,4 +230,61 @@ TEST_CASE("Polishing a path turns box robots steadily and makes it shorter, vali
     last = h;
     CHECK(after.paths[1].at(t)[2] == doctest::Approx(3.1));
   }
+}
+
+TEST_CASE("Retiming lets each robot arrive as early as the others allow, one step at a time, and stays valid") {
+  // a crosses the vertical line x = 5 at full speed, reaching it at step 80.
+  // b waits below the crossing for 100 steps, then goes up at full speed:
+  // it can set off earlier, but not straight away, or it meets a there.
+  Scenario s;
+  s.name = "crossing";
+  s.workspace = {{0, 0}, {10, 10}};
+  s.robots = {RobotSpec::mobileDisc("a", 0.3), RobotSpec::mobileDisc("b", 0.3)};
+  s.robots[0].start = {1, 5, 0};
+  s.robots[0].goal = {9, 5, 0};
+  s.robots[1].start = {5, 1, 0};
+  s.robots[1].goal = {5, 9, 0};
+  const CollisionWorld world(s);
+  const auto models = makeRobotModels(s);
+  const std::vector<const RobotModel*> robots{models[0].get(), models[1].get()};
+  const CompositeChecker checker(world, robots);
+  const int straight = robots[0]->stepsBetween(s.robots[0].start.data(), s.robots[0].goal.data());
+  REQUIRE(straight == 160);
+  std::vector<Path> paths{Path(3), Path(3)};
+  std::vector<double> q(3);
+  for (int t = 0; t <= straight; ++t) {
+    robots[0]->interpolate(s.robots[0].start.data(), s.robots[0].goal.data(), static_cast<double>(t) / straight,
+                           q.data());
+    paths[0].push(q.data());
+  }
+  for (int t = 0; t < 100; ++t) paths[1].push(s.robots[1].start.data());
+  for (int t = 0; t <= straight; ++t) {
+    robots[1]->interpolate(s.robots[1].start.data(), s.robots[1].goal.data(), static_cast<double>(t) / straight,
+                           q.data());
+    paths[1].push(q.data());
+  }
+  auto stepsValid = [&](const std::vector<Path>& p) {
+    std::size_t last = std::max(p[0].size(), p[1].size()) - 1;
+    for (std::size_t t = 0; t < last; ++t) {
+      const CompositeState a{{p[0].at(t), p[0].at(t) + 3}, {p[1].at(t), p[1].at(t) + 3}};
+      const CompositeState b{{p[0].at(t + 1), p[0].at(t + 1) + 3}, {p[1].at(t + 1), p[1].at(t + 1) + 3}};
+      for (std::size_t r = 0; r < 2; ++r)
+        if (robots[r]->stepsBetween(a[r].data(), b[r].data()) > 1) return false;
+      if (!checker.motionValid(a, b)) return false;
+    }
+    return true;
+  };
+  REQUIRE(stepsValid(paths));
+  const std::vector<Path> before = paths;
+
+  std::mt19937_64 rng(3);
+  retimeShortcut(checker, paths, 300, rng);
+  CHECK(stepsValid(paths));
+  for (std::size_t r = 0; r < 2; ++r) {
+    CHECK(std::equal(paths[r].at(0), paths[r].at(0) + 3, before[r].at(0)));
+    CHECK(std::equal(paths[r].back(), paths[r].back() + 3, before[r].back()));
+  }
+  CHECK(paths[0].size() == before[0].size());  // a was already straight at full speed
+  CHECK(paths[1].size() < before[1].size());   // b sets off earlier...
+  CHECK(paths[1].size() > before[0].size());   // ...but not at once: a is in the way
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/scene/path.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/deadline.hpp"
 
@@ -52,5 +53,18 @@ class CompositeChecker {
 // Stops early at the deadline (the path stays valid, only less short).
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
                        std::mt19937_64& rng, const Deadline& deadline = Deadline());
+
+// Shortens time-stamped paths one robot at a time: robot r goes straight
+// from its state at step i to its state at a later step j in the fewest
+// steps the resolution allows, and the rest of its path comes that many
+// steps earlier. A change is kept when every step and midpoint from i on
+// is valid with the other robots where they are at that step (a robot
+// whose path has ended waits at its last state). Composite shortcutting
+// moves all robots together, so one robot's detour holds up the others;
+// this lets each arrive when it can. Ends are kept; paths may come out of
+// different lengths (the caller holds them at their ends). Stops early at
+// the deadline.
+void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
+                    const Deadline& deadline = Deadline());
 
 }  // namespace earc

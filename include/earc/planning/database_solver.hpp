@@ -23,6 +23,7 @@ struct DatabaseSolverSettings {
   std::size_t k = 10;             // candidates retrieved
   int max_invalid_segments = 3;   // repair only up to this many invalid runs
   double repair_time_s = 0.1;     // composite replanning budget per run
+  int retime_iterations = 100;    // retimeShortcut attempts on an answer for arms
   bool learn = true;              // insert subproblems solved from scratch
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
@@ -45,7 +46,8 @@ class DatabaseSolver : public SubproblemSolver {
   void shadow(SolverContext& ctx, const SolverOutcome& db);
 
   // start -> candidate's first state, the candidate, last state -> goal,
-  // shortcut (when asked), then held at the goals through the window.
+  // shortcut and, for arms, retimed (when asked), then held at the goals
+  // through the window.
   LocalSolution connect(const CompositeChecker& checker, const SolverContext& ctx,
                         const std::vector<const RobotModel*>& robots, const std::vector<Path>& middle,
                         bool shortcut) const;
