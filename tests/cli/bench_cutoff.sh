@@ -7,11 +7,9 @@
 # for the smaller count's last trials). Without --cutoff everything runs.
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+needPython
 fail() { echo "FAIL: $*"; sed 's/^/  run: /' "$WORK/out" 2>/dev/null | tail -30; exit 1; }
 count() {  # count RESULTS METHOD ROBOTS
   "$PY" -c 'import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); print(c.execute("SELECT count(*) FROM trials WHERE method=? AND robots=?", (sys.argv[2], int(sys.argv[3]))).fetchone()[0])' "$@"

@@ -8,13 +8,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+needPython
 [ -x "$BUILD/earc-db" ] || { echo "skipped: earc-db not built in $BUILD"; exit 77; }
-[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+needBuilt earc-bench earc-plan
 fail() { echo "FAIL: $*"; tail -n 20 "$WORK/run.out" "$WORK/run.err"; exit 1; }
 
 "$BENCH" run --suites mobile,arms --robots 2 --methods earc,arc --trials 2 --time-limit 10 --seed 9 \

@@ -10,14 +10,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
 PLAN="$BUILD/earc-plan"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$BENCH" ] && [ -x "$PLAN" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needPython
+needBuilt earc-bench earc-plan
 query() {
   "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)

@@ -9,13 +9,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
 CHECKER="$SRC/../shared/tools/check_solution.py"
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+needPython
+needBuilt earc-bench earc-plan
 fail() { echo "FAIL: $*"; sed 's/^/  run: /' "$WORK/out" 2>/dev/null | tail -30; exit 1; }
 cd "$WORK" || exit 1
 

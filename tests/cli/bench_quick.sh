@@ -10,12 +10,10 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+needPython
+needBuilt earc-bench earc-plan
 fail() { echo "FAIL: $*"; sed 's/^/  run: /' "$WORK/run.out" "$WORK/run.err" 2>/dev/null | tail -40; exit 1; }
 
 RUN=(run --suites mobile --robots 2,4 --methods arc,prioritized,lightning --trials 2 --time-limit 10 --seed 7

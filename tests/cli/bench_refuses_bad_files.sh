@@ -9,13 +9,10 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
-[ -x "$BENCH" ] || { echo "FAIL: earc-bench not built in $BUILD"; exit 1; }
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-bench
+needPython
 mkdir "$WORK/d" && cd "$WORK/d" || exit 1
 
 # A results database with one recorded Lightning database in it (a second).

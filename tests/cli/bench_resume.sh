@@ -7,13 +7,10 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$BENCH" ] && [ -x "$BUILD/earc-plan" ] || { echo "FAIL: earc-bench or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needPython
+needBuilt earc-bench earc-plan
 count() {
   "$PY" -c 'import sqlite3,sys
 try:

@@ -5,12 +5,11 @@
 # and files that only look alike (export's OUT.tmp.PID.RANDOM) alone.
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 DB="$BUILD/earc-db"
-[ -x "$DB" ] || { echo "FAIL: earc-db not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
+needBuilt earc-db
 live=
 trap '[ -n "$live" ] && kill "$live" 2> /dev/null; rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
 cd "$WORK" || exit 1
 
 "$DB" build --db e.db --count 5 --seed 1 > /dev/null 2>&1 || fail "build"

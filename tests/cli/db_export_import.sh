@@ -5,13 +5,10 @@
 # extreme numbers in bounded form, export keeps them exactly.
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 DB="$BUILD/earc-db"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$DB" ] || { echo "FAIL: earc-db not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needPython
+needBuilt earc-db
 count() { "$PY" -c 'import sqlite3,sys; print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute("select count(*) from experiences").fetchone()[0])' "$1"; }
 
 "$DB" build --db "$WORK/a.db" --count 30 --seed 3 > /dev/null 2>&1 || fail "build mobile"

@@ -14,15 +14,12 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 DB="$BUILD/earc-db"
 PLAN="$BUILD/earc-plan"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$DB" ] && [ -x "$PLAN" ] || { echo "FAIL: earc-db or earc-plan not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+needPython
+needBuilt earc-db earc-plan
 SCEN="$SRC/tests/data/scenarios/swap-discs.json"
-fail() { echo "FAIL: $*"; exit 1; }
 sql() { "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect(sys.argv[1])
 for s in sys.argv[2:]: c.execute(s)

@@ -5,13 +5,10 @@
 # (exit 0).
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 DB="$BUILD/earc-db"
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-[ -x "$DB" ] || { echo "FAIL: earc-db not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needPython
+needBuilt earc-db
 sql() { "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect(sys.argv[1])
 for s in sys.argv[2:]: c.execute(s)

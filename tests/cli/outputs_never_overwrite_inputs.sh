@@ -9,12 +9,10 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 DB="$BUILD/earc-db"
 GEN="$BUILD/earc-scenario"
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
 cd "$WORK" || exit 1
 cp "$SRC/tests/data/scenarios/swap-discs.json" s.json
 cp "$SRC/datasets/movingai/random-32-32-20.map" m.map

@@ -11,10 +11,9 @@
 # (Label bench: it times the process, which AddressSanitizer slows down.)
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 GEN="$BUILD/earc-scenario"
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 command -v jq > /dev/null || { echo "skipped: no jq (tools/setup.sh --tests)"; exit 77; }

@@ -5,14 +5,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 GEN="$BUILD/earc-scenario"
-PY=/usr/bin/python3
-[ -x "$PLAN" ] && [ -x "$GEN" ] || { echo "FAIL: earc-plan or earc-scenario not built in $BUILD"; exit 1; }
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-plan earc-scenario
+needPython
 wellformed() { "$PY" -c 'import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])' "$1"; }
 count() { grep -o "$2" "$1" | wc -l; }
 

@@ -6,15 +6,12 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 CHECK="$SRC/../shared/tools/check_solution.py"
-PY=/usr/bin/python3
 [ -d "$SRC/../shared" ] && [ -f "$CHECK" ] || { echo "skipped: no $SRC/../shared"; exit 77; }
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
+needPython
 GEN="$BUILD/earc-scenario"
-[ -x "$GEN" ] || { echo "FAIL: earc-scenario not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-scenario
 
 for seed in 1 2; do
   for n in 2 8 32 128; do

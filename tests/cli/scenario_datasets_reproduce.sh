@@ -4,11 +4,9 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 GEN="$BUILD/earc-scenario"
-[ -x "$GEN" ] || { echo "FAIL: earc-scenario not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-scenario
 README="$SRC/datasets/README.md"
 
 # The commands are the README lines that start with "earc-scenario ", run

@@ -3,14 +3,11 @@
 # another file; every family writes a scenario that loads; bad options fail.
 set -u
 BUILD=$1
+. "$(dirname "$0")/common.bash"
 GEN="$BUILD/earc-scenario"
 PLAN="$BUILD/earc-plan"
-PY=/usr/bin/python3
-[ -x "$GEN" ] || { echo "FAIL: earc-scenario not built in $BUILD"; exit 1; }
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-scenario
+needPython
 # field FILE EXPR: a Python expression over the scenario document d.
 field() { "$PY" -c 'import json, sys; d = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"; }
 

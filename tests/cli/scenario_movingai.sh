@@ -5,11 +5,9 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 GEN="$BUILD/earc-scenario"
-[ -x "$GEN" ] || { echo "FAIL: earc-scenario not built in $BUILD"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+needBuilt earc-scenario
 MAP="$SRC/datasets/movingai/random-32-32-10.map"
 
 "$GEN" movingai "$MAP" --robots 8 --seed 1 -o "$WORK/a.json" > /dev/null || fail "movingai exited $?"

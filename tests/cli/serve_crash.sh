@@ -11,19 +11,15 @@
 # Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-for p in earc-plan earc-db earc-scenario; do
-  [ -x "$BUILD/$p" ] || { echo "FAIL: $p not built in $BUILD"; exit 1; }
-done
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+. "$(dirname "$0")/common.bash"
+needPython
+needBuilt earc-plan earc-db earc-scenario
 for k in 1 2 3 4 5 6; do
   "$BUILD/earc-scenario" generate --family mobile -n 4 --obstacles --seed "$k" -o "$WORK/s$k.json" > /dev/null ||
     { echo "FAIL: generate scenario $k"; exit 1; }
 done
 
-exec "$PY" - "$BUILD" "$WORK" "${EARC_CRASH_KILLS:-50}" "${EARC_CRASH_SEED:-1}" "${EARC_CRASH_SECONDS:-150}" <<'PY'
+"$PY" - "$BUILD" "$WORK" "${EARC_CRASH_KILLS:-50}" "${EARC_CRASH_SEED:-1}" "${EARC_CRASH_SECONDS:-150}" <<'PY'
 import json, os, random, signal, subprocess, sys, threading, time
 
 build, work = sys.argv[1], sys.argv[2]

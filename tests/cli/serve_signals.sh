@@ -7,17 +7,13 @@
 # Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
-PY=/usr/bin/python3
-[ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }
-for p in earc-plan earc-db earc-scenario; do
-  [ -x "$BUILD/$p" ] || { echo "FAIL: $p not built in $BUILD"; exit 1; }
-done
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
+. "$(dirname "$0")/common.bash"
+needPython
+needBuilt earc-plan earc-db earc-scenario
 "$BUILD/earc-scenario" generate --family mobile -n 64 --obstacles --seed 1 -o "$WORK/big.json" > /dev/null ||
   { echo "FAIL: generate"; exit 1; }
 
-exec "$PY" - "$BUILD" "$WORK" <<'PY'
+"$PY" - "$BUILD" "$WORK" <<'PY'
 import json, os, signal, socket, subprocess, sys, time
 
 build, work = sys.argv[1], sys.argv[2]

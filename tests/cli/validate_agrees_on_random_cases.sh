@@ -10,15 +10,13 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 TOOLS="$SRC/../shared/tools"
 PLAN="$BUILD/earc-plan"
-PY=/usr/bin/python3
 CASES=${EARC_RANDOM_CASES:-60}
 [ -f "$TOOLS/check_solution.py" ] || { echo "skipped: no checker at $TOOLS (../shared is missing)"; exit 77; }
 "$PY" -c "import numpy" 2>/dev/null || { echo "skipped: $PY has no numpy"; exit 77; }
 [ -x "$PLAN" ] || { echo "FAIL: $PLAN not built"; exit 1; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 
 cat > "$WORK/gen.py" <<'PY'
 import json, math, random, sys

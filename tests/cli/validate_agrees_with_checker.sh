@@ -10,9 +10,9 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 CHECKER="$SRC/../shared/tools/check_solution.py"
 PLAN="$BUILD/earc-plan"
-PY=/usr/bin/python3
 
 if [ ! -f "$CHECKER" ]; then
   echo "skipped: no independent checker at $CHECKER (../shared is missing)"
@@ -24,8 +24,6 @@ if ! "$PY" -c "import numpy" 2>/dev/null; then
 fi
 [ -x "$PLAN" ] || { echo "FAIL: $PLAN not built"; exit 1; }
 
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 STUB="$WORK/stub-solution.json"
 echo '{"format": "earc.solution.v1", "solved": false, "paths": []}' > "$STUB"
 

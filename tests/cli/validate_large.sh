@@ -6,14 +6,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 CHECKER="$SRC/../shared/tools/check_solution.py"
-PY=/usr/bin/python3
 LIMIT_S=${EARC_VALIDATE_LARGE_LIMIT_S:-20}
-fail() { echo "FAIL: $*"; exit 1; }
 "$PY" -c "import json" 2>/dev/null || { echo "skipped: no $PY to generate the case"; exit 77; }
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 
 "$PY" - "$WORK" <<'PY'
 import json, math, sys

@@ -13,6 +13,7 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 GEN="$BUILD/earc-scenario"
 DATA="$SRC/tests/data"
@@ -28,8 +29,6 @@ if ! command -v jq > /dev/null; then
 fi
 [ -x "$PLAN" ] || { echo "FAIL: $PLAN not built"; exit 1; }
 
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 

@@ -7,12 +7,11 @@
 set -u
 BUILD=$1
 SRC=$2
+. "$(dirname "$0")/common.bash"
 PLAN="$BUILD/earc-plan"
 DATA="$SRC/tests/data"
 [ -x "$PLAN" ] || { echo "FAIL: $PLAN not built"; exit 1; }
 
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 ok() { echo "ok: $*"; }

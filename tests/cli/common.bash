@@ -1,0 +1,17 @@
+# Shared by the command-line tests (not a test itself: CTest runs *.sh).
+# Sourced right after `BUILD=$1`: sets PY, a default fail, a scratch
+# directory $WORK removed on exit (a test that sets its own EXIT trap
+# removes it there), and the checks below.
+PY=/usr/bin/python3
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+# Skipped (77) without /usr/bin/python3.
+needPython() { [ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }; }
+# FAIL unless every program named is built in $BUILD.
+needBuilt() {
+  local p
+  for p in "$@"; do
+    [ -x "$BUILD/$p" ] || { echo "FAIL: $p not built in $BUILD"; exit 1; }
+  done
+}
