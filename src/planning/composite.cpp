@@ -6,6 +6,12 @@
 
 namespace earc {
 
+CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
+  CompositeState q;
+  for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
+  return q;
+}
+
 int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b) {
   int n = 0;
   for (std::size_t r = 0; r < robots.size(); ++r) n = std::max(n, robots[r]->stepsBetween(a[r].data(), b[r].data()));
@@ -96,7 +102,6 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
     std::size_t n = waypoints.size();
     std::size_t i = uniformIndex(rng, n - 2);
     std::size_t j = i + 2 + uniformIndex(rng, n - i - 2);
-    if (j >= n) continue;
     if (checker.motionValid(waypoints[i], waypoints[j]))
       waypoints.erase(waypoints.begin() + static_cast<std::ptrdiff_t>(i + 1), waypoints.begin() + static_cast<std::ptrdiff_t>(j));
   }
@@ -107,19 +112,13 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
   const auto& robots = checker.robots();
   const std::size_t n = paths.size();
   if (n == 0) return;
-  auto stateAtStep = [&](std::size_t t) {
-    CompositeState q(n);
-    for (std::size_t r = 0; r < n; ++r) q[r].assign(paths[r].at(t), paths[r].at(t) + paths[r].dim());
-    return q;
-  };
   std::vector<double> q;
   for (int it = 0; it < iterations && !deadline.expired(); ++it) {
     const std::size_t r = uniformIndex(rng, n);
     const std::size_t len = paths[r].size();
     if (len < 3) continue;
     const std::size_t i = uniformIndex(rng, len - 2);
-    const std::size_t j = i + 2 + uniformIndex(rng, len - i - 2);
-    if (j >= len) continue;
+    const std::size_t j = i + 2 + uniformIndex(rng, len - i - 2);  // at most len - 1
     const RobotModel& m = *robots[r];
     const auto d = static_cast<std::size_t>(m.stepsBetween(paths[r].at(i), paths[r].at(j)));
     if (d >= j - i) continue;
@@ -137,9 +136,9 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
     std::size_t last = 0;
     for (const auto& p : paths) last = std::max(last, p.size() - 1);
     bool valid = true;
-    CompositeState a = stateAtStep(i);
+    CompositeState a = stateAt(paths, i);
     for (std::size_t t = i; t < last && valid; ++t) {
-      CompositeState b = stateAtStep(t + 1);
+      CompositeState b = stateAt(paths, t + 1);
       valid = checker.motionValid(a, b);
       a = std::move(b);
     }

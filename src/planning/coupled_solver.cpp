@@ -100,12 +100,6 @@ void polishComposite(const CompositeChecker& checker, std::vector<CompositeState
   waypoints = std::move(states);
 }
 
-CompositeState stateAt(const std::vector<Path>& paths, std::size_t t) {
-  CompositeState q;
-  for (const auto& p : paths) q.emplace_back(p.at(t), p.at(t) + p.dim());
-  return q;
-}
-
 std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vector<Path>& paths) {
   std::vector<StepRun> runs;
   const std::size_t n = paths.front().size();

@@ -266,8 +266,7 @@ TEST_CASE("Retiming lets each robot arrive as early as the others allow, one ste
   auto stepsValid = [&](const std::vector<Path>& p) {
     std::size_t last = std::max(p[0].size(), p[1].size()) - 1;
     for (std::size_t t = 0; t < last; ++t) {
-      const CompositeState a{{p[0].at(t), p[0].at(t) + 3}, {p[1].at(t), p[1].at(t) + 3}};
-      const CompositeState b{{p[0].at(t + 1), p[0].at(t + 1) + 3}, {p[1].at(t + 1), p[1].at(t + 1) + 3}};
+      const CompositeState a = stateAt(p, t), b = stateAt(p, t + 1);
       for (std::size_t r = 0; r < 2; ++r)
         if (robots[r]->stepsBetween(a[r].data(), b[r].data()) > 1) return false;
       if (!checker.motionValid(a, b)) return false;

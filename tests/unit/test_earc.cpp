@@ -401,13 +401,7 @@ TEST_CASE("An answer for two arms is retimed: each arm moves when the other lets
   // other. Composite shortcuts move both arms together; retiming lets a
   // set off while b is still folding and b come back once a has passed.
   auto armSpec = [](const std::string& name, double y, double angle) {
-    RobotSpec s;
-    s.name = name;
-    s.kind = RobotKind::Manipulator;
-    s.base_position = {3, y};
-    s.base_angle = angle;
-    s.links.assign(5, 0.5);
-    s.link_radius = 0.05;
+    RobotSpec s = RobotSpec::arm(name, {3, y}, angle, std::vector<double>(5, 0.5), 0.05);
     s.joint_limits.assign(5, {-2.6, 2.6});
     return s;
   };

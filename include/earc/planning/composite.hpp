@@ -14,6 +14,10 @@ namespace earc {
 
 using CompositeState = std::vector<std::vector<double>>;  // [robot][coordinate]
 
+// The composite state of time-stamped paths at step t (a path that has
+// ended answers its last state: the robot waits there).
+CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
+
 // Steps a straight composite motion takes: the most any robot needs, so
 // that all robots move together and arrive at once.
 int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b);

@@ -58,9 +58,6 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
 void polishComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, std::mt19937_64& rng,
                      const Deadline& deadline);
 
-// The composite state of time-stamped paths at step t.
-CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
-
 // Steps t of time-stamped paths whose motion t -> t+1 (either end or its
 // midpoint) is invalid, as maximal runs [first, last] of consecutive steps.
 using StepRun = std::pair<std::size_t, std::size_t>;
