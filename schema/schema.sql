@@ -22,7 +22,7 @@ CREATE TABLE experiences (
   signature       TEXT    NOT NULL,  -- geometry signatures, canonical order, '|'-joined
   base_class      TEXT    NOT NULL,  -- arms: relative base transform class; mobile: ''
   key             BLOB    NOT NULL,  -- start/goal key, little-endian doubles
-  paths           BLOB    NOT NULL,  -- all paths, header + little-endian doubles (path_blob.hpp)
+  paths           BLOB    NOT NULL,  -- all paths, header + body (path_blob.hpp; version 2: keyframes and differences)
   cost            REAL    NOT NULL,  -- sum over robots of path length in steps
   source          TEXT    NOT NULL CHECK (source IN ('build', 'planner', 'import')),
   created_at      INTEGER NOT NULL,  -- Unix seconds, UTC

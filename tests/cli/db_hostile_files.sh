@@ -210,7 +210,10 @@ make("blob-version", "update experiences set paths = ? where id = 5", blob[:4] +
 make("blob-short", "update experiences set paths = ? where id = 5", blob[:-8])
 make("blob-long", "update experiences set paths = ? where id = 5", blob + b"\0" * 8)
 nan = struct.pack("<d", float("nan"))
-make("blob-nan", "update experiences set paths = ? where id = 5", blob[:40] + nan + blob[48:])
+# The first keyframe state of robot 0 (blob version 2: header, keyframe
+# count K, K steps, then the states).
+at = 20 + 4 * struct.unpack("<I", blob[16:20])[0]
+make("blob-nan", "update experiences set paths = ? where id = 5", blob[:at] + nan + blob[at + 8:])
 make("key-length", "update experiences set key = substr(key, 1, 16) where id = 7")
 make("two-bad", "update experiences set paths = x'00' where id in (2, 9)")
 EOF

@@ -1,9 +1,13 @@
-// The path blob format: header round trip and rejection of corrupt blobs,
-// each error naming the row.
+// The path blob format: versions 1 and 2 give back exactly the doubles
+// stored, version 2 is small for straight runs, and corrupt blobs are
+// rejected, each error naming the row.
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
 
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/sqlite.hpp"
@@ -23,6 +27,63 @@ std::vector<Path> twoPaths() {
   return paths;
 }
 
+// Bit for bit: == would take -0.0 for 0.0.
+bool sameBits(const std::vector<Path>& a, const std::vector<Path>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t r = 0; r < a.size(); ++r)
+    if (a[r].dim() != b[r].dim() || a[r].raw().size() != b[r].raw().size() ||
+        std::memcmp(a[r].raw().data(), b[r].raw().data(), a[r].raw().size() * sizeof(double)) != 0)
+      return false;
+  return true;
+}
+
+// Paths that are hard to predict: a random walk, straight runs longer than
+// a run may be, a run through zero, -0.0, huge and subnormal values.
+std::vector<Path> awkwardPaths() {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> step(-0.3, 0.3);
+  std::vector<Path> paths(3, Path(3));
+  double x = 1.5, y = -2.0, h = 0.0;
+  for (std::size_t t = 0; t < 300; ++t) {
+    x += step(rng);
+    y += step(rng);
+    h = t % 7 == 0 ? -0.0 : h + step(rng);
+    paths[0].push(std::vector<double>{x, y, h});
+    const double s = static_cast<double>(t) / 299.0;
+    paths[1].push(std::vector<double>{(1.0 - s) * -3.0 + s * 4.0, 0.25 * static_cast<double>(t % 100), 1e300 * s});
+    paths[2].push(std::vector<double>{4.9e-324 * static_cast<double>(t % 3), t < 150 ? 0.0 : 1.0, -7.5});
+  }
+  return paths;
+}
+
+std::vector<unsigned char> headerBytes(std::uint16_t version, std::uint16_t robots, std::uint16_t dim,
+                                       std::uint32_t steps) {
+  std::vector<unsigned char> b{'E', 'P', 'T', 'H', static_cast<unsigned char>(version),
+                               static_cast<unsigned char>(version >> 8), 8, 0,
+                               static_cast<unsigned char>(robots), 0, static_cast<unsigned char>(dim), 0};
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<unsigned char>(steps >> (8 * i)));
+  return b;
+}
+void putU32(std::vector<unsigned char>& b, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i)));
+}
+void putDouble(std::vector<unsigned char>& b, double v) {
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  for (int i = 0; i < 8; ++i) b.push_back(static_cast<unsigned char>(bits >> (8 * i)));
+}
+// Version 2, one robot, one coordinate, 3 steps: keyframes at 0 and 2
+// (1.0 and 3.0), step 1 given by the varint bytes.
+std::vector<unsigned char> threeSteps(std::vector<unsigned char> varint) {
+  auto b = headerBytes(2, 1, 1, 3);
+  putU32(b, 2);
+  putU32(b, 0);
+  putU32(b, 2);
+  putDouble(b, 1.0);
+  putDouble(b, 3.0);
+  b.insert(b.end(), varint.begin(), varint.end());
+  return b;
+}
+
 std::string decodeError(std::span<const unsigned char> blob, std::int64_t row) {
   try {
     decodePaths(blob, row);
@@ -36,25 +97,71 @@ std::string decodeError(std::span<const unsigned char> blob, std::int64_t row) {
 }  // namespace
 
 TEST_CASE("a path blob decodes to exactly the paths it was encoded from") {
-  auto paths = twoPaths();
-  auto blob = encodePaths(paths);
-  CHECK(blob.size() == kPathBlobHeaderSize + 2 * 4 * 3 * 8);
-  CHECK(std::string(blob.begin(), blob.begin() + 4) == "EPTH");
-  CHECK(decodePaths(blob, 1) == paths);
-  PathBlobHeader h = readPathBlobHeader(blob, 1);
-  CHECK(h.robots == 2);
-  CHECK(h.dim == 3);
-  CHECK(h.steps == 4);
+  for (const auto& paths : {twoPaths(), awkwardPaths()}) {
+    auto blob = encodePaths(paths);
+    CHECK(std::string(blob.begin(), blob.begin() + 4) == "EPTH");
+    CHECK(sameBits(decodePaths(blob, 1), paths));
+    PathBlobHeader h = readPathBlobHeader(blob, 1);
+    CHECK(h.version == kPathBlobVersion);
+    CHECK(h.robots == static_cast<int>(paths.size()));
+    CHECK(h.dim == 3);
+    CHECK(h.steps == paths.front().size());
+  }
+  Path one(2);
+  one.push(std::vector<double>{-0.0, 5.0});
+  CHECK(sameBits(decodePaths(encodePaths({one}), 1), {one}));
 }
 
-TEST_CASE("a path blob stores doubles little-endian whatever the host") {
+TEST_CASE("a version 1 path blob is still read, exactly") {
+  for (const auto& paths : {twoPaths(), awkwardPaths()}) {
+    auto blob = encodePathsV1(paths);
+    CHECK(blob.size() == kPathBlobHeaderSize + paths.size() * paths.front().size() * 3 * 8);
+    CHECK(readPathBlobHeader(blob, 1).version == 1);
+    CHECK(sameBits(decodePaths(blob, 1), paths));
+  }
+}
+
+TEST_CASE("version 2 stores straight runs in a fraction of version 1's bytes") {
+  // Two robots moving in straight lines, as a stored experience mostly does.
+  std::vector<Path> paths(2, Path(3));
+  for (std::size_t t = 0; t < 200; ++t) {
+    const double s = static_cast<double>(t) / 199.0;
+    paths[0].push(std::vector<double>{(1.0 - s) * 0.3 + s * 4.7, (1.0 - s) * -1.1 + s * 2.9, 0.5});
+    paths[1].push(std::vector<double>{2.0, (1.0 - s) * 3.3 + s * -0.4, (1.0 - s) * 1.0 + s * -2.0});
+  }
+  const auto v2 = encodePaths(paths), v1 = encodePathsV1(paths);
+  CHECK(sameBits(decodePaths(v2, 1), paths));
+  CHECK(v2.size() * 5 < v1.size());
+  // A random walk does not shrink, but costs little more.
+  const auto walk = awkwardPaths();
+  CHECK(encodePaths(walk).size() < encodePathsV1(walk).size() * 3 / 2);
+}
+
+TEST_CASE("a path blob stores numbers little-endian whatever the host") {
   Path p(1);
   p.push(std::vector<double>{1.0});  // 0x3ff0000000000000
   auto blob = encodePaths({p});
-  REQUIRE(blob.size() == kPathBlobHeaderSize + 8);
-  CHECK(blob[kPathBlobHeaderSize + 7] == 0x3f);
-  CHECK(blob[kPathBlobHeaderSize + 6] == 0xf0);
-  CHECK(blob[kPathBlobHeaderSize] == 0x00);
+  // Keyframe count 1, keyframe step 0, its state.
+  REQUIRE(blob.size() == kPathBlobHeaderSize + 4 + 4 + 8);
+  CHECK(blob[kPathBlobHeaderSize] == 1);
+  CHECK(blob[kPathBlobHeaderSize + 3] == 0);
+  CHECK(blob[kPathBlobHeaderSize + 8 + 7] == 0x3f);
+  CHECK(blob[kPathBlobHeaderSize + 8 + 6] == 0xf0);
+  CHECK(blob[kPathBlobHeaderSize + 8] == 0x00);
+  auto v1 = encodePathsV1({p});
+  REQUIRE(v1.size() == kPathBlobHeaderSize + 8);
+  CHECK(v1[kPathBlobHeaderSize + 7] == 0x3f);
+}
+
+TEST_CASE("a version 2 difference is the zigzag varint of the bit patterns") {
+  // Step 1's estimate is 2.0 exactly: difference 0 is one byte 0.
+  CHECK(decodePaths(threeSteps({0}), 1)[0].at(1)[0] == 2.0);
+  // +1 unit in the last place is zigzag 2, -1 is zigzag 1.
+  CHECK(decodePaths(threeSteps({2}), 1)[0].at(1)[0] == std::nextafter(2.0, 3.0));
+  CHECK(decodePaths(threeSteps({1}), 1)[0].at(1)[0] == std::nextafter(2.0, 1.0));
+  // Two varint bytes: zigzag 128 = +64 units.
+  const auto p = decodePaths(threeSteps({0x80, 0x01}), 1)[0].at(1)[0];
+  CHECK(std::bit_cast<std::uint64_t>(p) == std::bit_cast<std::uint64_t>(2.0) + 64);
 }
 
 TEST_CASE("a path blob with a bad magic is rejected naming the row") {
@@ -67,9 +174,9 @@ TEST_CASE("a path blob with a bad magic is rejected naming the row") {
 
 TEST_CASE("a path blob of another format version is rejected with what to do") {
   auto blob = encodePaths(twoPaths());
-  blob[4] = 2;
+  blob[4] = 3;
   auto msg = decodeError(blob, 7);
-  CHECK(msg.find("format version 2") != std::string::npos);
+  CHECK(msg.find("format version 3") != std::string::npos);
   CHECK(msg.find("rebuild") != std::string::npos);
 }
 
@@ -80,14 +187,47 @@ TEST_CASE("a path blob with another scalar size is rejected") {
 }
 
 TEST_CASE("a truncated or overlong path blob is rejected by its length") {
-  auto blob = encodePaths(twoPaths());
-  auto shorter = std::vector<unsigned char>(blob.begin(), blob.end() - 8);
-  CHECK(decodeError(shorter, 5).find("length") != std::string::npos);
-  auto longer = blob;
-  longer.push_back(0);
-  CHECK(decodeError(longer, 5).find("length") != std::string::npos);
-  auto header_only = std::vector<unsigned char>(blob.begin(), blob.begin() + 10);
-  CHECK(decodeError(header_only, 5).find("too short") != std::string::npos);
+  for (const auto& blob : {encodePaths(awkwardPaths()), encodePathsV1(twoPaths())}) {
+    for (std::size_t cut : {std::size_t{1}, std::size_t{8}, blob.size() / 2, blob.size() - kPathBlobHeaderSize}) {
+      auto shorter = std::vector<unsigned char>(blob.begin(), blob.end() - static_cast<std::ptrdiff_t>(cut));
+      CHECK(decodeError(shorter, 5).find("length") != std::string::npos);
+    }
+    auto longer = blob;
+    longer.push_back(0);
+    CHECK(decodeError(longer, 5).find("length") != std::string::npos);
+    auto header_only = std::vector<unsigned char>(blob.begin(), blob.begin() + 10);
+    CHECK(decodeError(header_only, 5).find("too short") != std::string::npos);
+  }
+}
+
+TEST_CASE("a version 2 blob with impossible keyframes or differences is rejected") {
+  auto keyframes = [](std::vector<std::uint32_t> steps) {
+    auto b = headerBytes(2, 1, 1, 3);
+    putU32(b, static_cast<std::uint32_t>(steps.size()));
+    for (auto k : steps) putU32(b, k);
+    for (std::size_t k = 0; k < steps.size(); ++k) putDouble(b, 1.0);
+    for (std::size_t k = steps.size(); k < 3; ++k) b.push_back(0);
+    return b;
+  };
+  CHECK(decodePaths(keyframes({0, 1, 2}), 1)[0].size() == 3);
+  CHECK(decodeError(keyframes({}), 4).find("0 keyframes") != std::string::npos);
+  CHECK(decodeError(keyframes({0, 1, 2, 2}), 4).find("4 keyframes, outside 1..3") != std::string::npos);
+  CHECK(decodeError(keyframes({1, 2}), 4).find("start at 0 and increase") != std::string::npos);
+  CHECK(decodeError(keyframes({0, 0, 2}), 4).find("start at 0 and increase") != std::string::npos);
+  CHECK(decodeError(keyframes({0, 1}), 4).find("not the last step 2") != std::string::npos);
+  // A claimed 2^32 - 1 steps in a few bytes: refused before allocating.
+  auto huge = headerBytes(2, 1, 1, 0xffffffffu);
+  putU32(huge, 2);
+  putU32(huge, 0);
+  putU32(huge, 0xfffffffeu);
+  putDouble(huge, 1.0);
+  putDouble(huge, 2.0);
+  CHECK(decodeError(huge, 4).find("differences") != std::string::npos);
+  // A varint that never ends, or runs past 64 bits.
+  CHECK(decodeError(threeSteps({0x80}), 4).find("differences") != std::string::npos);
+  CHECK(decodeError(threeSteps({0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x02}), 4)
+            .find("longer than 64 bits") != std::string::npos);
+  CHECK(decodeError(threeSteps({0, 0}), 4).find("1 more than its paths take") != std::string::npos);
 }
 
 TEST_CASE("a path blob whose header claims zero robots or steps is rejected") {
@@ -101,12 +241,21 @@ TEST_CASE("a path blob whose header claims zero robots or steps is rejected") {
 }
 
 TEST_CASE("a path blob holding a NaN is rejected naming robot, step and coordinate") {
-  auto blob = encodePaths(twoPaths());
+  auto blob = encodePathsV1(twoPaths());
   // Robot 1, step 2, coordinate 1: index (1*4 + 2)*3 + 1 = 19.
   const std::size_t at = kPathBlobHeaderSize + 19 * 8;
   for (int i = 0; i < 8; ++i) blob[at + static_cast<std::size_t>(i)] = 0xff;
-  auto msg = decodeError(blob, 9);
-  CHECK(msg.find("robot 1 step 2 coordinate 1 is not finite") != std::string::npos);
+  CHECK(decodeError(blob, 9).find("robot 1 step 2 coordinate 1 is not finite") != std::string::npos);
+  // Version 2: a keyframe's state, and a difference that lands on infinity
+  // (2.0 + (0x7ff0... - 0x4000...) units in the last place).
+  auto key = threeSteps({0});
+  for (std::size_t i = 0; i < 8; ++i) key[kPathBlobHeaderSize + 12 + 8 + i] = 0xff;
+  CHECK(decodeError(key, 9).find("robot 0 step 2 coordinate 0 is not finite") != std::string::npos);
+  std::vector<unsigned char> varint;
+  std::uint64_t z = 0x7fe0000000000000ull;
+  for (; z >= 0x80; z >>= 7) varint.push_back(static_cast<unsigned char>((z & 0x7f) | 0x80));
+  varint.push_back(static_cast<unsigned char>(z));
+  CHECK(decodeError(threeSteps(varint), 9).find("robot 0 step 1 coordinate 0 is not finite") != std::string::npos);
 }
 
 TEST_CASE("encoding refuses paths that no blob can hold") {

@@ -1,14 +1,25 @@
 // The on-disk form of an experience's paths and key.
 //
-// Path blob: a 16-byte header, then little-endian IEEE-754 doubles,
-// robot-major (robot r, step t, coordinate d):
+// Path blob: a 16-byte header, then the paths, robot after robot:
 //   offset 0  4 bytes  magic "EPTH"
-//   offset 4  u16      format version (kPathBlobVersion)
+//   offset 4  u16      format version (1 or 2; written: kPathBlobVersion)
 //   offset 6  u8       scalar size in bytes (8)
 //   offset 7  u8       flags (0; reserved)
 //   offset 8  u16      robot count
 //   offset 10 u16      per-robot dimension
 //   offset 12 u32      steps (states per robot; all robots alike)
+// Version 1 body: every state's little-endian IEEE-754 doubles, robot-major
+// (robot r, step t, coordinate d).
+// Version 2 body, per robot (lossless, about a fifth of version 1 for the
+// builder's mobile paths, which are mostly straight runs):
+//   u32 K                 keyframes, 1..steps
+//   K x u32               their steps: 0 first, steps - 1 last, increasing
+//   K x dim doubles       their states
+//   varints               every other state, step by step, coordinate by
+//                         coordinate: the zigzag-coded difference between
+//                         its IEEE bit pattern and that of the straight-line
+//                         estimate between the keyframes around it
+//                         (keyframeEstimate), usually 0 or 1 (one byte).
 // Decoding checks every header field, the exact length, and that every
 // number is finite, and names the row on error (like nanoflann's saved
 // index: a mismatch tells the user what to do, never reads garbage).
@@ -25,23 +36,31 @@
 namespace earc::exp {
 
 inline constexpr unsigned char kPathBlobMagic[4] = {'E', 'P', 'T', 'H'};
-inline constexpr std::uint16_t kPathBlobVersion = 1;
+inline constexpr std::uint16_t kPathBlobVersion = 2;  // written; 1 is still read
 inline constexpr std::size_t kPathBlobHeaderSize = 16;
 inline constexpr int kMaxBlobRobots = 64;
 inline constexpr int kMaxBlobDim = 64;
 
 struct PathBlobHeader {
+  int version = 0;
   int robots = 0;
   int dim = 0;
   std::size_t steps = 0;
-  std::size_t expectedSize() const { return kPathBlobHeaderSize + 8 * static_cast<std::size_t>(robots * dim) * steps; }
 };
 // Checks the header's fields (not the blob's length). Throws CorruptRowError.
 PathBlobHeader readPathBlobHeader(std::span<const unsigned char> blob, std::int64_t row);
 
-// Throws std::invalid_argument for paths that cannot be stored: none, empty,
+// Version 2; decodePaths gives back exactly these doubles. Throws
+// std::invalid_argument for paths that cannot be stored: none, empty,
 // different lengths or dimensions, non-finite numbers.
 std::vector<unsigned char> encodePaths(const std::vector<Path>& paths);
+// Version 1, for tests and tools that need an old blob.
+std::vector<unsigned char> encodePathsV1(const std::vector<Path>& paths);
+
+// The straight-line estimate of coordinate values a (at step i) and b (at
+// step j) at step t, i < t < j, that version 2 stores differences from.
+// Its rounding is fixed by IEEE-754 whatever the compiler contracts.
+double keyframeEstimate(double a, double b, std::size_t i, std::size_t j, std::size_t t);
 // Throws CorruptRowError(row, reason).
 std::vector<Path> decodePaths(std::span<const unsigned char> blob, std::int64_t row);
 
