@@ -9,11 +9,13 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
 
 #include "earc/experience/key_index.hpp"
+#include "earc/experience/path_blob.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/store.hpp"
@@ -86,6 +88,46 @@ std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
   return static_cast<std::int64_t>(ids.size());
 }
 
+// The rows whose path blob is in another format than the current one
+// (bytes 5-6 of the blob: the version, little-endian).
+std::string olderBlobsWhere() {
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "%02x%02x", kPathBlobVersion & 0xff, kPathBlobVersion >> 8);
+  return std::string(" WHERE substr(paths, 5, 2) <> x'") + hex + "'";
+}
+
+// Rewrites those blobs, a batch of rows at a time (a blob in memory per
+// row of the batch, not per row of the file). Inside a write transaction.
+std::int64_t rewriteOlderBlobs(Connection& db) {
+  constexpr int kBatch = 256;
+  Statement next = db.prepare("SELECT id, paths FROM experiences" + olderBlobsWhere() + " AND id > ?1 ORDER BY id LIMIT ?2");
+  Statement put = db.prepare("UPDATE experiences SET paths = ?1 WHERE id = ?2");
+  std::int64_t after = std::numeric_limits<std::int64_t>::min(), rewritten = 0;
+  std::vector<std::pair<std::int64_t, std::vector<unsigned char>>> batch;
+  for (int seen = kBatch; seen == kBatch;) {
+    batch.clear();
+    seen = 0;
+    next.bind(1, after).bind(2, kBatch);
+    while (next.step()) {
+      ++seen;
+      after = next.int64At(0);
+      try {
+        batch.emplace_back(after, encodePaths(decodePaths(next.blobAt(1), after)));
+      } catch (const CorruptRowError&) {
+        // left as it is: verify names it
+      }
+    }
+    next.reset();
+    for (auto& [id, blob] : batch) {
+      put.bindBlob(1, blob).bind(2, id);
+      put.run();
+      put.reset();
+      ++rewritten;
+    }
+  }
+  return rewritten;
+}
+
 }  // namespace
 
 InspectReport inspectDatabase(const std::string& path, int sample_entries) {
@@ -120,6 +162,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries) {
     r.path_bytes += c.path_bytes;
     r.classes.push_back(std::move(c));
   }
+  r.older_path_blobs = count(db, "SELECT count(*) FROM experiences" + olderBlobsWhere());
   Statement sample = db.prepare(selectExperiencesSql(r.schema_version) + " ORDER BY id LIMIT ?1");
   sample.bind(1, sample_entries);
   while (sample.step()) {
@@ -212,7 +255,8 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
       del.run();
       return static_cast<std::int64_t>(sqlite3_changes(db.handle()));
     });
-  if (settings.vacuum) db.exec("VACUUM");
+  if (settings.compact) r.blobs_rewritten = db.write([&] { return rewriteOlderBlobs(db); });
+  if (settings.vacuum || settings.compact) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
   // Damaged rows that curation kept: said, not passed on silently. The
   // near-duplicate pass has read every row already, and refuses the file

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/experience/path_blob.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
@@ -381,4 +382,78 @@ TEST_CASE("a curated copy appears only when complete: a failure leaves no file u
   CHECK(curateDatabase(a, s).rows_after == 60);
   CHECK(rowCount(out) == 60);
   CHECK(verifyDatabase(out).ok());
+}
+
+namespace {
+
+// Rewrites the path blob of every row matching `where` in format version 1,
+// as an earc before version 2 wrote it. Returns how many.
+int toVersion1(const std::string& path, const std::string& where) {
+  Connection c(path, OpenMode::ReadWrite);
+  std::vector<std::pair<std::int64_t, std::vector<unsigned char>>> old;
+  Statement get = c.prepare("SELECT id, paths FROM experiences WHERE " + where);
+  while (get.step()) old.emplace_back(get.int64At(0), encodePathsV1(decodePaths(get.blobAt(1), get.int64At(0))));
+  Statement put = c.prepare("UPDATE experiences SET paths = ?1 WHERE id = ?2");
+  for (auto& [id, blob] : old) {
+    put.bindBlob(1, blob).bind(2, id);
+    put.run();
+    put.reset();
+  }
+  return static_cast<int>(old.size());
+}
+
+std::vector<unsigned char> pathBlob(const std::string& path, std::int64_t id) {
+  Connection c(path, OpenMode::ReadOnly);
+  Statement get = c.prepare("SELECT paths FROM experiences WHERE id = ?1");
+  get.bind(1, id);
+  REQUIRE(get.step());
+  return std::vector<unsigned char>(get.blobAt(0).begin(), get.blobAt(0).end());
+}
+
+}  // namespace
+
+TEST_CASE("curate --compact rewrites older path blobs into the same rows, and the file shrinks") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 12, 100);
+  const int older = toVersion1(a, "id % 3 <> 0");
+  REQUIRE(older == 200);
+  CHECK(inspectDatabase(a, 0).older_path_blobs == 200);
+  const auto before = contents(a);
+  CurateSettings s;
+  s.vacuum = true;
+  curateDatabase(a, s);  // the same file size to compare with, less what vacuum alone gives back
+  const std::int64_t size_before = inspectDatabase(a, 0).file_bytes;
+  s.vacuum = false;
+  s.compact = true;
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.blobs_rewritten == 200);
+  CHECK(r.rows_after == 300);
+  CHECK(r.damaged_rows == 0);
+  const InspectReport after = inspectDatabase(a, 0);
+  CHECK(after.older_path_blobs == 0);
+  CHECK(after.file_bytes < size_before);
+  CHECK(contents(a) == before);  // every double, counter and time as it was
+  CHECK(verifyDatabase(a).ok());
+  CHECK(curateDatabase(a, s).blobs_rewritten == 0);
+}
+
+TEST_CASE("curate --compact leaves a damaged older blob as it was, and says so") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 13, 4);
+  REQUIRE(toVersion1(a, "1") == 12);
+  {
+    Connection c(a, OpenMode::ReadWrite);
+    c.exec("UPDATE experiences SET paths = substr(paths, 1, 40) WHERE id = 5");
+  }
+  const auto damaged = pathBlob(a, 5);
+  CurateSettings s;
+  s.compact = true;
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.blobs_rewritten == 11);
+  CHECK(r.damaged_rows == 1);
+  CHECK(pathBlob(a, 5) == damaged);
+  CHECK(inspectDatabase(a, 0).older_path_blobs == 1);
+  CHECK(readPathBlobHeader(pathBlob(a, 6), 6).version == kPathBlobVersion);
 }

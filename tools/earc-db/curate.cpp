@@ -1,5 +1,6 @@
 // earc-db curate --db FILE [--merge OTHER...] [--dedupe EPS] [--drop-unused
-// [--older-than-sessions N]] [-o OUT] [--vacuum]: offline dataset curation.
+// [--older-than-sessions N]] [-o OUT] [--vacuum] [--compact]: offline dataset
+// curation.
 // With -o the database is first copied (VACUUM INTO, never cp) and only the
 // copy is changed.
 #include <iostream>
@@ -27,6 +28,7 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
   if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";
   if (opt.settings.drop_unused) out << ", " << r.unused_removed << " unused removed";
   out << ", " << r.rows_after << " rows after";
+  if (opt.settings.compact) out << ", " << r.blobs_rewritten << " path blobs rewritten in the current format";
   if (r.damaged_rows) out << " (" << r.damaged_rows << " damaged, kept as they were; earc-db verify names them)";
   out << "\n";
 }
@@ -46,6 +48,9 @@ void setupCurate(CLI::App& app) {
       ->needs(drop);
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
+  sub->add_flag("--compact", opt->settings.compact,
+                "Rewrite path blobs of an older format in the current, smaller one (the same paths exactly), "
+                "then shrink the file");
   sub->callback([opt] { runCurate(*opt, std::cout); });
 }
 

@@ -64,8 +64,11 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
   out << "database  " << r.path << "\n"
       << "schema    version " << r.schema_version << " (application_id 0x45415243 \"EARC\")\n"
       << "size      " << bytes(r.file_bytes) << " file, " << bytes(r.wal_bytes) << " WAL; blobs "
-      << bytes(r.path_bytes) << " paths, " << bytes(r.key_bytes) << " keys\n"
-      << "sessions  " << r.sessions << "\n"
+      << bytes(r.path_bytes) << " paths, " << bytes(r.key_bytes) << " keys\n";
+  if (r.older_path_blobs > 0)
+    out << "          " << r.older_path_blobs
+        << " path blobs in an older, larger format (earc-db curate --compact rewrites them)\n";
+  out << "sessions  " << r.sessions << "\n"
       << "entries   " << r.entries << " in " << r.classes.size() << " classes\n\n";
   char line[512];
   std::snprintf(line, sizeof line, "%-12s %5s %-28s %8s %5s %9s %8s %9s %9s %8s  %s\n", "kind", "robots", "base class",

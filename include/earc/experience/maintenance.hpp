@@ -32,6 +32,7 @@ struct InspectReport {
   std::int64_t sessions = 0;
   std::int64_t entries = 0;
   std::int64_t path_bytes = 0;   // sum of path blob sizes
+  std::int64_t older_path_blobs = 0;  // path blobs in a format older than kPathBlobVersion
   std::int64_t key_bytes = 0;
   std::vector<ClassSummary> classes;
   std::vector<Experience> samples;  // the first entries by id
@@ -61,6 +62,7 @@ struct CurateSettings {
   int older_than_sessions = 0;         // ... created at least this many sessions ago
   std::string output;                  // non-empty: curate a copy, leave the original untouched
   bool vacuum = false;                 // give freed pages back to the file system
+  bool compact = false;                // rewrite older path blobs in the current format, then vacuum
 };
 
 struct CurateReport {
@@ -69,6 +71,7 @@ struct CurateReport {
   std::int64_t duplicates_removed = 0;
   std::int64_t unused_removed = 0;
   std::int64_t rows_after = 0;
+  std::int64_t blobs_rewritten = 0;  // compact: older path blobs now in the current format
   // Rows kept as they were whose key or path blob cannot be read (verify
   // names them; a near-duplicate pass refuses such a file instead).
   std::int64_t damaged_rows = 0;
@@ -77,7 +80,9 @@ struct CurateReport {
 
 // Merges, then removes near-duplicates (keeping in each eps-ball the entry
 // that succeeded most, then was retrieved most, then is oldest), then drops
-// unused entries; each step one write transaction.
+// unused entries, then (compact) rewrites path blobs of an older format in
+// the current one, which gives back exactly the same paths; each step one
+// write transaction. A damaged blob is left as it is.
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
 
 // A consistent copy of a live database (VACUUM INTO; never cp): readers and
