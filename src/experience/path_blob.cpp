@@ -78,7 +78,7 @@ Shape checkEncodable(const std::vector<Path>& paths) {
   return {dim, steps};
 }
 
-std::vector<unsigned char> header(std::uint16_t version, std::size_t robots, Shape shape) {
+std::vector<unsigned char> blobHeader(std::uint16_t version, std::size_t robots, Shape shape) {
   std::vector<unsigned char> out(kPathBlobHeaderSize);
   std::memcpy(out.data(), kPathBlobMagic, 4);
   putU16(out, 4, version);
@@ -138,15 +138,16 @@ double keyframeEstimate(double a, double b, std::size_t i, std::size_t j, std::s
 }
 
 std::vector<unsigned char> encodePaths(const std::vector<Path>& paths) {
+  static_assert(kPathBlobVersion == 2, "encodePaths writes version 2");
   const Shape shape = checkEncodable(paths);
-  std::vector<unsigned char> out = header(2, paths.size(), shape);
+  std::vector<unsigned char> out = blobHeader(2, paths.size(), shape);
   for (const Path& p : paths) encodeRobotV2(p, out);
   return out;
 }
 
 std::vector<unsigned char> encodePathsV1(const std::vector<Path>& paths) {
   const Shape shape = checkEncodable(paths);
-  std::vector<unsigned char> out = header(1, paths.size(), shape);
+  std::vector<unsigned char> out = blobHeader(1, paths.size(), shape);
   out.resize(kPathBlobHeaderSize + paths.size() * shape.steps * static_cast<std::size_t>(shape.dim) * 8);
   unsigned char* w = out.data() + kPathBlobHeaderSize;
   for (const Path& p : paths)
