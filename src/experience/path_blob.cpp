@@ -90,16 +90,19 @@ std::vector<unsigned char> blobHeader(std::uint16_t version, std::size_t robots,
   return out;
 }
 
+// What version 2 stores for coordinate d at step t between keyframes i
+// and j: the zigzag-coded difference from its estimate.
+std::uint64_t difference(const Path& p, std::size_t i, std::size_t j, std::size_t t, std::size_t d) {
+  return zigzag(bitsOf(p.at(t)[d]) - bitsOf(keyframeEstimate(p.at(i)[d], p.at(j)[d], i, j, t)));
+}
+
 // Whether every state strictly between steps i and j is close to its
 // estimate.
 bool runHolds(const Path& p, std::size_t i, std::size_t j) {
   const auto dim = static_cast<std::size_t>(p.dim());
   for (std::size_t t = i + 1; t < j; ++t)
-    for (std::size_t d = 0; d < dim; ++d) {
-      const std::uint64_t z =
-          zigzag(bitsOf(p.at(t)[d]) - bitsOf(keyframeEstimate(p.at(i)[d], p.at(j)[d], i, j, t)));
-      if (z > 2 * kRunUlps) return false;
-    }
+    for (std::size_t d = 0; d < dim; ++d)
+      if (difference(p, i, j, t, d) > 2 * kRunUlps) return false;
   return true;
 }
 
@@ -125,9 +128,7 @@ void encodeRobotV2(const Path& p, std::vector<unsigned char>& out) {
     for (std::size_t d = 0; d < dim; ++d, at += 8) putDouble(out.data() + at, p.at(k)[d]);
   for (std::size_t s = 0; s + 1 < keys.size(); ++s)
     for (std::size_t t = keys[s] + 1; t < keys[s + 1]; ++t)
-      for (std::size_t d = 0; d < dim; ++d)
-        putVarint(out, zigzag(bitsOf(p.at(t)[d]) -
-                              bitsOf(keyframeEstimate(p.at(keys[s])[d], p.at(keys[s + 1])[d], keys[s], keys[s + 1], t))));
+      for (std::size_t d = 0; d < dim; ++d) putVarint(out, difference(p, keys[s], keys[s + 1], t, d));
 }
 
 }  // namespace
