@@ -195,8 +195,8 @@ TEST_CASE("Polishing a path turns box robots steadily and makes it shorter, vali
   s.robots[1].start = {9, 4, 3.1};
   s.robots[1].goal = {1, 4, 3.1};
   const CollisionWorld world(s);
-  const auto models = makeRobotModels(s);
-  const std::vector<const RobotModel*> robots{models[0].get(), models[1].get()};
+  const RobotModels models(s);
+  const std::vector<const RobotModel*>& robots = models.raw;
   const CompositeChecker checker(world, robots);
   REQUIRE_FALSE(checker.motionValid({s.robots[0].start, s.robots[1].start}, {s.robots[0].goal, s.robots[1].goal}));
   // a: over the wall (y = 8), b: under it (y = 1), in steps of 0.5.
@@ -245,8 +245,8 @@ TEST_CASE("Retiming lets each robot arrive as early as the others allow, one ste
   s.robots[1].start = {5, 1, 0};
   s.robots[1].goal = {5, 9, 0};
   const CollisionWorld world(s);
-  const auto models = makeRobotModels(s);
-  const std::vector<const RobotModel*> robots{models[0].get(), models[1].get()};
+  const RobotModels models(s);
+  const std::vector<const RobotModel*>& robots = models.raw;
   const CompositeChecker checker(world, robots);
   const int straight = robots[0]->stepsBetween(s.robots[0].start.data(), s.robots[0].goal.data());
   REQUIRE(straight == 160);

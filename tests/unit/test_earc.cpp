@@ -413,8 +413,8 @@ TEST_CASE("An answer for two arms is retimed: each arm moves when the other lets
   sc.robots[0].start = {-1.2, 0, 0, 0, 0};
   sc.robots[0].goal = {1.2, 0, 0, 0, 0};
   sc.robots[1].start = sc.robots[1].goal = {0, 0, 0, 0, 0};
-  auto owned = makeRobotModels(sc);
-  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  const RobotModels owned(sc);
+  const std::vector<const RobotModel*>& models = owned.raw;
   CollisionWorld world(sc);
   CompositeChecker checker(world, models);
   const std::vector<double> folded{1.2, 0, 0, 0, 0};
