@@ -88,12 +88,19 @@ std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
   return static_cast<std::int64_t>(ids.size());
 }
 
-// The rows whose path blob is in another format than the current one
-// (bytes 5-6 of the blob: the version, little-endian).
+// The rows whose path blob is in format version 1, the one older format:
+// the magic, then the version little-endian. Not any blob that differs
+// from the current format, which would count damaged blobs, and a newer
+// earc's, as older.
 std::string olderBlobsWhere() {
-  char hex[8];
-  std::snprintf(hex, sizeof hex, "%02x%02x", kPathBlobVersion & 0xff, kPathBlobVersion >> 8);
-  return std::string(" WHERE substr(paths, 5, 2) <> x'") + hex + "'";
+  static_assert(kPathBlobVersion == 2, "name every older version here");
+  std::string hex;
+  char byte[3];
+  for (unsigned char c : kPathBlobMagic) {
+    std::snprintf(byte, sizeof byte, "%02x", c);
+    hex += byte;
+  }
+  return " WHERE substr(paths, 1, 6) = x'" + hex + "0100'";
 }
 
 // Rewrites those blobs, a batch of rows at a time (a blob in memory per

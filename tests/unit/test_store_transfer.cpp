@@ -457,3 +457,22 @@ TEST_CASE("curate --compact leaves a damaged older blob as it was, and says so")
   CHECK(inspectDatabase(a, 0).older_path_blobs == 1);
   CHECK(readPathBlobHeader(pathBlob(a, 6), 6).version == kPathBlobVersion);
 }
+
+TEST_CASE("inspect counts only version 1 path blobs as older, not damaged ones or a newer earc's") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 14, 4);
+  {
+    Connection c(a, OpenMode::ReadWrite);
+    c.exec("UPDATE experiences SET paths = substr(paths, 1, 4) || x'0300' || substr(paths, 7) WHERE id = 3");
+    c.exec("UPDATE experiences SET paths = x'00' WHERE id = 4");
+  }
+  CHECK(inspectDatabase(a, 0).older_path_blobs == 0);
+  REQUIRE(toVersion1(a, "id = 6") == 1);
+  CHECK(inspectDatabase(a, 0).older_path_blobs == 1);
+  CurateSettings s;
+  s.compact = true;
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.blobs_rewritten == 1);
+  CHECK(r.damaged_rows == 2);
+}
