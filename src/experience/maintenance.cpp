@@ -78,6 +78,23 @@ std::vector<std::int64_t> nearDuplicates(Connection& db, int version, double eps
   return drop;
 }
 
+// Reads every row in id order, in one read transaction: each readable one
+// goes to onRow, each damaged one (CorruptRowError) to onDamaged. verify
+// lists the damage; curate counts what it kept.
+template <class OnRow, class OnDamaged>
+void scanRows(Connection& db, int version, OnRow&& onRow, OnDamaged&& onDamaged) {
+  db.read([&] {
+    Statement rows = db.prepare(selectExperiencesSql(version) + " ORDER BY id");
+    while (rows.step()) {
+      try {
+        onRow(readExperience(rows));
+      } catch (const CorruptRowError& e) {
+        onDamaged(e);
+      }
+    }
+  });
+}
+
 std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
   Statement del = db.prepare("DELETE FROM experiences WHERE id = ?1");
   for (std::int64_t id : ids) {
@@ -215,21 +232,19 @@ VerifyReport verifyDatabase(const std::string& path) {
   }
   std::map<ExperienceClass, std::pair<std::size_t, std::int64_t>> key_dims;  // class -> (dim, first row)
   try {
-    db->exec("BEGIN");
-    Statement rows = db->prepare(selectExperiencesSql(r.schema_version) + " ORDER BY id");
-    while (rows.step()) {
-      ++r.rows;
-      try {
-        Experience e = readExperience(rows);
-        auto [it, fresh] = key_dims.try_emplace(e.cls, e.key.size(), e.id);
-        if (!fresh && it->second.first != e.key.size())
-          r.problems.push_back("row " + std::to_string(e.id) + ": key dimension " + std::to_string(e.key.size()) +
-                               " differs from row " + std::to_string(it->second.second) + " of the same class");
-      } catch (const CorruptRowError& e) {
-        r.problems.push_back(e.what());
-      }
-    }
-    db->exec("COMMIT");
+    scanRows(
+        *db, r.schema_version,
+        [&](const Experience& e) {
+          ++r.rows;
+          auto [it, fresh] = key_dims.try_emplace(e.cls, e.key.size(), e.id);
+          if (!fresh && it->second.first != e.key.size())
+            r.problems.push_back("row " + std::to_string(e.id) + ": key dimension " + std::to_string(e.key.size()) +
+                                 " differs from row " + std::to_string(it->second.second) + " of the same class");
+        },
+        [&](const CorruptRowError& e) {
+          ++r.rows;
+          r.problems.push_back(e.what());
+        });
   } catch (const StoreError& e) {
     // The damage integrity_check already met stops the row scan too: once.
     if (std::find(r.problems.begin(), r.problems.end(), e.what()) == r.problems.end()) r.problems.push_back(e.what());
@@ -268,16 +283,8 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
   // Damaged rows that curation kept: said, not passed on silently. The
   // near-duplicate pass has read every row already, and refuses the file
   // at the first damaged one, so only without it is there anything to count.
-  if (settings.dedupe_eps < 0) {
-    Statement rows = db.prepare(selectExperiencesSql(store.schemaVersion()));
-    while (rows.step()) {
-      try {
-        readExperience(rows);
-      } catch (const CorruptRowError&) {
-        ++r.damaged_rows;
-      }
-    }
-  }
+  if (settings.dedupe_eps < 0)
+    scanRows(db, store.schemaVersion(), [](const Experience&) {}, [&](const CorruptRowError&) { ++r.damaged_rows; });
   store.close();  // checkpointed: the main file holds everything
   return r;
 }
