@@ -67,6 +67,7 @@ double lerp(double a, double b, double s) { return (1.0 - s) * a + s * b; }
 class MobileRobot final : public RobotModel {
  public:
   MobileRobot(RobotSpec spec, Resolution res) : RobotModel(std::move(spec), res) {
+    center_is_position_ = true;
     if (spec_.shape == MobileShape::Disc) {
       requireNonNegative(spec_.radius, "disc radius", spec_);
       bounding_radius_ = spec_.radius;
@@ -104,11 +105,6 @@ class MobileRobot final : public RobotModel {
   bool selfCollides(const double*) const override { return false; }
   bool withinLimits(const double*) const override { return true; }
 
-  // Asked for in every broad-phase test of the space-time search: kept,
-  // not recomputed (hypot was a fifth of ARC's time).
-  double boundingRadius() const override { return bounding_radius_; }
-  geo::Vec2 boundingCenter(const double* q) const override { return {q[0], q[1]}; }
-
   std::string geometrySignature() const override {
     std::string s;
     if (spec_.shape == MobileShape::Disc) {
@@ -145,9 +141,6 @@ class MobileRobot final : public RobotModel {
   }
 
   bool isMobile() const override { return true; }
-
- private:
-  double bounding_radius_ = 0.0;
 };
 
 class ArmRobot final : public RobotModel {
@@ -162,8 +155,10 @@ class ArmRobot final : public RobotModel {
       throw std::invalid_argument("robot '" + spec_.name + "': one joint limit pair per link expected");
     for (auto [l, h] : spec_.joint_limits)
       if (!(l <= h)) throw std::invalid_argument("robot '" + spec_.name + "': joint limit lo > hi");
-    reach_ = spec_.link_radius;
-    for (double l : spec_.links) reach_ += l;
+    // The base, and the sum of the link lengths plus the link radius.
+    fixed_center_ = spec_.base_position;
+    bounding_radius_ = spec_.link_radius;
+    for (double l : spec_.links) bounding_radius_ += l;
   }
 
   int dim() const override { return static_cast<int>(spec_.links.size()); }
@@ -207,8 +202,6 @@ class ArmRobot final : public RobotModel {
     return true;
   }
 
-  double boundingRadius() const override { return reach_; }
-  geo::Vec2 boundingCenter(const double*) const override { return spec_.base_position; }
 
   std::string geometrySignature() const override {
     // Appended piece by piece: "lit" + std::string&& trips GCC 12's -Wrestrict.
@@ -239,9 +232,6 @@ class ArmRobot final : public RobotModel {
   }
 
   bool isMobile() const override { return false; }
-
- private:
-  double reach_ = 0.0;  // sum of link lengths plus the link radius
 };
 
 // Reads the pieces geometrySignature writes, front to back; any mismatch
