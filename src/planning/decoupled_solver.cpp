@@ -160,8 +160,9 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     bool operator>(const Item& o) const { return f != o.f ? f > o.f : tau < o.tau; }  // deeper first on ties
   };
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  std::unordered_map<std::uint64_t, std::uint64_t> parent;  // (v, tau) -> predecessor
-  std::unordered_map<std::uint64_t, char> closed;
+  // (v, tau) -> predecessor. A node enters the queue only with its first
+  // parent, so it leaves it once: no closed set is needed.
+  std::unordered_map<std::uint64_t, std::uint64_t> parent;
   const std::uint64_t root = nodeKey(start, 0);
   parent.emplace(root, root);
   open.push({priority(start, 0), 0, start});
@@ -173,7 +174,6 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     Item it = open.top();
     open.pop();
     const std::uint64_t key = nodeKey(it.v, it.tau);
-    if (!closed.emplace(key, 1).second) continue;
     if (it.v == goal && holds(it.v, it.tau)) {
       found = key;
       break;
@@ -182,10 +182,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     if ((expansions & 255) == 0 && deadline.expired()) break;
     if (it.tau >= horizon) continue;
     auto push = [&](int u, std::size_t tau) {
-      const std::uint64_t k = nodeKey(u, tau);
-      if (parent.count(k)) return;
-      parent.emplace(k, key);
-      open.push({priority(u, tau), tau, u});
+      if (parent.try_emplace(nodeKey(u, tau), key).second) open.push({priority(u, tau), tau, u});
     };
     // Wait one step.
     const double* here = graph.config(it.v);
