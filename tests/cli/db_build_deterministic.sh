@@ -33,6 +33,13 @@ for kind in mobile arms; do
   rows "$WORK/$kind-2.jsonl" > "$WORK/$kind-2.rows"
   [ -s "$WORK/$kind-1.rows" ] || fail "$kind build stored nothing"
   cmp -s "$WORK/$kind-1.rows" "$WORK/$kind-2.rows" || fail "$kind rows differ between 1 and 2 threads"
+  # -q: the same rows, and nothing printed.
+  "$DB" build --db "$WORK/$kind-q.db" --kind $kind --count 40 --seed 7 -q > "$WORK/$kind-q.out" 2>&1 \
+    || fail "$kind build -q exited $?: $(cat "$WORK/$kind-q.out")"
+  [ -s "$WORK/$kind-q.out" ] && fail "$kind build -q printed: $(cat "$WORK/$kind-q.out")"
+  "$DB" export --db "$WORK/$kind-q.db" -o "$WORK/$kind-q.jsonl" > /dev/null || fail "export"
+  rows "$WORK/$kind-q.jsonl" > "$WORK/$kind-q.rows"
+  cmp -s "$WORK/$kind-1.rows" "$WORK/$kind-q.rows" || fail "$kind rows differ with -q"
   "$DB" verify --db "$WORK/$kind-2.db" > "$WORK/verify.out" || fail "$kind database does not verify: $(cat "$WORK/verify.out")"
 done
 

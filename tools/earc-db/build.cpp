@@ -34,6 +34,7 @@ struct BuildOptions {
   double time_per_problem = 0.5;
   double dedupe = 1e-3;
   std::string report;
+  bool quiet = false;
 };
 
 // --report FILE: after every committed insert transaction, one line with
@@ -144,9 +145,10 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     earc::exp::StoreOptions options;
     options.new_session = false;  // building is not a planning session
     earc::exp::ExperienceStore store(opt.db, options);
-    earc::Progress progress("build", static_cast<std::size_t>(count));
+    earc::Progress progress("build", static_cast<std::size_t>(count), !opt.quiet);
     return earc::exp::buildDatabase(store, s, &progress);
   });
+  if (opt.quiet) return;
   char line[256];
   std::snprintf(line, sizeof line,
                 "built %s: %d entries from %d problems in %.2f s (%d solved, %d unsolved in %.2g s, %d without a "
@@ -180,6 +182,7 @@ void setupBuild(CLI::App& app) {
       ->check(earc::cli::kFinite);
   sub->add_option("--report", opt->report,
                   "Append a line with the ids of each committed insert transaction to FILE (fsync'd)");
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success (no progress bar, no summary)");
   sub->callback([opt] { runBuild(*opt, std::cout); });
 }
 
