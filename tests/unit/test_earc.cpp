@@ -187,8 +187,8 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
   TempDb tmp;
   exp::ExperienceStore store(tmp.file());
   const Scenario open = swapScenario();
-  auto owned = makeRobotModels(open);
-  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  const RobotModels owned(open);
+  const std::vector<const RobotModel*>& models = owned.raw;
   const std::vector<CompositeState>& way = kSwapOverTheTop;
   LocalSolution stored = timeStampComposite(models, way);
   CollisionWorld open_world(open);
@@ -212,17 +212,13 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
   // The repaired local solution is valid in the new world at every step and midpoint.
   CompositeChecker checker(world, models);
   const auto& p = out.solution->paths;
-  for (std::size_t t = 0; t + 1 < p[0].size(); ++t) {
-    CompositeState a{{p[0].at(t), p[0].at(t) + 3}, {p[1].at(t), p[1].at(t) + 3}};
-    CompositeState b{{p[0].at(t + 1), p[0].at(t + 1) + 3}, {p[1].at(t + 1), p[1].at(t + 1) + 3}};
-    REQUIRE(checker.motionValid(a, b));
-  }
+  for (std::size_t t = 0; t + 1 < p[0].size(); ++t) REQUIRE(checker.motionValid(stateAt(p, t), stateAt(p, t + 1)));
   CHECK(std::vector<double>(p[0].back(), p[0].back() + 3) == sub.goals[0]);
 }
 
 TEST_CASE("invalidRuns finds the stretch an obstacle cuts and repairRuns replans only that stretch") {
-  auto owned = makeRobotModels(swapScenario());
-  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  const RobotModels owned(swapScenario());
+  const std::vector<const RobotModel*>& models = owned.raw;
   const std::vector<Path> paths = timeStampComposite(models, kSwapOverTheTop).paths;
   {
     CollisionWorld open_world(swapScenario());
@@ -271,8 +267,8 @@ TEST_CASE("A retrieved mobile solution is turned to the start headings and short
   open.name = "parallel";
   open.workspace = {{0, 0}, {10, 10}};
   open.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0})};
-  auto owned = makeRobotModels(open);
-  std::vector<const RobotModel*> models{owned[0].get(), owned[1].get()};
+  const RobotModels owned(open);
+  const std::vector<const RobotModel*>& models = owned.raw;
   std::vector<CompositeState> way{{{4, 4, 0}, {4, 6, 0}}, {{5, 4, 0}, {5, 6, 0}}, {{5, 5, 0}, {5, 6, 0}},
                                   {{5, 4, 0}, {5, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}};
   LocalSolution stored = timeStampComposite(models, way);
@@ -316,9 +312,9 @@ struct ParkedRobot {
     sc.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0}), disc("c", {5, 4, 0}, {5, 4, 0})};
     return sc;
   }();
-  std::vector<std::shared_ptr<const RobotModel>> owned = makeRobotModels(s);
-  std::vector<const RobotModel*> all{owned[0].get(), owned[1].get(), owned[2].get()};
-  std::vector<const RobotModel*> pair{owned[0].get(), owned[1].get()};
+  RobotModels owned{s};
+  const std::vector<const RobotModel*>& all = owned.raw;
+  std::vector<const RobotModel*> pair{all[0], all[1]};
   CollisionWorld world{s};
   RoadmapSet roadmaps{world, all, 300, 10, 1};
   Subproblem sub = pairSubproblem({{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}});
