@@ -91,7 +91,9 @@ void ClassIndex::rebuild() {
   // leaf. Stored in that order, a leaf's keys lie side by side in memory
   // instead of a cache line each anywhere in the class, and the permutation
   // becomes the identity; the tree itself does not change. Measured on
-  // 100,000 keys per class: the search took half the time.
+  // 100,000 keys per class (earc-db bench-retrieval, five runs): the search
+  // alone went from 35 to 24 us with 8-number keys, 210 to 99 with 12 and
+  // 638 to 229 with 16.
   auto& order = tree_->tree.vAcc;
   std::vector<double> keys(keys_.size());
   std::vector<std::int64_t> ids(ids_.size());

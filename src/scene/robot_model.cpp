@@ -202,7 +202,6 @@ class ArmRobot final : public RobotModel {
     return true;
   }
 
-
   std::string geometrySignature() const override {
     // Appended piece by piece: "lit" + std::string&& trips GCC 12's -Wrestrict.
     std::string s(kArmPrefix);
