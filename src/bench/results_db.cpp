@@ -116,7 +116,13 @@ constexpr const char* kStatements[] = {kInsertTrial,  kInsertDatabase,  kFinishe
 struct ResultsDb::Impl {
   std::string path;
   Connection conn;
-  Impl(const std::string& p, bool read_only) : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite) {}
+  Impl(const std::string& p, bool read_only)
+      : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite, settings()) {}
+  static exp::ConnectionSettings settings() {
+    exp::ConnectionSettings s;
+    s.own_application_id = kResultsApplicationId;
+    return s;
+  }
   // A file whose tables lack a column this program reads or writes (edited
   // or damaged) is bad input, named in one line like a missing table.
   Statement prepare(std::string_view sql) {

@@ -362,6 +362,9 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
 void copyDatabase(const std::string& from, const std::string& to) {
   if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
   ExperienceStore source(from, wholeFileStoreOptions(true));  // identity and version checked
+  // VACUUM INTO only reads the source, but query_only (how a read-only
+  // store opens its own files) refuses it as a write.
+  source.connection().exec("PRAGMA query_only = OFF");
   Statement vacuum = source.connection().prepare("VACUUM INTO ?1");
   vacuum.bind(1, std::string_view(to));
   vacuum.run();

@@ -1,7 +1,9 @@
 #include "earc/experience/sqlite.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -136,9 +138,31 @@ std::span<const unsigned char> Statement::blobAt(int col) const {
 
 // --------------------------------------------------------------- Connection
 
+namespace {
+
+// Whether the first 100 bytes of the file at path are an SQLite header in
+// WAL mode (file format bytes 18 and 19 are 2) with this application_id
+// (big-endian at byte 68). Any doubt, including a short or unreadable
+// file, is false.
+bool ownWalHeader(const std::string& path, std::int64_t application_id) {
+  if (application_id == 0) return false;
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[100] = {};
+  if (!in.read(reinterpret_cast<char*>(h), sizeof h)) return false;
+  static constexpr char kMagic[] = "SQLite format 3";  // and its NUL: 16 bytes
+  if (std::memcmp(h, kMagic, sizeof kMagic) != 0 || h[18] != 2 || h[19] != 2) return false;
+  const std::int64_t id = (std::int64_t{h[68]} << 24) | (h[69] << 16) | (h[70] << 8) | h[71];
+  return id == application_id;
+}
+
+}  // namespace
+
 Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
     : path_(path), mode_(mode), settings_(settings) {
-  int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
+  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
+  int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
+              : query_only                ? SQLITE_OPEN_READWRITE
+                                          : SQLITE_OPEN_READONLY;
   // The store serializes access itself; the connection need not.
   flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   sqlite3* raw = nullptr;
@@ -159,6 +183,7 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
   sqlite3_busy_timeout(db, settings_.busy_timeout_ms);
   exec("PRAGMA trusted_schema = OFF");
   exec("PRAGMA foreign_keys = ON");
+  if (query_only) exec("PRAGMA query_only = ON");
   if (mode == OpenMode::Hostile) {
     sqlite3_limit(db, SQLITE_LIMIT_LENGTH, kHostileMaxLength);
     exec("PRAGMA cell_size_check = ON");

@@ -57,7 +57,9 @@ ExperienceStore::~ExperienceStore() {
 void ExperienceStore::openLocked() {
   const OpenMode mode = options_.read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite;
   if (options_.read_only) requireDatabaseFile(path_);  // else SQLite's "unable to open database file"
-  conn_ = std::make_unique<Connection>(path_, mode, options_.connection);
+  ConnectionSettings settings = options_.connection;
+  settings.own_application_id = kApplicationId;
+  conn_ = std::make_unique<Connection>(path_, mode, settings);
   // Identity first: never switch a foreign file to WAL or write to it.
   // Another process creating the same file may make these steps busy.
   version_ = conn_->retryWhileBusy([&] { return checkIdentity(*conn_); });

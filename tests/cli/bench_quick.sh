@@ -47,6 +47,8 @@ PYEOF
 "$BENCH" table --results "$WORK/r.sqlite" > "$WORK/table.md" || fail "table exited $?"
 grep -q "| 4 | lightning | ./2 " "$WORK/table.md" || fail "no lightning row for 4 robots: $(cat "$WORK/table.md")"
 grep -q "^### Databases" "$WORK/table.md" || fail "no database table"
+# Reading the closed results leaves no empty -wal and -shm beside them.
+for f in "$WORK/r.sqlite-wal" "$WORK/r.sqlite-shm"; do [ -e "$f" ] && fail "table left $(basename "$f")"; done
 
 "$BENCH" export --results "$WORK/r.sqlite" --csv "$WORK/r.csv" --databases-csv "$WORK/dbs.csv" \
   --ompl-log "$WORK/logs" > /dev/null || fail "export exited $?"

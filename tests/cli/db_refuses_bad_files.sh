@@ -27,6 +27,27 @@ for cmd in inspect build export; do
 done
 [ "$(md5sum < "$WORK/foreign.db")" = "$before" ] || fail "the foreign file was modified"
 
+# A foreign file in WAL mode whose last commits are still in its WAL: the
+# refusal leaves both files as they were (a read-write open would have
+# copied the WAL into the file before the identity check).
+"$PY" - "$WORK/fwal.db" "$WORK/fwalcopy.db" <<'PY' || fail "making a foreign WAL"
+import shutil, sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+c.execute("pragma journal_mode = wal"); c.execute("pragma wal_autocheckpoint = 0")
+c.execute("create table photos (id integer primary key)"); c.commit()
+c.execute("insert into photos values (1)"); c.commit()
+shutil.copy(sys.argv[1], sys.argv[2]); shutil.copy(sys.argv[1] + "-wal", sys.argv[2] + "-wal")
+c.close()
+PY
+before=$(cat "$WORK/fwalcopy.db" "$WORK/fwalcopy.db-wal" | md5sum)
+for cmd in inspect export; do
+  extra=""; [ $cmd = export ] && extra="-o $WORK/x.jsonl"
+  "$DB" $cmd --db "$WORK/fwalcopy.db" $extra > /dev/null 2> "$WORK/err"
+  [ $? -eq 2 ] || fail "$cmd on a foreign WAL-mode file did not exit 2"
+  grep -q "not an earc experience database" "$WORK/err" || fail "$cmd on a foreign WAL-mode file: $(cat "$WORK/err")"
+  [ "$(cat "$WORK/fwalcopy.db" "$WORK/fwalcopy.db-wal" | md5sum)" = "$before" ] || fail "$cmd: the foreign file or its WAL changed"
+done
+
 "$DB" build --db "$WORK/new.db" --count 5 > /dev/null 2>&1 || fail "build"
 sql "$WORK/new.db" "pragma user_version = 99"
 "$DB" inspect --db "$WORK/new.db" > "$WORK/out" 2> "$WORK/err"
@@ -34,6 +55,12 @@ sql "$WORK/new.db" "pragma user_version = 99"
 grep -q "schema version 99 is newer than this program's version" "$WORK/err" || fail "unclear: $(cat "$WORK/err")"
 
 "$DB" build --db "$WORK/ok.db" --count 10 > /dev/null 2>&1 || fail "build"
+# Reading our own closed file leaves nothing beside it: no empty -wal and
+# 32 KB -shm after each inspect or export (only a read-write connection may
+# remove them; these open read-write under query_only). The rows stay.
+"$DB" inspect --db "$WORK/ok.db" > /dev/null || fail "inspect of a sound file"
+"$DB" export --db "$WORK/ok.db" -o "$WORK/ok.jsonl" > /dev/null || fail "export of a sound file"
+for f in "$WORK/ok.db-wal" "$WORK/ok.db-shm"; do [ -e "$f" ] && fail "left $(basename "$f") beside the file"; done
 "$DB" verify --db "$WORK/ok.db" > "$WORK/out" || fail "verify of a sound file exited $?: $(cat "$WORK/out")"
 grep -q "^OK: 10 rows" "$WORK/out" || fail "verify summary: $(cat "$WORK/out")"
 sql "$WORK/ok.db" "update experiences set paths = x'00' where id = 3" "update experiences set key = x'0102' where id = 7"

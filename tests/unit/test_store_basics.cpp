@@ -2,6 +2,7 @@
 // counters, sharing one file between connections, and corrupt rows.
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <random>
 
 #include "earc/experience/path_blob.hpp"
@@ -186,6 +187,32 @@ TEST_CASE("a store opened read-only refuses to write") {
   ExperienceStore ro(path, readOnly());
   CHECK_THROWS_AS(ro.insert(sample(rng), -1), std::logic_error);
   CHECK_THROWS_AS(ro.recordUse(1, true), std::logic_error);
+}
+
+TEST_CASE("a read-only store writes nothing and leaves no -wal or -shm beside the file") {
+  ScratchDirectory dir("store");
+  std::mt19937_64 rng(10);
+  const std::string path = dir.file("e.db");
+  auto beside = [&] { return std::filesystem::exists(path + "-wal") || std::filesystem::exists(path + "-shm"); };
+  { ExperienceStore s(path); s.insert(sample(rng), -1); }
+  REQUIRE_FALSE(beside());
+  {
+    // It opens the file read-write (so that it may remove those files when
+    // it closes last), under query_only: SQL that writes is refused too.
+    ExperienceStore ro(path, readOnly());
+    CHECK_THROWS_AS(ro.connection().exec("DELETE FROM experiences"), StoreError);
+    CHECK(ro.size() == 1);
+  }
+  CHECK_FALSE(beside());
+  {
+    // Closing while a writer is open leaves the writer's files to it.
+    ExperienceStore writer(path);
+    { ExperienceStore ro(path, readOnly()); }
+    CHECK(writer.insert(sample(rng), -1).has_value());
+    ExperienceStore ro(path, readOnly());
+    CHECK(ro.size() == 2);
+  }
+  CHECK_FALSE(beside());
 }
 
 TEST_CASE("a row with a corrupt path blob is skipped by retrieval and named when read") {

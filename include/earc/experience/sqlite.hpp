@@ -120,8 +120,8 @@ class Statement {
 
 enum class OpenMode {
   ReadWrite,  // create when missing, WAL, writable
-  ReadOnly,   // our own file, no writes (inspect, verify, export)
-  Hostile,    // an import source: read-only, cell_size_check, no mmap, length limit
+  ReadOnly,   // our own file, no writes (inspect, export, curate -o, bench table)
+  Hostile,    // an import source or verify: read-only, cell_size_check, no mmap, length limit
 };
 
 // Connection tuning. Named here so every connection is opened alike.
@@ -134,6 +134,16 @@ struct ConnectionSettings {
   int write_attempts = 8;
   std::chrono::milliseconds first_backoff{5};
   std::chrono::milliseconds max_backoff{400};
+  // ReadOnly mode: when the file's header says it is in WAL mode and
+  // carries this application_id (0: never), the connection opens it
+  // read-write under PRAGMA query_only instead. SQLite lets only a
+  // read-write connection remove the -wal and -shm files when the last
+  // connection closes; a read-only one leaves an empty -wal and a 32 KB
+  // -shm beside the file after every `earc-db inspect`. The header is
+  // read before SQLite opens the file, so a foreign file is never opened
+  // read-write (its WAL would be checkpointed before the identity check
+  // refused it).
+  std::int64_t own_application_id = 0;
 };
 
 // Cap on the WAL file kept after a checkpoint (bytes).
