@@ -26,6 +26,14 @@ grep -q "imported 40 of 40 rows" "$WORK/out" || fail "import summary: $(cat "$WO
 "$DB" export --db "$WORK/b.db" -o "$WORK/b.jsonl" > /dev/null || fail "re-export"
 cmp -s <(tail -n +2 "$WORK/a.jsonl") <(tail -n +2 "$WORK/b.jsonl") || fail "export -> import -> export changed rows"
 
+# -q: the same work and nothing printed, as build and plan do with -q.
+"$DB" export --db "$WORK/a.db" -o "$WORK/q.jsonl" -q > "$WORK/out" 2>&1 || fail "export -q exited $?"
+"$DB" import --db "$WORK/q.db" "$WORK/q.jsonl" -q >> "$WORK/out" 2>&1 || fail "import -q exited $?"
+"$DB" curate --db "$WORK/q.db" -o "$WORK/q2.db" --dedupe 0 -q >> "$WORK/out" 2>&1 || fail "curate -q exited $?"
+[ -s "$WORK/out" ] && fail "-q printed: $(cat "$WORK/out")"
+cmp -s "$WORK/a.jsonl" "$WORK/q.jsonl" || fail "export -q wrote another file"
+[ "$(count "$WORK/q2.db")" = 40 ] || fail "import -q then curate -q: $(count "$WORK/q2.db") rows, expected 40"
+
 # Extreme numbers a row may hold (a solve time of 1e308 s): inspect prints
 # them in bounded form, export keeps every digit. A cost of 1e308 is refused
 # (not the paths' length) in a message of normal length.

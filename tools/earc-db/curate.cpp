@@ -14,6 +14,7 @@ namespace {
 struct CurateOptions {
   std::string db;
   earc::exp::CurateSettings settings;
+  bool quiet = false;
 };
 
 void runCurate(const CurateOptions& opt, std::ostream& out) {
@@ -51,7 +52,11 @@ void setupCurate(CLI::App& app) {
   sub->add_flag("--compact", opt->settings.compact,
                 "Rewrite path blobs of an older format in the current, smaller one (the same paths exactly), "
                 "then shrink the file");
-  sub->callback([opt] { runCurate(*opt, std::cout); });
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  sub->callback([opt] {
+    std::ostream none(nullptr);  // -q: the summary goes nowhere
+    runCurate(*opt, opt->quiet ? none : std::cout);
+  });
 }
 
 }  // namespace

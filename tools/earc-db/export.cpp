@@ -12,6 +12,7 @@ namespace {
 struct ExportOptions {
   std::string db;
   std::string out;
+  bool quiet = false;
 };
 
 void runExport(const ExportOptions& opt, std::ostream& out) {
@@ -26,7 +27,11 @@ void setupExport(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("export", "Write every experience as JSON lines (" + std::string(earc::exp::kExportFormat) + ")");
   sub->add_option("--db", opt->db, "Experience database file")->required();
   sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->required();
-  sub->callback([opt] { runExport(*opt, earc::summaryStream({opt->out})); });
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  sub->callback([opt] {
+    std::ostream none(nullptr);  // -q: the summary goes nowhere
+    runExport(*opt, opt->quiet ? none : earc::summaryStream({opt->out}));
+  });
 }
 
 }  // namespace

@@ -17,6 +17,7 @@ struct ImportOptions {
   std::vector<std::string> inputs;
   double dedupe = -1.0;
   bool mark_imported = false;
+  bool quiet = false;
 };
 
 void runImport(const ImportOptions& opt, std::ostream& out) {
@@ -49,7 +50,11 @@ void setupImport(CLI::App& app) {
   sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)")
       ->check(earc::cli::kFinite);
   sub->add_flag("--mark-imported", opt->mark_imported, "Set every imported row's source to 'import'");
-  sub->callback([opt] { runImport(*opt, std::cout); });
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  sub->callback([opt] {
+    std::ostream none(nullptr);  // -q: the summary goes nowhere
+    runImport(*opt, opt->quiet ? none : std::cout);
+  });
 }
 
 }  // namespace
