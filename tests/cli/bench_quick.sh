@@ -153,6 +153,7 @@ refused "$WORK/logs/mobile-2.log: --ompl-log: is the same file as --csv $WORK/lo
 if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
   [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"
+  for f in "$WORK/r.sqlite-wal" "$WORK/r.sqlite-shm"; do [ -e "$f" ] && fail "plot left $(basename "$f")"; done
   # Odd values are left out with a warning: no traceback.
   "$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF' || fail "could not make odd values"
 import sqlite3, sys

@@ -99,15 +99,34 @@ def warn_skipped(path, table, skipped, total):
               % (path, table, len(skipped), total, row, why, more), file=sys.stderr)
 
 
+def own_wal_header(path):
+    """Whether the file starts with an SQLite header in WAL mode (bytes 18
+    and 19 are 2) carrying the results database's application_id."""
+    try:
+        with open(path, "rb") as f:
+            h = f.read(100)
+    except OSError:
+        return False
+    return (len(h) == 100 and h[:16] == b"SQLite format 3\0" and h[18] == 2 and h[19] == 2
+            and int.from_bytes(h[68:72], "big") == APPLICATION_ID)
+
+
 def load(path, seed, time_limit):
     if not os.path.exists(path):
         raise BadInput("%s: no such file" % path)
     if not os.path.isfile(path):
         raise BadInput("%s: not a regular file" % path)
+    # Our own file in WAL mode (its header says so) opens read-write under
+    # query_only: SQLite lets only a read-write connection remove the -wal
+    # and -shm files when it closes last, and a read-only one leaves them
+    # beside the file. Any other file opens read-only, so that a foreign
+    # file's WAL is never copied into it. As earc-bench's own reads do.
+    mode = "rw" if own_wal_header(path) else "ro"
     try:
-        # A URI, so that the file is opened read-only; quoted, so that '?',
-        # '#' or '%' in its name stay part of the name.
-        con = sqlite3.connect("file:%s?mode=ro" % urllib.parse.quote(os.path.abspath(path)), uri=True)
+        # A URI, so that the mode applies; quoted, so that '?', '#' or '%'
+        # in its name stay part of the name.
+        con = sqlite3.connect("file:%s?mode=%s" % (urllib.parse.quote(os.path.abspath(path)), mode), uri=True)
+        con.execute("PRAGMA query_only = ON")
     except sqlite3.Error as e:
         raise BadInput("%s: cannot open the results database: %s" % (path, e))
     try:
