@@ -13,6 +13,11 @@ namespace {
 int g_exit_code = 0;
 }
 
+std::ostream& unlessQuiet(bool quiet, std::ostream& out) {
+  static std::ostream nowhere(nullptr);  // no buffer: writes go nowhere
+  return quiet ? nowhere : out;
+}
+
 void setExitCode(int code) { g_exit_code = code; }
 
 namespace {

@@ -53,10 +53,7 @@ void setupCurate(CLI::App& app) {
                 "Rewrite path blobs of an older format in the current, smaller one (the same paths exactly), "
                 "then shrink the file");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
-  sub->callback([opt] {
-    std::ostream none(nullptr);  // -q: the summary goes nowhere
-    runCurate(*opt, opt->quiet ? none : std::cout);
-  });
+  sub->callback([opt] { runCurate(*opt, earc::cli::unlessQuiet(opt->quiet, std::cout)); });
 }
 
 }  // namespace

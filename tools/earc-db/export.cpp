@@ -28,10 +28,7 @@ void setupExport(CLI::App& app) {
   sub->add_option("--db", opt->db, "Experience database file")->required();
   sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
-  sub->callback([opt] {
-    std::ostream none(nullptr);  // -q: the summary goes nowhere
-    runExport(*opt, opt->quiet ? none : earc::summaryStream({opt->out}));
-  });
+  sub->callback([opt] { runExport(*opt, earc::cli::unlessQuiet(opt->quiet, earc::summaryStream({opt->out}))); });
 }
 
 }  // namespace

@@ -51,10 +51,7 @@ void setupImport(CLI::App& app) {
       ->check(earc::cli::kFinite);
   sub->add_flag("--mark-imported", opt->mark_imported, "Set every imported row's source to 'import'");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
-  sub->callback([opt] {
-    std::ostream none(nullptr);  // -q: the summary goes nowhere
-    runImport(*opt, opt->quiet ? none : std::cout);
-  });
+  sub->callback([opt] { runImport(*opt, earc::cli::unlessQuiet(opt->quiet, std::cout)); });
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ int runProgram(const std::string& program, const std::string& description, int a
 
 // Subcommand callbacks report their exit status here (default 0).
 void setExitCode(int code);
+
+// Where a subcommand's success summary goes: `out`, or with -q nowhere
+// (errors are exceptions and still reach stderr through runProgram).
+std::ostream& unlessQuiet(bool quiet, std::ostream& out);
 
 // Option checks that, unlike CLI11's NonNegativeNumber and PositiveNumber,
 // refuse NaN and infinity, and say so without printing the largest double.
