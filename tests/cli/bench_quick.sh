@@ -48,7 +48,7 @@ PYEOF
 grep -q "| 4 | lightning | ./2 " "$WORK/table.md" || fail "no lightning row for 4 robots: $(cat "$WORK/table.md")"
 grep -q "^### Databases" "$WORK/table.md" || fail "no database table"
 # Reading the closed results leaves no empty -wal and -shm beside them.
-for f in "$WORK/r.sqlite-wal" "$WORK/r.sqlite-shm"; do [ -e "$f" ] && fail "table left $(basename "$f")"; done
+leftNothingBeside "$WORK/r.sqlite" table
 
 "$BENCH" export --results "$WORK/r.sqlite" --csv "$WORK/r.csv" --databases-csv "$WORK/dbs.csv" \
   --ompl-log "$WORK/logs" > /dev/null || fail "export exited $?"
@@ -153,7 +153,7 @@ refused "$WORK/logs/mobile-2.log: --ompl-log: is the same file as --csv $WORK/lo
 if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
   [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"
-  for f in "$WORK/r.sqlite-wal" "$WORK/r.sqlite-shm"; do [ -e "$f" ] && fail "plot left $(basename "$f")"; done
+  leftNothingBeside "$WORK/r.sqlite" plot
   # Odd values are left out with a warning: no traceback.
   "$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF' || fail "could not make odd values"
 import sqlite3, sys

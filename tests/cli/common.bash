@@ -15,3 +15,12 @@ needBuilt() {
     [ -x "$BUILD/$p" ] || { echo "FAIL: $p not built in $BUILD"; exit 1; }
   done
 }
+# FAIL unless nothing is left beside the SQLite file $1 (no -wal, no
+# -shm) after the step named $2: reading a closed file of ours leaves none.
+leftNothingBeside() {
+  local f
+  for f in "$1-wal" "$1-shm"; do
+    [ -e "$f" ] && fail "$2 left $(basename "$f") beside $(basename "$1")"
+  done
+  return 0
+}

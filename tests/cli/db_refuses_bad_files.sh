@@ -60,7 +60,7 @@ grep -q "schema version 99 is newer than this program's version" "$WORK/err" || 
 # remove them; these open read-write under query_only). The rows stay.
 "$DB" inspect --db "$WORK/ok.db" > /dev/null || fail "inspect of a sound file"
 "$DB" export --db "$WORK/ok.db" -o "$WORK/ok.jsonl" > /dev/null || fail "export of a sound file"
-for f in "$WORK/ok.db-wal" "$WORK/ok.db-shm"; do [ -e "$f" ] && fail "left $(basename "$f") beside the file"; done
+leftNothingBeside "$WORK/ok.db" "inspect and export"
 "$DB" verify --db "$WORK/ok.db" > "$WORK/out" || fail "verify of a sound file exited $?: $(cat "$WORK/out")"
 grep -q "^OK: 10 rows" "$WORK/out" || fail "verify summary: $(cat "$WORK/out")"
 sql "$WORK/ok.db" "update experiences set paths = x'00' where id = 3" "update experiences set key = x'0102' where id = 7"
