@@ -192,6 +192,19 @@ int CollisionWorld::countInvalidInstants(const RobotModel& robot, const double* 
   return invalid;
 }
 
+void PlacedBodies::place(const RobotModel& model, const double* q) {
+  model.bodies(q, bodies);
+  bounds.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) bounds[i] = geo::bounds(bodies[i]);
+}
+
+bool bodiesTouch(const PlacedBodies& a, const PlacedBodies& b) {
+  for (std::size_t i = 0; i < a.bodies.size(); ++i)
+    for (std::size_t j = 0; j < b.bodies.size(); ++j)
+      if (a.bounds[i].overlaps(b.bounds[j]) && geo::touches(a.bodies[i], b.bodies[j])) return true;
+  return false;
+}
+
 bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
   // Bounding discs first, compared squared (no square root): most pairs of
   // an instant end here. Rounding at the boundary cannot matter, as
@@ -199,16 +212,11 @@ bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, con
   const double reach = a.boundingRadius() + b.boundingRadius();
   const geo::Vec2 gap = a.boundingCenter(qa) - b.boundingCenter(qb);
   if (geo::dot(gap, gap) > reach * reach) return false;
-  thread_local std::vector<geo::Body> pa;  // per-thread scratch, see stateValid
-  thread_local std::vector<geo::Body> pb;
-  a.bodies(qa, pa);
-  b.bodies(qb, pb);
-  for (const geo::Body& x : pa) {
-    const geo::Aabb bx = geo::bounds(x);
-    for (const geo::Body& y : pb)
-      if (bx.overlaps(geo::bounds(y)) && geo::touches(x, y)) return true;
-  }
-  return false;
+  thread_local PlacedBodies pa;  // per-thread scratch, see stateValid
+  thread_local PlacedBodies pb;
+  pa.place(a, qa);
+  pb.place(b, qb);
+  return bodiesTouch(pa, pb);
 }
 
 double robotDistance(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {

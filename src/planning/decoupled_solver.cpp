@@ -4,6 +4,7 @@
 #include <queue>
 #include <unordered_map>
 
+#include "earc/collision/collision_world.hpp"
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/solver.hpp"
@@ -47,25 +48,49 @@ class MotionGuard {
         tr.chunks.push_back(box);
       }
       tracks_.push_back(std::move(tr));
-      scratch_.emplace_back(static_cast<std::size_t>(o.model->dim()));
     }
   }
 
   // The robot at q is free of every obstacle at local instant k.
   bool free(const double* q, std::size_t k) {
     const geo::Vec2 c = model_.boundingCenter(q);
+    // The search asks about the same vertex at consecutive instants (waits,
+    // holding the goal): its bodies are placed once for all of them.
+    auto own = [&]() -> const PlacedBodies& {
+      if (vertex_.empty() || !std::equal(vertex_q_.begin(), vertex_q_.end(), q)) {
+        vertex_q_.assign(q, q + model_.dim());
+        vertex_.place(model_, q);
+      }
+      return vertex_;
+    };
     for (std::size_t i = 0; i < obstacles_.size(); ++i)
-      if (!freeOf(i, q, c, k)) return false;
+      if (!freeOf(i, c, k, own)) return false;
     return true;
   }
 
   // The robot moving straight a -> b over `steps` steps from local step tau
   // is free at instants 2 tau + 1 .. 2 tau + 2 steps.
-  bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::vector<double>& q) {
+  bool motionFree(const double* a, const double* b, int steps, std::size_t tau) {
     const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
+    const std::size_t dim = static_cast<std::size_t>(model_.dim());
     const geo::Vec2 ca = model_.boundingCenter(a), cb = model_.boundingCenter(b);
     const geo::Aabb swept = geo::Aabb{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)},
                                       {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
+    // The robot's state and bodies at each instant of the motion, made when
+    // first needed and shared by every obstacle it comes near.
+    const std::size_t n = k1 - k0 + 1;
+    motion_q_.resize(n * dim);
+    motion_state_.assign(n, 0);
+    if (motion_.size() < n) motion_.resize(n);
+    auto stateAt = [&](std::size_t k) -> const double* {
+      const std::size_t j = k - k0;
+      double* q = motion_q_.data() + j * dim;
+      if (motion_state_[j] == 0) {
+        model_.interpolate(a, b, static_cast<double>(k - 2 * tau) / (2 * steps), q);
+        motion_state_[j] = 1;
+      }
+      return q;
+    };
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
       const double reach = model_.boundingRadius() + obstacles_[i].model->boundingRadius();
       const geo::Aabb near = swept.inflated(reach);
@@ -77,8 +102,16 @@ class MotionGuard {
           continue;
         }
         if (k > last_ && !geo::Aabb{tracks_[i].centers[last_], tracks_[i].centers[last_]}.overlaps(near)) break;
-        model_.interpolate(a, b, static_cast<double>(k - 2 * tau) / (2 * steps), q.data());
-        if (!freeOf(i, q.data(), model_.boundingCenter(q.data()), k)) return false;
+        const double* q = stateAt(k);
+        const std::size_t j = k - k0;
+        auto own = [&]() -> const PlacedBodies& {
+          if (motion_state_[j] < 2) {
+            motion_[j].place(model_, q);
+            motion_state_[j] = 2;
+          }
+          return motion_[j];
+        };
+        if (!freeOf(i, model_.boundingCenter(q), k, own)) return false;
         ++k;
       }
     }
@@ -90,24 +123,50 @@ class MotionGuard {
   struct Track {
     std::vector<geo::Vec2> centers;  // bounding centre per instant 0..last
     std::vector<geo::Aabb> chunks;   // box of the centres of each chunk of instants
+    std::vector<PlacedBodies> placed;  // bodies per instant, placed when first needed
   };
 
-  bool freeOf(std::size_t i, const double* q, geo::Vec2 c, std::size_t k) {
+  // The robot, centred at c with bodies own(), is free of obstacle i at
+  // local instant k. The obstacle's bodies at an instant are placed once
+  // per search: the search meets each instant again and again.
+  template <class Own>
+  bool freeOf(std::size_t i, geo::Vec2 c, std::size_t k, Own&& own) {
     const MovingObstacle& o = obstacles_[i];
-    const geo::Vec2 oc = tracks_[i].centers[std::min(k, last_)];
+    Track& tr = tracks_[i];
+    const geo::Vec2 oc = tr.centers[std::min(k, last_)];
     const double reach = model_.boundingRadius() + o.model->boundingRadius();
     const geo::Vec2 d = c - oc;
     if (d.x * d.x + d.y * d.y > reach * reach) return true;
-    double* oq = scratch_[i].data();
-    stateAtInstant(*o.model, *o.path, 2 * o.offset + k, oq);
-    return !robotsTouch(model_, q, *o.model, oq);
+    PlacedBodies* theirs = &scratch_;
+    if (k <= last_) {
+      if (tr.placed.size() <= k) tr.placed.resize(std::max(k + 1, 2 * tr.placed.size()));
+      theirs = &tr.placed[k];
+    }
+    if (theirs->empty() || theirs == &scratch_) {
+      scratch_q_.resize(static_cast<std::size_t>(o.model->dim()));
+      stateAtInstant(*o.model, *o.path, 2 * o.offset + k, scratch_q_.data());
+      theirs->place(*o.model, scratch_q_.data());
+    }
+    // The robot's bounding disc against the obstacle's tight bounds decides
+    // most near misses before the robot's own bodies are placed.
+    const double r = model_.boundingRadius();
+    const geo::Aabb disc{{c.x - r, c.y - r}, {c.x + r, c.y + r}};
+    if (std::none_of(theirs->bounds.begin(), theirs->bounds.end(), [&](const geo::Aabb& b) { return b.overlaps(disc); }))
+      return true;
+    return !bodiesTouch(own(), *theirs);
   }
 
   const RobotModel& model_;
   const std::vector<MovingObstacle>& obstacles_;
   std::size_t last_;
   std::vector<Track> tracks_;
-  std::vector<std::vector<double>> scratch_;
+  PlacedBodies scratch_;  // an obstacle past the last tabulated instant
+  std::vector<double> scratch_q_;
+  PlacedBodies vertex_;  // the robot at vertex_q_, see free()
+  std::vector<double> vertex_q_;
+  std::vector<double> motion_q_;  // the robot along the current motion, see motionFree()
+  std::vector<unsigned char> motion_state_;  // per instant: 0 nothing, 1 state, 2 state and bodies
+  std::vector<PlacedBodies> motion_;
 };
 
 std::uint64_t nodeKey(int v, std::size_t tau) {
@@ -192,7 +251,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       const std::size_t arrive = it.tau + static_cast<std::size_t>(steps);
       if (arrive > horizon || parent.count(nodeKey(u, arrive))) return;
       if (!graph.edgeValid(edge)) return;
-      if (steps > 0 && !guard.motionFree(here, graph.config(u), steps, it.tau, q)) return;
+      if (steps > 0 && !guard.motionFree(here, graph.config(u), steps, it.tau)) return;
       push(u, arrive);
     });
   }
@@ -226,10 +285,9 @@ bool clearOfMoving(const RobotModel& model, const Path& local, const std::vector
   if (local.empty() || obstacles.empty()) return true;
   const std::size_t last_step = local.size() - 1;
   MotionGuard guard(model, obstacles, 2 * last_step + 2);
-  std::vector<double> q(static_cast<std::size_t>(model.dim()));
   if (!guard.free(local.at(0), 0)) return false;
   for (std::size_t t = 0; t < last_step; ++t)
-    if (!guard.motionFree(local.at(t), local.at(t + 1), 1, t, q)) return false;
+    if (!guard.motionFree(local.at(t), local.at(t + 1), 1, t)) return false;
   return true;
 }
 

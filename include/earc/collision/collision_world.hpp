@@ -71,6 +71,19 @@ class CollisionWorld {
   std::unique_ptr<Broadphase> broadphase_;
 };
 
+// A robot's bodies at one configuration with their bounds: placed once and
+// kept by checks that meet the same configuration many times.
+struct PlacedBodies {
+  std::vector<geo::Body> bodies;
+  std::vector<geo::Aabb> bounds;
+  void place(const RobotModel& model, const double* q);
+  bool empty() const { return bodies.empty(); }
+};
+
+// True when two placed robots touch (the exact test on every pair of body
+// parts whose bounds overlap; no bounding-disc test).
+bool bodiesTouch(const PlacedBodies& a, const PlacedBodies& b);
+
 // True when two robots at configurations qa and qb touch (bounding discs
 // first, then the exact test on every pair of body parts).
 bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);
