@@ -125,10 +125,12 @@ bool CollisionWorld::forEachCandidate(const geo::Aabb& box, Visit&& visit) const
   return false;
 }
 
-bool CollisionWorld::bodyFree(const geo::Body& body) const {
+bool CollisionWorld::bodyFree(const geo::Body& body) const { return bodyFree(body, geo::bounds(body)); }
+
+bool CollisionWorld::bodyFree(const geo::Body& body, const geo::Aabb& bb) const {
   // Negated so that a non-finite body (NaN extents) is never inside.
-  if (!(geo::excessOutside(body, workspace_) <= geo::kContactTolerance)) return false;
-  return !forEachCandidate(geo::bounds(body), [&](std::size_t i) { return geo::touches(body, obstacles_[i]); });
+  if (!(geo::excessOutside(bb, workspace_) <= geo::kContactTolerance)) return false;
+  return !forEachCandidate(bb, [&](std::size_t i) { return geo::touches(body, obstacles_[i]); });
 }
 
 void CollisionWorld::touchedObstacles(const geo::Body& body, std::vector<int>& out) const {
@@ -141,12 +143,16 @@ void CollisionWorld::touchedObstacles(const geo::Body& body, std::vector<int>& o
 }
 
 bool CollisionWorld::stateValid(const RobotModel& robot, const double* q) const {
-  if (!robot.withinLimits(q) || robot.selfCollides(q)) return false;
   // Per-thread scratch: no allocation per query, nothing shared between threads.
-  thread_local std::vector<geo::Body> parts;
-  robot.bodies(q, parts);
-  for (const geo::Body& b : parts)
-    if (!bodyFree(b)) return false;
+  thread_local PlacedBodies placed;
+  return stateValid(robot, q, placed);
+}
+
+bool CollisionWorld::stateValid(const RobotModel& robot, const double* q, PlacedBodies& placed) const {
+  if (!robot.withinLimits(q) || robot.selfCollides(q)) return false;
+  placed.place(robot, q);
+  for (std::size_t i = 0; i < placed.bodies.size(); ++i)
+    if (!bodyFree(placed.bodies[i], placed.bounds[i])) return false;
   return true;
 }
 
@@ -205,13 +211,16 @@ bool bodiesTouch(const PlacedBodies& a, const PlacedBodies& b) {
   return false;
 }
 
-bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
-  // Bounding discs first, compared squared (no square root): most pairs of
-  // an instant end here. Rounding at the boundary cannot matter, as
-  // touching needs an overlap of kContactTolerance.
+bool boundingDiscsMeet(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
+  // Compared squared (no square root). Rounding at the boundary cannot
+  // matter, as touching needs an overlap of kContactTolerance.
   const double reach = a.boundingRadius() + b.boundingRadius();
   const geo::Vec2 gap = a.boundingCenter(qa) - b.boundingCenter(qb);
-  if (geo::dot(gap, gap) > reach * reach) return false;
+  return geo::dot(gap, gap) <= reach * reach;
+}
+
+bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
+  if (!boundingDiscsMeet(a, qa, b, qb)) return false;
   thread_local PlacedBodies pa;  // per-thread scratch, see stateValid
   thread_local PlacedBodies pb;
   pa.place(a, qa);

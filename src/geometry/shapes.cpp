@@ -191,8 +191,9 @@ Aabb bounds(const Body& b) {
   return {{lo.x - b.radius, lo.y - b.radius}, {hi.x + b.radius, hi.y + b.radius}};
 }
 
-double excessOutside(const Body& b, const Aabb& box) {
-  const Aabb bb = bounds(b);
+double excessOutside(const Body& b, const Aabb& box) { return excessOutside(bounds(b), box); }
+
+double excessOutside(const Aabb& bb, const Aabb& box) {
   return std::max(std::max(box.lo.x - bb.lo.x, box.lo.y - bb.lo.y),
                   std::max(bb.hi.x - box.hi.x, bb.hi.y - box.hi.y));
 }

@@ -34,12 +34,19 @@ struct Extent {
 
 bool CompositeChecker::stateValid(const CompositeState& q) const {
   const std::size_t n = robots_.size();
+  // Each robot's bodies are placed once, for the obstacles and for every
+  // robot near it. Per-thread scratch, as the checker is shared.
+  thread_local std::vector<PlacedBodies> placed;
+  if (placed.size() < n) placed.resize(n);
   for (std::size_t r = 0; r < n; ++r)
-    if (!world_.stateValid(*robots_[r], q[r].data())) return false;
+    if (!world_.stateValid(*robots_[r], q[r].data(), placed[r])) return false;
+  auto touch = [&](std::size_t a, std::size_t b) {
+    return boundingDiscsMeet(*robots_[a], q[a].data(), *robots_[b], q[b].data()) && bodiesTouch(placed[a], placed[b]);
+  };
   if (n <= kSweepAbove) {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
-        if (robotsTouch(*robots_[i], q[i].data(), *robots_[j], q[j].data())) return false;
+        if (touch(i, j)) return false;
     return true;
   }
   std::vector<Extent> ext(n);
@@ -51,8 +58,7 @@ bool CompositeChecker::stateValid(const CompositeState& q) const {
   std::sort(ext.begin(), ext.end(), [](const Extent& a, const Extent& b) { return a.lo < b.lo; });
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n && ext[j].lo <= ext[i].hi; ++j) {
-      const std::size_t a = ext[i].robot, b = ext[j].robot;
-      if (robotsTouch(*robots_[a], q[a].data(), *robots_[b], q[b].data())) return false;
+      if (touch(ext[i].robot, ext[j].robot)) return false;
     }
   return true;
 }

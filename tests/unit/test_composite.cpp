@@ -87,6 +87,39 @@ TEST_CASE("The composite validity check with its broad phase agrees with testing
   CHECK(invalid > 20);
 }
 
+TEST_CASE("The composite validity check among obstacles agrees with checking each robot, then each pair") {
+  // Few robots (every pair tested) and many (the sweep), each robot's
+  // bodies placed once for the obstacles and its neighbours.
+  for (const int n : {4, 10}) {
+    const double size = 2.0 * n;
+    Scenario s = crowd(n, size);
+    s.robots.push_back(arm("arm", {size / 2, size / 2}));
+    std::mt19937_64 rng(static_cast<unsigned>(n));
+    std::uniform_real_distribution<double> xy(0.2, size - 0.2), th(-3.0, 3.0);
+    for (int i = 0; i < 6; ++i) s.obstacles.push_back(Obstacle::makeBox({xy(rng), xy(rng)}, {0.8, 0.5}, th(rng)));
+    RobotModels m(s);
+    CollisionWorld world(s);
+    CompositeChecker checker(world, m.raw);
+    int valid = 0, invalid = 0, by_obstacle = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+      CompositeState q;
+      for (const RobotModel* r : m.raw)
+        q.push_back(r->isMobile() ? std::vector<double>{xy(rng), xy(rng), th(rng)}
+                                  : std::vector<double>{th(rng), th(rng) * 0.8, th(rng) * 0.8});
+      bool expect = true;
+      for (std::size_t i = 0; i < q.size() && expect; ++i)
+        if (!world.stateValid(*m.raw[i], q[i].data())) expect = false, ++by_obstacle;
+      for (std::size_t i = 0; i < q.size() && expect; ++i)
+        for (std::size_t j = i + 1; j < q.size() && expect; ++j)
+          if (robotsTouch(*m.raw[i], q[i].data(), *m.raw[j], q[j].data())) expect = false;
+      CHECK(checker.stateValid(q) == expect);
+      (expect ? valid : invalid) += 1;
+    }
+    CHECK(valid > 20);
+    CHECK(invalid - by_obstacle > 20);  // some states fail only on a pair of robots
+  }
+}
+
 TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {
   Scenario s = crowd(2);
   RobotModels m(s);

@@ -42,6 +42,8 @@ class CollisionWorld {
   // True when the body is inside the workspace and touches no obstacle.
   // Thread-safe.
   bool bodyFree(const geo::Body& body) const;
+  // The same for a body whose tight bounds are known.
+  bool bodyFree(const geo::Body& body, const geo::Aabb& bounds) const;
 
   // Indices of the obstacles the body touches, appended to out (ascending).
   void touchedObstacles(const geo::Body& body, std::vector<int>& out) const;
@@ -49,6 +51,9 @@ class CollisionWorld {
   // A configuration is valid when it respects the joint limits, has no
   // self-collision and every body part is free. Thread-safe.
   bool stateValid(const RobotModel& robot, const double* q) const;
+  // The same, leaving the robot's placed bodies in `placed` for further
+  // checks of the same configuration (complete only when it returns true).
+  bool stateValid(const RobotModel& robot, const double* q, struct PlacedBodies& placed) const;
 
   // A straight motion a -> b is valid when the configuration at every
   // instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
@@ -83,6 +88,10 @@ struct PlacedBodies {
 // True when two placed robots touch (the exact test on every pair of body
 // parts whose bounds overlap; no bounding-disc test).
 bool bodiesTouch(const PlacedBodies& a, const PlacedBodies& b);
+
+// True when the robots' bounding discs meet: a necessary condition for
+// robotsTouch, and most pairs of an instant fail it.
+bool boundingDiscsMeet(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);
 
 // True when two robots at configurations qa and qb touch (bounding discs
 // first, then the exact test on every pair of body parts).

@@ -79,6 +79,8 @@ Aabb bounds(const Body& b);
 
 // How far a body sticks out of an axis-aligned box (<= 0 when inside).
 double excessOutside(const Body& b, const Aabb& box);
+// How far an axis-aligned box sticks out of another.
+double excessOutside(const Aabb& inner, const Aabb& box);
 
 // Angle arithmetic: headings are compared and interpolated on the circle.
 inline double wrapAngle(double a) {
