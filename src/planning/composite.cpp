@@ -102,6 +102,37 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
   return std::max(0.0, static_cast<double>(first_bad - 1) / instants);
 }
 
+bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const double*>& a,
+                                        const std::vector<const double*>& b) const {
+  const std::size_t n = robots_.size();
+  int steps = 0;
+  for (std::size_t w = 0; w < n; ++w) steps = std::max(steps, robots_[w]->stepsBetween(a[w], b[w]));
+  const int instants = 2 * steps;
+  thread_local std::vector<std::vector<double>> q;
+  thread_local PlacedBodies mine, theirs;
+  q.resize(n);
+  std::vector<const double*> at(n);
+  for (int k = 0; k <= instants; ++k) {
+    if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
+    for (std::size_t w = 0; w < n; ++w) {
+      if (instants == 0) {  // as motionValid: the state itself, not interpolated
+        at[w] = a[w];
+        continue;
+      }
+      q[w].resize(static_cast<std::size_t>(robots_[w]->dim()));
+      robots_[w]->interpolate(a[w], b[w], static_cast<double>(k) / instants, q[w].data());
+      at[w] = q[w].data();
+    }
+    if (!world_.stateValid(*robots_[r], at[r], mine)) return false;
+    for (std::size_t w = 0; w < n; ++w) {
+      if (w == r || !boundingDiscsMeet(*robots_[r], at[r], *robots_[w], at[w])) continue;
+      theirs.place(*robots_[w], at[w]);
+      if (bodiesTouch(mine, theirs)) return false;
+    }
+  }
+  return true;
+}
+
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
                        std::mt19937_64& rng, const Deadline& deadline) {
   for (int it = 0; it < iterations && waypoints.size() > 2 && !deadline.expired(); ++it) {
@@ -119,6 +150,7 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
   const std::size_t n = paths.size();
   if (n == 0) return;
   std::vector<double> q;
+  std::vector<const double*> from(n), to(n);
   for (int it = 0; it < iterations && !deadline.expired(); ++it) {
     const std::size_t r = uniformIndex(rng, n);
     const std::size_t len = paths[r].size();
@@ -141,12 +173,14 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
     // step to the end of the longest path.
     std::size_t last = 0;
     for (const auto& p : paths) last = std::max(last, p.size() - 1);
+    // Only robot r's part changed: the others' part was valid and stays so.
     bool valid = true;
-    CompositeState a = stateAt(paths, i);
     for (std::size_t t = i; t < last && valid; ++t) {
-      CompositeState b = stateAt(paths, t + 1);
-      valid = checker.motionValid(a, b);
-      a = std::move(b);
+      for (std::size_t w = 0; w < n; ++w) {
+        from[w] = paths[w].at(t);
+        to[w] = paths[w].at(t + 1);
+      }
+      valid = checker.robotMotionValid(r, from, to);
     }
     if (!valid) std::swap(paths[r], shorter);
   }

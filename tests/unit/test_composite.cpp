@@ -120,6 +120,44 @@ TEST_CASE("The composite validity check among obstacles agrees with checking eac
   }
 }
 
+TEST_CASE("One robot's part of a motion decides it when the others' part is valid") {
+  // Three box robots apart from each other and from the obstacle, and a
+  // fourth anywhere: the full check and the one robot's check must agree.
+  Scenario s = crowd(4, 10);
+  for (auto& r : s.robots) r = RobotSpec::mobileBox(r.name, {0.6, 0.4}), r.start = r.goal = {1, 1, 0};
+  s.obstacles.push_back(Obstacle::makeBox({5, 2}, {1.5, 0.8}, 0.3));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  const double step = m.raw[0]->resolution().translation;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> xy(0.0, 10.0), th(-3.0, 3.0), jitter(-0.7, 0.7);
+  const std::vector<std::vector<double>> parked{{2.5, 7.5, 0.0}, {7.5, 7.5, 1.0}, {7.5, 4.5, 2.0}};
+  int valid = 0, invalid = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::size_t r = static_cast<std::size_t>(trial) % 4;
+    CompositeState a(4), b(4);
+    for (std::size_t w = 0, k = 0; w < 4; ++w) {
+      if (w == r) {
+        a[w] = {xy(rng), xy(rng), th(rng)};
+      } else {
+        a[w] = parked[k++];
+        a[w][0] += jitter(rng), a[w][1] += jitter(rng);
+      }
+      // At most one step of translation, as in a time-stamped path; some still.
+      const bool still = trial % 5 == 0 && w != r;
+      b[w] = {a[w][0] + (still ? 0 : jitter(rng) * step), a[w][1] + (still ? 0 : jitter(rng) * step), a[w][2]};
+    }
+    std::vector<const double*> pa, pb;
+    for (std::size_t w = 0; w < 4; ++w) pa.push_back(a[w].data()), pb.push_back(b[w].data());
+    const bool full = checker.motionValid(a, b);
+    CHECK(checker.robotMotionValid(r, pa, pb) == full);
+    (full ? valid : invalid) += 1;
+  }
+  CHECK(valid > 200);
+  CHECK(invalid > 200);
+}
+
 TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {
   Scenario s = crowd(2);
   RobotModels m(s);

@@ -42,6 +42,10 @@ class CompositeChecker {
   // Fraction of a -> b before the first invalid instant (1 when valid; 0
   // once the deadline, if any, has expired).
   double lastValidFraction(const CompositeState& a, const CompositeState& b) const;
+  // Robot r's part of the motion a -> b (one state per robot): r valid and
+  // touching no other robot at each instant motionValid checks. When the
+  // other robots' part is known valid, the same answer as motionValid.
+  bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b) const;
 
   const std::vector<const RobotModel*>& robots() const { return robots_; }
 
@@ -67,7 +71,8 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
 // moves all robots together, so one robot's detour holds up the others;
 // this lets each arrive when it can. Ends are kept; paths may come out of
 // different lengths (the caller holds them at their ends). Stops early at
-// the deadline.
+// the deadline. The paths must be valid on entry: only the changed robot's
+// part of each motion is checked.
 void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
                     const Deadline& deadline = Deadline());
 
