@@ -149,8 +149,9 @@ bool CollisionWorld::stateValid(const RobotModel& robot, const double* q) const 
 }
 
 bool CollisionWorld::stateValid(const RobotModel& robot, const double* q, PlacedBodies& placed) const {
-  if (!robot.withinLimits(q) || robot.selfCollides(q)) return false;
+  if (!robot.withinLimits(q)) return false;
   placed.place(robot, q);
+  if (robot.selfCollides(placed.bodies, placed.bounds)) return false;
   for (std::size_t i = 0; i < placed.bodies.size(); ++i)
     if (!bodyFree(placed.bodies[i], placed.bounds[i])) return false;
   return true;

@@ -103,6 +103,7 @@ class MobileRobot final : public RobotModel {
   }
 
   bool selfCollides(const double*) const override { return false; }
+  bool selfCollides(const std::vector<geo::Body>&, const std::vector<geo::Aabb>&) const override { return false; }
   bool withinLimits(const double*) const override { return true; }
 
   std::string geometrySignature() const override {
@@ -183,13 +184,18 @@ class ArmRobot final : public RobotModel {
   bool selfCollides(const double* q) const override {
     if (spec_.links.size() < 3) return false;
     thread_local std::vector<geo::Body> links;  // per-thread scratch: no allocation per call
+    thread_local std::vector<geo::Aabb> boxes;
     bodies(q, links);
+    boxes.resize(links.size());
+    for (std::size_t i = 0; i < links.size(); ++i) boxes[i] = geo::bounds(links[i]);
+    return selfCollides(links, boxes);
+  }
+
+  bool selfCollides(const std::vector<geo::Body>& links, const std::vector<geo::Aabb>& boxes) const override {
     // Links that share a joint never count (contract); all others must not touch.
-    for (std::size_t i = 0; i + 2 < links.size(); ++i) {
-      const geo::Aabb box = geo::bounds(links[i]);
+    for (std::size_t i = 0; i + 2 < links.size(); ++i)
       for (std::size_t j = i + 2; j < links.size(); ++j)
-        if (box.overlaps(geo::bounds(links[j])) && geo::touches(links[i], links[j])) return true;
-    }
+        if (boxes[i].overlaps(boxes[j]) && geo::touches(links[i], links[j])) return true;
     return false;
   }
 

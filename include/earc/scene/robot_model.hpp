@@ -40,6 +40,9 @@ class RobotModel {
 
   // True when two non-adjacent links of an arm touch (never for mobile robots).
   virtual bool selfCollides(const double* q) const = 0;
+  // The same, decided on the robot's bodies at q (as bodies(q) gives them)
+  // and their tight bounds, for callers that have placed them already.
+  virtual bool selfCollides(const std::vector<geo::Body>& bodies, const std::vector<geo::Aabb>& bounds) const = 0;
 
   // True when q respects the joint limits (always for mobile robots).
   virtual bool withinLimits(const double* q) const = 0;
