@@ -109,9 +109,10 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
   for (std::size_t w = 0; w < n; ++w) steps = std::max(steps, robots_[w]->stepsBetween(a[w], b[w]));
   const int instants = 2 * steps;
   thread_local std::vector<std::vector<double>> q;
+  thread_local std::vector<const double*> at;
   thread_local PlacedBodies mine, theirs;
   q.resize(n);
-  std::vector<const double*> at(n);
+  at.resize(n);
   for (int k = 0; k <= instants; ++k) {
     if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
     for (std::size_t w = 0; w < n; ++w) {

@@ -19,6 +19,8 @@
 
 namespace earc {
 
+struct PlacedBodies;
+
 class CollisionWorld {
  public:
   // How obstacle candidates are found. Auto picks by obstacle count (a plain
@@ -53,7 +55,7 @@ class CollisionWorld {
   bool stateValid(const RobotModel& robot, const double* q) const;
   // The same, leaving the robot's placed bodies in `placed` for further
   // checks of the same configuration (complete only when it returns true).
-  bool stateValid(const RobotModel& robot, const double* q, struct PlacedBodies& placed) const;
+  bool stateValid(const RobotModel& robot, const double* q, PlacedBodies& placed) const;
 
   // A straight motion a -> b is valid when the configuration at every
   // instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
