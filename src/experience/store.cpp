@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "earc/experience/keys.hpp"
 #include "earc/experience/path_blob.hpp"
@@ -43,7 +44,12 @@ struct ResetOnExit {
 ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
     : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
   std::lock_guard lock(mutex_);
-  openLocked();
+  try {
+    openLocked();
+  } catch (...) {
+    if (check_.joinable()) check_.join();  // no destructor will
+    throw;
+  }
 }
 
 ExperienceStore::~ExperienceStore() {
@@ -65,21 +71,25 @@ void ExperienceStore::openLocked() {
   version_ = conn_->retryWhileBusy([&] { return checkIdentity(*conn_); });
   // Then the file's structure, before anything is written to it or read
   // from it: a truncated or damaged file is refused here, naming the first
-  // problem, instead of failing some later query mid-plan.
-  conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
+  // problem, instead of failing some later query mid-plan. A planner may
+  // have it checked in the background instead, when opening needs no write
+  // (our WAL file at the current version): then every write waits for it.
+  const bool background = options_.check_in_background && version_ == currentSchemaVersion() &&
+                          conn_->retryWhileBusy([&] { return conn_->pragmaText("journal_mode"); }) == "wal";
+  if (background)
+    startCheckLocked();
+  else
+    conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
   if (options_.read_only) {
     if (version_ == 0) throw notYetADatabase(path_);
-  } else {
+  } else if (!background) {
     conn_->retryWhileBusy([&] { conn_->enableWal(); });
     version_ = migrate(*conn_);
   }
+  session_ = metaLocked("sessions");
   if (!options_.read_only && options_.new_session) {
-    session_ = conn_->write([&] {
-      conn_->exec("UPDATE store_meta SET value = value + 1 WHERE name = 'sessions'");
-      return metaLocked("sessions");
-    });
-  } else {
-    session_ = metaLocked("sessions");
+    session_pending_ = true;
+    if (!background) awaitCheckLocked();
   }
   fetch_ = std::make_unique<Statement>(conn_->prepare(selectExperiencesSql(version_) + " WHERE id = ?1"));
   data_version_ = std::make_unique<Statement>(conn_->prepare("PRAGMA data_version"));
@@ -93,6 +103,48 @@ std::int64_t ExperienceStore::metaLocked(const char* name) {
   std::int64_t v = s.step() ? s.int64At(0) : 0;
   s.reset();
   return v;
+}
+
+void ExperienceStore::startCheckLocked() {
+  ConnectionSettings settings = options_.connection;
+  settings.own_application_id = kApplicationId;  // query_only, as openLocked's
+  check_ = std::thread([this, path = path_, settings] {
+    try {
+      // A connection of its own: the store's serves the planner meanwhile.
+      Connection c(path, OpenMode::ReadOnly, settings);
+      c.retryWhileBusy([&] { c.requireQuickCheck(); });
+    } catch (...) {
+      check_error_ = std::current_exception();
+    }
+    check_done_ = true;
+  });
+}
+
+void ExperienceStore::awaitCheckLocked() {
+  if (check_.joinable()) check_.join();
+  if (check_error_) {
+    check_error_reported_ = true;
+    std::rethrow_exception(check_error_);
+  }
+  if (session_pending_) {
+    session_ = conn_->write([&] {
+      conn_->exec("UPDATE store_meta SET value = value + 1 WHERE name = 'sessions'");
+      return metaLocked("sessions");
+    });
+    session_pending_ = false;
+  }
+}
+
+void ExperienceStore::awaitCheck() {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  awaitCheckLocked();
+}
+
+std::int64_t ExperienceStore::session() {
+  std::lock_guard lock(mutex_);
+  if (conn_) awaitCheckLocked();
+  return session_;
 }
 
 void ExperienceStore::refresh() {
@@ -176,6 +228,9 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
       } catch (const CorruptRowError& e) {
         warnSkipped(n.id, e.reason());
       } catch (const DamagedDatabaseError& e) {
+        // A check still running in the background has the verdict on the
+        // whole file: a damaged file ends planning with its error.
+        if (check_.joinable()) awaitCheckLocked();
         // The file was damaged after it was opened (quick_check passed then):
         // this row cannot be read; planning goes on without it.
         warnSkipped(n.id, e.what());
@@ -215,6 +270,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertAll(const std::v
 std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std::vector<Experience>& batch,
                                                                        double eps) {
   requireWritable();
+  awaitCheckLocked();
   std::vector<Experience> rows = batch;
   const std::int64_t now = nowUnixSeconds();
   for (Experience& e : rows) {
@@ -272,7 +328,8 @@ void ExperienceStore::recordUse(std::int64_t id, bool success) {
   auto& [retrieved, succeeded] = pending_uses_[id];
   ++retrieved;
   if (success) ++succeeded;
-  if (pending_uses_.size() >= kMaxPendingUses) flushLocked();
+  // Not while a background check runs: the write would wait for it, mid-plan.
+  if (pending_uses_.size() >= kMaxPendingUses && !checkRunning()) flushLocked();
 }
 
 void ExperienceStore::flush() {
@@ -283,6 +340,7 @@ void ExperienceStore::flush() {
 
 void ExperienceStore::flushLocked() {
   if (pending_uses_.empty()) return;
+  awaitCheckLocked();
   conn_->write([&] {
     Statement update = conn_->prepare(
         "UPDATE experiences SET retrieved_count = retrieved_count + ?2, succeeded_count = succeeded_count + ?3 "
@@ -309,6 +367,20 @@ void ExperienceStore::afterWriteLocked() {
 void ExperienceStore::close() {
   std::lock_guard lock(mutex_);
   if (!conn_) return;
+  if (check_.joinable()) check_.join();
+  if (check_error_) {
+    // A damaged file: nothing is written to it. Its error is thrown here
+    // unless a caller has had it already.
+    pending_uses_.clear();
+    fetch_.reset();
+    data_version_.reset();
+    conn_.reset();
+    if (!check_error_reported_) {
+      check_error_reported_ = true;
+      std::rethrow_exception(check_error_);
+    }
+    return;
+  }
   try {
     if (!options_.read_only) {
       flushLocked();

@@ -166,7 +166,7 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     // connect to its ends without collision.
     if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
         !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
-      store_.recordUse(c.id, false);
+      recordUse(c.id, false);
       ++tally_.ends_blocked;
       continue;
     }
@@ -174,17 +174,17 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     if (runs.empty()) {
       auto sol = joinClear(c.paths);
       if (!sol) {
-        store_.recordUse(c.id, false);
+        recordUse(c.id, false);
         ++crowded_;
         if (++tally_.crowded >= kCrowdedGiveUp) break;
         continue;
       }
       found = SolverOutcome{std::move(*sol), "database", c.id};
-      store_.recordUse(c.id, true);
+      recordUse(c.id, true);
       ++hits_;
       break;
     }
-    store_.recordUse(c.id, false);
+    recordUse(c.id, false);
     ++tally_.invalid;
     if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
   }
@@ -200,19 +200,24 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   RunRepair fix = repairRuns(ctx.world, robots, c.paths, best->runs, sub.region, settings_.repair_time_s,
                              ctx.deadline, ctx.seed);
   if (!fix.paths) {
-    if (!fix.out_of_time) store_.recordUse(c.id, false);
+    if (!fix.out_of_time) recordUse(c.id, false);
     return failed(fix.why);
   }
   const std::vector<Path>& repaired = *fix.paths;
   auto sol = joinClear(repaired);
   if (!sol) {
-    store_.recordUse(c.id, false);
+    recordUse(c.id, false);
     ++crowded_;
     return failed("repaired but crowded");
   }
   ++repairs_;
-  store_.recordUse(c.id, true);
+  recordUse(c.id, true);
   return {std::move(*sol), "repair", c.id};
+}
+
+void DatabaseSolver::recordUse(std::int64_t id, bool success) {
+  // Usage counters change the file: not when asked to leave it as it is.
+  if (settings_.learn) store_.recordUse(id, success);
 }
 
 LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const SolverContext& ctx,

@@ -101,6 +101,124 @@ TEST_CASE("a damaged table page the index scan never reads is caught by quick_ch
   CHECK_FALSE(std::filesystem::exists(path + "-wal"));
 }
 
+namespace {
+
+// makeDatabase's file in WAL mode, as a planner finds its own database, and
+// its bytes with the experiences table's leftmost leaf (rows 1, 2, ...)
+// made no b-tree page: damage that quick_check sees, but neither opening
+// (which reads the key index) nor an insert (appended on the right) reads.
+std::vector<unsigned char> damagedWalDatabase(const std::string& path) {
+  makeDatabase(path, 1);
+  {
+    Connection c(path, OpenMode::ReadWrite);
+    c.exec("PRAGMA journal_mode = WAL");
+  }
+  std::vector<unsigned char> bytes = readBytes(path);
+  const auto page = static_cast<std::size_t>(pageSize(path));
+  auto at = static_cast<std::size_t>(rootPage(path, "experiences") - 1) * page;
+  REQUIRE(bytes[at] == 0x05);  // an interior page: the table spans several leaves
+  while (bytes[at] == 0x05) {  // first cell's left child, down to a leaf
+    const std::size_t cell = at + (std::size_t{bytes[at + 12]} << 8 | bytes[at + 13]);
+    const std::size_t child = std::size_t{bytes[cell]} << 24 | std::size_t{bytes[cell + 1]} << 16 |
+                              std::size_t{bytes[cell + 2]} << 8 | bytes[cell + 3];
+    at = (child - 1) * page;
+  }
+  REQUIRE(bytes[at] == 0x0d);
+  bytes[at] = 0x07;
+  writeBytes(path, bytes);
+  return bytes;
+}
+
+StoreOptions backgroundCheck(bool read_only) {
+  StoreOptions o;
+  o.check_in_background = true;
+  o.read_only = read_only;
+  o.new_session = !read_only;
+  o.warn_skipped = false;
+  return o;
+}
+
+Experience oneMore() {
+  RobotSpec disc;
+  disc.radius = 0.3;
+  const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+  std::mt19937_64 rng(99);
+  return straightLineExperience(std::vector<RobotTraits>(2, d), sampleMobileQuery(2, rng), 30);
+}
+
+}  // namespace
+
+TEST_CASE("with quick_check in the background a damaged file opens, but every write throws its error first") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  const std::vector<unsigned char> bytes = damagedWalDatabase(path);
+  {
+    ExperienceStore store(path, backgroundCheck(false));
+    CHECK(store.size() == 30);  // the index loaded: the check had not answered
+    const Experience e = oneMore();
+    auto damaged = [&](auto&& write) {
+      try {
+        write();
+      } catch (const DamagedDatabaseError& err) {
+        return std::string(err.what()).rfind(path + ": damaged database file (", 0) == 0;
+      }
+      return false;
+    };
+    CHECK(damaged([&] { store.insert(e, -1); }));
+    store.recordUse(30, true);  // a row on a sound page
+    CHECK(damaged([&] { store.flush(); }));
+    CHECK(damaged([&] { (void)store.session(); }));  // the session is never counted
+    CHECK(damaged([&] { store.awaitCheck(); }));
+    CHECK_NOTHROW(store.close());  // reported already: closing says nothing more
+  }
+  CHECK(readBytes(path) == bytes);
+  // Read-only (earc-plan --no-learn): the verdict comes from awaitCheck, or
+  // from close when nobody asked.
+  {
+    ExperienceStore store(path, backgroundCheck(true));
+    CHECK_THROWS_AS(store.awaitCheck(), DamagedDatabaseError);
+  }
+  {
+    ExperienceStore store(path, backgroundCheck(true));
+    CHECK_THROWS_AS(store.close(), DamagedDatabaseError);
+  }
+  CHECK(readBytes(path) == bytes);
+}
+
+TEST_CASE("with quick_check in the background a sound file counts its session once, after the check") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  makeDatabase(path, 3);
+  auto sessions = [&] {
+    Connection c(path, OpenMode::ReadOnly);
+    Statement s = c.prepare("SELECT value FROM store_meta WHERE name = 'sessions'");
+    REQUIRE(s.step());
+    return s.int64At(0);
+  };
+  const std::int64_t before = sessions();
+  {
+    ExperienceStore store(path, backgroundCheck(false));  // journal_mode DELETE: checked at open
+    CHECK(store.session() == before + 1);
+  }
+  CHECK(sessions() == before + 1);
+  {
+    ExperienceStore store(path, backgroundCheck(false));  // now WAL: checked in the background
+    CHECK(sessions() == before + 1);  // not yet: the check has not answered
+    auto id = store.insert(oneMore(), -1);
+    REQUIRE(id.has_value());
+    CHECK(store.get(*id)->created_session == before + 2);
+    CHECK(store.session() == before + 2);
+    store.recordUse(*id, true);
+  }
+  CHECK(sessions() == before + 2);
+  {
+    ExperienceStore store(path, backgroundCheck(true));
+    CHECK(store.get(31)->succeeded == 1);
+    store.awaitCheck();
+  }
+  CHECK(sessions() == before + 2);
+}
+
 TEST_CASE("quick_check runs unmapped with a small cache and gives the connection its settings back") {
   ScratchDirectory dir("hostile");
   const std::string path = dir.file("e.db");

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/experience/store.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/subcommands.hpp"
@@ -53,10 +54,21 @@ int runPlan(const PlanOptions& o) {
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
     s.lightning_db = o.db;
   }
-  auto store = openStoreForPlanning(s.method, o.db);
-  // A database damaged while planning (quick_check passed at open) is bad
-  // input too: one line naming the file, exit 2. Busy stays exit 1.
-  PlanResult r = store ? exp::withInputErrors(o.db, [&] { return plan(scenario, s, store.get()); })
+  auto store = openStoreForPlanning(s.method, o.db, s.db_learn);
+  // A database found damaged (by the quick_check that ran while planning,
+  // or by a read) is bad input too: one line naming the file, exit 2, no
+  // solution written. Busy stays exit 1.
+  PlanResult r = store ? exp::withInputErrors(o.db,
+                                              [&] {
+                                                try {
+                                                  PlanResult planned = plan(scenario, s, store.get());
+                                                  store->awaitCheck();
+                                                  return planned;
+                                                } catch (const exp::DamagedDatabaseError&) {
+                                                  store->awaitCheck();  // its verdict names the damage best
+                                                  throw;
+                                                }
+                                              })
                        : plan(scenario, s, nullptr);
   saveSolution(o.output, r.solution);
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");

@@ -5,11 +5,17 @@
 
 namespace earc {
 
-std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db) {
+std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn) {
   if (method != Method::Earc) return nullptr;
   if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file");
+  exp::StoreOptions options;
+  options.check_in_background = true;
+  if (!learn) {
+    options.read_only = true;
+    options.new_session = false;
+  }
   try {
-    return std::make_shared<exp::ExperienceStore>(db);
+    return std::make_shared<exp::ExperienceStore>(db, options);
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

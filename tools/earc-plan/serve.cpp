@@ -21,6 +21,7 @@
 #include <iostream>
 #include <list>
 
+#include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/service/service.hpp"
@@ -231,7 +232,10 @@ int runServe(const ServeOptions& o) {
   if (!o.socket.empty()) listener = listenOn(o.socket);
   std::shared_ptr<exp::ExperienceStore> store;
   try {
-    store = openStoreForPlanning(Method::Earc, o.db);
+    store = openStoreForPlanning(Method::Earc, o.db, true);
+    // A damaged file keeps the service from starting, as it always did;
+    // the check only ran while the index loaded.
+    exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
   } catch (...) {
     if (!o.socket.empty()) ::unlink(o.socket.c_str());
     throw;

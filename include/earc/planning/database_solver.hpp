@@ -24,7 +24,7 @@ struct DatabaseSolverSettings {
   int max_invalid_segments = 3;   // repair only up to this many invalid runs
   double repair_time_s = 0.1;     // composite replanning budget per run
   int retime_iterations = 100;    // retimeShortcut attempts on an answer for arms
-  bool learn = true;              // insert subproblems solved from scratch
+  bool learn = true;              // insert subproblems solved from scratch, count uses
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
 
@@ -41,6 +41,8 @@ class DatabaseSolver : public SubproblemSolver {
 
  private:
   SolverOutcome query(SolverContext& ctx);
+  // The store's usage counters for row id, when learning.
+  void recordUse(std::int64_t id, bool success);
   // What the decoupled solver makes of the subproblem the database was
   // just asked (`db`), for the db_shadow_decoupled stats.
   void shadow(SolverContext& ctx, const SolverOutcome& db);

@@ -1,0 +1,82 @@
+#!/bin/bash
+# earc-plan plan --method earc --db FILE and the file:
+# - learning (the default) counts the session and writes what it learned;
+# - --no-learn leaves the file exactly as it was (no session count, no usage
+#   counters, nothing beside it) and refuses a missing file instead of
+#   creating one;
+# - a file whose damage only quick_check sees (opening reads the key index,
+#   not the table) is refused with one line and exit 2, no solution written
+#   and the file unchanged, although its quick_check runs while planning.
+set -u
+BUILD=$1
+SRC=$2
+. "$(dirname "$0")/common.bash"
+needPython
+needBuilt earc-db earc-plan
+DB="$BUILD/earc-db"
+PLAN="$BUILD/earc-plan"
+SCEN="$SRC/tests/data/scenarios/swap-discs.json"
+F="$WORK/e.db"
+q() { "$PY" -c 'import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute(sys.argv[2]).fetchone()[0])' "$@"; }
+stat_of() { "$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["stats"][sys.argv[2]])' "$@"; }
+
+"$DB" build --db "$F" --scenario "$SCEN" --count 40 --seed 3 --threads 1 -q || fail "build"
+sessions=$(q "$F" "select value from store_meta where name = 'sessions'")
+
+# Learning: one more session, the counters of what was retrieved.
+"$PLAN" plan "$SCEN" -o "$WORK/a.json" --method earc --db "$F" --seed 1 -q || fail "plan: exit $?"
+[ "$(stat_of "$WORK/a.json" db_queries)" -gt 0 ] || fail "the plan never asked the database"
+[ "$(q "$F" "select value from store_meta where name = 'sessions'")" -eq $((sessions + 1)) ] ||
+  fail "a learning plan did not count its session"
+[ "$(q "$F" "select sum(retrieved_count) from experiences")" -gt 0 ] || fail "no usage counted while learning"
+leftNothingBeside "$F" "a learning plan"
+
+# --no-learn: the same file, byte for byte.
+before=$(md5sum < "$F")
+"$PLAN" plan "$SCEN" -o "$WORK/b.json" --method earc --db "$F" --no-learn --seed 2 -q || fail "--no-learn: exit $?"
+[ "$(stat_of "$WORK/b.json" db_queries)" -gt 0 ] || fail "--no-learn: the plan never asked the database"
+[ "$(stat_of "$WORK/b.json" db_learned)" -eq 0 ] || fail "--no-learn learned"
+[ "$(md5sum < "$F")" = "$before" ] || fail "--no-learn changed the database file"
+leftNothingBeside "$F" "a --no-learn plan"
+
+# Refusals: exit 2, one line naming the file, nothing made or written.
+refused() {  # what, file, expected text, command...
+  local what=$1 file=$2 text=$3
+  shift 3
+  rm -f "$WORK/sol.json"
+  "$@" > "$WORK/out" 2> "$WORK/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$what: exit $rc, expected 2: $(head -c 400 "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "$what: stderr is not one line: $(cat "$WORK/err")"
+  grep -qF "$file" "$WORK/err" || fail "$what: message does not name $file: $(cat "$WORK/err")"
+  grep -q "$text" "$WORK/err" || fail "$what: message lacks '$text': $(cat "$WORK/err")"
+  [ -e "$WORK/sol.json" ] && fail "$what: a solution was written"
+  return 0
+}
+refused "missing file with --no-learn" "$WORK/none.db" "no such" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/none.db" --no-learn -q
+[ -e "$WORK/none.db" ] && fail "a missing file was created under --no-learn"
+
+# Damage only quick_check finds: the table's root page is not a b-tree page.
+cp "$F" "$WORK/bad.db"
+"$PY" - "$WORK/bad.db" <<'PY'
+import sqlite3, sys
+path = sys.argv[1]
+c = sqlite3.connect(path)
+c.execute("pragma wal_checkpoint(truncate)")
+page = c.execute("pragma page_size").fetchone()[0]
+root = c.execute("select rootpage from sqlite_schema where name = 'experiences'").fetchone()[0]
+c.close()
+with open(path, "r+b") as f:
+    f.seek((root - 1) * page)
+    f.write(b"\x07")
+PY
+before=$(md5sum < "$WORK/bad.db")
+for mode in learn no-learn; do
+  extra=()
+  [ $mode = no-learn ] && extra=(--no-learn)
+  refused "damaged table page ($mode)" "$WORK/bad.db" "damaged database file" \
+    "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/bad.db" "${extra[@]}" -q
+  [ "$(md5sum < "$WORK/bad.db")" = "$before" ] || fail "damaged table page ($mode): the file was modified"
+done
+echo "ok"
