@@ -120,12 +120,16 @@ void ExperienceStore::startCheckLocked() {
   });
 }
 
-void ExperienceStore::awaitCheckLocked() {
+void ExperienceStore::joinCheckLocked() {
   if (check_.joinable()) check_.join();
   if (check_error_) {
     check_error_reported_ = true;
     std::rethrow_exception(check_error_);
   }
+}
+
+void ExperienceStore::awaitCheckLocked() {
+  joinCheckLocked();
   if (session_pending_) {
     session_ = conn_->write([&] {
       conn_->exec("UPDATE store_meta SET value = value + 1 WHERE name = 'sessions'");
@@ -230,7 +234,8 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
       } catch (const DamagedDatabaseError& e) {
         // A check still running in the background has the verdict on the
         // whole file: a damaged file ends planning with its error.
-        if (check_.joinable()) awaitCheckLocked();
+        // (Only the verdict: this is a read transaction, no place to write.)
+        joinCheckLocked();
         // The file was damaged after it was opened (quick_check passed then):
         // this row cannot be read; planning goes on without it.
         warnSkipped(n.id, e.what());

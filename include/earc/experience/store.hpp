@@ -166,8 +166,10 @@ class ExperienceStore {
   void requireOpen() const;
   void requireWritable() const;
   void startCheckLocked();
-  // Joins the background check, throws its error, then counts the session
-  // when that was left for after the check. Every write calls it first.
+  // Joins the background check (if any) and throws its error.
+  void joinCheckLocked();
+  // joinCheckLocked, then counts the session when that was left for after
+  // the check. Every write calls it first.
   void awaitCheckLocked();
   bool checkRunning() const { return check_.joinable() && !check_done_.load(); }
 
