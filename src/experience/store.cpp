@@ -384,34 +384,28 @@ void ExperienceStore::afterWriteLocked() {
 void ExperienceStore::close() {
   std::lock_guard lock(mutex_);
   if (!conn_) return;
+  // The connection goes however this ends: closed, or an error thrown.
+  struct DropOnExit {
+    ExperienceStore& s;
+    ~DropOnExit() {
+      s.fetch_.reset();
+      s.data_version_.reset();
+      s.conn_.reset();
+    }
+  } drop{*this};
   if (check_.joinable()) check_.join();
   if (check_error_) {
     // A damaged file: nothing is written to it. Its error is thrown here
     // unless a caller has had it already.
     pending_uses_.clear();
-    fetch_.reset();
-    data_version_.reset();
-    conn_.reset();
-    if (!check_error_reported_) {
-      check_error_reported_ = true;
-      std::rethrow_exception(check_error_);
-    }
-    return;
+    if (check_error_reported_) return;
+    check_error_reported_ = true;
+    std::rethrow_exception(check_error_);
   }
-  try {
-    if (!options_.read_only) {
-      flushLocked();
-      conn_->checkpointPassive();
-    }
-  } catch (...) {
-    fetch_.reset();
-    data_version_.reset();
-    conn_.reset();
-    throw;
+  if (!options_.read_only) {
+    flushLocked();
+    conn_->checkpointPassive();
   }
-  fetch_.reset();
-  data_version_.reset();
-  conn_.reset();
 }
 
 std::size_t ExperienceStore::size() const {

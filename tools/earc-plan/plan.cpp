@@ -27,6 +27,20 @@ struct PlanOptions {
   bool quiet = false;
 };
 
+// The plan, once the store's background quick_check has passed: its error
+// is thrown instead, also when planning met the damage first (the check's
+// verdict names it best).
+PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store) {
+  try {
+    PlanResult planned = plan(scenario, s, &store);
+    store.awaitCheck();
+    return planned;
+  } catch (const exp::DamagedDatabaseError&) {
+    store.awaitCheck();
+    throw;
+  }
+}
+
 int runPlan(const PlanOptions& o) {
   // Before any planning: no output may overwrite an input or the other
   // output, and each must be writable.
@@ -58,17 +72,7 @@ int runPlan(const PlanOptions& o) {
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
-  PlanResult r = store ? exp::withInputErrors(o.db,
-                                              [&] {
-                                                try {
-                                                  PlanResult planned = plan(scenario, s, store.get());
-                                                  store->awaitCheck();
-                                                  return planned;
-                                                } catch (const exp::DamagedDatabaseError&) {
-                                                  store->awaitCheck();  // its verdict names the damage best
-                                                  throw;
-                                                }
-                                              })
+  PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
                        : plan(scenario, s, nullptr);
   saveSolution(o.output, r.solution);
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
