@@ -61,6 +61,10 @@ class StreamedRRTConnect : public og::RRTConnect {
   std::uint64_t solves_ = 0;
 };
 
+}  // namespace
+
+// Outside the anonymous namespace because LightningDatabase::Impl holds
+// one (GCC's -Wsubobject-linkage fires on that in a unity build).
 // OMPL's Lightning database with the two edits it lacks: adding paths
 // that are already PlannerData (from another file) and taking paths out
 // again (planning without learning).
@@ -86,6 +90,8 @@ class EditableLightningDB : public ot::LightningDB {
     return ids;
   }
 };
+
+namespace {
 
 // OMPL's Lightning with its experience database swapped for one we keep
 // across problems (the protected member is the only way in).

@@ -10,22 +10,6 @@ namespace earc::exp {
 
 namespace {
 
-// nanoflann's three-method adaptor over the first `count` keys.
-struct KeyCloud {
-  const std::vector<double>* keys = nullptr;
-  std::size_t dim = 0;
-  std::size_t count = 0;
-  std::size_t kdtree_get_point_count() const { return count; }
-  double kdtree_get_pt(std::uint32_t idx, std::size_t d) const { return (*keys)[idx * dim + d]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, KeyCloud>, KeyCloud, -1,
-                                                   std::uint32_t>;
-
 // Leaf size: nanoflann's default; 8..20 measured within a few percent.
 constexpr std::size_t kLeafSize = 10;
 
@@ -52,7 +36,25 @@ void keepNearest(std::vector<Neighbor>& v, std::size_t k) {
 
 }  // namespace
 
+// The adaptor and tree types are Tree's own: the class holds them, so they
+// cannot have internal linkage (GCC's -Wsubobject-linkage, in a unity build).
 struct ClassIndex::Tree {
+  // nanoflann's three-method adaptor over the first `count` keys.
+  struct KeyCloud {
+    const std::vector<double>* keys = nullptr;
+    std::size_t dim = 0;
+    std::size_t count = 0;
+    std::size_t kdtree_get_point_count() const { return count; }
+    double kdtree_get_pt(std::uint32_t idx, std::size_t d) const { return (*keys)[idx * dim + d]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, KeyCloud>, KeyCloud, -1,
+                                                     std::uint32_t>;
+
   KeyCloud cloud;
   KdTree tree;
   Tree(const std::vector<double>& keys, std::size_t dim, std::size_t count)

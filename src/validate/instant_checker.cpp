@@ -12,7 +12,6 @@
 namespace earc {
 namespace {
 
-constexpr double kTol = geo::kContactTolerance;
 
 // " (link 3)"-style naming of an arm's body part; nothing for a mobile robot.
 std::string linkSuffix(const RobotModel& m, std::size_t part, const char* before, const char* after) {
@@ -61,7 +60,7 @@ void InstantChecker::checkJointLimits(int robot, const double* q, double t, std:
   if (spec.kind != RobotKind::Manipulator) return;
   for (std::size_t j = 0; j < spec.joint_limits.size(); ++j) {
     const auto [lo, hi] = spec.joint_limits[j];
-    if (q[j] < lo - kTol || q[j] > hi + kTol)
+    if (q[j] < lo - geo::kContactTolerance || q[j] > hi + geo::kContactTolerance)
       out.push_back({Violation::Type::JointLimit, t, {robot},
                      spec.name + " joint " + std::to_string(j + 1) + " = " + formatNumber(q[j]) +
                          " outside its limits [" + formatNumber(lo) + ", " + formatNumber(hi) + "]",
@@ -87,7 +86,7 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
       const double e = geo::excessOutside(parts[i], impl_->world.workspace());
       if (e > worst) worst = e, worst_part = i;
     }
-    if (worst > kTol)
+    if (worst > geo::kContactTolerance)
       out.push_back({Violation::Type::Workspace, t, {robots[pos]},
                      name(pos) + linkSuffix(model(pos), worst_part, " (link ", ")") +
                          " is outside the workspace by " + formatNumber(worst),

@@ -18,7 +18,6 @@ namespace earc {
 namespace {
 
 using Type = Violation::Type;
-constexpr double kTol = geo::kContactTolerance;
 
 // Instants handed to a worker at a time: large enough to amortise the
 // scheduling, small enough to balance two cores on short solutions.
@@ -137,7 +136,7 @@ bool endpointMatches(const RobotSpec& spec, const double* q, const std::vector<d
   for (std::size_t i = 0; i < d; ++i) {
     const bool heading = spec.kind == RobotKind::Mobile && i == 2;
     const double diff = heading ? geo::wrapAngle(q[i] - target[i]) : q[i] - target[i];
-    if (!(std::abs(diff) <= kTol)) return false;
+    if (!(std::abs(diff) <= geo::kContactTolerance)) return false;
   }
   return true;
 }
@@ -157,14 +156,14 @@ void checkStep(const RobotSpec& spec, const Resolution& res, int r, const double
   if (spec.kind == RobotKind::Mobile) {
     const double tr = std::hypot(b[0] - a[0], b[1] - a[1]);
     const double rot = std::abs(geo::wrapAngle(b[2] - a[2]));
-    if (tr > res.translation + kTol) add(kResTranslation, "translation", tr, res.translation, -1);
-    if (rot > res.rotation + kTol) add(kResRotation, "rotation", rot, res.rotation, -1);
+    if (tr > res.translation + geo::kContactTolerance) add(kResTranslation, "translation", tr, res.translation, -1);
+    if (rot > res.rotation + geo::kContactTolerance) add(kResRotation, "rotation", rot, res.rotation, -1);
   } else {
     double worst = -1.0;
     int wj = 0;
     for (int j = 0; j < spec.dim(); ++j)
       if (std::abs(b[j] - a[j]) > worst) worst = std::abs(b[j] - a[j]), wj = j;
-    if (worst > res.joint + kTol) add(kResJoint, "joint", worst, res.joint, wj);
+    if (worst > res.joint + geo::kContactTolerance) add(kResJoint, "joint", worst, res.joint, wj);
   }
 }
 

@@ -9,6 +9,9 @@
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+using earc::test::line;
 
 using namespace earc;
 
@@ -45,12 +48,6 @@ Scenario openScenario(double size) {
   s.name = "test";
   s.workspace = {{0, 0}, {size, size}};
   return s;
-}
-
-Path line(std::vector<std::vector<double>> states) {
-  Path p(static_cast<int>(states.front().size()));
-  for (auto& q : states) p.push(q.data());
-  return p;
 }
 
 

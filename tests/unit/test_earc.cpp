@@ -14,6 +14,9 @@
 #include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+using earc::test::line;
 
 using namespace earc;
 namespace fs = std::filesystem;
@@ -56,12 +59,6 @@ PlannerSettings earcSettings(std::uint64_t seed) {
   p.method = Method::Earc;
   p.time_limit_s = 30;
   p.seed = seed;
-  return p;
-}
-
-Path line(std::vector<std::vector<double>> states) {
-  Path p(static_cast<int>(states.front().size()));
-  for (auto& q : states) p.push(q.data());
   return p;
 }
 

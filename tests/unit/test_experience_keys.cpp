@@ -6,6 +6,9 @@
 
 #include "earc/experience/keys.hpp"
 #include "earc/experience/sampling.hpp"
+#include "support.hpp"
+
+using earc::test::line;
 
 using namespace earc;
 using namespace earc::exp;
@@ -29,16 +32,6 @@ RobotTraits arm(double x, double y, double angle) {
   s.link_radius = 0.05;
   s.joint_limits.assign(5, {-2.6, 2.6});
   return traitsOf(*makeRobotModel(s, Resolution{}));
-}
-
-Path line(std::vector<double> a, std::vector<double> b, int steps) {
-  Path p(static_cast<int>(a.size()));
-  for (int t = 0; t < steps; ++t) {
-    std::vector<double> q(a.size());
-    for (std::size_t d = 0; d < a.size(); ++d) q[d] = a[d] + (b[d] - a[d]) * t / (steps - 1);
-    p.push(q);
-  }
-  return p;
 }
 
 void checkNear(const std::vector<double>& a, const std::vector<double>& b, double tol = 1e-9) {

@@ -7,21 +7,14 @@
 
 #include "earc/experience/retrieval.hpp"
 #include "earc/experience/scratch.hpp"
+#include "support.hpp"
+
+using earc::test::line;
 
 using namespace earc;
 using namespace earc::exp;
 
 namespace {
-
-Path line(std::vector<double> a, std::vector<double> b, int steps) {
-  Path p(static_cast<int>(a.size()));
-  for (int t = 0; t < steps; ++t) {
-    std::vector<double> q(a.size());
-    for (std::size_t d = 0; d < a.size(); ++d) q[d] = t == steps - 1 ? b[d] : a[d] + (b[d] - a[d]) * t / (steps - 1);
-    p.push(q);
-  }
-  return p;
-}
 
 std::unique_ptr<RobotModel> discModel(double translation = 0.05) {
   RobotSpec s;

@@ -9,26 +9,23 @@
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
+#include "support.hpp"
+
+using earc::test::readOnly;
 
 using namespace earc;
 using namespace earc::exp;
 
 namespace {
 
-std::vector<RobotTraits> discs(int n, double radius = 0.3) {
+std::vector<RobotTraits> discTraits(int n, double radius = 0.3) {
   RobotSpec s;
   s.radius = radius;
   return std::vector<RobotTraits>(static_cast<std::size_t>(n), traitsOf(*makeRobotModel(s, Resolution{})));
 }
 
 Experience sample(std::mt19937_64& rng, int robots = 2, double radius = 0.3) {
-  return straightLineExperience(discs(robots, radius), sampleMobileQuery(robots, rng), 8);
-}
-
-StoreOptions readOnly() {
-  StoreOptions o;
-  o.read_only = true;
-  return o;
+  return straightLineExperience(discTraits(robots, radius), sampleMobileQuery(robots, rng), 8);
 }
 
 }  // namespace

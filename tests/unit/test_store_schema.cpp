@@ -13,19 +13,15 @@
 #include "earc/experience/schema.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
+#include "support.hpp"
+
+using earc::test::readFile;
+using earc::test::readOnly;
 
 using namespace earc;
 using namespace earc::exp;
 
 namespace {
-
-std::string readFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  REQUIRE(in.good());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string collapseSpace(const std::string& s) {
   std::string out;
@@ -96,12 +92,6 @@ void makeFileAtVersion(const std::string& path, int version) {
   ins.bind(1, std::string_view(e.cls.signature)).bindBlob(2, encodeKey(e.key)).bindBlob(3, encodePaths(e.paths));
   ins.bind(4, e.cost);
   ins.run();
-}
-
-StoreOptions readOnly() {
-  StoreOptions o;
-  o.read_only = true;
-  return o;
 }
 
 template <class Error>

@@ -12,13 +12,14 @@
 #include "earc/io/json_io.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+using earc::test::kData;
 
 using earc::Violation;
 using Type = earc::Violation::Type;
 
 namespace {
-
-const std::string kData = EARC_TEST_DATA_DIR;
 
 struct Checked {
   earc::Scenario scenario;

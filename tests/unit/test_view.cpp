@@ -10,21 +10,16 @@
 
 #include "earc/io/json_io.hpp"
 #include "earc/view/viewer.hpp"
+#include "support.hpp"
+
+using earc::test::kData;
+using earc::test::readFile;
 
 using earc::InputError;
 using nlohmann::json;
 namespace view = earc::view;
 
 namespace {
-
-const std::string kData = EARC_TEST_DATA_DIR;
-
-std::string readFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 earc::Scenario swapScenario() { return earc::loadScenario(kData + "/scenarios/swap-discs.json"); }
 

@@ -74,7 +74,7 @@ void setupExport(CLI::App& app) {
   });
 }
 
-cli::Registrar reg("earc-bench", "export", setupExport);
+cli::Registrar registered_export("earc-bench", "export", setupExport);
 
 }  // namespace
 }  // namespace earc

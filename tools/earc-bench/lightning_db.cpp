@@ -118,7 +118,7 @@ void setupLightningDb(CLI::App& app) {
   cmd->callback([o] { runLightningDb(*o); });
 }
 
-cli::Registrar reg("earc-bench", "lightning-db", setupLightningDb);
+cli::Registrar registered_lightning_db("earc-bench", "lightning-db", setupLightningDb);
 
 }  // namespace
 }  // namespace earc

@@ -189,7 +189,7 @@ void setupMicro(CLI::App& app) {
   });
 }
 
-cli::Registrar reg("earc-bench", "micro", setupMicro);
+cli::Registrar registered_micro("earc-bench", "micro", setupMicro);
 
 }  // namespace
 }  // namespace earc

@@ -57,7 +57,7 @@ void setupPlot(CLI::App& app) {
   });
 }
 
-cli::Registrar reg("earc-bench", "plot", setupPlot);
+cli::Registrar registered_plot("earc-bench", "plot", setupPlot);
 
 }  // namespace
 }  // namespace earc

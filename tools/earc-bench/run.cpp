@@ -118,7 +118,7 @@ void setupRun(CLI::App& app) {
   });
 }
 
-cli::Registrar reg("earc-bench", "run", setupRun);
+cli::Registrar registered_run("earc-bench", "run", setupRun);
 
 }  // namespace
 }  // namespace earc

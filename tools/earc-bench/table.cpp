@@ -39,7 +39,7 @@ void setupTable(CLI::App& app) {
   });
 }
 
-cli::Registrar reg("earc-bench", "table", setupTable);
+cli::Registrar registered_table("earc-bench", "table", setupTable);
 
 }  // namespace
 }  // namespace earc

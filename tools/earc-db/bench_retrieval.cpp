@@ -174,4 +174,4 @@ void setupBenchRetrieval(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "bench-retrieval", setupBenchRetrieval);
+static earc::cli::Registrar registered_bench_retrieval("earc-db", "bench-retrieval", setupBenchRetrieval);

@@ -188,4 +188,4 @@ void setupBuild(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "build", setupBuild);
+static earc::cli::Registrar registered_build("earc-db", "build", setupBuild);

@@ -58,4 +58,4 @@ void setupCurate(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "curate", setupCurate);
+static earc::cli::Registrar registered_curate("earc-db", "curate", setupCurate);

@@ -33,4 +33,4 @@ void setupExport(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "export", setupExport);
+static earc::cli::Registrar registered_export("earc-db", "export", setupExport);

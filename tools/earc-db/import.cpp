@@ -56,4 +56,4 @@ void setupImport(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "import", setupImport);
+static earc::cli::Registrar registered_import("earc-db", "import", setupImport);

@@ -101,4 +101,4 @@ void setupInspect(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "inspect", setupInspect);
+static earc::cli::Registrar registered_inspect("earc-db", "inspect", setupInspect);

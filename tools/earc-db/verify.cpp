@@ -32,4 +32,4 @@ void setupVerify(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-db", "verify", setupVerify);
+static earc::cli::Registrar registered_verify("earc-db", "verify", setupVerify);

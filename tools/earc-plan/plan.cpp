@@ -114,7 +114,7 @@ void setupPlan(CLI::App& app) {
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }
 
-cli::Registrar reg("earc-plan", "plan", setupPlan);
+cli::Registrar registered_plan("earc-plan", "plan", setupPlan);
 
 }  // namespace
 }  // namespace earc

@@ -91,4 +91,4 @@ void setupRender(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-plan", "render", setupRender);
+static earc::cli::Registrar registered_render("earc-plan", "render", setupRender);

@@ -271,7 +271,7 @@ void setupServe(CLI::App& app) {
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
 }
 
-cli::Registrar reg("earc-plan", "serve", setupServe);
+cli::Registrar registered_serve("earc-plan", "serve", setupServe);
 
 }  // namespace
 }  // namespace earc

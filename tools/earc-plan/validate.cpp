@@ -93,4 +93,4 @@ void setupValidate(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-plan", "validate", setupValidate);
+static earc::cli::Registrar registered_validate("earc-plan", "validate", setupValidate);

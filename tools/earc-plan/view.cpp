@@ -53,4 +53,4 @@ void setupView(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-plan", "view", setupView);
+static earc::cli::Registrar registered_view("earc-plan", "view", setupView);

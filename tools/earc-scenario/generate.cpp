@@ -102,4 +102,4 @@ void setupGenerate(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-scenario", "generate", setupGenerate);
+static earc::cli::Registrar registered_generate("earc-scenario", "generate", setupGenerate);

@@ -67,4 +67,4 @@ void setupMovingAi(CLI::App& app) {
 
 }  // namespace
 
-static earc::cli::Registrar reg("earc-scenario", "movingai", setupMovingAi);
+static earc::cli::Registrar registered_movingai("earc-scenario", "movingai", setupMovingAi);

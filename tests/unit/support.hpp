@@ -1,0 +1,55 @@
+// Helpers shared by the unit tests. One definition each: CI compiles the
+// tests as a unity build, where a helper defined in two test files (even
+// in anonymous namespaces) would be defined twice in one translation unit.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "earc/experience/store.hpp"
+#include "earc/scene/path.hpp"
+
+namespace earc::test {
+
+// tests/unit/data: scenarios, solutions and databases the tests read.
+inline const std::string kData = EARC_TEST_DATA_DIR;
+
+// A path through the given states, one per step.
+inline Path line(const std::vector<std::vector<double>>& states) {
+  Path p(static_cast<int>(states.front().size()));
+  for (const auto& q : states) p.push(q.data());
+  return p;
+}
+
+// A straight path of `steps` states from a to b, ending exactly at b.
+inline Path line(const std::vector<double>& a, const std::vector<double>& b, int steps) {
+  Path p(static_cast<int>(a.size()));
+  for (int t = 0; t < steps; ++t) {
+    std::vector<double> q(a.size());
+    for (std::size_t d = 0; d < a.size(); ++d) q[d] = t == steps - 1 ? b[d] : a[d] + (b[d] - a[d]) * t / (steps - 1);
+    p.push(q);
+  }
+  return p;
+}
+
+inline exp::StoreOptions readOnly() {
+  exp::StoreOptions o;
+  o.read_only = true;
+  return o;
+}
+
+// The file's bytes; a file that cannot be opened fails the test.
+inline std::string readFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  REQUIRE(in.good());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace earc::test
