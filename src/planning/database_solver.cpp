@@ -53,34 +53,6 @@ void alignHeadings(const std::vector<const RobotModel*>& robots, const Subproble
 
 }  // namespace
 
-std::vector<Path> warpToEnds(const std::vector<const RobotModel*>& robots, const CompositeState& starts,
-                             const CompositeState& goals, const std::vector<Path>& paths) {
-  std::vector<Path> out = paths;
-  for (std::size_t r = 0; r < robots.size(); ++r) {
-    Path& p = out[r];
-    const std::size_t n = p.size();
-    if (!robots[r]->isMobile() || n < 2) continue;
-    const double* s = p.at(0);
-    const double* g = p.at(n - 1);
-    const double sx = starts[r][0] - s[0], sy = starts[r][1] - s[1];
-    const double gx = goals[r][0] - g[0], gy = goals[r][1] - g[1];
-    for (std::size_t t = 0; t < n; ++t) {
-      const double f = static_cast<double>(t) / static_cast<double>(n - 1);
-      double* q = p.mutableAt(t);
-      q[0] += (1 - f) * sx + f * gx;
-      q[1] += (1 - f) * sy + f * gy;
-    }
-    // Exactly the subproblem's positions at the ends, whatever the rounding.
-    p.mutableAt(0)[0] = starts[r][0];
-    p.mutableAt(0)[1] = starts[r][1];
-    p.mutableAt(n - 1)[0] = goals[r][0];
-    p.mutableAt(n - 1)[1] = goals[r][1];
-  }
-  // The offsets change from step to step: keep every step within the
-  // robots' resolution.
-  return exp::fitResolution(robots, out);
-}
-
 SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   SolverOutcome out = query(ctx);
   if (settings_.shadow_decoupled) shadow(ctx, out);
@@ -187,24 +159,11 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   };
   std::optional<Repairable> best;
   std::optional<SolverOutcome> found;
-  // Mobile candidates are bent to this start and goal (warpToEnds) rather
-  // than joined to them by straight composite motions: joins move every
-  // robot at once from where the query's robots are to where the stored
-  // ones were, and cross when the two arrangements differ. Over 20 plans of
-  // 32 mobile robots with obstacles, every candidate's ends were blocked in
-  // 84 of 105 three-robot queries and 63 of 66 four-robot ones; bent, in
-  // 13 of 76 and 12 of 39, and the database solved 46 of 112 three-robot
-  // subproblems (8 of 108 before) and 7 of 45 four-robot ones (1 of 66).
-  const bool bend = settings_.warp_mobile && std::all_of(robots.begin(), robots.end(), [](const RobotModel* m) {
-                      return m->isMobile();
-                    });
   for (std::size_t i : order) {
     if (found || ctx.deadline.expired()) break;
-    auto& c = candidates[i];
-    if (bend) c.paths = warpToEnds(robots, sub.starts, sub.goals, c.paths);
+    const auto& c = candidates[i];
     // A candidate is only usable when the subproblem's start and goal
-    // connect to its ends without collision (bent, only a turn on the spot
-    // at the goal is left to check).
+    // connect to its ends without collision.
     if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
         !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
       recordUse(c.id, false);
@@ -354,7 +313,6 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   ds.max_invalid_segments = settings.db_max_invalid_segments;
   ds.learn = settings.db_learn;
   ds.shadow_decoupled = settings.db_shadow_decoupled;
-  ds.warp_mobile = settings.db_warp_mobile;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
   for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));

@@ -6,9 +6,7 @@
 #   creating one;
 # - a file whose damage only quick_check sees (opening reads the key index,
 #   not the table) is refused with one line and exit 2, no solution written
-#   and the file unchanged, although its quick_check runs while planning;
-# - --db-join warp and straight both plan; a bad value or a method other
-#   than earc is refused.
+#   and the file unchanged, although its quick_check runs while planning.
 set -u
 BUILD=$1
 SRC=$2
@@ -40,20 +38,6 @@ before=$(md5sum < "$F")
 [ "$(stat_of "$WORK/b.json" db_learned)" -eq 0 ] || fail "--no-learn learned"
 [ "$(md5sum < "$F")" = "$before" ] || fail "--no-learn changed the database file"
 leftNothingBeside "$F" "a --no-learn plan"
-
-# --db-join: both ways of fitting a retrieved solution give a plan the
-# validator accepts; straight is the earlier way, warp the default.
-for join in warp straight; do
-  "$PLAN" plan "$SCEN" -o "$WORK/j-$join.json" --method earc --db "$F" --no-learn --db-join $join --seed 4 -q ||
-    fail "--db-join $join: exit $?"
-  "$PLAN" validate "$SCEN" "$WORK/j-$join.json" > /dev/null || fail "--db-join $join: the plan does not validate"
-done
-"$PLAN" plan "$SCEN" -o "$WORK/j.json" --method earc --db "$F" --no-learn --db-join bent -q 2> "$WORK/err" &&
-  fail "--db-join bent was accepted"
-grep -q "db-join" "$WORK/err" || fail "--db-join bent: the error does not name the option: $(cat "$WORK/err")"
-"$PLAN" plan "$SCEN" -o "$WORK/j.json" --method arc --db-join straight -q 2> "$WORK/err" &&
-  fail "--db-join with method arc was accepted"
-grep -q "db-join.*earc" "$WORK/err" || fail "--db-join with arc: unclear error: $(cat "$WORK/err")"
 
 # Refusals: exit 2, one line naming the file, nothing made or written.
 refused() {  # what, file, expected text, command...

@@ -213,60 +213,6 @@ TEST_CASE("The database solver repairs a retrieved solution that a new obstacle 
   CHECK(std::vector<double>(p[0].back(), p[0].back() + 3) == sub.goals[0]);
 }
 
-TEST_CASE("warpToEnds bends a stored mobile solution to new ends and keeps its manoeuvre") {
-  const RobotModels owned(swapScenario());
-  const std::vector<const RobotModel*>& models = owned.raw;
-  const std::vector<Path> paths = timeStampComposite(models, kSwapOverTheTop).paths;
-  const std::size_t n = paths[0].size();
-  auto ends = [&](double sx, double sy, double gx, double gy) {
-    CompositeState starts = stateAt(paths, 0), goals = stateAt(paths, n - 1);
-    for (auto& q : starts) q[0] += sx, q[1] += sy;
-    for (auto& q : goals) q[0] += gx, q[1] += gy;
-    return std::pair{starts, goals};
-  };
-
-  SUBCASE("the same offset at both ends is a translation") {
-    const auto [starts, goals] = ends(1.5, -2.0, 1.5, -2.0);
-    const std::vector<Path> bent = warpToEnds(models, starts, goals, paths);
-    REQUIRE(bent.size() == 2);
-    for (std::size_t r = 0; r < 2; ++r) {
-      REQUIRE(bent[r].size() == n);
-      for (std::size_t t = 0; t < n; ++t) {
-        CHECK(bent[r].at(t)[0] == doctest::Approx(paths[r].at(t)[0] + 1.5));
-        CHECK(bent[r].at(t)[1] == doctest::Approx(paths[r].at(t)[1] - 2.0));
-        CHECK(bent[r].at(t)[2] == paths[r].at(t)[2]);
-      }
-    }
-  }
-
-  SUBCASE("different offsets: exact ends, every step within the resolution, the middle shifted by both") {
-    const auto [starts, goals] = ends(-0.6, 0.2, 0.9, -0.4);
-    const std::vector<Path> bent = warpToEnds(models, starts, goals, paths);
-    REQUIRE(bent[0].size() == bent[1].size());
-    const std::size_t m = bent[0].size();
-    CHECK(m > n);  // a step grew past one step of resolution and was split
-    for (std::size_t r = 0; r < 2; ++r) {
-      CHECK(bent[r].at(0)[0] == starts[r][0]);
-      CHECK(bent[r].at(0)[1] == starts[r][1]);
-      CHECK(bent[r].at(m - 1)[0] == goals[r][0]);
-      CHECK(bent[r].at(m - 1)[1] == goals[r][1]);
-      for (std::size_t t = 0; t + 1 < m; ++t) CHECK(models[r]->stepsBetween(bent[r].at(t), bent[r].at(t + 1)) <= 1);
-    }
-    // The manoeuvre is kept: a still goes over the top (y 6 in the stored
-    // path, shifted by between -0.4 and +0.2), b still along y 5.
-    double a_top = 0, b_low = 10, b_high = 0;
-    for (std::size_t t = 0; t < m; ++t) {
-      a_top = std::max(a_top, bent[0].at(t)[1]);
-      b_low = std::min(b_low, bent[1].at(t)[1]);
-      b_high = std::max(b_high, bent[1].at(t)[1]);
-    }
-    CHECK(a_top >= 5.6 - 1e-9);
-    CHECK(a_top <= 6.2 + 1e-9);
-    CHECK(b_low >= 4.6 - 1e-9);
-    CHECK(b_high <= 5.2 + 1e-9);
-  }
-}
-
 TEST_CASE("invalidRuns finds the stretch an obstacle cuts and repairRuns replans only that stretch") {
   const RobotModels owned(swapScenario());
   const std::vector<const RobotModel*>& models = owned.raw;

@@ -24,7 +24,6 @@ struct PlanOptions {
   int window = 0;
   bool no_learn = false;
   bool shadow_decoupled = false;
-  std::string db_join;  // empty: warp
   bool quiet = false;
 };
 
@@ -64,8 +63,6 @@ int runPlan(const PlanOptions& o) {
   if (o.shadow_decoupled && s.method != Method::Earc)
     throw InputError("", "--shadow-decoupled", "is for method earc");
   s.db_shadow_decoupled = o.shadow_decoupled;
-  if (!o.db_join.empty() && s.method != Method::Earc) throw InputError("", "--db-join", "is for method earc");
-  s.db_warp_mobile = o.db_join != "straight";
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
@@ -113,10 +110,6 @@ void setupPlan(CLI::App& app) {
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");
-  cmd->add_option("--db-join", opts->db_join,
-                  "E-ARC, mobile robots: how a retrieved solution is fitted to the subproblem: bent to its start "
-                  "and goal (warp, the default), or joined to them by straight motions (straight, the earlier way)")
-      ->check(CLI::IsMember({"warp", "straight"}));
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }

@@ -26,17 +26,7 @@ struct DatabaseSolverSettings {
   int retime_iterations = 100;    // retimeShortcut attempts on an answer for arms
   bool learn = true;              // insert subproblems solved from scratch, count uses
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
-  bool warp_mobile = true;        // see PlannerSettings::db_warp_mobile
 };
-
-// A retrieved solution bent to a subproblem's start and goal: each mobile
-// robot's positions are shifted by an offset that goes linearly in time
-// from (its start - the path's first position) to (its goal - the path's
-// last position), so the path keeps its manoeuvre and starts and ends
-// where the subproblem does; headings are kept. Then resampled so that
-// no step exceeds the robots' resolution. Arms' paths are left as they are.
-std::vector<Path> warpToEnds(const std::vector<const RobotModel*>& robots, const CompositeState& starts,
-                             const CompositeState& goals, const std::vector<Path>& paths);
 
 class DatabaseSolver : public SubproblemSolver {
  public:

@@ -41,9 +41,6 @@ struct PlannerSettings {
   // the database and report what each solved (stats
   // db_shadow_decoupled). Planning times then include those runs.
   bool db_shadow_decoupled = false;
-  // E-ARC: bend a retrieved mobile solution to the subproblem's start and
-  // goal (warpToEnds); false joins it by straight motions, as before.
-  bool db_warp_mobile = true;
   // Lightning's whole-problem database file (OMPL's format): empty starts
   // from an empty database and writes none; a missing file is created when
   // db_learn is set.
