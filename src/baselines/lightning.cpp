@@ -63,11 +63,11 @@ class StreamedRRTConnect : public og::RRTConnect {
 
 }  // namespace
 
-// Outside the anonymous namespace because LightningDatabase::Impl holds
-// one (GCC's -Wsubobject-linkage fires on that in a unity build).
 // OMPL's Lightning database with the two edits it lacks: adding paths
 // that are already PlannerData (from another file) and taking paths out
-// again (planning without learning).
+// again (planning without learning). Outside the anonymous namespace
+// because LightningDatabase::Impl holds one (GCC's -Wsubobject-linkage
+// fires on that in a unity build).
 class EditableLightningDB : public ot::LightningDB {
  public:
   using ot::LightningDB::LightningDB;

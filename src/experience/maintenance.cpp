@@ -41,9 +41,6 @@ std::int64_t count(Connection& db, const std::string& sql) {
   return n;
 }
 
-// Keys kept between two index rebuilds while deduplicating.
-constexpr std::size_t kSettleEvery = 1024;
-
 // Near-duplicate removal inside one class: rows ordered best first, each
 // kept unless a kept row lies within eps. Returns the ids to delete. Needs
 // the current schema (usage counters).
@@ -73,7 +70,7 @@ std::vector<std::int64_t> nearDuplicates(Connection& db, int version, double eps
       }
     }
     kept.add(r.cls, r.id, r.key);
-    if (++added % kSettleEvery == 0) kept.settle();
+    if (++added % ClassIndex::kBulkSettleEvery == 0) kept.settle();
   }
   return drop;
 }

@@ -32,10 +32,6 @@ bool plausibleKeyDimension(const ExperienceClass& cls, std::size_t n) {
   return n > 0 && n % per_joint == 0 && n / per_joint <= static_cast<std::size_t>(kArmKeyJoints);
 }
 
-// Keys added between two settle() calls in bulk work: bounds the linear
-// tail without rebuilding a tree per key.
-constexpr std::size_t kSettleEvery = 1024;
-
 // Resets a cached statement however the scope is left.
 struct ResetOnExit {
   Statement& s;
@@ -322,7 +318,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       const std::int64_t id = sqlite3_last_insert_rowid(conn_->handle());
       if (eps >= 0) {
         batch_index.add(e.cls, id, e.key);
-        if (result.size() % kSettleEvery == 0) batch_index.settle();
+        if (result.size() % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
       }
       result.push_back(id);
     }

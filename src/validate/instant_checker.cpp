@@ -12,7 +12,6 @@
 namespace earc {
 namespace {
 
-
 // " (link 3)"-style naming of an arm's body part; nothing for a mobile robot.
 std::string linkSuffix(const RobotModel& m, std::size_t part, const char* before, const char* after) {
   if (m.isMobile()) return "";

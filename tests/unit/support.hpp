@@ -1,18 +1,23 @@
 // Helpers shared by the unit tests. One definition each: CI compiles the
 // tests as a unity build, where a helper defined in two test files (even
 // in anonymous namespaces) would be defined twice in one translation unit.
+// Which files share a batch changes as files are added, so a test file's
+// own helpers need names no other test file uses.
 #pragma once
 
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "earc/experience/keys.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
 
 namespace earc::test {
 
@@ -35,6 +40,15 @@ inline Path line(const std::vector<double>& a, const std::vector<double>& b, int
     p.push(q);
   }
   return p;
+}
+
+inline constexpr double kPi = std::numbers::pi;
+
+// The experience-class traits of a mobile disc robot.
+inline exp::RobotTraits discTraits(double radius = 0.3) {
+  RobotSpec s;
+  s.radius = radius;
+  return exp::traitsOf(*makeRobotModel(s, Resolution{}));
 }
 
 inline exp::StoreOptions readOnly() {

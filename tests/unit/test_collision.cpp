@@ -9,12 +9,13 @@
 #include <thread>
 
 #include "earc/collision/collision_world.hpp"
+#include "support.hpp"
+
+using earc::test::kPi;
 
 using namespace earc;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Obstacle boxObstacle(geo::Vec2 c, geo::Vec2 size, double angle = 0.0) { return Obstacle::makeBox(c, size, angle); }
 Obstacle circleObstacle(geo::Vec2 c, double r) { return Obstacle::makeCircle(c, r); }

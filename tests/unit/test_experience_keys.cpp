@@ -8,20 +8,13 @@
 #include "earc/experience/sampling.hpp"
 #include "support.hpp"
 
+using earc::test::discTraits;
 using earc::test::line;
 
 using namespace earc;
 using namespace earc::exp;
 
 namespace {
-
-RobotTraits disc(double radius) {
-  RobotSpec s;
-  s.kind = RobotKind::Mobile;
-  s.shape = MobileShape::Disc;
-  s.radius = radius;
-  return traitsOf(*makeRobotModel(s, Resolution{}));
-}
 
 RobotTraits arm(double x, double y, double angle) {
   RobotSpec s;
@@ -42,7 +35,7 @@ void checkNear(const std::vector<double>& a, const std::vector<double>& b, doubl
 }  // namespace
 
 TEST_CASE("a mobile subproblem gives the same key and class whatever order its robots are listed in") {
-  std::vector<RobotTraits> robots{disc(0.3), disc(0.3), disc(0.3)};
+  std::vector<RobotTraits> robots{discTraits(0.3), discTraits(0.3), discTraits(0.3)};
   std::vector<std::vector<double>> s{{1, 2, 0}, {3, 1, 1}, {2, 4, 2}}, g{{3, 3, 0}, {1, 2.5, 0}, {2, 0, 1}};
   Canonical a = canonicalize(robots, s, g);
   // Listed as robots 2, 0, 1.
@@ -56,7 +49,7 @@ TEST_CASE("a mobile subproblem gives the same key and class whatever order its r
 }
 
 TEST_CASE("a mobile key is invariant under translation of the whole subproblem") {
-  std::vector<RobotTraits> robots{disc(0.3), disc(0.3)};
+  std::vector<RobotTraits> robots{discTraits(0.3), discTraits(0.3)};
   std::vector<std::vector<double>> s{{1, 2, 0}, {3, 1, 1}}, g{{3, 3, 0}, {1, 2.5, 0}};
   Canonical a = canonicalize(robots, s, g);
   for (auto* v : {&s, &g})
@@ -72,7 +65,7 @@ TEST_CASE("a mobile key is invariant under translation of the whole subproblem")
 }
 
 TEST_CASE("a mobile key is the starts and goals relative to their centroid, headings left out") {
-  std::vector<RobotTraits> robots{disc(0.3), disc(0.3)};
+  std::vector<RobotTraits> robots{discTraits(0.3), discTraits(0.3)};
   Canonical c = canonicalize(robots, {{0, 0, 1}, {2, 0, 2}}, {{2, 2, 3}, {0, 2, -1}});
   CHECK(c.offset.x == doctest::Approx(1.0));
   CHECK(c.offset.y == doctest::Approx(1.0));
@@ -81,7 +74,7 @@ TEST_CASE("a mobile key is the starts and goals relative to their centroid, head
 }
 
 TEST_CASE("mobile paths survive the trip to canonical form and back") {
-  std::vector<RobotTraits> robots{disc(0.3), disc(0.3)};
+  std::vector<RobotTraits> robots{discTraits(0.3), discTraits(0.3)};
   std::vector<std::vector<double>> s{{5, 5, 0}, {4, 6, 1}}, g{{6, 6, 0}, {6, 4, 1}};
   Canonical c = canonicalize(robots, s, g);
   std::vector<Path> paths{line(s[0], g[0], 5), line(s[1], g[1], 5)};
@@ -93,15 +86,15 @@ TEST_CASE("mobile paths survive the trip to canonical form and back") {
 
 TEST_CASE("discs of different radius never share a class") {
   std::vector<std::vector<double>> s{{0, 0, 0}, {1, 0, 0}}, g{{1, 1, 0}, {0, 1, 0}};
-  Canonical small = canonicalize(std::vector<RobotTraits>{disc(0.3), disc(0.3)}, s, g);
-  Canonical large = canonicalize(std::vector<RobotTraits>{disc(0.5), disc(0.5)}, s, g);
+  Canonical small = canonicalize(std::vector<RobotTraits>{discTraits(0.3), discTraits(0.3)}, s, g);
+  Canonical large = canonicalize(std::vector<RobotTraits>{discTraits(0.5), discTraits(0.5)}, s, g);
   CHECK(small.cls != large.cls);
   CHECK(small.key == large.key);
 }
 
 TEST_CASE("mobile subproblems of different robot counts are different classes") {
-  auto two = canonicalize(std::vector<RobotTraits>{disc(0.3), disc(0.3)}, {{0, 0, 0}, {1, 0, 0}}, {{1, 1, 0}, {0, 1, 0}});
-  auto three = canonicalize(std::vector<RobotTraits>{disc(0.3), disc(0.3), disc(0.3)},
+  auto two = canonicalize(std::vector<RobotTraits>{discTraits(0.3), discTraits(0.3)}, {{0, 0, 0}, {1, 0, 0}}, {{1, 1, 0}, {0, 1, 0}});
+  auto three = canonicalize(std::vector<RobotTraits>{discTraits(0.3), discTraits(0.3), discTraits(0.3)},
                             {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{1, 1, 0}, {0, 1, 0}, {2, 2, 0}});
   CHECK(two.cls != three.cls);
   CHECK(two.cls.robot_count == 2);
@@ -171,7 +164,7 @@ TEST_CASE("base transform classes ignore rounding noise and treat -pi and pi as 
 
 TEST_CASE("the stored key of a canonical experience agrees with its paths' endpoints") {
   std::mt19937_64 rng(5);
-  std::vector<RobotTraits> robots{disc(0.3), disc(0.3), disc(0.3), disc(0.3)};
+  std::vector<RobotTraits> robots{discTraits(0.3), discTraits(0.3), discTraits(0.3), discTraits(0.3)};
   for (int i = 0; i < 20; ++i) {
     Experience e = straightLineExperience(robots, sampleMobileQuery(4, rng), 7);
     CHECK_FALSE(findProblem(e).has_value());
@@ -180,8 +173,8 @@ TEST_CASE("the stored key of a canonical experience agrees with its paths' endpo
 
 TEST_CASE("robots that form no experience class are refused") {
   CHECK_FALSE(hasExperienceClass(std::vector<RobotTraits>{arm(0, 0, 0)}));
-  CHECK_FALSE(hasExperienceClass(std::vector<RobotTraits>{arm(0, 0, 0), disc(0.3)}));
-  CHECK(hasExperienceClass(std::vector<RobotTraits>{disc(0.3)}));
+  CHECK_FALSE(hasExperienceClass(std::vector<RobotTraits>{arm(0, 0, 0), discTraits(0.3)}));
+  CHECK(hasExperienceClass(std::vector<RobotTraits>{discTraits(0.3)}));
   CHECK_THROWS_AS(canonicalize(std::vector<RobotTraits>{arm(0, 0, 0), arm(1, 0, 0), arm(2, 0, 0)},
                                {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}},
                                {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}),

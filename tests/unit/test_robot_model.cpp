@@ -9,12 +9,13 @@
 
 #include "earc/scene/robot_model.hpp"
 #include "earc/scene/robot_signature.hpp"
+#include "support.hpp"
+
+using earc::test::kPi;
 
 using namespace earc;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 RobotSpec discSpec(double r) { return RobotSpec::mobileDisc("d", r); }
 RobotSpec boxSpec(double length, double width) { return RobotSpec::mobileBox("b", {length, width}); }

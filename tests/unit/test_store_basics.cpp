@@ -11,6 +11,7 @@
 #include "earc/experience/store.hpp"
 #include "support.hpp"
 
+using earc::test::discTraits;
 using earc::test::readOnly;
 
 using namespace earc;
@@ -18,14 +19,9 @@ using namespace earc::exp;
 
 namespace {
 
-std::vector<RobotTraits> discTraits(int n, double radius = 0.3) {
-  RobotSpec s;
-  s.radius = radius;
-  return std::vector<RobotTraits>(static_cast<std::size_t>(n), traitsOf(*makeRobotModel(s, Resolution{})));
-}
-
 Experience sample(std::mt19937_64& rng, int robots = 2, double radius = 0.3) {
-  return straightLineExperience(discTraits(robots, radius), sampleMobileQuery(robots, rng), 8);
+  const std::vector<RobotTraits> traits(static_cast<std::size_t>(robots), discTraits(radius));
+  return straightLineExperience(traits, sampleMobileQuery(robots, rng), 8);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "earc/experience/store.hpp"
 #include "support.hpp"
 
+using earc::test::discTraits;
 using earc::test::readFile;
 using earc::test::readOnly;
 
@@ -66,15 +67,9 @@ std::string describe(Connection& db) {
   return out.str();
 }
 
-RobotTraits disc() {
-  RobotSpec s;
-  s.radius = 0.3;
-  return traitsOf(*makeRobotModel(s, Resolution{}));
-}
-
 Experience sample(std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::vector<RobotTraits> robots{disc(), disc()};
+  std::vector<RobotTraits> robots{discTraits(), discTraits()};
   return straightLineExperience(robots, sampleMobileQuery(2, rng), 6);
 }
 

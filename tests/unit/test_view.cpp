@@ -21,7 +21,7 @@ namespace view = earc::view;
 
 namespace {
 
-earc::Scenario swapScenario() { return earc::loadScenario(kData + "/scenarios/swap-discs.json"); }
+earc::Scenario swapDiscsFromFile() { return earc::loadScenario(kData + "/scenarios/swap-discs.json"); }
 
 json conflictEvent(int id, int a, int b) {
   return {{"type", "conflict"}, {"id", id}, {"robots", {a, b}}, {"t", 3.5}, {"place", {1.0, 2.0}}, {"at_s", 0.01}};
@@ -47,7 +47,7 @@ json traceDoc(json events) { return {{"format", "earc.trace.v1"}, {"events", std
 // The InputError message for a trace, or "" when it is accepted.
 std::string traceError(const json& doc) {
   try {
-    view::traceFromJson(doc, swapScenario(), "t.json");
+    view::traceFromJson(doc, swapDiscsFromFile(), "t.json");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -76,7 +76,7 @@ TEST_CASE("viewer assets embedded in the build match tools/viewer (run tools/vie
 }
 
 TEST_CASE("viewer page is self-contained: no external script, style, font or link, and no network allowed") {
-  const earc::Scenario sc = swapScenario();
+  const earc::Scenario sc = swapDiscsFromFile();
   const earc::Solution sol = earc::loadSolution(kData + "/solutions/swap-discs__valid.json", &sc);
   const std::string html = view::viewerHtml(view::viewerData(sc, sol, nullptr));
   for (const char* bad : {"src=", "href=", "http:", "https:", "url(", "@import", "@font-face", "@EARC_"}) {
@@ -91,7 +91,7 @@ TEST_CASE("viewer page is self-contained: no external script, style, font or lin
 }
 
 TEST_CASE("viewer page embeds a robot name with </script> without ending the data element") {
-  earc::Scenario sc = swapScenario();
+  earc::Scenario sc = swapDiscsFromFile();
   sc.robots[0].name = "</script><script>alert(1)</script>";
   earc::Solution sol;
   sol.scenario = sc.name;
@@ -117,7 +117,7 @@ TEST_CASE("viewer paths are delta-coded integers in 1e-4 units that sum back to 
 }
 
 TEST_CASE("viewer data holds the makespan, the stats and the scenario without its format tag") {
-  const earc::Scenario sc = swapScenario();
+  const earc::Scenario sc = swapDiscsFromFile();
   const earc::Solution sol = earc::loadSolution(kData + "/solutions/swap-discs__valid.json", &sc);
   const json d = view::viewerData(sc, sol, nullptr);
   CHECK(d["solution"]["makespan"] == sol.makespan());
@@ -128,7 +128,7 @@ TEST_CASE("viewer data holds the makespan, the stats and the scenario without it
 }
 
 TEST_CASE("viewer refuses a solution of another scenario, order, robot count or dimension") {
-  const earc::Scenario sc = swapScenario();
+  const earc::Scenario sc = swapDiscsFromFile();
   const earc::Solution good = earc::loadSolution(kData + "/solutions/swap-discs__valid.json", &sc);
   CHECK_NOTHROW(view::checkSolutionMatches(sc, good, "s.json"));
 
@@ -170,7 +170,7 @@ TEST_CASE("viewer reads a trace: conflicts and subproblems with rounded numbers,
   json events = {conflictEvent(0, 0, 1), subproblemEvent(0, 0), {{"type", "future-kind"}, {"x", 1}}};
   events[1]["entry"] = 42;
   events[1]["attempts"][0]["detail"] = "3 candidates: 3 ends blocked, 0 invalid, 0 crowded; none to repair";
-  const json t = view::traceFromJson(traceDoc(events), swapScenario(), "t.json");
+  const json t = view::traceFromJson(traceDoc(events), swapDiscsFromFile(), "t.json");
   REQUIRE(t["conflicts"].size() == 1);
   REQUIRE(t["subproblems"].size() == 1);
   CHECK(t["conflicts"][0]["t"] == 3.5);

@@ -42,6 +42,9 @@ class ClassIndex {
   // Folds the tail into the tree when it outgrew its share. Call after a
   // batch of add(): rebuilding per key would cost a tree per few keys.
   void settle();
+  // Keys to add between two settle() calls in bulk work (deduplicating a
+  // batch): bounds the linear tail without rebuilding a tree per key.
+  static constexpr std::size_t kBulkSettleEvery = 1024;
   // Folds the tail into the tree now.
   void rebuild();
 
