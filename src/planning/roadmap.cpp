@@ -14,12 +14,6 @@ namespace {
 // (a workspace that is almost all obstacle would otherwise spin forever).
 constexpr int kMaxTriesPerSample = 60;
 
-std::uint64_t edgeKey(int a, int b) {
-  auto lo = static_cast<std::uint64_t>(std::min(a, b));
-  auto hi = static_cast<std::uint64_t>(std::max(a, b));
-  return (lo << 32) | hi;
-}
-
 }  // namespace
 
 Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed)
@@ -57,23 +51,30 @@ void Roadmap::grow(int samples) {
     index_.add(e.data());
     ++added;
   }
+  // At most k new edges per new vertex.
+  const std::size_t edges = edge_ends_.size() + static_cast<std::size_t>(added) * static_cast<std::size_t>(neighbors_);
+  edge_ends_.reserve(edges);
+  edge_state_.reserve(edges);
   for (int v = first; v < size(); ++v) connect(v);
 }
 
 void Roadmap::connect(int v) {
   std::vector<double> e(static_cast<std::size_t>(index_.dim()));
   embed(config(v), e.data());
+  auto& mine = adjacency_[static_cast<std::size_t>(v)];
   for (std::size_t u_raw : index_.nearest(e.data(), static_cast<std::size_t>(neighbors_) + 1)) {
     int u = static_cast<int>(u_raw);
     if (u == v) continue;
-    auto key = edgeKey(u, v);
-    if (edge_ids_.count(key)) continue;
+    // Already joined when v was among u's nearest. Every edge of v is in
+    // its own list, a few dozen at most: scanning it is cheaper than a
+    // hash set of all edges (which took a fifth of the time of
+    // connecting the 1,500 vertices of an arm's roadmap).
+    if (std::any_of(mine.begin(), mine.end(), [u](const Edge& ed) { return ed.to == u; })) continue;
     int steps = model_.stepsBetween(config(v), config(u));
     int id = static_cast<int>(edge_ends_.size());
-    edge_ids_.emplace(key, id);
     edge_ends_.emplace_back(v, u);
     edge_state_.push_back(0);
-    adjacency_[static_cast<std::size_t>(v)].push_back({u, steps, id});
+    mine.push_back({u, steps, id});
     adjacency_[static_cast<std::size_t>(u)].push_back({v, steps, id});
   }
 }

@@ -2,7 +2,9 @@
 // and whole plans that must validate.
 #include <doctest/doctest.h>
 
+#include <map>
 #include <random>
+#include <set>
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/arc.hpp"
@@ -391,6 +393,44 @@ TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle
   CHECK(&roadmaps.forRobot(2) != &roadmaps.forRobot(0));  // an obstacle within reach
   CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(0));  // its reach crosses the workspace edge
   CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(2));
+}
+
+TEST_CASE("A roadmap joins each vertex to its nearest once: one edge per pair, listed at both ends") {
+  Scenario s = openScenario(6);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  Roadmap rm(world, *m.raw[0], 10, 3);
+  // A vertex is joined to each of its 10 nearest other vertices as they
+  // were when it was added.
+  auto joinedToNearest = [&](int from) {
+    for (int v = from; v < rm.size(); v += 7) {
+      std::set<int> adjacent;
+      for (const Roadmap::Edge& e : rm.edges(v)) adjacent.insert(e.to);
+      for (int u : rm.nearest(rm.config(v), 11))
+        if (u != v) CHECK(adjacent.count(u));
+    }
+  };
+  rm.grow(300);
+  joinedToNearest(0);
+  rm.grow(100);  // vertices added later join the older ones too
+  joinedToNearest(300);
+  REQUIRE(rm.size() == 400);
+  std::map<int, std::vector<std::pair<int, int>>> ends_of;  // edge id -> (from, to) as listed
+  for (int v = 0; v < rm.size(); ++v) {
+    std::set<int> seen;
+    for (const Roadmap::Edge& e : rm.edges(v)) {
+      CHECK(e.to != v);
+      CHECK(seen.insert(e.to).second);  // no pair twice
+      ends_of[e.id].emplace_back(v, e.to);
+    }
+  }
+  for (const auto& [id, ends] : ends_of) {
+    CAPTURE(id);
+    REQUIRE(ends.size() == 2);
+    CHECK(ends[0].first == ends[1].second);
+    CHECK(ends[0].second == ends[1].first);
+  }
 }
 
 TEST_CASE("Every method reports a solution as solved only when it validates") {

@@ -62,7 +62,6 @@ class Roadmap {
   std::vector<std::vector<Edge>> adjacency_;
   std::vector<std::pair<int, int>> edge_ends_;
   std::vector<std::int8_t> edge_state_;  // 0 unknown, 1 valid, -1 invalid
-  std::unordered_map<std::uint64_t, int> edge_ids_;
   PointIndex index_;
   std::size_t edge_checks_ = 0;
 };
