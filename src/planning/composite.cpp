@@ -103,7 +103,7 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
 }
 
 bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const double*>& a,
-                                        const std::vector<const double*>& b) const {
+                                        const std::vector<const double*>& b, KnownValid known) const {
   const std::size_t n = robots_.size();
   int steps = 0;
   for (std::size_t w = 0; w < n; ++w) steps = std::max(steps, robots_[w]->stepsBetween(a[w], b[w]));
@@ -113,7 +113,7 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
   thread_local PlacedBodies mine, theirs;
   q.resize(n);
   at.resize(n);
-  for (int k = 0; k <= instants; ++k) {
+  for (int k = known.start ? 1 : 0; k <= instants; ++k) {
     if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
     for (std::size_t w = 0; w < n; ++w) {
       if (instants == 0) {  // as motionValid: the state itself, not interpolated
@@ -124,9 +124,14 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
       robots_[w]->interpolate(a[w], b[w], static_cast<double>(k) / instants, q[w].data());
       at[w] = q[w].data();
     }
-    if (!world_.stateValid(*robots_[r], at[r], mine)) return false;
+    bool placed = !known.world;
+    if (placed && !world_.stateValid(*robots_[r], at[r], mine)) return false;
     for (std::size_t w = 0; w < n; ++w) {
       if (w == r || !boundingDiscsMeet(*robots_[r], at[r], *robots_[w], at[w])) continue;
+      if (!placed) {
+        mine.place(*robots_[r], at[r]);
+        placed = true;
+      }
       theirs.place(*robots_[w], at[w]);
       if (bodiesTouch(mine, theirs)) return false;
     }
@@ -175,13 +180,16 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
     std::size_t last = 0;
     for (const auto& p : paths) last = std::max(last, p.size() - 1);
     // Only robot r's part changed: the others' part was valid and stays so.
+    // Against the world, only its new straight motion i -> i + d is new;
+    // after it, it makes the motions it made before, later. Step i is as it
+    // was, and each later step was checked as the end of the one before.
     bool valid = true;
     for (std::size_t t = i; t < last && valid; ++t) {
       for (std::size_t w = 0; w < n; ++w) {
         from[w] = paths[w].at(t);
         to[w] = paths[w].at(t + 1);
       }
-      valid = checker.robotMotionValid(r, from, to);
+      valid = checker.robotMotionValid(r, from, to, {.start = true, .world = t >= i + d});
     }
     if (!valid) std::swap(paths[r], shorter);
   }

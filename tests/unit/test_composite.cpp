@@ -125,10 +125,15 @@ TEST_CASE("One robot's part of a motion decides it when the others' part is vali
   // fourth anywhere: the full check and the one robot's check must agree.
   Scenario s = crowd(4, 10);
   for (auto& r : s.robots) r = RobotSpec::mobileBox(r.name, {0.6, 0.4}), r.start = r.goal = {1, 1, 0};
+  // The same robots with nothing around them: the answer when robot r's
+  // own motion is known valid against the world.
+  Scenario open = s;
+  open.workspace = {{-100, -100}, {100, 100}};
   s.obstacles.push_back(Obstacle::makeBox({5, 2}, {1.5, 0.8}, 0.3));
   RobotModels m(s);
-  CollisionWorld world(s);
-  CompositeChecker checker(world, m.raw);
+  CollisionWorld world(s), nothing(open);
+  CompositeChecker checker(world, m.raw), among_robots(nothing, m.raw);
+  int start_known = 0, world_known = 0;
   const double step = m.raw[0]->resolution().translation;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> xy(0.0, 10.0), th(-3.0, 3.0), jitter(-0.7, 0.7);
@@ -153,9 +158,22 @@ TEST_CASE("One robot's part of a motion decides it when the others' part is vali
     const bool full = checker.motionValid(a, b);
     CHECK(checker.robotMotionValid(r, pa, pb) == full);
     (full ? valid : invalid) += 1;
+    // Told that the first state is valid, it checks only the rest; told
+    // that robot r is clear of the world, only the other robots.
+    if (checker.stateValid(a)) {
+      CHECK(checker.robotMotionValid(r, pa, pb, {.start = true}) == full);
+      ++start_known;
+    }
+    if (among_robots.stateValid(a) && among_robots.motionValid(a, b) != full) {
+      CHECK(checker.robotMotionValid(r, pa, pb, {.world = true}));  // invalid only against the world
+      ++world_known;
+    }
+    CHECK(checker.robotMotionValid(r, pa, pb, {.world = true}) == among_robots.motionValid(a, b));
   }
   CHECK(valid > 200);
   CHECK(invalid > 200);
+  CHECK(start_known > 200);
+  CHECK(world_known > 100);
 }
 
 TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {

@@ -22,6 +22,13 @@ CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
 // that all robots move together and arrive at once.
 int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b);
 
+// What a caller of CompositeChecker::robotMotionValid already knows to be
+// valid, so that it is not checked again.
+struct KnownValid {
+  bool start = false;  // the state a itself (every robot), e.g. as the end of the motion before
+  bool world = false;  // robot r's own motion against the world (limits, self, obstacles)
+};
+
 class CompositeChecker {
  public:
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots)
@@ -45,7 +52,8 @@ class CompositeChecker {
   // Robot r's part of the motion a -> b (one state per robot): r valid and
   // touching no other robot at each instant motionValid checks. When the
   // other robots' part is known valid, the same answer as motionValid.
-  bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b) const;
+  bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
+                        KnownValid known = {}) const;
 
   const std::vector<const RobotModel*>& robots() const { return robots_; }
 
