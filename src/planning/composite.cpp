@@ -73,20 +73,22 @@ bool CompositeChecker::instantValid(const CompositeState& a, const CompositeStat
   return stateValid(scratch);
 }
 
-bool CompositeChecker::motionValid(const CompositeState& a, const CompositeState& b) const {
-  return lastValidFraction(a, b) >= 1.0;
+bool CompositeChecker::motionValid(const CompositeState& a, const CompositeState& b, KnownValid known) const {
+  return lastValidFraction(a, b, known) >= 1.0;
 }
 
-double CompositeChecker::lastValidFraction(const CompositeState& a, const CompositeState& b) const {
+double CompositeChecker::lastValidFraction(const CompositeState& a, const CompositeState& b, KnownValid known) const {
   int n = compositeSteps(robots_, a, b);
   CompositeState scratch;
-  if (n == 0) return stateValid(a) ? 1.0 : 0.0;
+  if (n == 0) return known.start || known.end || stateValid(a) ? 1.0 : 0.0;
   // Coarse to fine: most invalid motions are caught by the first few
   // samples, so test the instants in bisection order, then report the
   // earliest invalid one.
   const int instants = 2 * n;
   int first_bad = instants + 1;
   std::vector<char> tested(static_cast<std::size_t>(instants + 1), 0);
+  tested.front() = known.start;
+  tested.back() = known.end;
   int tests = 0;
   for (int stride = instants; stride >= 1; stride /= 2) {
     for (int k = 0; k <= instants; k += stride) {
@@ -113,7 +115,7 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
   thread_local PlacedBodies mine, theirs;
   q.resize(n);
   at.resize(n);
-  for (int k = known.start ? 1 : 0; k <= instants; ++k) {
+  for (int k = known.start ? 1 : 0; k <= instants - (known.end && instants > 0 ? 1 : 0); ++k) {
     if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
     for (std::size_t w = 0; w < n; ++w) {
       if (instants == 0) {  // as motionValid: the state itself, not interpolated
@@ -145,7 +147,7 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
     std::size_t n = waypoints.size();
     std::size_t i = uniformIndex(rng, n - 2);
     std::size_t j = i + 2 + uniformIndex(rng, n - i - 2);
-    if (checker.motionValid(waypoints[i], waypoints[j]))
+    if (checker.motionValid(waypoints[i], waypoints[j], {.start = true, .end = true}))
       waypoints.erase(waypoints.begin() + static_cast<std::ptrdiff_t>(i + 1), waypoints.begin() + static_cast<std::ptrdiff_t>(j));
   }
 }

@@ -54,7 +54,8 @@ void turnSteadily(const CompositeChecker& checker, std::vector<CompositeState>& 
       steady[w][r][2] = geo::wrapAngle(h0 + f * turn);
     }
     bool valid = true;
-    for (std::size_t w = 1; w < n && valid; ++w) valid = checker.motionValid(steady[w - 1], steady[w]);
+    // Each state after the first was checked as the end of the motion before.
+    for (std::size_t w = 1; w < n && valid; ++w) valid = checker.motionValid(steady[w - 1], steady[w], {.start = w > 1});
     if (valid) waypoints = std::move(steady);
   }
 }
@@ -106,7 +107,8 @@ std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vec
   std::vector<char> state_ok(n);
   for (std::size_t t = 0; t < n; ++t) state_ok[t] = checker.stateValid(stateAt(paths, t));
   for (std::size_t t = 0; t + 1 < n; ++t) {
-    bool ok = state_ok[t] && state_ok[t + 1] && checker.motionValid(stateAt(paths, t), stateAt(paths, t + 1));
+    bool ok = state_ok[t] && state_ok[t + 1] &&
+              checker.motionValid(stateAt(paths, t), stateAt(paths, t + 1), {.start = true, .end = true});
     if (ok) continue;
     if (!runs.empty() && runs.back().second + 1 == t)
       runs.back().second = t;

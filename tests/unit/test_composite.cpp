@@ -176,6 +176,45 @@ TEST_CASE("One robot's part of a motion decides it when the others' part is vali
   CHECK(world_known > 100);
 }
 
+TEST_CASE("A composite motion between states known to be valid is decided by the instants between") {
+  // Two discs and a box obstacle; motions of a few steps between random
+  // states. When both ends are valid, leaving them out changes nothing;
+  // when an end is invalid, it is exactly what the caller vouched for.
+  Scenario s = crowd(2, 6);
+  s.obstacles.push_back(Obstacle::makeBox({3, 3}, {1.2, 0.6}, 0.4));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> xy(0.4, 5.6), jitter(-1.5, 1.5);
+  int both_valid = 0, blocked_between = 0, end_invalid = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    CompositeState a(2), b(2);
+    for (std::size_t r = 0; r < 2; ++r) {
+      a[r] = {xy(rng), xy(rng), 0.0};
+      b[r] = {a[r][0] + jitter(rng), a[r][1] + jitter(rng), 0.0};
+    }
+    const bool a_ok = checker.stateValid(a), b_ok = checker.stateValid(b);
+    const bool full = checker.motionValid(a, b);
+    const KnownValid ends{.start = true, .end = true};
+    if (a_ok && b_ok) {
+      ++both_valid;
+      CHECK(checker.motionValid(a, b, ends) == full);
+      CHECK(checker.lastValidFraction(a, b, ends) == checker.lastValidFraction(a, b));
+      CHECK(checker.motionValid(a, b, {.start = true}) == full);
+      CHECK(checker.motionValid(a, b, {.end = true}) == full);
+      if (!full) ++blocked_between;
+    } else if (a_ok && !b_ok && compositeSteps(m.raw, a, b) > 0) {
+      ++end_invalid;
+      CHECK_FALSE(full);
+      CHECK_FALSE(checker.motionValid(a, b, {.start = true}));  // the end is still checked
+    }
+  }
+  CHECK(both_valid > 500);
+  CHECK(blocked_between > 20);  // valid ends, a collision on the way
+  CHECK(end_invalid > 50);
+}
+
 TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {
   Scenario s = crowd(2);
   RobotModels m(s);

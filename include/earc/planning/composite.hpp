@@ -22,11 +22,13 @@ CompositeState stateAt(const std::vector<Path>& paths, std::size_t t);
 // that all robots move together and arrive at once.
 int compositeSteps(const std::vector<const RobotModel*>& robots, const CompositeState& a, const CompositeState& b);
 
-// What a caller of CompositeChecker::robotMotionValid already knows to be
-// valid, so that it is not checked again.
+// What a caller of CompositeChecker's motion checks already knows to be
+// valid, so that it is not checked again. The answer is the same whenever
+// what the caller claims is true.
 struct KnownValid {
   bool start = false;  // the state a itself (every robot), e.g. as the end of the motion before
-  bool world = false;  // robot r's own motion against the world (limits, self, obstacles)
+  bool end = false;    // the state b itself (every robot), e.g. a waypoint of a valid path
+  bool world = false;  // robotMotionValid only: robot r's own motion against the world
 };
 
 class CompositeChecker {
@@ -45,10 +47,10 @@ class CompositeChecker {
   bool stateValid(const CompositeState& q) const;
   // Valid at every instant k/(2n), k = 0..2n, n = compositeSteps(a, b): the
   // steps and midpoints of the time-stamped motion.
-  bool motionValid(const CompositeState& a, const CompositeState& b) const;
+  bool motionValid(const CompositeState& a, const CompositeState& b, KnownValid known = {}) const;
   // Fraction of a -> b before the first invalid instant (1 when valid; 0
   // once the deadline, if any, has expired).
-  double lastValidFraction(const CompositeState& a, const CompositeState& b) const;
+  double lastValidFraction(const CompositeState& a, const CompositeState& b, KnownValid known = {}) const;
   // Robot r's part of the motion a -> b (one state per robot): r valid and
   // touching no other robot at each instant motionValid checks. When the
   // other robots' part is known valid, the same answer as motionValid.
@@ -66,7 +68,9 @@ class CompositeChecker {
 
 // Random shortcutting of a composite waypoint sequence: replace the part
 // between two waypoints by the straight motion when that motion is valid.
-// Stops early at the deadline (the path stays valid, only less short).
+// The waypoints must be valid states (those of a valid path): only the
+// motions between them are checked. Stops early at the deadline (the path
+// stays valid, only less short).
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
                        std::mt19937_64& rng, const Deadline& deadline = Deadline());
 
