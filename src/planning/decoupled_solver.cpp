@@ -75,8 +75,8 @@ class MotionGuard {
   // motion (the search's directed pair of vertices): its states and bodies
   // are the same whatever tau, and the search tries one edge at many
   // (ARC at 32 mobile robots with obstacles: 17 million states made for
-  // 0.7 million distinct ones), so they are kept for the whole search.
-  // kOnce: a motion met once.
+  // 0.7 million distinct ones), so they are kept for the whole search, up
+  // to kKeptInstants of them. kOnce: a motion met once.
   bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::uint64_t edge = kOnce) {
     const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
     const std::size_t dim = static_cast<std::size_t>(model_.dim());
@@ -84,20 +84,26 @@ class MotionGuard {
     const geo::Aabb swept = geo::Aabb{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)},
                                       {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
     // The robot's state and bodies at each instant of the motion, made when
-    // first needed and shared by every obstacle it comes near.
+    // first needed and shared by every obstacle it comes near. A motion is
+    // kept only once it comes near an obstacle: most never do.
     const std::size_t n = k1 - k0 + 1;
-    Motion& motion = edge == kOnce ? once_ : motions_[edge];
-    if (edge == kOnce || motion.state.size() != n) {
-      motion.q.resize(n * dim);
-      motion.state.assign(n, 0);
-      if (motion.bodies.size() < n) motion.bodies.resize(n);
-    }
+    Motion* motion = nullptr;
+    if (edge != kOnce)
+      if (auto it = motions_.find(edge); it != motions_.end() && it->second.state.size() == n) motion = &it->second;
     auto stateAt = [&](std::size_t k) -> const double* {
+      if (!motion) {
+        const bool keep = edge != kOnce && kept_ + n <= kKeptInstants;
+        motion = keep ? &motions_[edge] : &once_;
+        if (keep) kept_ += n;
+        motion->q.resize(n * dim);
+        motion->state.assign(n, 0);
+        if (motion->bodies.size() < n) motion->bodies.resize(n);
+      }
       const std::size_t j = k - k0;
-      double* q = motion.q.data() + j * dim;
-      if (motion.state[j] == 0) {
+      double* q = motion->q.data() + j * dim;
+      if (motion->state[j] == 0) {
         model_.interpolate(a, b, static_cast<double>(k - 2 * tau) / (2 * steps), q);
-        motion.state[j] = 1;
+        motion->state[j] = 1;
       }
       return q;
     };
@@ -115,11 +121,11 @@ class MotionGuard {
         const double* q = stateAt(k);
         const std::size_t j = k - k0;
         auto own = [&]() -> const PlacedBodies& {
-          if (motion.state[j] < 2) {
-            motion.bodies[j].place(model_, q);
-            motion.state[j] = 2;
+          if (motion->state[j] < 2) {
+            motion->bodies[j].place(model_, q);
+            motion->state[j] = 2;
           }
-          return motion.bodies[j];
+          return motion->bodies[j];
         };
         if (!freeOf(i, model_.boundingCenter(q), k, own)) return false;
         ++k;
@@ -180,8 +186,15 @@ class MotionGuard {
     std::vector<unsigned char> state;  // 0 nothing, 1 state, 2 state and bodies
     std::vector<PlacedBodies> bodies;
   };
+  // Kept motions' instants at most, per search (about 30 MB for a box
+  // robot, 90 MB for a 5-link arm): a search over a whole large map (the
+  // prioritized baseline on den520d) would otherwise keep hundreds of
+  // megabytes. ARC's searches on 20 plans of 32 mobile robots with
+  // obstacles kept 56,000 at most.
+  static constexpr std::size_t kKeptInstants = std::size_t{1} << 17;
   Motion once_;
   std::unordered_map<std::uint64_t, Motion> motions_;
+  std::size_t kept_ = 0;
 };
 
 std::uint64_t nodeKey(int v, std::size_t tau) {
