@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -150,6 +151,56 @@ std::string firstLine(const std::string& path, std::size_t max_chars) {
   std::size_t from = s.find_first_not_of("\r\n ");
   if (from == std::string::npos) return "";
   return clip(s.substr(from, s.find_first_of("\r\n", from) - from), max_chars);
+}
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+void onInterrupt(int) { g_interrupted.store(true); }
+}  // namespace
+
+std::atomic<bool>& interruptFlag() { return g_interrupted; }
+
+InterruptGuard::InterruptGuard() {
+  g_interrupted.store(false);
+  struct sigaction sa{};
+  sa.sa_handler = onInterrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+}
+
+InterruptGuard::~InterruptGuard() {
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+const char* signalName(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGKILL: return "SIGKILL";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGXCPU: return "SIGXCPU";
+    default: return "signal";
+  }
+}
+
+std::string childFailure(const ChildOutcome& outcome, const ChildSpec& spec, const std::string& err_path) {
+  if (outcome.cancelled) return "interrupted";
+  if (!outcome.started) return outcome.error;
+  if (outcome.killed_at_limit) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", spec.wall_limit_s);
+    return std::string("killed at the wall-clock limit (") + buf + " s)";
+  }
+  if (outcome.signal)
+    return std::string("crashed: ") + signalName(*outcome.signal) + " (" + std::to_string(*outcome.signal) + ")";
+  if (outcome.exit_code == 0 || outcome.exit_code == 1) return "";
+  const std::string why = lastLine(err_path);
+  return "exit " + std::to_string(outcome.exit_code.value_or(-1)) + (why.empty() ? "" : ": " + why);
 }
 
 std::string executableDir() {

@@ -46,51 +46,12 @@ constexpr double kValidateWallLimitS = 300.0;
 // minutes; a build that runs for hours has hung).
 constexpr double kEarcDbWallLimitS = 4 * 3600.0;
 
-std::atomic<bool> g_interrupted{false};
-
-void onSignal(int) { g_interrupted.store(true); }
-
-// SIGINT / SIGTERM stop the run between trials and kill running children;
-// the previous handlers come back when the run ends.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupted.store(false);
-    struct sigaction sa{};
-    sa.sa_handler = onSignal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old_int_);
-    sigaction(SIGTERM, &sa, &old_term_);
-  }
-  ~InterruptGuard() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-
- private:
-  struct sigaction old_int_{}, old_term_{};
-};
-
 struct Cell {
   const Suite* suite;
   int robots;
   int trial;
   std::string method;
 };
-
-const char* signalName(int sig) {
-  switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGABRT: return "SIGABRT";
-    case SIGKILL: return "SIGKILL";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGTERM: return "SIGTERM";
-    case SIGXCPU: return "SIGXCPU";
-    default: return "signal";
-  }
-}
 
 // EARC_BENCH_FAULT=METHOD:crash|hang (test only): the plan child of that
 // method commits the fault instead of planning.
@@ -175,12 +136,12 @@ class Runner {
          << " already recorded), time limit " << fmtSeconds(o_.time_limit_s) << " s, " << o_.jobs
          << (o_.jobs == 1 ? " job" : " jobs") << ", results " << o_.results << "\n";
     prepareDatabases(cells);
-    if (g_interrupted.load()) return finishInterrupted();
+    if (interruptFlag().load()) return finishInterrupted();
     Progress progress("bench", cells.size());
     std::atomic<std::size_t> next{0};
     auto worker = [&] {
       for (;;) {
-        if (g_interrupted.load()) return;
+        if (interruptFlag().load()) return;
         const std::size_t i = next.fetch_add(1);
         if (i >= cells.size()) return;
         const Cell& c = cells[i];
@@ -188,7 +149,7 @@ class Runner {
           progress.tick();
           continue;
         }
-        if (g_interrupted.load()) {
+        if (interruptFlag().load()) {
           if (o_.cutoff) done(c);
           return;
         }
@@ -196,7 +157,7 @@ class Runner {
         progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
                            std::to_string(c.trial));
         TrialRecord t = runTrial(c);
-        if (g_interrupted.load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
+        if (interruptFlag().load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
           if (o_.cutoff) done(c);
           return;
         }
@@ -210,7 +171,7 @@ class Runner {
     worker();
     for (auto& t : threads) t.join();
     progress.finish();
-    if (g_interrupted.load()) return finishInterrupted();
+    if (interruptFlag().load()) return finishInterrupted();
     log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
     if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
     log_ << "\n";
@@ -260,7 +221,7 @@ class Runner {
   // solve). One build at a time; other workers wait for theirs.
   void ensureLightningDb(const Suite& suite, int robots) {
     std::lock_guard lock(lightning_mutex_);
-    if (g_interrupted.load()) return;
+    if (interruptFlag().load()) return;
     const std::string path = lightningDb(suite, robots);
     if (fs::exists(path)) return;
     fs::create_directories(lightning_dir_);
@@ -279,7 +240,7 @@ class Runner {
     spec.wall_limit_s =
         problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
     spec.memory_limit_mb = o_.memory_limit_mb;
-    ChildOutcome out = runChild(spec, &g_interrupted);
+    ChildOutcome out = runChild(spec, &interruptFlag());
     if (out.exit_code != 0)
       std::cerr << "earc-bench: building " << path << " failed ("
                 << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
@@ -294,7 +255,7 @@ class Runner {
     for (const Cell& c : cells)
       if (c.method == "earc") families.insert(c.suite->family);
     for (const std::string& family : families) {
-      if (g_interrupted.load()) return;
+      if (interruptFlag().load()) return;
       const std::string path = earcDb(family);
       std::optional<double> construction;
       if (!fs::exists(path)) {
@@ -339,7 +300,7 @@ class Runner {
     spec.stderr_path = stem + ".err";
     spec.wall_limit_s = kEarcDbWallLimitS;
     spec.memory_limit_mb = o_.memory_limit_mb;
-    ChildOutcome out = runChild(spec, &g_interrupted);
+    ChildOutcome out = runChild(spec, &interruptFlag());
     if (out.exit_code == 0) return out.wall_s;
     std::cerr << "earc-bench: building " << path << " failed ("
               << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
@@ -449,24 +410,13 @@ class Runner {
     spec.wall_limit_s = o_.time_limit_s + o_.wall_margin_s.value_or(wallMargin(o_.time_limit_s));
     spec.memory_limit_mb = o_.memory_limit_mb;
     spec.fault = faultFor(c.method);
-    ChildOutcome run = runChild(spec, &g_interrupted);
+    ChildOutcome run = runChild(spec, &interruptFlag());
     t.wall_time_s = run.wall_s;
     t.peak_memory_kb = run.peak_rss_kb;
     t.exit_status = run.exit_code;
     t.term_signal = run.signal;
-    if (run.cancelled) {
-      t.failure = "interrupted";
-      return t;
-    }
-    if (!run.started) {
-      t.failure = run.error;
-      return t;
-    }
-    if (run.killed_at_limit) {
-      t.failure = "killed at the wall-clock limit (" + fmtSeconds(spec.wall_limit_s) + " s)";
-    } else if (run.signal) {
-      t.failure = std::string("crashed: ") + signalName(*run.signal) + " (" + std::to_string(*run.signal) + ")";
-    } else if (run.exit_code == 0 || run.exit_code == 1) {
+    t.failure = childFailure(run, spec, err);
+    if (t.failure.empty()) {
       bool solved = false;
       if (!readStats(solution, t, solved)) {
         t.failure = "exit " + std::to_string(*run.exit_code) + " without a readable solution: " + lastLine(err);
@@ -477,9 +427,6 @@ class Runner {
       } else if (t.failure.empty()) {
         t.failure = "not solved";
       }
-    } else {
-      const std::string why = lastLine(err);
-      t.failure = "exit " + std::to_string(run.exit_code.value_or(-1)) + (why.empty() ? "" : ": " + why);
     }
     if (t.success) {
       if (!o_.keep_solutions) fs::remove(solution);
@@ -491,22 +438,8 @@ class Runner {
 
   void validate(const Cell& c, const std::string& scenario, const std::string& solution, const std::string& stem,
                 TrialRecord& t) {
-    const std::string out = work_ + "/logs/" + stem + ".validate.out";
-    const std::string err = work_ + "/logs/" + stem + ".validate.err";
-    ChildSpec spec;
-    spec.argv = {plan_, "validate", scenario, solution};
-    spec.stdout_path = out;
-    spec.stderr_path = err;
-    spec.wall_limit_s = kValidateWallLimitS;
-    spec.memory_limit_mb = o_.memory_limit_mb;
-    ChildOutcome v = runChild(spec, &g_interrupted);
-    if (v.cancelled) {
-      t.failure = "interrupted";
-      return;
-    }
-    if (v.exit_code == 0) {
-      fs::remove(out);
-      fs::remove(err);
+    const auto why = validateSolution(plan_, scenario, solution, work_ + "/logs/" + stem, o_.memory_limit_mb);
+    if (!why) {
       if (t.planning_time_s && *t.planning_time_s > o_.time_limit_s * kTimeLimitSlack) {
         t.failure = "solved after the time limit (" + fmtSeconds(*t.planning_time_s) + " s)";
         return;
@@ -514,22 +447,17 @@ class Runner {
       t.success = true;
       return;
     }
-    std::string why;
-    if (v.exit_code == 1)
-      why = firstLine(out);
-    else if (v.signal)
-      why = std::string("the validator crashed: ") + signalName(*v.signal);
-    else if (v.killed_at_limit)
-      why = "the validator did not finish in " + fmtSeconds(kValidateWallLimitS) + " s";
-    else
-      why = "malformed solution: " + lastLine(err);
-    t.failure = "invalid solution: " + why;
+    if (*why == "interrupted") {
+      t.failure = *why;
+      return;
+    }
+    t.failure = "invalid solution: " + *why;
     {
       std::lock_guard lock(record_mutex_);
       ++summary_.invalid;
     }
     std::cerr << "INVALID SOLUTION: " << c.suite->name << ", " << c.robots << " robots, method " << c.method
-              << ", trial " << c.trial << ": " << why << " (scenario " << scenario << ", solution " << solution
+              << ", trial " << c.trial << ": " << *why << " (scenario " << scenario << ", solution " << solution
               << ")\n";
   }
 
@@ -557,7 +485,7 @@ class Runner {
       }
       return false;
     };
-    finished_cv_.wait(lock, [&] { return !undecided() || g_interrupted.load(); });
+    finished_cv_.wait(lock, [&] { return !undecided() || interruptFlag().load(); });
     for (const auto& [key, o] : outcomes_) {
       const auto& [suite, method, robots] = key;
       if (suite != c.suite->name || method != c.method || robots >= c.robots) continue;
@@ -630,6 +558,29 @@ class Runner {
 }  // namespace
 
 double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
+
+std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
+                                            const std::string& solution, const std::string& log_stem,
+                                            std::size_t memory_limit_mb) {
+  const std::string out = log_stem + ".validate.out", err = log_stem + ".validate.err";
+  ChildSpec spec;
+  spec.argv = {validator, "validate", scenario, solution};
+  spec.stdout_path = out;
+  spec.stderr_path = err;
+  spec.wall_limit_s = kValidateWallLimitS;
+  spec.memory_limit_mb = memory_limit_mb;
+  ChildOutcome v = runChild(spec, &interruptFlag());
+  if (v.cancelled) return "interrupted";
+  if (v.exit_code == 0) {
+    fs::remove(out);
+    fs::remove(err);
+    return std::nullopt;
+  }
+  if (v.exit_code == 1) return firstLine(out);
+  if (v.signal) return std::string("the validator crashed: ") + signalName(*v.signal);
+  if (v.killed_at_limit) return "the validator did not finish in " + fmtSeconds(kValidateWallLimitS) + " s";
+  return "malformed solution: " + lastLine(err);
+}
 
 namespace {
 

@@ -38,18 +38,7 @@ got=$(query "$WORK/hang.sqlite" "SELECT success, term_signal, failure, wall_time
 echo "$got" | grep -q "^0|9|killed at the wall-clock limit (2 s)|1" || fail "hang not recorded as such: $got"
 
 # An invalid solution: every robot jumps from start to goal in one step.
-cat > "$WORK/fake-plan" <<FAKE
-#!/bin/bash
-if [ "\$1" != plan ]; then exec "$PLAN" "\$@"; fi
-scenario=\$2; out=""
-while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
-exec "$PY" -c 'import json,sys
-s = json.load(open(sys.argv[1]))
-paths = [{"robot": r["name"], "states": [r["start"], r["goal"]]} for r in s["robots"]]
-json.dump({"format": "earc.solution.v1", "scenario": s["name"], "method": "arc", "solved": True,
-           "paths": paths, "stats": {"planning_time_s": 0.01}}, open(sys.argv[2], "w"))' "\$scenario" "\$out"
-FAKE
-chmod +x "$WORK/fake-plan"
+writeTeleportingPlanner "$WORK/fake-plan"
 "$BENCH" "${BASE[@]}" --methods arc --time-limit 10 --plan-program "$WORK/fake-plan" \
   --results "$WORK/invalid.sqlite" > "$WORK/invalid.out" 2> "$WORK/invalid.err"
 rc=$?

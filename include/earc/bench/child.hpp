@@ -6,6 +6,8 @@
 // so a benchmark killed with SIGKILL leaves no planner behind.
 #pragma once
 
+#include <signal.h>
+
 #include <atomic>
 #include <cstddef>
 #include <optional>
@@ -47,6 +49,32 @@ ChildOutcome runChild(const ChildSpec& spec, const std::atomic<bool>* cancel = n
 std::string lastLine(const std::string& path, std::size_t max_chars = 300);
 // The first non-empty line.
 std::string firstLine(const std::string& path, std::size_t max_chars = 300);
+
+// SIGINT and SIGTERM, while a guard lives, set interruptFlag() instead of
+// ending the process: a long run stops between children and kills the
+// running ones (pass &interruptFlag() as runChild's cancel). The guard
+// clears the flag when made; the previous handlers come back when it ends.
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  struct sigaction old_int_{}, old_term_{};
+};
+std::atomic<bool>& interruptFlag();
+
+// "SIGSEGV", "SIGKILL", ... ("signal" for the rest).
+const char* signalName(int sig);
+
+// Why a child that was meant to write a result did not, in one line: ""
+// when it exited 0 or 1 (it reports through its output file), else
+// "killed at the wall-clock limit (N s)", "crashed: SIGSEGV (11)",
+// "exit N: <last line of its stderr>", "interrupted", or why it did not
+// start. `err_path` is the child's stderr file.
+std::string childFailure(const ChildOutcome& outcome, const ChildSpec& spec, const std::string& err_path);
 
 // The directory holding the running executable (for finding earc-plan next
 // to earc-bench).

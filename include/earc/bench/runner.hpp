@@ -53,6 +53,14 @@ struct RunOptions {
 // loading, the planner's own validation) before it is killed.
 double wallMargin(double time_limit_s);
 
+// `validator validate SCENARIO SOLUTION` (an earc-plan) in a child, its
+// output in LOG_STEM.validate.out and .err (removed when valid): nothing
+// when the solution is valid, else why in one line ("interrupted" when
+// interruptFlag() was raised).
+std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
+                                            const std::string& solution, const std::string& log_stem,
+                                            std::size_t memory_limit_mb);
+
 struct RunSummary {
   std::size_t cells_total = 0;  // trials the options ask for
   std::size_t skipped = 0;      // already in the results database

@@ -1,0 +1,434 @@
+#include "earc/bench/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "earc/bench/child.hpp"
+#include "earc/bench/options.hpp"
+#include "earc/bench/report.hpp"
+#include "earc/bench/runner.hpp"
+#include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/render/svg.hpp"
+#include "earc/util/progress.hpp"
+
+namespace fs = std::filesystem;
+
+namespace earc::bench {
+
+namespace {
+
+// Resamples of the bootstrap interval: enough that the interval's ends
+// move by less than the printed precision from one seed to another.
+constexpr int kBootstrapResamples = 2000;
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::optional<double> median(const std::vector<double>& v) { return quantile(v, 0.5); }
+
+// Per scenario, in the order first seen: each side's solved times.
+struct ScenarioTimes {
+  std::vector<double> old_s, new_s;
+  int repeats = 0;
+  bool differed = false;
+};
+
+std::vector<std::pair<std::string, ScenarioTimes>> byScenario(const std::vector<ComparePair>& pairs) {
+  std::vector<std::pair<std::string, ScenarioTimes>> out;
+  std::map<std::string, std::size_t> index;
+  for (const ComparePair& p : pairs) {
+    auto [it, inserted] = index.emplace(p.scenario, out.size());
+    if (inserted) out.emplace_back(p.scenario, ScenarioTimes{});
+    ScenarioTimes& s = out[it->second].second;
+    ++s.repeats;
+    if (p.old_plan.solved && p.old_plan.time_s) s.old_s.push_back(*p.old_plan.time_s);
+    if (p.new_plan.solved && p.new_plan.time_s) s.new_s.push_back(*p.new_plan.time_s);
+    if (p.old_plan.solved && p.new_plan.solved && !p.same_paths) s.differed = true;
+  }
+  return out;
+}
+
+// A scenario counts in the ratios when both sides solved it in every repeat.
+bool paired(const ScenarioTimes& s) {
+  return static_cast<int>(s.old_s.size()) == s.repeats && static_cast<int>(s.new_s.size()) == s.repeats &&
+         *median(s.old_s) > 0;
+}
+
+}  // namespace
+
+CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t seed) {
+  CompareStats st;
+  st.plans = static_cast<int>(pairs.size());
+  for (const ComparePair& p : pairs) {
+    st.old_solved += p.old_plan.solved;
+    st.new_solved += p.new_plan.solved;
+    st.invalid += p.old_plan.invalid + p.new_plan.invalid;
+    st.same_paths += p.same_paths;
+  }
+  const auto scenarios = byScenario(pairs);
+  st.scenarios = static_cast<int>(scenarios.size());
+  std::vector<double> olds, news, ratios;
+  for (const auto& [name, s] : scenarios) {
+    if (!paired(s)) continue;
+    const double o = *median(s.old_s), n = *median(s.new_s);
+    olds.push_back(o);
+    news.push_back(n);
+    ratios.push_back(n / o);
+  }
+  st.paired = static_cast<int>(ratios.size());
+  if (ratios.empty()) return st;
+  st.old_median_s = median(olds);
+  st.new_median_s = median(news);
+  if (*st.old_median_s > 0) st.of_medians = *st.new_median_s / *st.old_median_s;
+  st.paired_median = median(ratios);
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, ratios.size() - 1);
+  std::vector<double> boot(kBootstrapResamples), sample(ratios.size());
+  for (double& b : boot) {
+    for (double& x : sample) x = ratios[pick(rng)];
+    b = *median(sample);
+  }
+  st.paired_lo = quantile(boot, 0.025);
+  st.paired_hi = quantile(boot, 0.975);
+  return st;
+}
+
+std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats, const std::string& title) {
+  struct Point {
+    double x, y;
+    bool differed;
+  };
+  std::vector<Point> pts;
+  for (const auto& [name, s] : byScenario(pairs))
+    if (paired(s) && *median(s.new_s) > 0) pts.push_back({*median(s.old_s), *median(s.new_s), s.differed});
+  // Axes: whole decades around every point, the same for both.
+  double lo = 1e-3, hi = 1.0;
+  if (!pts.empty()) {
+    lo = hi = pts.front().x;
+    for (const Point& p : pts) lo = std::min({lo, p.x, p.y}), hi = std::max({hi, p.x, p.y});
+  }
+  const double dlo = std::floor(std::log10(lo)), dhi = std::max(dlo + 1, std::ceil(std::log10(hi)));
+  const double size = 420, left = 70, top = 50, w = left + size + 70, h = top + size + 60;
+  auto px = [&](double v) { return left + (std::log10(v) - dlo) / (dhi - dlo) * size; };
+  auto py = [&](double v) { return top + size - (std::log10(v) - dlo) / (dhi - dlo) * size; };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h << "\" viewBox=\"0 0 " << w
+      << " " << h << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << left << "\" y=\"20\" font-size=\"14\">" << title << "</text>\n";
+  std::string line = std::to_string(stats.paired) + " scenarios solved by both";
+  if (stats.paired_median)
+    line += "; new/old: medians " + fmt("%.2f", stats.of_medians.value_or(NAN)) + ", paired " +
+            fmt("%.2f", *stats.paired_median) + " [" + fmt("%.2f", *stats.paired_lo) + ", " +
+            fmt("%.2f", *stats.paired_hi) + "]";
+  svg << "<text x=\"" << left << "\" y=\"38\" fill=\"#444\">" << line << "</text>\n";
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << size << "\" height=\"" << size
+      << "\" fill=\"none\" stroke=\"#888\"/>\n";
+  for (double d = dlo; d <= dhi + 1e-9; d += 1) {
+    for (int m : {1, 2, 5}) {
+      const double v = m * std::pow(10.0, d);
+      if (std::log10(v) > dhi + 1e-9) break;
+      const double x = px(v), y = py(v);
+      const char* stroke = m == 1 ? "#ccc" : "#eee";
+      svg << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + size << "\" stroke=\""
+          << stroke << "\"/>\n<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + size << "\" y2=\"" << y
+          << "\" stroke=\"" << stroke << "\"/>\n";
+      svg << "<text x=\"" << x << "\" y=\"" << top + size + 16 << "\" text-anchor=\"middle\">" << fmt("%g", v)
+          << "</text>\n<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">" << fmt("%g", v)
+          << "</text>\n";
+    }
+  }
+  const double a = std::pow(10.0, dlo), b = std::pow(10.0, dhi);
+  svg << "<line x1=\"" << px(a) << "\" y1=\"" << py(a) << "\" x2=\"" << px(b) << "\" y2=\"" << py(b)
+      << "\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>\n";
+  if (stats.paired_median) {
+    // new = r * old, clipped to the square.
+    const double r = *stats.paired_median;
+    const double x0 = std::max(a, a / r), x1 = std::min(b, b / r);
+    if (x0 < x1)
+      svg << "<line x1=\"" << px(x0) << "\" y1=\"" << py(r * x0) << "\" x2=\"" << px(x1) << "\" y2=\"" << py(r * x1)
+          << "\" stroke=\"#1f77b4\"/>\n";
+  }
+  for (const Point& p : pts)
+    svg << "<circle cx=\"" << px(p.x) << "\" cy=\"" << py(p.y) << "\" r=\"4\" "
+        << (p.differed ? "fill=\"white\" stroke=\"#d62728\"" : "fill=\"#1f77b4\" fill-opacity=\"0.7\"") << "/>\n";
+  svg << "<text x=\"" << left + size / 2 << "\" y=\"" << top + size + 36
+      << "\" text-anchor=\"middle\">old: planning time (s)</text>\n"
+      << "<text transform=\"translate(18," << top + size / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">new: planning time (s)</text>\n"
+      << "<text x=\"" << left + size << "\" y=\"" << top + size + 52
+      << "\" text-anchor=\"end\" fill=\"#444\">dashed: new = old; blue: paired median; hollow red: plans "
+         "differed</text>\n</svg>\n";
+  return svg.str();
+}
+
+namespace {
+
+struct Job {
+  std::string scenario_file, name;
+  std::uint64_t planner_seed = 0;
+};
+
+class Comparer {
+ public:
+  Comparer(const CompareOptions& o, std::vector<Job> jobs, std::ostream& log)
+      : o_(o), jobs_(std::move(jobs)), log_(log) {
+    const std::string here = executableDir();
+    new_ = o.new_program.empty() ? here + "/earc-plan" : o.new_program;
+    validator_ = o.validator.empty() ? here + "/earc-plan" : o.validator;
+    for (const char* sub : {"solutions", "logs"}) fs::create_directories(o.work_dir + "/" + sub);
+  }
+
+  CompareSummary run() {
+    CompareSummary out;
+    log_ << "earc-bench compare: " << jobs_.size() << (jobs_.size() == 1 ? " scenario" : " scenarios") << " x "
+         << o_.repeats << (o_.repeats == 1 ? " repeat" : " repeats") << ", method " << o_.method << ", time limit "
+         << fmt("%g", o_.time_limit_s) << " s\n  old: " << describe(o_.old_program, o_.old_args)
+         << "\n  new: " << describe(new_, o_.new_args) << "\n";
+    log_.flush();
+    Progress progress("compare", jobs_.size() * static_cast<std::size_t>(o_.repeats));
+    for (std::size_t i = 0; i < jobs_.size() && !interruptFlag().load(); ++i) {
+      for (int r = 0; r < o_.repeats && !interruptFlag().load(); ++r) {
+        progress.setStatus(jobs_[i].name);
+        ComparePair p = runPair(jobs_[i], r, (i + static_cast<std::size_t>(r)) % 2 == 1);
+        if (interruptFlag().load()) break;
+        out.pairs.push_back(std::move(p));
+        progress.tick();
+      }
+      if (o_.verbose && !out.pairs.empty() && out.pairs.back().scenario == jobs_[i].name) scenarioLine(out.pairs, jobs_[i].name);
+    }
+    progress.finish();
+    out.interrupted = interruptFlag().load();
+    out.stats = compareStats(out.pairs, o_.seed);
+    report(out);
+    if (!o_.csv.empty()) writeCsv(out.pairs);
+    if (!o_.picture.empty())
+      render::writeImage(o_.picture, compareSvg(out.pairs, out.stats,
+                                                "earc-bench compare: method " + o_.method + ", " +
+                                                    std::to_string(out.stats.scenarios) + " scenarios"));
+    return out;
+  }
+
+ private:
+  static std::string describe(const std::string& program, const std::vector<std::string>& args) {
+    std::string s = program;
+    for (const std::string& a : args) s += " " + a;
+    return s;
+  }
+
+  bool usesDb() const { return o_.method == "earc" || o_.method == "lightning"; }
+
+  // The database a plan starts from: a fresh copy of the given one (and of
+  // its write-ahead log), so that neither side sees what the other did.
+  std::string freshDb(const std::string& side) const {
+    const std::string copy = o_.work_dir + "/db-" + side + (o_.method == "lightning" ? ".lightning" : ".sqlite");
+    for (const char* ext : {"", "-wal", "-shm", "-journal"}) fs::remove(copy + ext);
+    fs::copy_file(o_.db, copy);
+    if (fs::exists(o_.db + "-wal")) fs::copy_file(o_.db + "-wal", copy + "-wal");
+    return copy;
+  }
+
+  ComparePlan plan(const Job& job, int repeat, const std::string& side, nlohmann::json& paths) {
+    ComparePlan p;
+    const std::string stem = job.name + "-r" + std::to_string(repeat) + "-" + side;
+    const std::string solution = o_.work_dir + "/solutions/" + stem + ".json";
+    const std::string out = o_.work_dir + "/logs/" + stem + ".out", err = o_.work_dir + "/logs/" + stem + ".err";
+    fs::remove(solution);
+    ChildSpec spec;
+    spec.argv = {side == "old" ? o_.old_program : new_, "plan", job.scenario_file, "-o", solution, "--method",
+                 o_.method, "--time-limit", std::to_string(o_.time_limit_s), "--seed",
+                 std::to_string(job.planner_seed), "-q"};
+    if (usesDb()) {
+      spec.argv.insert(spec.argv.end(), {"--db", freshDb(side), "--no-learn"});
+    }
+    for (const std::string& a : side == "old" ? o_.old_args : o_.new_args) spec.argv.push_back(a);
+    spec.stdout_path = out;
+    spec.stderr_path = err;
+    spec.wall_limit_s = o_.time_limit_s + wallMargin(o_.time_limit_s);
+    spec.memory_limit_mb = o_.memory_limit_mb;
+    const ChildOutcome run = runChild(spec, &interruptFlag());
+    p.failure = childFailure(run, spec, err);
+    if (!p.failure.empty()) return p;
+    nlohmann::json doc;
+    try {
+      doc = readJsonFile(solution);
+    } catch (const std::exception& e) {
+      p.failure = "exit " + std::to_string(*run.exit_code) + " without a readable solution: " + lastLine(err);
+      return p;
+    }
+    if (!doc.value("solved", false)) {
+      p.failure = "not solved";
+      return p;
+    }
+    if (const auto why = validateSolution(validator_, job.scenario_file, solution, o_.work_dir + "/logs/" + stem,
+                                          o_.memory_limit_mb)) {
+      if (*why == "interrupted") {
+        p.failure = *why;
+        return p;
+      }
+      p.invalid = true;
+      p.failure = "invalid solution: " + *why;
+      std::cerr << "INVALID SOLUTION: " << side << " (" << spec.argv[0] << ") on " << job.scenario_file << ": " << *why
+                << " (solution " << solution << ")\n";
+      return p;
+    }
+    const auto stats = doc.value("stats", nlohmann::json::object());
+    if (stats.contains("planning_time_s") && stats["planning_time_s"].is_number())
+      p.time_s = stats["planning_time_s"].get<double>();
+    if (!p.time_s) {
+      p.failure = "no planning_time_s in the solution's stats";
+      return p;
+    }
+    p.solved = true;
+    paths = doc.value("paths", nlohmann::json());
+    fs::remove(solution);
+    fs::remove(out);
+    fs::remove(err);
+    return p;
+  }
+
+  ComparePair runPair(const Job& job, int repeat, bool new_first) {
+    ComparePair pair;
+    pair.scenario = job.name;
+    pair.repeat = repeat;
+    nlohmann::json old_paths, new_paths;
+    if (new_first) {
+      pair.new_plan = plan(job, repeat, "new", new_paths);
+      pair.old_plan = plan(job, repeat, "old", old_paths);
+    } else {
+      pair.old_plan = plan(job, repeat, "old", old_paths);
+      pair.new_plan = plan(job, repeat, "new", new_paths);
+    }
+    pair.same_paths = pair.old_plan.solved && pair.new_plan.solved && old_paths == new_paths;
+    return pair;
+  }
+
+  void scenarioLine(const std::vector<ComparePair>& pairs, const std::string& name) {
+    std::vector<ComparePair> mine;
+    for (const ComparePair& p : pairs)
+      if (p.scenario == name) mine.push_back(p);
+    const CompareStats s = compareStats(mine, o_.seed);
+    log_ << name << ": ";
+    if (s.paired) {
+      log_ << "old " << fmt("%.4f", *s.old_median_s) << " s, new " << fmt("%.4f", *s.new_median_s) << " s, new/old "
+           << fmt("%.2f", *s.paired_median) << ", " << (s.same_paths == s.plans ? "same paths" : "paths differ");
+    } else {
+      for (const ComparePair& p : mine) {
+        if (!p.old_plan.solved) log_ << "old: " << p.old_plan.failure << "; ";
+        if (!p.new_plan.solved) log_ << "new: " << p.new_plan.failure << "; ";
+      }
+    }
+    log_ << "\n";
+    log_.flush();
+  }
+
+  void report(const CompareSummary& out) {
+    const CompareStats& s = out.stats;
+    log_ << "old solved " << s.old_solved << " of " << s.plans << " plans, new " << s.new_solved << " of " << s.plans;
+    if (s.invalid) log_ << "; " << s.invalid << " INVALID solutions";
+    log_ << "\n";
+    if (s.paired) {
+      log_ << "medians over the " << s.paired << " scenarios both solved: old " << fmt("%.4f", *s.old_median_s)
+           << " s, new " << fmt("%.4f", *s.new_median_s) << " s\n"
+           << "new/old: ratio of medians " << fmt("%.3f", s.of_medians.value_or(NAN)) << ", paired median "
+           << fmt("%.3f", *s.paired_median) << " (95% bootstrap interval " << fmt("%.3f", *s.paired_lo) << " to "
+           << fmt("%.3f", *s.paired_hi) << ")\n";
+    } else {
+      log_ << "no scenario was solved by both: no ratio\n";
+    }
+    log_ << "same paths: " << s.same_paths << " of " << s.plans << " plan pairs\n";
+    if (out.interrupted) log_ << "interrupted: the figures above cover the plans that finished\n";
+  }
+
+  void writeCsv(const std::vector<ComparePair>& pairs) const {
+    std::ostringstream csv;
+    csv << "scenario,repeat,old_solved,old_time_s,old_failure,new_solved,new_time_s,new_failure,same_paths\n";
+    auto quoted = [](const std::string& s) {
+      std::string q = "\"";
+      for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+      return q + "\"";
+    };
+    for (const ComparePair& p : pairs) {
+      csv << quoted(p.scenario) << "," << p.repeat;
+      for (const ComparePlan* plan : {&p.old_plan, &p.new_plan})
+        csv << "," << plan->solved << "," << (plan->time_s ? fmt("%.6f", *plan->time_s) : "") << ","
+            << quoted(plan->failure);
+      csv << "," << p.same_paths << "\n";
+    }
+    writeTextFileAtomic(o_.csv, csv.str());
+  }
+
+  const CompareOptions& o_;
+  std::vector<Job> jobs_;
+  std::ostream& log_;
+  std::string new_, validator_;
+};
+
+// Every option checked, and the scenarios made or read, before any plan.
+std::vector<Job> prepare(const CompareOptions& o) {
+  if (o.old_program.empty()) throw InputError("", "--old", "no program given");
+  requireExecutable(o.old_program, "--old");
+  if (!o.new_program.empty()) requireExecutable(o.new_program, "--new");
+  else requireExecutable(executableDir() + "/earc-plan", "--new (default: earc-plan beside earc-bench)");
+  if (std::find(allMethods().begin(), allMethods().end(), o.method) == allMethods().end())
+    throw InputError("", "--method", "unknown method '" + o.method + "' (earc, arc, lightning, prioritized, coupled)");
+  if (o.method == "earc" || o.method == "lightning") {
+    if (o.db.empty()) throw InputError("", "--db", "method " + o.method + " needs a database to start from");
+    if (!fs::is_regular_file(o.db)) throw InputError(o.db, "--db", "no such file");
+  }
+  if (!o.picture.empty()) render::requireImageOutput(o.picture, "--picture");
+  requireSeparateOutputs(o.db, "--db", {{o.csv, "--csv"}, {o.picture, "--picture"}});
+  std::vector<Job> jobs;
+  if (!o.scenarios.empty()) {
+    for (const std::string& f : o.scenarios) {
+      const Scenario s = loadScenario(f);  // InputError naming the file and field
+      Job j{f, s.name, o.seed};
+      // Two files may carry one name: the solution files must not collide.
+      for (const Job& other : jobs)
+        if (other.name == j.name) j.name += "-" + std::to_string(jobs.size());
+      jobs.push_back(std::move(j));
+    }
+    return jobs;
+  }
+  const Suite& suite = suiteByName(o.suite, "--suite");
+  if (std::find(suite.robots.begin(), suite.robots.end(), o.robots) == suite.robots.end()) {
+    std::string counts;
+    for (int n : suite.robots) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
+    throw InputError("", "--robots", "suite " + suite.name + " has no " + std::to_string(o.robots) + "-robot trials (" +
+                                         counts + ")");
+  }
+  fs::create_directories(o.work_dir + "/scenarios");
+  for (int t = 0; t < o.trials; ++t) {
+    const TrialSeeds seeds = trialSeeds(suite, o.robots, t, o.seed);
+    const std::string name = suite.name + "-" + std::to_string(o.robots) + "-t" + std::to_string(t);
+    const std::string path = o.work_dir + "/scenarios/" + name + ".json";
+    // Made afresh each time: a file left by a run with another seed must
+    // not stand in for this seed's scenario.
+    writeTextFileAtomic(path, scenarioToJson(trialScenario(suite, o.robots, t, o.seed)).dump(1) + "\n");
+    jobs.push_back({path, name, seeds.planner});
+  }
+  return jobs;
+}
+
+}  // namespace
+
+CompareSummary runCompare(const CompareOptions& options, std::ostream& log) {
+  std::vector<Job> jobs = prepare(options);
+  InterruptGuard guard;
+  Comparer comparer(options, std::move(jobs), log);
+  return comparer.run();
+}
+
+}  // namespace earc::bench

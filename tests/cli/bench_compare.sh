@@ -1,0 +1,103 @@
+#!/bin/bash
+# label: bench
+# earc-bench compare: a build against itself plans the same paths; a
+# planner whose plans differ (but are valid) is reported as differing; one
+# whose plans are invalid is reported loudly with exit status 1; E-ARC
+# plans start from copies, so the given database is left as it was; the
+# CSV and the picture hold a row per plan pair and a point per scenario;
+# bad options end in one line and exit status 2 before any plan runs.
+# Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
+# under an address-space limit, which AddressSanitizer cannot live with.)
+set -u
+BUILD=$1
+SRC=$2
+. "$(dirname "$0")/common.bash"
+BENCH="$BUILD/earc-bench"
+PLAN="$BUILD/earc-plan"
+needPython
+[ -x "$BUILD/earc-db" ] || { echo "skipped: earc-db not built in $BUILD"; exit 77; }
+needBuilt earc-bench earc-plan
+show() { tail -n 20 "$WORK/out" "$WORK/err"; }
+BASE=(compare --suite mobile --robots 4 --trials 3 --seed 4 --time-limit 10 --work-dir "$WORK/w")
+
+# The same build on both sides: every pair of plans is the same.
+"$BENCH" "${BASE[@]}" --old "$PLAN" --new "$PLAN" --csv "$WORK/same.csv" --picture "$WORK/same.svg" -v \
+  > "$WORK/out" 2> "$WORK/err" || { show; fail "self-comparison exited $?"; }
+grep -q "^old solved 3 of 3 plans, new 3 of 3$" "$WORK/out" || { show; fail "solved counts"; }
+grep -q "^same paths: 3 of 3 plan pairs$" "$WORK/out" || { show; fail "a build differs from itself"; }
+grep -q "^new/old: ratio of medians [0-9.]*, paired median [0-9.]* (95% bootstrap interval [0-9.]* to [0-9.]*)$" \
+  "$WORK/out" || { show; fail "no ratio line"; }
+[ "$(grep -c "^mobile-4-t[012]: old .* same paths$" "$WORK/out")" -eq 3 ] || { show; fail "no line per scenario"; }
+"$PY" - "$WORK/same.csv" "$WORK/same.svg" <<'PYEOF' || fail "CSV or picture"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["scenario"] for r in rows] == ["mobile-4-t0", "mobile-4-t1", "mobile-4-t2"], rows
+assert all(r["old_solved"] == "1" and r["new_solved"] == "1" and r["same_paths"] == "1" for r in rows), rows
+assert all(float(r["old_time_s"]) > 0 and float(r["new_time_s"]) > 0 for r in rows), rows
+svg = open(sys.argv[2]).read()
+assert svg.count("<circle") == 3 and 'stroke="#d62728"' not in svg, svg
+PYEOF
+# The scenarios are the ones earc-bench run plans for this seed.
+"$BENCH" run --suites mobile --robots 4 --trials 1 --seed 4 --methods arc --time-limit 10 --keep-solutions \
+  --results "$WORK/r.sqlite" > /dev/null 2>&1 || fail "run exited $?"
+cmp -s "$WORK/w/scenarios/mobile-4-t0.json" "$WORK/r.sqlite.work/scenarios/"mobile-4-t0-*.json ||
+  fail "compare's scenario differs from run's"
+
+# A planner whose plans are valid but not the same: the first robot waits
+# one more step at its goal.
+cat > "$WORK/waits" <<FAKE
+#!/bin/bash
+"$PLAN" "\$@" || exit \$?
+out=""
+while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
+exec "$PY" -c 'import json,sys
+d = json.load(open(sys.argv[1])); p = d["paths"][0]["states"]; p.append(p[-1])
+json.dump(d, open(sys.argv[1], "w"))' "\$out"
+FAKE
+chmod +x "$WORK/waits"
+"$BENCH" "${BASE[@]}" --old "$PLAN" --new "$WORK/waits" --csv "$WORK/differ.csv" --picture "$WORK/differ.svg" \
+  > "$WORK/out" 2> "$WORK/err" || { show; fail "comparison with differing plans exited $?"; }
+grep -q "^same paths: 0 of 3 plan pairs$" "$WORK/out" || { show; fail "differing plans not reported"; }
+[ "$(grep -o 'stroke="#d62728"' "$WORK/differ.svg" | wc -l)" -eq 3 ] || fail "differing plans not drawn hollow"
+
+# A planner whose robots jump from start to goal: INVALID, exit 1.
+writeTeleportingPlanner "$WORK/teleports"
+"$BENCH" "${BASE[@]}" --old "$PLAN" --new "$WORK/teleports" > "$WORK/out" 2> "$WORK/err"
+rc=$?
+[ $rc -eq 1 ] || { show; fail "invalid plans: exit $rc, not 1"; }
+grep -q "^INVALID SOLUTION: new ($WORK/teleports) on .*mobile-4-t0.json: INVALID" "$WORK/err" || { show; fail "no loud report"; }
+grep -q "^old solved 3 of 3 plans, new 0 of 3; 3 INVALID solutions$" "$WORK/out" || { show; fail "invalid count"; }
+grep -q "^no scenario was solved by both: no ratio$" "$WORK/out" || { show; fail "a ratio without pairs"; }
+
+# E-ARC: every plan starts from a copy of the database; the file given is
+# not touched. Scenario files may be given instead of a suite.
+"$BUILD/earc-db" build --db "$WORK/m.sqlite" --kind mobile --count 30 --seed 2 -q > /dev/null 2>&1 ||
+  fail "earc-db build exited $?"
+before=$(sha256sum < "$WORK/m.sqlite")
+"$BENCH" compare --old "$PLAN" --method earc --db "$WORK/m.sqlite" --work-dir "$WORK/w2" --time-limit 10 \
+  "$WORK"/w/scenarios/mobile-4-t*.json > "$WORK/out" 2> "$WORK/err" || { show; fail "E-ARC comparison exited $?"; }
+grep -q "^same paths: 3 of 3 plan pairs$" "$WORK/out" || { show; fail "E-ARC differs from itself"; }
+[ "$(sha256sum < "$WORK/m.sqlite")" = "$before" ] || fail "the given database changed"
+leftNothingBeside "$WORK/m.sqlite" "compare"
+
+# Bad options: one line, exit 2, nothing planned.
+refused() {  # refused TEXT ARGS...
+  local want=$1
+  shift
+  rm -rf "$WORK/w3"
+  "$BENCH" compare --work-dir "$WORK/w3" "$@" > "$WORK/out" 2> "$WORK/err"
+  local rc=$?
+  [ $rc -eq 2 ] || { show; fail "compare $* exited $rc, not 2"; }
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || { show; fail "compare $*: not one line"; }
+  grep -qF -- "$want" "$WORK/err" || { show; fail "compare $*: the error does not say '$want'"; }
+  [ ! -d "$WORK/w3/solutions" ] || fail "compare $*: planned despite the error"
+}
+refused "--old" --suite mobile --robots 4
+refused "/nonexistent: --old: no such file" --old /nonexistent
+refused "--db: method earc needs a database" --old "$PLAN" --method earc
+refused "--method: unknown method 'astar'" --old "$PLAN" --method astar
+refused "--robots: suite mobile has no 5-robot trials" --old "$PLAN" --suite mobile --robots 5
+echo '{"format": "earc.scenario.v1", "robots": [' > "$WORK/broken.json"
+refused "$WORK/broken.json" --old "$PLAN" "$WORK/broken.json"
+refused "--picture" --old "$PLAN" --picture "$WORK/fig.jpg"
+echo "ok"
