@@ -30,13 +30,7 @@ namespace {
 // move by less than the printed precision from one seed to another.
 constexpr int kBootstrapResamples = 2000;
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-std::optional<double> median(const std::vector<double>& v) { return quantile(v, 0.5); }
+std::optional<double> medianOf(const std::vector<double>& v) { return quantile(v, 0.5); }
 
 // Per scenario, in the order first seen: each side's solved times.
 struct ScenarioTimes {
@@ -61,9 +55,9 @@ std::vector<std::pair<std::string, ScenarioTimes>> byScenario(const std::vector<
 }
 
 // A scenario counts in the ratios when both sides solved it in every repeat.
-bool paired(const ScenarioTimes& s) {
+bool pairedInEveryRepeat(const ScenarioTimes& s) {
   return static_cast<int>(s.old_s.size()) == s.repeats && static_cast<int>(s.new_s.size()) == s.repeats &&
-         *median(s.old_s) > 0;
+         *medianOf(s.old_s) > 0;
 }
 
 }  // namespace
@@ -81,24 +75,24 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   st.scenarios = static_cast<int>(scenarios.size());
   std::vector<double> olds, news, ratios;
   for (const auto& [name, s] : scenarios) {
-    if (!paired(s)) continue;
-    const double o = *median(s.old_s), n = *median(s.new_s);
+    if (!pairedInEveryRepeat(s)) continue;
+    const double o = *medianOf(s.old_s), n = *medianOf(s.new_s);
     olds.push_back(o);
     news.push_back(n);
     ratios.push_back(n / o);
   }
   st.paired = static_cast<int>(ratios.size());
   if (ratios.empty()) return st;
-  st.old_median_s = median(olds);
-  st.new_median_s = median(news);
+  st.old_median_s = medianOf(olds);
+  st.new_median_s = medianOf(news);
   if (*st.old_median_s > 0) st.of_medians = *st.new_median_s / *st.old_median_s;
-  st.paired_median = median(ratios);
+  st.paired_median = medianOf(ratios);
   std::mt19937_64 rng(seed);
   std::uniform_int_distribution<std::size_t> pick(0, ratios.size() - 1);
   std::vector<double> boot(kBootstrapResamples), sample(ratios.size());
   for (double& b : boot) {
     for (double& x : sample) x = ratios[pick(rng)];
-    b = *median(sample);
+    b = *medianOf(sample);
   }
   st.paired_lo = quantile(boot, 0.025);
   st.paired_hi = quantile(boot, 0.975);
@@ -112,7 +106,7 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
   };
   std::vector<Point> pts;
   for (const auto& [name, s] : byScenario(pairs))
-    if (paired(s) && *median(s.new_s) > 0) pts.push_back({*median(s.old_s), *median(s.new_s), s.differed});
+    if (pairedInEveryRepeat(s) && *medianOf(s.new_s) > 0) pts.push_back({*medianOf(s.old_s), *medianOf(s.new_s), s.differed});
   // Axes: whole decades around every point, the same for both.
   double lo = 1e-3, hi = 1.0;
   if (!pts.empty()) {
@@ -130,9 +124,9 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
       << "<text x=\"" << left << "\" y=\"20\" font-size=\"14\">" << title << "</text>\n";
   std::string line = std::to_string(stats.paired) + " scenarios solved by both";
   if (stats.paired_median)
-    line += "; new/old: medians " + fmt("%.2f", stats.of_medians.value_or(NAN)) + ", paired " +
-            fmt("%.2f", *stats.paired_median) + " [" + fmt("%.2f", *stats.paired_lo) + ", " +
-            fmt("%.2f", *stats.paired_hi) + "]";
+    line += "; new/old: medians " + formatNumber("%.2f", stats.of_medians.value_or(NAN)) + ", paired " +
+            formatNumber("%.2f", *stats.paired_median) + " [" + formatNumber("%.2f", *stats.paired_lo) + ", " +
+            formatNumber("%.2f", *stats.paired_hi) + "]";
   svg << "<text x=\"" << left << "\" y=\"38\" fill=\"#444\">" << line << "</text>\n";
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << size << "\" height=\"" << size
       << "\" fill=\"none\" stroke=\"#888\"/>\n";
@@ -145,8 +139,8 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
       svg << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + size << "\" stroke=\""
           << stroke << "\"/>\n<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + size << "\" y2=\"" << y
           << "\" stroke=\"" << stroke << "\"/>\n";
-      svg << "<text x=\"" << x << "\" y=\"" << top + size + 16 << "\" text-anchor=\"middle\">" << fmt("%g", v)
-          << "</text>\n<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">" << fmt("%g", v)
+      svg << "<text x=\"" << x << "\" y=\"" << top + size + 16 << "\" text-anchor=\"middle\">" << formatNumber("%g", v)
+          << "</text>\n<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">" << formatNumber("%g", v)
           << "</text>\n";
     }
   }
@@ -195,7 +189,7 @@ class Comparer {
     CompareSummary out;
     log_ << "earc-bench compare: " << jobs_.size() << (jobs_.size() == 1 ? " scenario" : " scenarios") << " x "
          << o_.repeats << (o_.repeats == 1 ? " repeat" : " repeats") << ", method " << o_.method << ", time limit "
-         << fmt("%g", o_.time_limit_s) << " s\n  old: " << describe(o_.old_program, o_.old_args)
+         << formatNumber("%g", o_.time_limit_s) << " s\n  old: " << describe(o_.old_program, o_.old_args)
          << "\n  new: " << describe(new_, o_.new_args) << "\n";
     log_.flush();
     Progress progress("compare", jobs_.size() * static_cast<std::size_t>(o_.repeats));
@@ -322,8 +316,8 @@ class Comparer {
     const CompareStats s = compareStats(mine, o_.seed);
     log_ << name << ": ";
     if (s.paired) {
-      log_ << "old " << fmt("%.4f", *s.old_median_s) << " s, new " << fmt("%.4f", *s.new_median_s) << " s, new/old "
-           << fmt("%.2f", *s.paired_median) << ", " << (s.same_paths == s.plans ? "same paths" : "paths differ");
+      log_ << "old " << formatNumber("%.4f", *s.old_median_s) << " s, new " << formatNumber("%.4f", *s.new_median_s) << " s, new/old "
+           << formatNumber("%.2f", *s.paired_median) << ", " << (s.same_paths == s.plans ? "same paths" : "paths differ");
     } else {
       for (const ComparePair& p : mine) {
         if (!p.old_plan.solved) log_ << "old: " << p.old_plan.failure << "; ";
@@ -340,11 +334,11 @@ class Comparer {
     if (s.invalid) log_ << "; " << s.invalid << " INVALID solutions";
     log_ << "\n";
     if (s.paired) {
-      log_ << "medians over the " << s.paired << " scenarios both solved: old " << fmt("%.4f", *s.old_median_s)
-           << " s, new " << fmt("%.4f", *s.new_median_s) << " s\n"
-           << "new/old: ratio of medians " << fmt("%.3f", s.of_medians.value_or(NAN)) << ", paired median "
-           << fmt("%.3f", *s.paired_median) << " (95% bootstrap interval " << fmt("%.3f", *s.paired_lo) << " to "
-           << fmt("%.3f", *s.paired_hi) << ")\n";
+      log_ << "medians over the " << s.paired << " scenarios both solved: old " << formatNumber("%.4f", *s.old_median_s)
+           << " s, new " << formatNumber("%.4f", *s.new_median_s) << " s\n"
+           << "new/old: ratio of medians " << formatNumber("%.3f", s.of_medians.value_or(NAN)) << ", paired median "
+           << formatNumber("%.3f", *s.paired_median) << " (95% bootstrap interval " << formatNumber("%.3f", *s.paired_lo) << " to "
+           << formatNumber("%.3f", *s.paired_hi) << ")\n";
     } else {
       log_ << "no scenario was solved by both: no ratio\n";
     }
@@ -363,7 +357,7 @@ class Comparer {
     for (const ComparePair& p : pairs) {
       csv << quoted(p.scenario) << "," << p.repeat;
       for (const ComparePlan* plan : {&p.old_plan, &p.new_plan})
-        csv << "," << plan->solved << "," << (plan->time_s ? fmt("%.6f", *plan->time_s) : "") << ","
+        csv << "," << plan->solved << "," << (plan->time_s ? formatNumber("%.6f", *plan->time_s) : "") << ","
             << quoted(plan->failure);
       csv << "," << p.same_paths << "\n";
     }
@@ -377,7 +371,7 @@ class Comparer {
 };
 
 // Every option checked, and the scenarios made or read, before any plan.
-std::vector<Job> prepare(const CompareOptions& o) {
+std::vector<Job> prepareJobs(const CompareOptions& o) {
   if (o.old_program.empty()) throw InputError("", "--old", "no program given");
   requireExecutable(o.old_program, "--old");
   if (!o.new_program.empty()) requireExecutable(o.new_program, "--new");
@@ -425,7 +419,7 @@ std::vector<Job> prepare(const CompareOptions& o) {
 }  // namespace
 
 CompareSummary runCompare(const CompareOptions& options, std::ostream& log) {
-  std::vector<Job> jobs = prepare(options);
+  std::vector<Job> jobs = prepareJobs(options);
   InterruptGuard guard;
   Comparer comparer(options, std::move(jobs), log);
   return comparer.run();

@@ -43,18 +43,12 @@ bool cellLess(const std::string& sa, int ra, const std::string& ma, const std::s
   return ka < kb;
 }
 
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
 // Seconds with three significant digits, but never in exponent form.
 std::string secs(double s) {
-  if (s >= 100) return fmt("%.0f", s);
-  if (s >= 10) return fmt("%.1f", s);
-  if (s >= 1) return fmt("%.2f", s);
-  return fmt("%.3f", s);
+  if (s >= 100) return formatNumber("%.0f", s);
+  if (s >= 10) return formatNumber("%.1f", s);
+  if (s >= 1) return formatNumber("%.2f", s);
+  return formatNumber("%.3f", s);
 }
 
 std::string csvField(const std::string& s) {
@@ -110,6 +104,12 @@ std::string hostName() {
 }
 
 }  // namespace
+
+std::string formatNumber(const char* printf_format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, printf_format, v);
+  return buf;
+}
 
 std::optional<double> quantile(std::vector<double> v, double q) {
   if (v.empty()) return std::nullopt;
@@ -222,9 +222,9 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
           hits += t.db_hits.value_or(0);
           conflicts += t.conflicts.value_or(0);
         }
-      out << " " << (r.pairs ? fmt("%.2f", *r.of_medians) : "-") << " | " << (r.pairs ? fmt("%.2f", *r.median) : "-")
+      out << " " << (r.pairs ? formatNumber("%.2f", *r.of_medians) : "-") << " | " << (r.pairs ? formatNumber("%.2f", *r.median) : "-")
           << " | "
-          << (conflicts ? fmt("%.0f%%", 100.0 * static_cast<double>(hits) / static_cast<double>(conflicts)) : "-")
+          << (conflicts ? formatNumber("%.0f%%", 100.0 * static_cast<double>(hits) / static_cast<double>(conflicts)) : "-")
           << " |";
     }
     out << "\n";
@@ -245,7 +245,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
           << "|---:|:---|---:|---:|:---|\n";
     }
     out << "| " << c.robots << " | " << c.method << " | " << c.solved << "/" << c.trials << " ("
-        << fmt("%.0f", 100.0 * c.solved / std::max(1, c.trials)) << "%) | "
+        << formatNumber("%.0f", 100.0 * c.solved / std::max(1, c.trials)) << "%) | "
         << (c.median_s ? secs(*c.median_s) : "-") << " | "
         << (c.q1_s ? secs(*c.q1_s) + " - " + secs(*c.q3_s) : "-") << " |\n";
   }
@@ -257,7 +257,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
     PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
     if (r.pairs == 0) continue;
     ratio_rows.push_back("| " + c.suite + " | " + std::to_string(c.robots) + " | " + std::to_string(r.pairs) +
-                         " | " + fmt("%.3f", *r.of_medians) + " | " + fmt("%.3f", *r.median) + " |");
+                         " | " + formatNumber("%.3f", *r.of_medians) + " | " + formatNumber("%.3f", *r.median) + " |");
   }
   if (!ratio_rows.empty()) {
     out << "\n### E-ARC / ARC planning time, paired by seed\n\n"
@@ -270,7 +270,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
     for (const auto& d : databases)
       out << "| " << d.method << " | " << d.suite << " | " << (d.robots ? std::to_string(d.robots) : "all") << " | "
           << (d.construction_time_s ? secs(*d.construction_time_s) : "-") << " | " << (d.entries ? opt(d.entries) : "-")
-          << " | " << (d.size_bytes ? fmt("%.1f", static_cast<double>(*d.size_bytes) / 1024.0) : "-") << " | "
+          << " | " << (d.size_bytes ? formatNumber("%.1f", static_cast<double>(*d.size_bytes) / 1024.0) : "-") << " | "
           << (d.problems ? opt(d.problems) : "-") << " |\n";
   }
   if (cells.empty()) out << "(no trials)\n";
@@ -320,7 +320,7 @@ std::map<std::tuple<int, std::string, int, double>, OmplExperiment> omplExperime
   for (auto& [key, e] : experiments) {
     const auto& [rank, suite, robots, limit] = key;
     e.name = fileNamePart(suite) + "-" + std::to_string(robots);
-    if (limits[{suite, robots}].size() > 1) e.name += "-tl" + fmt("%g", limit);
+    if (limits[{suite, robots}].size() > 1) e.name += "-tl" + formatNumber("%g", limit);
   }
   return experiments;
 }
@@ -392,7 +392,7 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
       o << list.size() << " runs\n";
       for (const TrialRecord* t : list) {
         const double time = t->planning_time_s ? *t->planning_time_s : t->wall_time_s;
-        const std::string mem = t->peak_memory_kb ? fmt("%.3f", static_cast<double>(*t->peak_memory_kb) / 1024.0) : "";
+        const std::string mem = t->peak_memory_kb ? formatNumber("%.3f", static_cast<double>(*t->peak_memory_kb) / 1024.0) : "";
         o << opt(t->conflicts) << "; " << opt(t->db_hits) << "; " << opt(t->makespan) << "; " << mem << "; "
           << (t->success ? 1 : 0) << "; " << omplStatus(*t) << "; " << opt(t->sum_of_costs) << "; "
           << opt(std::optional<double>(time)) << "; " << t->trial << "; " << opt(std::optional<double>(t->wall_time_s))

@@ -67,11 +67,7 @@ ChildFault faultFor(const std::string& method) {
   return ChildFault::None;
 }
 
-std::string fmtSeconds(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", s);
-  return buf;
-}
+std::string fmtSeconds(double s) { return formatNumber("%.3g", s); }
 
 std::int64_t fileSize(const std::string& path) {
   std::error_code ec;

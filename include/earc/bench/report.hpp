@@ -18,6 +18,9 @@ namespace earc::bench {
 // default); nullopt for no values.
 std::optional<double> quantile(std::vector<double> values, double q);
 
+// printf of one number ("%.3f", v) as a string.
+std::string formatNumber(const char* printf_format, double v);
+
 struct TrialFilter {
   std::optional<std::uint64_t> seed;
   std::optional<double> time_limit_s;
