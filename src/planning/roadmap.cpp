@@ -55,14 +55,19 @@ void Roadmap::grow(int samples) {
   const std::size_t edges = edge_ends_.size() + static_cast<std::size_t>(added) * static_cast<std::size_t>(neighbors_);
   edge_ends_.reserve(edges);
   edge_state_.reserve(edges);
-  for (int v = first; v < size(); ++v) connect(v);
+  std::vector<std::size_t> near;
+  std::vector<double> scratch;
+  // A vertex has its k nearest and about as many again that have it among
+  // theirs: room for 2k edges spares each list its regrowths.
+  for (int v = first; v < size(); ++v) adjacency_[static_cast<std::size_t>(v)].reserve(2 * static_cast<std::size_t>(neighbors_));
+  for (int v = first; v < size(); ++v) connect(v, near, scratch);
 }
 
-void Roadmap::connect(int v) {
-  std::vector<double> e(static_cast<std::size_t>(index_.dim()));
-  embed(config(v), e.data());
+void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>& scratch) {
+  // The index holds v's embedding (vertices and points share numbers).
+  index_.nearest(index_.point(static_cast<std::size_t>(v)), static_cast<std::size_t>(neighbors_) + 1, near, scratch);
   auto& mine = adjacency_[static_cast<std::size_t>(v)];
-  for (std::size_t u_raw : index_.nearest(e.data(), static_cast<std::size_t>(neighbors_) + 1)) {
+  for (std::size_t u_raw : near) {
     int u = static_cast<int>(u_raw);
     if (u == v) continue;
     // Already joined when v was among u's nearest. Every edge of v is in

@@ -10,6 +10,7 @@
 #include "earc/planning/arc.hpp"
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/planner.hpp"
+#include "earc/util/kdtree.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 
@@ -498,6 +499,27 @@ TEST_CASE("A roadmap joins each vertex to its nearest once: one edge per pair, l
     REQUIRE(ends.size() == 2);
     CHECK(ends[0].first == ends[1].second);
     CHECK(ends[0].second == ends[1].first);
+  }
+}
+
+TEST_CASE("A point index answers into the caller's buffers what it returns afresh") {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-3, 3);
+  PointIndex index(3);
+  for (int i = 0; i < 200; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    index.add(p);
+  }
+  // One pair of buffers for every query, the k going up and down, so a
+  // longer earlier answer must not leak into a shorter later one.
+  std::vector<std::size_t> idx;
+  std::vector<double> d2;
+  for (std::size_t k : {15u, 3u, 0u, 500u, 1u, 11u}) {
+    CAPTURE(k);
+    const double q[3] = {u(rng), u(rng), u(rng)};
+    index.nearest(q, k, idx, d2);
+    CHECK(idx == index.nearest(q, k));
+    CHECK(idx.size() == std::min<std::size_t>(k, 200));
   }
 }
 

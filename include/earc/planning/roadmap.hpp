@@ -51,7 +51,8 @@ class Roadmap {
 
  private:
   void embed(const double* q, double* out) const;
-  void connect(int v);
+  // Joins v to its k nearest; near and scratch are the caller's buffers.
+  void connect(int v, std::vector<std::size_t>& near, std::vector<double>& scratch);
   const CollisionWorld& world_;
   const RobotModel& model_;
   int dim_;

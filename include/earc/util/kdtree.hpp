@@ -30,16 +30,23 @@ class PointIndex {
   // Up to k nearest points (indices in insertion order), nearest first.
   std::vector<std::size_t> nearest(const double* q, std::size_t k) const {
     std::vector<std::size_t> idx;
-    if (size() == 0 || k == 0) return idx;
+    std::vector<double> d2;
+    nearest(q, k, idx, d2);
+    return idx;
+  }
+  // The same into idx, with d2 as scratch: a caller asking for many points
+  // in a row keeps both and allocates nothing per query.
+  void nearest(const double* q, std::size_t k, std::vector<std::size_t>& idx, std::vector<double>& d2) const {
+    idx.clear();
+    if (size() == 0 || k == 0) return;
     build();
     k = std::min(k, size());
     idx.resize(k);
-    std::vector<double> d2(k);
+    d2.resize(k);
     nanoflann::KNNResultSet<double, std::size_t> rs(k);
     rs.init(idx.data(), d2.data());
     tree_->findNeighbors(rs, q, nanoflann::SearchParams());
     idx.resize(rs.size());
-    return idx;
   }
 
  private:
