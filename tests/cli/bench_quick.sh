@@ -36,6 +36,9 @@ for robots, method, trial, success, t, failure, mem in rows:
     assert mem is not None and mem > 0
     if success:
         assert t is not None and 0 <= t <= 10.1, t
+# One job: the methods take turns, trial by trial, within each robot count.
+order = [(r, m, t) for r, m, t in con.execute("SELECT robots, method, trial FROM trials ORDER BY rowid")]
+assert order == [(r, m, t) for r in (2, 4) for t in (0, 1) for m in ("arc", "prioritized", "lightning")], order
 solved = sum(r[3] for r in rows)
 assert solved >= 6, "only %d of 12 trials solved: %s" % (solved, rows)
 dbs = con.execute("SELECT method, suite, robots, construction_time_s, entries, size_bytes, problems FROM databases").fetchall()
