@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <random>
 #include <sstream>
 
 #include "earc/bench/child.hpp"
@@ -18,6 +17,7 @@
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/render/svg.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
 
 namespace fs = std::filesystem;
@@ -25,10 +25,6 @@ namespace fs = std::filesystem;
 namespace earc::bench {
 
 namespace {
-
-// Resamples of the bootstrap interval: enough that the interval's ends
-// move by less than the printed precision from one seed to another.
-constexpr int kBootstrapResamples = 2000;
 
 std::optional<double> medianOf(const std::vector<double>& v) { return quantile(v, 0.5); }
 
@@ -87,15 +83,17 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   st.new_median_s = medianOf(news);
   if (*st.old_median_s > 0) st.of_medians = *st.new_median_s / *st.old_median_s;
   st.paired_median = medianOf(ratios);
-  std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<std::size_t> pick(0, ratios.size() - 1);
-  std::vector<double> boot(kBootstrapResamples), sample(ratios.size());
-  for (double& b : boot) {
-    for (double& x : sample) x = ratios[pick(rng)];
-    b = *medianOf(sample);
-  }
-  st.paired_lo = quantile(boot, 0.025);
-  st.paired_hi = quantile(boot, 0.975);
+  const auto interval = bootstrapInterval(
+      ratios.size(),
+      [&](const std::vector<std::size_t>& idx) {
+        std::vector<double> sample;
+        sample.reserve(idx.size());
+        for (std::size_t i : idx) sample.push_back(ratios[i]);
+        return *medianOf(sample);
+      },
+      seed);
+  st.paired_lo = interval.first;
+  st.paired_hi = interval.second;
   return st;
 }
 

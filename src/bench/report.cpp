@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <ostream>
 #include <sstream>
@@ -44,6 +45,12 @@ bool cellLess(const std::string& sa, int ra, const std::string& ma, const std::s
 }
 
 // Seconds with three significant digits, but never in exponent form.
+// "0.60 [0.45, 0.78]": a value and its interval in one format.
+std::string withInterval(const char* format, double v, const std::pair<double, double>& interval) {
+  return formatNumber(format, v) + " [" + formatNumber(format, interval.first) + ", " +
+         formatNumber(format, interval.second) + "]";
+}
+
 std::string secs(double s) {
   if (s >= 100) return formatNumber("%.0f", s);
   if (s >= 10) return formatNumber("%.1f", s);
@@ -105,10 +112,21 @@ std::string hostName() {
 
 }  // namespace
 
-std::string formatNumber(const char* printf_format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, printf_format, v);
-  return buf;
+std::pair<double, double> bootstrapInterval(std::size_t n,
+                                            const std::function<double(const std::vector<std::size_t>&)>& statistic,
+                                            std::uint64_t seed) {
+  // Enough resamples that the interval's ends move by less than the
+  // printed precision from one seed to another.
+  constexpr int kResamples = 2000;
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  std::vector<double> values(kResamples);
+  std::vector<std::size_t> sample(n);
+  for (double& v : values) {
+    for (std::size_t& i : sample) i = pick(rng);
+    v = statistic(sample);
+  }
+  return {*quantile(values, 0.025), *quantile(values, 0.975)};
 }
 
 std::optional<double> quantile(std::vector<double> v, double q) {
@@ -172,8 +190,24 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
     paired_a.push_back(va);
     paired_b.push_back(it->second);
   }
-  PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt};
-  if (!ratios.empty()) r.of_medians = *quantile(paired_a, 0.5) / *quantile(paired_b, 0.5);
+  PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt, std::nullopt, std::nullopt};
+  if (ratios.empty()) return r;
+  r.of_medians = *quantile(paired_a, 0.5) / *quantile(paired_b, 0.5);
+  auto pick = [](const std::vector<double>& v, const std::vector<std::size_t>& idx) {
+    std::vector<double> out;
+    out.reserve(idx.size());
+    for (std::size_t i : idx) out.push_back(v[i]);
+    return out;
+  };
+  constexpr std::uint64_t kSeed = 1;
+  r.median_interval = bootstrapInterval(
+      ratios.size(), [&](const std::vector<std::size_t>& idx) { return *quantile(pick(ratios, idx), 0.5); }, kSeed);
+  r.of_medians_interval = bootstrapInterval(
+      ratios.size(),
+      [&](const std::vector<std::size_t>& idx) {
+        return *quantile(pick(paired_a, idx), 0.5) / *quantile(pick(paired_b, idx), 0.5);
+      },
+      kSeed);
   return r;
 }
 
@@ -195,7 +229,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
       suite = c.suite;
       out << (out.tellp() > 0 ? "\n" : "") << "### " << suite << "\n\n| robots |";
       for (const auto& m : methods) out << " " << m << " |";
-      if (both) out << " E-ARC / ARC medians | E-ARC / ARC paired | E-ARC hit rate |";
+      if (both) out << " E-ARC / ARC medians [95%] | E-ARC / ARC paired [95%] | E-ARC hit rate |";
       out << "\n|---:|";
       for (std::size_t i = 0; i < methods.size(); ++i) out << "---|";
       if (both) out << "---:|---:|---:|";
@@ -222,8 +256,8 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
           hits += t.db_hits.value_or(0);
           conflicts += t.conflicts.value_or(0);
         }
-      out << " " << (r.pairs ? formatNumber("%.2f", *r.of_medians) : "-") << " | " << (r.pairs ? formatNumber("%.2f", *r.median) : "-")
-          << " | "
+      out << " " << (r.pairs ? withInterval("%.2f", *r.of_medians, *r.of_medians_interval) : "-") << " | "
+          << (r.pairs ? withInterval("%.2f", *r.median, *r.median_interval) : "-") << " | "
           << (conflicts ? formatNumber("%.0f%%", 100.0 * static_cast<double>(hits) / static_cast<double>(conflicts)) : "-")
           << " |";
     }
@@ -257,11 +291,13 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
     PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
     if (r.pairs == 0) continue;
     ratio_rows.push_back("| " + c.suite + " | " + std::to_string(c.robots) + " | " + std::to_string(r.pairs) +
-                         " | " + formatNumber("%.3f", *r.of_medians) + " | " + formatNumber("%.3f", *r.median) + " |");
+                         " | " + withInterval("%.3f", *r.of_medians, *r.of_medians_interval) + " | " +
+                         withInterval("%.3f", *r.median, *r.median_interval) + " |");
   }
   if (!ratio_rows.empty()) {
     out << "\n### E-ARC / ARC planning time, paired by seed\n\n"
-        << "| suite | robots | pairs solved by both | ratio of medians | median of ratios |\n|:---|---:|---:|---:|---:|\n";
+        << "| suite | robots | pairs solved by both | ratio of medians [95% interval] | median of ratios [95% interval] |\n"
+        << "|:---|---:|---:|---:|---:|\n";
     for (const auto& row : ratio_rows) out << row << "\n";
   }
   if (!databases.empty()) {

@@ -28,6 +28,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
 
 namespace fs = std::filesystem;

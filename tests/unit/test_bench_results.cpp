@@ -165,7 +165,14 @@ TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones"
   const std::string md = markdownTable(t, {});
   CHECK(md.find("### mobile") != std::string::npos);
   CHECK(md.find("| 4 | earc | 3/4 (75%) |") != std::string::npos);
-  CHECK(md.find("| mobile | 4 | 2 | 0.667 | 0.625 |") != std::string::npos);
+  // Resampling two pairs gives ratios 0.5 or 0.75 alike: the interval
+  // spans both, whichever statistic.
+  REQUIRE(r.median_interval);
+  CHECK(r.median_interval->first == doctest::Approx(0.5));
+  CHECK(r.median_interval->second == doctest::Approx(0.75));
+  CHECK(r.of_medians_interval->first == doctest::Approx(0.5));
+  CHECK(r.of_medians_interval->second == doctest::Approx(0.75));
+  CHECK(md.find("| mobile | 4 | 2 | 0.667 [0.500, 0.750] | 0.625 [0.500, 0.750] |") != std::string::npos);
 }
 
 TEST_CASE("the wide table has a row per robot count, a column per method, the paired ratio and the hit rate") {
@@ -177,9 +184,9 @@ TEST_CASE("the wide table has a row per robot count, a column per method, the pa
   t[3].db_hits = 1;
   t[3].conflicts = 4;
   const std::string md = markdownWideTable(t);
-  CHECK(md.find("| robots | earc | arc | coupled | E-ARC / ARC medians | E-ARC / ARC paired | E-ARC hit rate |") !=
+  CHECK(md.find("| robots | earc | arc | coupled | E-ARC / ARC medians [95%] | E-ARC / ARC paired [95%] | E-ARC hit rate |") !=
         std::string::npos);
-  CHECK(md.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0/1 | 0.67 | 0.62 | 50% |") != std::string::npos);
+  CHECK(md.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0/1 | 0.67 [0.50, 0.75] | 0.62 [0.50, 0.75] | 50% |") != std::string::npos);
   // E-ARC and coupled did not run at 8 robots.
   CHECK(md.find("| 8 | - | 1/1 8.00 | - | - | - | - |") != std::string::npos);
 }

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "earc/bench/results_db.hpp"
@@ -18,8 +20,13 @@ namespace earc::bench {
 // default); nullopt for no values.
 std::optional<double> quantile(std::vector<double> values, double q);
 
-// printf of one number ("%.3f", v) as a string.
-std::string formatNumber(const char* printf_format, double v);
+// A 95% bootstrap interval (percentile method) of a statistic of n paired
+// items: `statistic` gets the indices of one resample (n draws from 0..n-1
+// with replacement); 2,000 resamples from a generator seeded with `seed`,
+// so the same items and seed give the same interval. n must be positive.
+std::pair<double, double> bootstrapInterval(std::size_t n,
+                                            const std::function<double(const std::vector<std::size_t>&)>& statistic,
+                                            std::uint64_t seed);
 
 struct TrialFilter {
   std::optional<std::uint64_t> seed;
@@ -50,6 +57,9 @@ struct PairedRatio {
   int pairs = 0;
   std::optional<double> median;
   std::optional<double> of_medians;
+  // 95% bootstrap intervals of both, resampling the pairs (bootstrapInterval
+  // with a fixed seed: the table is the same every time it is printed).
+  std::optional<std::pair<double, double>> median_interval, of_medians_interval;
 };
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
                         const std::string& a, const std::string& b);

@@ -17,6 +17,13 @@ inline std::string formatNumber(double v) {
   return buf;
 }
 
+// The same in a printf format of one number ("%.3f").
+inline std::string formatNumber(const char* printf_format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, printf_format, v);
+  return buf;
+}
+
 // Whether `text` is one or more decimal digits and nothing else: no sign,
 // space or point (a "-1" given to an unsigned option, a PID in a name).
 inline bool isDigits(std::string_view text) {
