@@ -31,6 +31,7 @@ std::optional<double> medianOf(const std::vector<double>& v) { return quantile(v
 // Per scenario, in the order first seen: each side's solved times.
 struct ScenarioTimes {
   std::vector<double> old_s, new_s;
+  std::vector<double> old_makespan, new_makespan, old_soc, new_soc;
   int repeats = 0;
   bool differed = false;
 };
@@ -45,6 +46,13 @@ std::vector<std::pair<std::string, ScenarioTimes>> byScenario(const std::vector<
     ++s.repeats;
     if (p.old_plan.solved && p.old_plan.time_s) s.old_s.push_back(*p.old_plan.time_s);
     if (p.new_plan.solved && p.new_plan.time_s) s.new_s.push_back(*p.new_plan.time_s);
+    auto keep = [](const ComparePlan& plan, const std::optional<double>& v, std::vector<double>& into) {
+      if (plan.solved && v) into.push_back(*v);
+    };
+    keep(p.old_plan, p.old_plan.makespan, s.old_makespan);
+    keep(p.new_plan, p.new_plan.makespan, s.new_makespan);
+    keep(p.old_plan, p.old_plan.sum_of_costs, s.old_soc);
+    keep(p.new_plan, p.new_plan.sum_of_costs, s.new_soc);
     if (p.old_plan.solved && p.new_plan.solved && !p.same_paths) s.differed = true;
   }
   return out;
@@ -70,13 +78,21 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   const auto scenarios = byScenario(pairs);
   st.scenarios = static_cast<int>(scenarios.size());
   std::vector<double> olds, news, ratios;
+  std::vector<double> quality[4];  // old and new makespan, old and new sum of costs
   for (const auto& [name, s] : scenarios) {
     if (!pairedInEveryRepeat(s)) continue;
     const double o = *medianOf(s.old_s), n = *medianOf(s.new_s);
     olds.push_back(o);
     news.push_back(n);
     ratios.push_back(n / o);
+    const std::vector<double>* q[4] = {&s.old_makespan, &s.new_makespan, &s.old_soc, &s.new_soc};
+    for (int k = 0; k < 4; ++k)
+      if (auto m = medianOf(*q[k])) quality[k].push_back(*m);
   }
+  st.old_makespan = medianOf(quality[0]);
+  st.new_makespan = medianOf(quality[1]);
+  st.old_sum_of_costs = medianOf(quality[2]);
+  st.new_sum_of_costs = medianOf(quality[3]);
   st.paired = static_cast<int>(ratios.size());
   if (ratios.empty()) return st;
   st.old_median_s = medianOf(olds);
@@ -277,8 +293,13 @@ class Comparer {
       return p;
     }
     const auto stats = doc.value("stats", nlohmann::json::object());
-    if (stats.contains("planning_time_s") && stats["planning_time_s"].is_number())
-      p.time_s = stats["planning_time_s"].get<double>();
+    auto number = [&](const char* key) -> std::optional<double> {
+      if (stats.contains(key) && stats[key].is_number()) return stats[key].get<double>();
+      return std::nullopt;
+    };
+    p.time_s = number("planning_time_s");
+    p.makespan = number("makespan");
+    p.sum_of_costs = number("sum_of_costs");
     if (!p.time_s) {
       p.failure = "no planning_time_s in the solution's stats";
       return p;
@@ -341,12 +362,17 @@ class Comparer {
       log_ << "no scenario was solved by both: no ratio\n";
     }
     log_ << "same paths: " << s.same_paths << " of " << s.plans << " plan pairs\n";
+    if (s.old_makespan && s.new_makespan && s.old_sum_of_costs && s.new_sum_of_costs)
+      log_ << "plans (medians over the same scenarios): makespan old " << formatNumber("%g", *s.old_makespan)
+           << ", new " << formatNumber("%g", *s.new_makespan) << "; sum of costs old "
+           << formatNumber("%g", *s.old_sum_of_costs) << ", new " << formatNumber("%g", *s.new_sum_of_costs) << "\n";
     if (out.interrupted) log_ << "interrupted: the figures above cover the plans that finished\n";
   }
 
   void writeCsv(const std::vector<ComparePair>& pairs) const {
     std::ostringstream csv;
-    csv << "scenario,repeat,old_solved,old_time_s,old_failure,new_solved,new_time_s,new_failure,same_paths\n";
+    csv << "scenario,repeat,old_solved,old_time_s,old_makespan,old_sum_of_costs,old_failure,new_solved,new_time_s,"
+           "new_makespan,new_sum_of_costs,new_failure,same_paths\n";
     auto quoted = [](const std::string& s) {
       std::string q = "\"";
       for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -356,7 +382,8 @@ class Comparer {
       csv << quoted(p.scenario) << "," << p.repeat;
       for (const ComparePlan* plan : {&p.old_plan, &p.new_plan})
         csv << "," << plan->solved << "," << (plan->time_s ? formatNumber("%.6f", *plan->time_s) : "") << ","
-            << quoted(plan->failure);
+            << (plan->makespan ? formatNumber("%g", *plan->makespan) : "") << ","
+            << (plan->sum_of_costs ? formatNumber("%g", *plan->sum_of_costs) : "") << "," << quoted(plan->failure);
       csv << "," << p.same_paths << "\n";
     }
     writeTextFileAtomic(o_.csv, csv.str());

@@ -44,20 +44,29 @@ cmp -s "$WORK/w/scenarios/mobile-4-t0.json" "$WORK/r.sqlite.work/scenarios/"mobi
   fail "compare's scenario differs from run's"
 
 # A planner whose plans are valid but not the same: the first robot waits
-# one more step at its goal.
+# one more step at its goal, and the plan's stats say it costs one more.
 cat > "$WORK/waits" <<FAKE
 #!/bin/bash
 "$PLAN" "\$@" || exit \$?
 out=""
 while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
 exec "$PY" -c 'import json,sys
-d = json.load(open(sys.argv[1])); p = d["paths"][0]["states"]; p.append(p[-1])
+d = json.load(open(sys.argv[1])); p = d["paths"][0]["states"]; p.append(p[-1]); d["stats"]["sum_of_costs"] += 1
 json.dump(d, open(sys.argv[1], "w"))' "\$out"
 FAKE
 chmod +x "$WORK/waits"
 "$BENCH" "${BASE[@]}" --old "$PLAN" --new "$WORK/waits" --csv "$WORK/differ.csv" --picture "$WORK/differ.svg" \
   > "$WORK/out" 2> "$WORK/err" || { show; fail "comparison with differing plans exited $?"; }
 grep -q "^same paths: 0 of 3 plan pairs$" "$WORK/out" || { show; fail "differing plans not reported"; }
+"$PY" - "$WORK/differ.csv" <<'PYEOF' || fail "the longer plans are not in the CSV"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+# What each plan's stats say.
+assert all(int(r["new_sum_of_costs"]) == int(r["old_sum_of_costs"]) + 1 for r in rows), rows
+assert all(int(r["new_makespan"]) == int(r["old_makespan"]) > 0 for r in rows), rows
+PYEOF
+grep -q "^plans (medians over the same scenarios): makespan old [0-9]*, new [0-9]*; sum of costs old [0-9]*, new [0-9]*$" \
+  "$WORK/out" || { show; fail "no plan quality line"; }
 [ "$(grep -o 'stroke="#d62728"' "$WORK/differ.svg" | wc -l)" -eq 3 ] || fail "differing plans not drawn hollow"
 
 # A planner whose robots jump from start to goal: INVALID, exit 1.

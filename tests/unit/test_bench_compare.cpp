@@ -77,6 +77,25 @@ TEST_CASE("A comparison pairs the scenarios both sides solved in every repeat") 
   CHECK(*again.paired_hi == *s.paired_hi);
 }
 
+TEST_CASE("A comparison gives the plans' makespan and sum of costs over the paired scenarios") {
+  auto plan = [](double s, double makespan, double soc) {
+    ComparePlan p = solvedIn(s);
+    p.makespan = makespan;
+    p.sum_of_costs = soc;
+    return p;
+  };
+  // The third scenario is not paired: its long plan must not count.
+  const CompareStats s = compareStats({pair("a", 0, plan(1, 10, 30), plan(1, 12, 31), false),
+                                       pair("b", 0, plan(1, 20, 50), plan(1, 20, 50)),
+                                       pair("c", 0, plan(1, 900, 900), failed("not solved"))},
+                                      1);
+  REQUIRE(s.old_makespan);
+  CHECK(*s.old_makespan == doctest::Approx(15));
+  CHECK(*s.new_makespan == doctest::Approx(16));
+  CHECK(*s.old_sum_of_costs == doctest::Approx(40));
+  CHECK(*s.new_sum_of_costs == doctest::Approx(40.5));
+}
+
 TEST_CASE("Repeated plans of a scenario count by their median") {
   // Old 1, 1, 10 (median 1); new 2, 2, 0.1 (median 2): ratio 2, though
   // the sums would say 12 against 4.1.

@@ -42,6 +42,7 @@ struct CompareOptions {
 struct ComparePlan {
   bool solved = false;            // solved and valid
   std::optional<double> time_s;   // planning_time_s, when solved
+  std::optional<double> makespan, sum_of_costs;  // the solution's stats, when solved
   std::string failure;            // why not solved ("" when solved)
   bool invalid = false;           // solved, but the validator refused it
 };
@@ -66,6 +67,10 @@ struct CompareStats {
   std::optional<double> of_medians;   // new median / old median
   std::optional<double> paired_median;  // median of per-scenario new / old
   std::optional<double> paired_lo, paired_hi;  // 95% bootstrap interval of it
+  // What the plans are like, over the same scenarios (each side's median
+  // over the repeats, then the median over the scenarios): a change that
+  // alters the plans may trade time for longer ones.
+  std::optional<double> old_makespan, new_makespan, old_sum_of_costs, new_sum_of_costs;
 };
 
 // The statistics of a comparison; the bootstrap resamples scenarios with
