@@ -37,6 +37,12 @@ assert all(float(r["old_time_s"]) > 0 and float(r["new_time_s"]) > 0 for r in ro
 svg = open(sys.argv[2]).read()
 assert svg.count("<circle") == 3 and 'stroke="#d62728"' not in svg, svg
 PYEOF
+# Repeats: each scenario planned twice a side, both pairs recorded.
+"$BENCH" compare --suite mobile --robots 4 --trials 1 --seed 4 --time-limit 10 --work-dir "$WORK/w" --repeats 2 \
+  --old "$PLAN" --csv "$WORK/rep.csv" > "$WORK/out" 2> "$WORK/err" || { show; fail "repeats: compare failed"; }
+grep -q "^same paths: 2 of 2 plan pairs$" "$WORK/out" || { show; fail "repeats: not two pairs"; }
+[ "$(cut -d, -f1,2 "$WORK/rep.csv" | tail -n +2 | tr '\n' ' ')" = '"mobile-4-t0",0 "mobile-4-t0",1 ' ] ||
+  fail "repeats: CSV rows $(cat "$WORK/rep.csv")"
 # The scenarios are the ones earc-bench run plans for this seed.
 "$BENCH" run --suites mobile --robots 4 --trials 1 --seed 4 --methods arc --time-limit 10 --keep-solutions \
   --results "$WORK/r.sqlite" > /dev/null 2>&1 || fail "run exited $?"
