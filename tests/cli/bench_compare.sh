@@ -2,7 +2,8 @@
 # label: bench
 # earc-bench compare: a build against itself plans the same paths; a
 # planner whose plans differ (but are valid) is reported as differing; one
-# whose plans are invalid is reported loudly with exit status 1; E-ARC
+# whose plans are invalid is reported loudly with exit status 1; one that
+# crashes is that side's named failure and the comparison goes on; E-ARC
 # plans start from copies, so the given database is left as it was; the
 # CSV and the picture hold a row per plan pair and a point per scenario;
 # bad options end in one line and exit status 2 before any plan runs.
@@ -83,6 +84,15 @@ rc=$?
 grep -q "^INVALID SOLUTION: new ($WORK/teleports) on .*mobile-4-t0.json: INVALID" "$WORK/err" || { show; fail "no loud report"; }
 grep -q "^old solved 3 of 3 plans, new 0 of 3; 3 INVALID solutions$" "$WORK/out" || { show; fail "invalid count"; }
 grep -q "^no scenario was solved by both: no ratio$" "$WORK/out" || { show; fail "a ratio without pairs"; }
+
+# A planner that crashes: that side's failure, named, and no ratio; the
+# comparison itself finishes (exit 0).
+printf '#!/bin/bash\nkill -SEGV $$\n' > "$WORK/crashes"
+chmod +x "$WORK/crashes"
+"$BENCH" "${BASE[@]}" --old "$PLAN" --new "$WORK/crashes" -v > "$WORK/out" 2> "$WORK/err" ||
+  { show; fail "a crashing side ended the comparison"; }
+grep -q "^old solved 3 of 3 plans, new 0 of 3$" "$WORK/out" || { show; fail "crashes not counted"; }
+[ "$(grep -c "^mobile-4-t[012]: new: crashed: SIGSEGV (11); $" "$WORK/out")" -eq 3 ] || { show; fail "crash not named"; }
 
 # E-ARC: every plan starts from a copy of the database; the file given is
 # not touched. Scenario files may be given instead of a suite.
