@@ -211,6 +211,34 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
   return r;
 }
 
+std::string jobsNote(const std::vector<TrialRecord>& trials) {
+  std::map<int, std::size_t> by_jobs;
+  std::size_t unknown = 0;
+  for (const TrialRecord& t : trials)
+    if (t.jobs) ++by_jobs[*t.jobs];
+    else ++unknown;
+  std::string note;
+  if (by_jobs.size() == 1) {
+    const int n = by_jobs.begin()->first;
+    note = n == 1 ? "Trials ran one at a time."
+                  : "Trials ran " + std::to_string(n) + " at a time (--jobs " + std::to_string(n) +
+                        "): side by side they slow each other; for timings, one at a time is steadiest.";
+  } else if (by_jobs.size() > 1) {
+    note = "Trials ran with";
+    bool first = true;
+    for (const auto& [n, count] : by_jobs) {
+      note += std::string(first ? " " : ", ") + "--jobs " + std::to_string(n) + " (" + std::to_string(count) + ")";
+      first = false;
+    }
+    note += ": timings of different runs are not alike.";
+  }
+  if (unknown > 0)
+    note += std::string(note.empty() ? "" : " ") + "How many trials ran at once was not recorded for " +
+            std::to_string(unknown) + (unknown == 1 ? " trial" : " trials") +
+            " (results from before schema version 2).";
+  return note;
+}
+
 std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
   std::ostringstream out;
   const auto cells = summarize(trials);
@@ -264,6 +292,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
     out << "\n";
   }
   if (cells.empty()) out << "(no trials)\n";
+  else out << "\n" << jobsNote(trials) << "\n";
   return out.str();
 }
 
@@ -310,20 +339,22 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
           << (d.problems ? opt(d.problems) : "-") << " |\n";
   }
   if (cells.empty()) out << "(no trials)\n";
+  else out << "\n" << jobsNote(trials) << "\n";
   return out.str();
 }
 
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at\n";
+         "finished_at,jobs\n";
   for (const auto& t : trials) {
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
         << ',' << (t.success ? 1 : 0) << ',' << opt(t.planning_time_s) << ','
         << opt(std::optional<double>(t.wall_time_s)) << ',' << opt(t.makespan) << ',' << opt(t.sum_of_costs) << ','
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
-        << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << "\n";
+        << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
+        << "\n";
   }
 }
 

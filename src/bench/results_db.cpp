@@ -56,6 +56,10 @@ CREATE TABLE databases (
 );
 )sql";
 
+// Version 2: how many trials ran at once. Side by side, trials disturb
+// each other's timings, and how depends on the order (see runner.cpp).
+constexpr std::string_view kMigrationV2 = "ALTER TABLE trials ADD COLUMN jobs INTEGER";
+
 // What the file must be, checked as the experience store checks its own.
 constexpr exp::TableSince kResultsTables[] = {{"trials", 1}, {"databases", 1}};
 constexpr exp::FileIdentity kResultsIdentity{kResultsApplicationId, "earc-bench results database", "earc-bench",
@@ -92,9 +96,9 @@ std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std:
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
+    " term_signal, failure, finished_at, jobs) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
     " NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''),"
-    " NULLIF(?18, ''), NULLIF(?19, ''), ?20) ON CONFLICT DO NOTHING";
+    " NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, '')) ON CONFLICT DO NOTHING";
 constexpr const char* kInsertDatabase =
     "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
     " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
@@ -104,7 +108,12 @@ constexpr const char* kFinishedTrials =
 constexpr const char* kSelectTrials =
     "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at FROM trials ORDER BY id";
+    " term_signal, failure, finished_at, jobs FROM trials ORDER BY id";
+// A version 1 file read without migrating it (table, export, plot).
+constexpr const char* kSelectTrialsV1 =
+    "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
+    " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
+    " term_signal, failure, finished_at, NULL FROM trials ORDER BY id";
 constexpr const char* kSelectDatabases =
     "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
@@ -112,10 +121,12 @@ constexpr const char* kHasDatabase =
     "SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1";
 constexpr const char* kStatements[] = {kInsertTrial,  kInsertDatabase,  kFinishedTrials,
                                        kSelectTrials, kSelectDatabases, kHasDatabase};
+constexpr const char* kStatementsV1[] = {kFinishedTrials, kSelectTrialsV1, kSelectDatabases, kHasDatabase};
 
 struct ResultsDb::Impl {
   std::string path;
   Connection conn;
+  int version = kResultsSchemaVersion;
   Impl(const std::string& p, bool read_only)
       : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite, settings()) {}
   static exp::ConnectionSettings settings() {
@@ -155,13 +166,31 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     c.enableWal();
     c.write([&] {
       c.exec(kSchemaV1);
+      c.exec(kMigrationV2);
       c.exec("PRAGMA application_id = " + std::to_string(kResultsApplicationId));
       c.exec("PRAGMA user_version = " + std::to_string(kResultsSchemaVersion));
     });
     return;
   }
-  for (const char* sql : kStatements) impl_->prepare(sql);
-  if (!read_only) c.enableWal();
+  if (!read_only) {
+    c.enableWal();
+    if (version < 2) {
+      // Another process may have migrated it meanwhile: decided again
+      // under the write lock.
+      c.write([&] {
+        if (c.pragmaInt("user_version") < 2) {
+          c.exec(kMigrationV2);
+          c.exec("PRAGMA user_version = 2");
+        }
+      });
+      version = 2;
+    }
+  }
+  impl_->version = version;
+  if (version < 2)
+    for (const char* sql : kStatementsV1) impl_->prepare(sql);
+  else
+    for (const char* sql : kStatements) impl_->prepare(sql);
 }
 
 ResultsDb::~ResultsDb() = default;
@@ -187,6 +216,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     bindOpt(s, 18, t.term_signal);
     s.bind(19, std::string_view(t.failure));
     s.bind(20, t.finished_at.empty() ? utcNow() : t.finished_at);
+    bindOpt(s, 21, t.jobs);
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -217,7 +247,7 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 }
 
 std::vector<TrialRecord> ResultsDb::trials() const {
-  Statement s = impl_->prepare(kSelectTrials);
+  Statement s = impl_->prepare(impl_->version < 2 ? kSelectTrialsV1 : kSelectTrials);
   std::vector<TrialRecord> out;
   while (s.step()) {
     TrialRecord t;
@@ -241,6 +271,7 @@ std::vector<TrialRecord> ResultsDb::trials() const {
     if (auto v = intOpt(s, 17)) t.term_signal = static_cast<int>(*v);
     if (s.columnType(18) != SQLITE_NULL) t.failure = s.textAt(18);
     t.finished_at = s.textAt(19);
+    if (auto v = intOpt(s, 20)) t.jobs = static_cast<int>(*v);
     out.push_back(std::move(t));
   }
   return out;

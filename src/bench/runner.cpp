@@ -401,6 +401,7 @@ class Runner {
     t.trial = c.trial;
     t.seed = o_.seed;
     t.time_limit_s = o_.time_limit_s;
+    t.jobs = o_.jobs;
     const TrialSeeds seeds = trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;

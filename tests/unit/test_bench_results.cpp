@@ -74,6 +74,58 @@ std::vector<std::string> lines(const std::string& path) {
 
 }  // namespace
 
+TEST_CASE("a results database remembers how many trials ran at once, and reads and migrates version 1 files") {
+  TempPath file("earc-results-jobs");
+  {
+    ResultsDb db(file.path);
+    TrialRecord t = trial("arc", 0, true, 1.5);
+    t.jobs = 2;
+    CHECK(db.addTrial(t));
+  }
+  {
+    // Made a version 1 file, as an earlier earc-bench left it: no jobs column.
+    exp::Connection c(file.path, exp::OpenMode::ReadWrite);
+    c.exec("ALTER TABLE trials DROP COLUMN jobs");
+    c.exec("PRAGMA user_version = 1");
+  }
+  {
+    // Read as it is: jobs unknown, the file still version 1.
+    ResultsDb db(file.path, true);
+    const auto all = db.trials();
+    REQUIRE(all.size() == 1);
+    CHECK_FALSE(all[0].jobs.has_value());
+    CHECK(all[0].planning_time_s == doctest::Approx(1.5));
+    CHECK(jobsNote(all) == "How many trials ran at once was not recorded for 1 trial (results from before schema version 2).");
+  }
+  {
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    CHECK(c.pragmaInt("user_version") == 1);
+  }
+  {
+    // Opened for writing: migrated, the old row kept, new rows with jobs.
+    ResultsDb db(file.path);
+    TrialRecord t = trial("earc", 0, true, 1.0);
+    t.jobs = 1;
+    CHECK(db.addTrial(t));
+  }
+  exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+  CHECK(c.pragmaInt("user_version") == 2);
+  ResultsDb db(file.path, true);
+  const auto all = db.trials();
+  REQUIRE(all.size() == 2);
+  CHECK_FALSE(all[0].jobs.has_value());
+  CHECK(all[1].jobs == 1);
+  CHECK(jobsNote(all) == "Trials ran one at a time. How many trials ran at once was not recorded for 1 trial "
+                         "(results from before schema version 2).");
+  std::vector<TrialRecord> mixed = all;
+  mixed[0].jobs = 2;
+  CHECK(jobsNote(mixed) == "Trials ran with --jobs 1 (1), --jobs 2 (1): timings of different runs are not alike.");
+  mixed[1].jobs = 2;
+  CHECK(jobsNote(mixed).rfind("Trials ran 2 at a time (--jobs 2)", 0) == 0);
+  CHECK(markdownTable(mixed, {}).find("Trials ran 2 at a time") != std::string::npos);
+  CHECK(markdownWideTable(mixed).find("Trials ran 2 at a time") != std::string::npos);
+}
+
 TEST_CASE("a results database records a trial once per key and reports it as finished") {
   TempPath file("earc-results");
   {
@@ -111,7 +163,7 @@ TEST_CASE("a results database without a table of its schema is refused as damage
       c.exec(std::string("DROP TABLE ") + table);
     }
     const std::string want =
-        file.path + ": damaged database file (table " + table + " is missing; schema version 1 has it)";
+        file.path + ": damaged database file (table " + table + " is missing; schema version 2 has it)";
     for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
   }
 }

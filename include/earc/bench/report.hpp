@@ -64,9 +64,14 @@ struct PairedRatio {
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
                         const std::string& a, const std::string& b);
 
+// How many trials ran at once, in one line for under a table: "Trials ran
+// one at a time." / "Trials ran 2 at a time (--jobs 2)." / the mix, and
+// how many trials did not record it (results from before schema 2).
+std::string jobsNote(const std::vector<TrialRecord>& trials);
+
 // Markdown: per suite a table of success rate and median planning time
 // (IQR) per robot count and method, the E-ARC/ARC paired ratio, then the
-// databases.
+// databases, then jobsNote.
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
 
 // The same results laid out like the paper's figures: one table per suite,
@@ -74,7 +79,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 // "-" where the method was not run), then E-ARC's time over ARC's on the
 // same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
 // (subproblems solved from the database, directly or repaired, over
-// conflicts).
+// conflicts); then jobsNote.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
 // One row per trial, RFC 4180 quoting, a header line first.

@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 1, WAL) that trials are appended to as they finish, each in
+// user_version 2, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -14,6 +14,10 @@
 //     within the time limit; failure says why not (NULL on success).
 //     planning_time_s is the planner's own figure (stats.planning_time_s),
 //     NULL when the process died before reporting one.
+//   Version 2 adds trials.jobs: how many trials the run had at once
+//     (--jobs), NULL for trials recorded before it. A version 1 file is
+//     migrated when opened for writing (one BEGIN IMMEDIATE transaction
+//     with its version bump) and read as it is otherwise.
 //   databases(id, method, suite, robots, path, construction_time_s,
 //             entries, size_bytes, problems, seed, recorded_at)
 //     robots = 0 for a database that serves every robot count (E-ARC's).
@@ -30,7 +34,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 1;
+inline constexpr int kResultsSchemaVersion = 2;
 
 struct TrialRecord {
   std::string suite;
@@ -50,6 +54,7 @@ struct TrialRecord {
   std::optional<int> term_signal;  // the signal that ended it
   std::string failure;             // empty on success
   std::string finished_at;         // ISO 8601 UTC
+  std::optional<int> jobs;         // trials the run had at once; unknown before schema 2
 };
 
 struct DatabaseRecord {
