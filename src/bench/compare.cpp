@@ -99,15 +99,7 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   st.new_median_s = medianOf(news);
   if (*st.old_median_s > 0) st.of_medians = *st.new_median_s / *st.old_median_s;
   st.paired_median = medianOf(ratios);
-  const auto interval = bootstrapInterval(
-      ratios.size(),
-      [&](const std::vector<std::size_t>& idx) {
-        std::vector<double> sample;
-        sample.reserve(idx.size());
-        for (std::size_t i : idx) sample.push_back(ratios[i]);
-        return *medianOf(sample);
-      },
-      seed);
+  const auto interval = medianInterval(ratios, seed);
   st.paired_lo = interval.first;
   st.paired_hi = interval.second;
   return st;

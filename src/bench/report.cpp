@@ -44,13 +44,21 @@ bool cellLess(const std::string& sa, int ra, const std::string& ma, const std::s
   return ka < kb;
 }
 
-// Seconds with three significant digits, but never in exponent form.
 // "0.60 [0.45, 0.78]": a value and its interval in one format.
 std::string withInterval(const char* format, double v, const std::pair<double, double>& interval) {
   return formatNumber(format, v) + " [" + formatNumber(format, interval.first) + ", " +
          formatNumber(format, interval.second) + "]";
 }
 
+// The values at the given indices (one bootstrap resample).
+std::vector<double> gather(const std::vector<double>& values, const std::vector<std::size_t>& idx) {
+  std::vector<double> out;
+  out.reserve(idx.size());
+  for (std::size_t i : idx) out.push_back(values[i]);
+  return out;
+}
+
+// Seconds with three significant digits, but never in exponent form.
 std::string secs(double s) {
   if (s >= 100) return formatNumber("%.0f", s);
   if (s >= 10) return formatNumber("%.1f", s);
@@ -129,6 +137,11 @@ std::pair<double, double> bootstrapInterval(std::size_t n,
   return {*quantile(values, 0.025), *quantile(values, 0.975)};
 }
 
+std::pair<double, double> medianInterval(const std::vector<double>& values, std::uint64_t seed) {
+  return bootstrapInterval(
+      values.size(), [&](const std::vector<std::size_t>& idx) { return *quantile(gather(values, idx), 0.5); }, seed);
+}
+
 std::optional<double> quantile(std::vector<double> v, double q) {
   if (v.empty()) return std::nullopt;
   std::sort(v.begin(), v.end());
@@ -193,19 +206,12 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
   PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt, std::nullopt, std::nullopt};
   if (ratios.empty()) return r;
   r.of_medians = *quantile(paired_a, 0.5) / *quantile(paired_b, 0.5);
-  auto pick = [](const std::vector<double>& v, const std::vector<std::size_t>& idx) {
-    std::vector<double> out;
-    out.reserve(idx.size());
-    for (std::size_t i : idx) out.push_back(v[i]);
-    return out;
-  };
   constexpr std::uint64_t kSeed = 1;
-  r.median_interval = bootstrapInterval(
-      ratios.size(), [&](const std::vector<std::size_t>& idx) { return *quantile(pick(ratios, idx), 0.5); }, kSeed);
+  r.median_interval = medianInterval(ratios, kSeed);
   r.of_medians_interval = bootstrapInterval(
       ratios.size(),
       [&](const std::vector<std::size_t>& idx) {
-        return *quantile(pick(paired_a, idx), 0.5) / *quantile(pick(paired_b, idx), 0.5);
+        return *quantile(gather(paired_a, idx), 0.5) / *quantile(gather(paired_b, idx), 0.5);
       },
       kSeed);
   return r;

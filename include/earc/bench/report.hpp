@@ -27,6 +27,8 @@ std::optional<double> quantile(std::vector<double> values, double q);
 std::pair<double, double> bootstrapInterval(std::size_t n,
                                             const std::function<double(const std::vector<std::size_t>&)>& statistic,
                                             std::uint64_t seed);
+// The same for the median of `values`, resampling the values themselves.
+std::pair<double, double> medianInterval(const std::vector<double>& values, std::uint64_t seed);
 
 struct TrialFilter {
   std::optional<std::uint64_t> seed;
