@@ -9,11 +9,12 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <chrono>
 #include <cstring>
 #include <fstream>
 #include <thread>
+
+#include "earc/util/format.hpp"
 
 namespace earc::bench {
 
@@ -191,11 +192,8 @@ const char* signalName(int sig) {
 std::string childFailure(const ChildOutcome& outcome, const ChildSpec& spec, const std::string& err_path) {
   if (outcome.cancelled) return "interrupted";
   if (!outcome.started) return outcome.error;
-  if (outcome.killed_at_limit) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", spec.wall_limit_s);
-    return std::string("killed at the wall-clock limit (") + buf + " s)";
-  }
+  if (outcome.killed_at_limit)
+    return "killed at the wall-clock limit (" + formatNumber("%.3g", spec.wall_limit_s) + " s)";
   if (outcome.signal)
     return std::string("crashed: ") + signalName(*outcome.signal) + " (" + std::to_string(*outcome.signal) + ")";
   if (outcome.exit_code == 0 || outcome.exit_code == 1) return "";
