@@ -105,15 +105,14 @@ constexpr const char* kInsertDatabase =
     " NULLIF(?8, ''), NULLIF(?9, ''), ?10)";
 constexpr const char* kFinishedTrials =
     "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2";
-constexpr const char* kSelectTrials =
-    "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
-    " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs FROM trials ORDER BY id";
+#define EARC_TRIAL_COLUMNS_V1                                                                                  \
+  "suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"      \
+  " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure," \
+  " finished_at"
+constexpr const char* kSelectTrials = "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs FROM trials ORDER BY id";
 // A version 1 file read without migrating it (table, export, plot).
-constexpr const char* kSelectTrialsV1 =
-    "SELECT suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
-    " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, NULL FROM trials ORDER BY id";
+constexpr const char* kSelectTrialsV1 = "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL FROM trials ORDER BY id";
+#undef EARC_TRIAL_COLUMNS_V1
 constexpr const char* kSelectDatabases =
     "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
