@@ -197,12 +197,15 @@ class MotionGuard {
   std::size_t kept_ = 0;
 };
 
+// Two 32-bit values in one 64-bit key, the first in the high half.
+std::uint64_t packPair(std::uint32_t hi, std::uint32_t lo) { return (static_cast<std::uint64_t>(hi) << 32) | lo; }
+
 std::uint64_t nodeKey(int v, std::size_t tau) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v)) << 32) | static_cast<std::uint32_t>(tau);
+  return packPair(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(tau));
 }
 
 std::uint64_t motionKey(int from, int to) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+  return packPair(static_cast<std::uint32_t>(from), static_cast<std::uint32_t>(to));
 }
 
 }  // namespace
