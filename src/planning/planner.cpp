@@ -8,6 +8,7 @@
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/util/random.hpp"
+#include "earc/util/version.hpp"
 #include "earc/validate/validator.hpp"
 
 namespace earc {
@@ -195,6 +196,7 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   }
   result.stats["method"] = methodName(settings.method);
   result.stats["seed"] = settings.seed;
+  result.stats["earc_version"] = version();
   result.solution.stats = result.stats;
   return result;
 }

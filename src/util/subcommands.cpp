@@ -6,6 +6,7 @@
 
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
+#include "earc/util/version.hpp"
 
 namespace earc::cli {
 
@@ -68,6 +69,7 @@ const CLI::Validator kPositiveWholeNumber = wholeNumber(true);
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);
+  app.set_version_flag("--version", program + " " + std::string(version()), "Print the build's version and exit");
   auto entries = registry();
   // Registration order follows static initialisation order; sort for a stable --help.
   std::sort(entries.begin(), entries.end(),
