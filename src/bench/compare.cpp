@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "earc/bench/child.hpp"
@@ -262,13 +263,12 @@ class Comparer {
     p.failure = childFailure(run, spec, err);
     if (!p.failure.empty()) return p;
     nlohmann::json doc;
-    try {
-      doc = readJsonFile(solution);
-    } catch (const std::exception& e) {
-      p.failure = "exit " + std::to_string(*run.exit_code) + " without a readable solution: " + lastLine(err);
+    if (auto why = readPlanSolution(run, solution, err, doc)) {
+      p.failure = *why;
       return p;
     }
-    if (!doc.value("solved", false)) {
+    p.version = plannerVersion(doc);
+    if (!doc["solved"].get<bool>()) {
       p.failure = "not solved";
       return p;
     }
@@ -302,6 +302,17 @@ class Comparer {
     fs::remove(out);
     fs::remove(err);
     return p;
+  }
+
+  // Which builds planned one side's plans, as their solutions said:
+  // "earc 0.1.0+66772d4", several joined by " and ", "unknown".
+  static std::string builds(const std::vector<ComparePair>& pairs, ComparePlan ComparePair::*side) {
+    std::set<std::string> versions;
+    for (const ComparePair& p : pairs)
+      if (!(p.*side).version.empty()) versions.insert((p.*side).version);
+    std::string out;
+    for (const std::string& v : versions) out += (out.empty() ? "earc " : " and earc ") + v;
+    return out.empty() ? "unknown" : out;
   }
 
   ComparePair runPair(const Job& job, int repeat, bool new_first) {
@@ -341,6 +352,8 @@ class Comparer {
 
   void report(const CompareSummary& out) {
     const CompareStats& s = out.stats;
+    log_ << "builds: old " << builds(out.pairs, &ComparePair::old_plan) << ", new "
+         << builds(out.pairs, &ComparePair::new_plan) << "\n";
     log_ << "old solved " << s.old_solved << " of " << s.plans << " plans, new " << s.new_solved << " of " << s.plans;
     if (s.invalid) log_ << "; " << s.invalid << " INVALID solutions";
     log_ << "\n";

@@ -217,12 +217,36 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
   return r;
 }
 
-std::string jobsNote(const std::vector<TrialRecord>& trials) {
-  std::map<int, std::size_t> by_jobs;
+namespace {
+
+// How many trials have each known value of a field (`get` returns an
+// optional), and how many have none.
+template <class Get>
+auto countBy(const std::vector<TrialRecord>& trials, Get get) {
+  std::map<typename decltype(get(trials.front()))::value_type, std::size_t> known;
   std::size_t unknown = 0;
   for (const TrialRecord& t : trials)
-    if (t.jobs) ++by_jobs[*t.jobs];
+    if (const auto v = get(t)) ++known[*v];
     else ++unknown;
+  return std::pair{known, unknown};
+}
+
+// "N trials" / "1 trial".
+std::string trialCount(std::size_t n) { return std::to_string(n) + (n == 1 ? " trial" : " trials"); }
+
+// Adds to a note the sentence "WHAT was not recorded for N trials (WHY)."
+// when unknown > 0.
+void addNotRecorded(std::string& note, std::string_view what, std::size_t unknown, std::string_view why) {
+  if (unknown == 0) return;
+  note += std::string(note.empty() ? "" : " ") + std::string(what) + " was not recorded for " + trialCount(unknown) +
+          " (" + std::string(why) + ").";
+}
+
+}  // namespace
+
+std::string jobsNote(const std::vector<TrialRecord>& trials) {
+  if (trials.empty()) return "";
+  const auto [by_jobs, unknown] = countBy(trials, [](const TrialRecord& t) { return t.jobs; });
   std::string note;
   if (by_jobs.size() == 1) {
     const int n = by_jobs.begin()->first;
@@ -238,11 +262,35 @@ std::string jobsNote(const std::vector<TrialRecord>& trials) {
     }
     note += ": timings of different runs are not alike.";
   }
-  if (unknown > 0)
-    note += std::string(note.empty() ? "" : " ") + "How many trials ran at once was not recorded for " +
-            std::to_string(unknown) + (unknown == 1 ? " trial" : " trials") +
-            " (results from before schema version 2).";
+  addNotRecorded(note, "How many trials ran at once", unknown, "results from before schema version 2");
   return note;
+}
+
+std::string versionNote(const std::vector<TrialRecord>& trials) {
+  if (trials.empty()) return "";
+  const auto [by_version, unknown] = countBy(trials, [](const TrialRecord& t) {
+    return t.planner_version.empty() ? std::nullopt : std::optional<std::string>(t.planner_version);
+  });
+  std::string note;
+  if (by_version.size() == 1) {
+    note = "Planned by earc " + by_version.begin()->first + ".";
+  } else if (by_version.size() > 1) {
+    note = "Planned by " + std::to_string(by_version.size()) + " builds:";
+    bool first = true;
+    for (const auto& [version, count] : by_version) {
+      note += std::string(first ? " " : ", ") + "earc " + version + " (" + trialCount(count) + ")";
+      first = false;
+    }
+    note += ": their times are of different code.";
+  }
+  addNotRecorded(note, "Which build planned", unknown,
+                 "results from before schema version 3, or a planner that does not say");
+  return note;
+}
+
+std::string trialsNotes(const std::vector<TrialRecord>& trials) {
+  if (trials.empty()) return "(no trials)\n";
+  return "\n" + jobsNote(trials) + "\n" + versionNote(trials) + "\n";
 }
 
 std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
@@ -297,8 +345,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
     }
     out << "\n";
   }
-  if (cells.empty()) out << "(no trials)\n";
-  else out << "\n" << jobsNote(trials) << "\n";
+  out << trialsNotes(trials);
   return out.str();
 }
 
@@ -344,15 +391,14 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
           << " | " << (d.size_bytes ? formatNumber("%.1f", static_cast<double>(*d.size_bytes) / 1024.0) : "-") << " | "
           << (d.problems ? opt(d.problems) : "-") << " |\n";
   }
-  if (cells.empty()) out << "(no trials)\n";
-  else out << "\n" << jobsNote(trials) << "\n";
+  out << trialsNotes(trials);
   return out.str();
 }
 
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at,jobs\n";
+         "finished_at,jobs,planner_version\n";
   for (const auto& t : trials) {
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
@@ -360,7 +406,7 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(std::optional<double>(t.wall_time_s)) << ',' << opt(t.makespan) << ',' << opt(t.sum_of_costs) << ','
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
         << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
-        << "\n";
+        << ',' << csvField(t.planner_version) << "\n";
   }
 }
 

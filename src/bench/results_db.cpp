@@ -1,6 +1,7 @@
 #include "earc/bench/results_db.hpp"
 
 #include <ctime>
+#include <iterator>
 #include <string_view>
 
 #include "earc/bench/options.hpp"
@@ -56,9 +57,16 @@ CREATE TABLE databases (
 );
 )sql";
 
-// Version 2: how many trials ran at once. Side by side, trials disturb
-// each other's timings, and how depends on the order (see runner.cpp).
-constexpr std::string_view kMigrationV2 = "ALTER TABLE trials ADD COLUMN jobs INTEGER";
+// The steps from version 1, kMigrations[v - 2] making version v:
+// 2: how many trials ran at once. Side by side, trials disturb each
+//    other's timings, and how depends on the order (see runner.cpp).
+// 3: which build planned the trial, so that every figure can be traced to
+//    its code.
+constexpr std::string_view kMigrations[] = {
+    "ALTER TABLE trials ADD COLUMN jobs INTEGER",
+    "ALTER TABLE trials ADD COLUMN planner_version TEXT",
+};
+static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
 // What the file must be, checked as the experience store checks its own.
 constexpr exp::TableSince kResultsTables[] = {{"trials", 1}, {"databases", 1}};
@@ -96,9 +104,9 @@ std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std:
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11,"
-    " NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''),"
-    " NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, '')) ON CONFLICT DO NOTHING";
+    " term_signal, failure, finished_at, jobs, planner_version) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9,"
+    " NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''),"
+    " NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''), NULLIF(?22, '')) ON CONFLICT DO NOTHING";
 constexpr const char* kInsertDatabase =
     "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
     " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
@@ -109,18 +117,24 @@ constexpr const char* kFinishedTrials =
   "suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"      \
   " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure," \
   " finished_at"
-constexpr const char* kSelectTrials = "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs FROM trials ORDER BY id";
-// A version 1 file read without migrating it (table, export, plot).
-constexpr const char* kSelectTrialsV1 = "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL FROM trials ORDER BY id";
+// kSelectTrials[v - 1] reads a version v file, older ones without
+// migrating them (table, export, plot): NULL for the columns it lacks.
+constexpr const char* kSelectTrials[] = {
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version FROM trials ORDER BY id",
+};
+static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
 constexpr const char* kSelectDatabases =
     "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
 constexpr const char* kHasDatabase =
     "SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1";
-constexpr const char* kStatements[] = {kInsertTrial,  kInsertDatabase,  kFinishedTrials,
-                                       kSelectTrials, kSelectDatabases, kHasDatabase};
-constexpr const char* kStatementsV1[] = {kFinishedTrials, kSelectTrialsV1, kSelectDatabases, kHasDatabase};
+// Those a file of any version must run; the inserts only the current
+// version can (older files are read-only: they were opened so).
+constexpr const char* kReadStatements[] = {kFinishedTrials, kSelectDatabases, kHasDatabase};
+constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase};
 
 struct ResultsDb::Impl {
   std::string path;
@@ -165,31 +179,32 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     c.enableWal();
     c.write([&] {
       c.exec(kSchemaV1);
-      c.exec(kMigrationV2);
+      for (std::string_view step : kMigrations) c.exec(step);
       c.exec("PRAGMA application_id = " + std::to_string(kResultsApplicationId));
       c.exec("PRAGMA user_version = " + std::to_string(kResultsSchemaVersion));
     });
-    return;
-  }
-  if (!read_only) {
+    version = kResultsSchemaVersion;
+  } else if (!read_only) {
     c.enableWal();
-    if (version < 2) {
+    for (int next = version + 1; next <= kResultsSchemaVersion; ++next) {
       // Another process may have migrated it meanwhile: decided again
       // under the write lock.
       c.write([&] {
-        if (c.pragmaInt("user_version") < 2) {
-          c.exec(kMigrationV2);
-          c.exec("PRAGMA user_version = 2");
+        if (c.pragmaInt("user_version") < next) {
+          c.exec(kMigrations[next - 2]);
+          c.exec("PRAGMA user_version = " + std::to_string(next));
         }
       });
-      version = 2;
     }
+    version = kResultsSchemaVersion;
   }
   impl_->version = version;
-  if (version < 2)
-    for (const char* sql : kStatementsV1) impl_->prepare(sql);
-  else
-    for (const char* sql : kStatements) impl_->prepare(sql);
+  // The inserts first: a missing column is named best by an INSERT ("table
+  // trials has no column named X").
+  if (version == kResultsSchemaVersion)
+    for (const char* sql : kWriteStatements) impl_->prepare(sql);
+  impl_->prepare(kSelectTrials[version - 1]);
+  for (const char* sql : kReadStatements) impl_->prepare(sql);
 }
 
 ResultsDb::~ResultsDb() = default;
@@ -216,6 +231,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     s.bind(19, std::string_view(t.failure));
     s.bind(20, t.finished_at.empty() ? utcNow() : t.finished_at);
     bindOpt(s, 21, t.jobs);
+    s.bind(22, std::string_view(t.planner_version));
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -246,7 +262,7 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 }
 
 std::vector<TrialRecord> ResultsDb::trials() const {
-  Statement s = impl_->prepare(impl_->version < 2 ? kSelectTrialsV1 : kSelectTrials);
+  Statement s = impl_->prepare(kSelectTrials[impl_->version - 1]);
   std::vector<TrialRecord> out;
   while (s.step()) {
     TrialRecord t;
@@ -271,6 +287,7 @@ std::vector<TrialRecord> ResultsDb::trials() const {
     if (s.columnType(18) != SQLITE_NULL) t.failure = s.textAt(18);
     t.finished_at = s.textAt(19);
     if (auto v = intOpt(s, 20)) t.jobs = static_cast<int>(*v);
+    if (s.columnType(21) != SQLITE_NULL) t.planner_version = s.textAt(21);
     out.push_back(std::move(t));
   }
   return out;

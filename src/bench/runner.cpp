@@ -227,6 +227,15 @@ class Runner {
 
   std::string earcDb(const std::string& family) const { return earcDbPath(o_, family); }
 
+  // One line for a database whose build (a child, logs at STEM.out and
+  // .err) failed; the method's trials then fail with its planner's own
+  // message about the file.
+  static void buildFailed(const std::string& path, const ChildOutcome& out, const std::string& stem,
+                          std::string_view method) {
+    std::cerr << "earc-bench: building " << path << " failed (" << exitDescription(out)
+              << "): " << lastLine(stem + ".err") << "; its " << method << " trials will fail\n";
+  }
+
   // A Lightning database is built (in a child, timed) just before the
   // first trial that needs it, so that trials --cutoff skips never pay for
   // one (at 32 robots that is minutes of planning problems it cannot
@@ -253,10 +262,7 @@ class Runner {
         problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
     spec.memory_limit_mb = o_.memory_limit_mb;
     ChildOutcome out = runChild(spec, &interruptFlag());
-    if (out.exit_code != 0)
-      std::cerr << "earc-bench: building " << path << " failed ("
-                << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
-                << "): " << lastLine(stem + ".err") << "; its Lightning trials will fail\n";
+    if (out.exit_code != 0) buildFailed(path, out, stem, "Lightning");
   }
 
   // Databases are built (in a child, timed) when missing and recorded in
@@ -314,9 +320,7 @@ class Runner {
     spec.memory_limit_mb = o_.memory_limit_mb;
     ChildOutcome out = runChild(spec, &interruptFlag());
     if (out.exit_code == 0) return out.wall_s;
-    std::cerr << "earc-bench: building " << path << " failed ("
-              << (out.signal ? std::string(signalName(*out.signal)) : "exit " + std::to_string(out.exit_code.value_or(-1)))
-              << "): " << lastLine(stem + ".err") << "; its earc trials will fail\n";
+    buildFailed(path, out, stem, "earc");
     std::error_code ec;
     fs::remove(path, ec);  // a half-built database must not pass for a built one
     return std::nullopt;
@@ -346,16 +350,11 @@ class Runner {
     return a;
   }
 
-  // Reads what the planner reported into t; false when the file is unusable.
-  static bool readStats(const std::string& solution, TrialRecord& t, bool& solved) {
+  // The trial's figures from a solution readPlanSolution accepted; its
+  // solved flag.
+  static bool readStats(const nlohmann::json& doc, TrialRecord& t) {
     const bool database_method = t.method == "earc" || t.method == "lightning";
-    nlohmann::json doc;
-    try {
-      doc = readJsonFile(solution);
-    } catch (const std::exception&) {
-      return false;
-    }
-    solved = doc.value("solved", false);
+    const bool solved = doc["solved"].get<bool>();
     const nlohmann::json st = doc.value("stats", nlohmann::json::object());
     auto num = [&](const char* key) -> std::optional<std::int64_t> {
       if (st.contains(key) && st[key].is_number()) return st[key].get<std::int64_t>();
@@ -366,6 +365,7 @@ class Runner {
     t.makespan = num("makespan");
     t.sum_of_costs = num("sum_of_costs");
     t.conflicts = num("conflicts");
+    t.planner_version = plannerVersion(doc);
     if (database_method) t.db_hits = num("db_hits");
     // E-ARC counts database hits per solver: retrieved as is, or repaired.
     if (database_method && !t.db_hits && st.contains("subproblems_by_solver") && st["subproblems_by_solver"].is_object()) {
@@ -390,7 +390,7 @@ class Runner {
           st["invalid_result"][0].is_string())
         t.failure += " (" + st["invalid_result"][0].get<std::string>() + ")";
     }
-    return true;
+    return solved;
   }
 
   TrialRecord runTrial(const Cell& c) {
@@ -430,16 +430,13 @@ class Runner {
     t.term_signal = run.signal;
     t.failure = childFailure(run, spec, err);
     if (t.failure.empty()) {
-      bool solved = false;
-      if (!readStats(solution, t, solved)) {
-        t.failure = "exit " + std::to_string(*run.exit_code) + " without a readable solution: " + lastLine(err);
-      } else if (solved != (run.exit_code == 0)) {
-        t.failure = "exit status " + std::to_string(*run.exit_code) + " disagrees with the solution's solved flag";
-      } else if (solved) {
+      nlohmann::json doc;
+      if (auto why = readPlanSolution(run, solution, err, doc))
+        t.failure = *why;
+      else if (readStats(doc, t))
         validate(c, scenario, solution, stem, t);
-      } else if (t.failure.empty()) {
+      else if (t.failure.empty())
         t.failure = "not solved";
-      }
     }
     if (t.success) {
       if (!o_.keep_solutions) fs::remove(solution);
@@ -571,6 +568,35 @@ class Runner {
 }  // namespace
 
 double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
+
+std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::string& solution,
+                                            const std::string& err_path, nlohmann::json& doc) {
+  const int status = run.exit_code.value_or(-1);
+  const auto unreadable = [&] {
+    return "exit " + std::to_string(status) + " without a readable solution: " + lastLine(err_path);
+  };
+  try {
+    doc = readJsonFile(solution);
+  } catch (const std::exception&) {
+    return unreadable();
+  }
+  if (!doc.is_object() || !doc.contains("solved") || !doc["solved"].is_boolean()) return unreadable();
+  if (doc["solved"].get<bool>() != (status == 0))
+    return "exit status " + std::to_string(status) + " disagrees with the solution's solved flag";
+  return std::nullopt;
+}
+
+std::string plannerVersion(const nlohmann::json& solution) {
+  const auto stats = solution.find("stats");
+  if (stats == solution.end() || !stats->is_object()) return "";
+  const auto v = stats->find("earc_version");
+  return v != stats->end() && v->is_string() ? v->get<std::string>() : "";
+}
+
+std::string exitDescription(const ChildOutcome& outcome) {
+  if (outcome.signal) return signalName(*outcome.signal);
+  return "exit " + std::to_string(outcome.exit_code.value_or(-1));
+}
 
 std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
                                             const std::string& solution, const std::string& log_stem,

@@ -3,10 +3,11 @@
 # earc-bench compare: a build against itself plans the same paths; a
 # planner whose plans differ (but are valid) is reported as differing; one
 # whose plans are invalid is reported loudly with exit status 1; one that
-# crashes is that side's named failure and the comparison goes on; E-ARC
-# plans start from copies, so the given database is left as it was; the
-# CSV and the picture hold a row per plan pair and a point per scenario;
-# bad options end in one line and exit status 2 before any plan runs.
+# crashes, exits 1 after solving, or writes no solution is that side's
+# named failure and the comparison goes on; E-ARC plans start from copies,
+# so the given database is left as it was; the CSV and the picture hold a
+# row per plan pair and a point per scenario; bad options end in one line
+# and exit status 2 before any plan runs.
 # Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
 # under an address-space limit, which AddressSanitizer cannot live with.)
 set -u
@@ -26,6 +27,9 @@ BASE=(compare --suite mobile --robots 4 --trials 3 --seed 4 --time-limit 10 --wo
   > "$WORK/out" 2> "$WORK/err" || { show; fail "self-comparison exited $?"; }
 grep -q "^old solved 3 of 3 plans, new 3 of 3$" "$WORK/out" || { show; fail "solved counts"; }
 grep -q "^same paths: 3 of 3 plan pairs$" "$WORK/out" || { show; fail "a build differs from itself"; }
+version=$("$PLAN" --version) || fail "earc-plan --version exited $?"
+grep -qxF "builds: old earc ${version#earc-plan }, new earc ${version#earc-plan }" "$WORK/out" ||
+  { show; fail "the builds compared are not named"; }
 grep -q "^new/old: ratio of medians [0-9.]*, paired median [0-9.]* (95% bootstrap interval [0-9.]* to [0-9.]*)$" \
   "$WORK/out" || { show; fail "no ratio line"; }
 [ "$(grep -c "^mobile-4-t[012]: old .* same paths$" "$WORK/out")" -eq 3 ] || { show; fail "no line per scenario"; }
@@ -83,6 +87,7 @@ rc=$?
 [ $rc -eq 1 ] || { show; fail "invalid plans: exit $rc, not 1"; }
 grep -q "^INVALID SOLUTION: new ($WORK/teleports) on .*mobile-4-t0.json: INVALID" "$WORK/err" || { show; fail "no loud report"; }
 grep -q "^old solved 3 of 3 plans, new 0 of 3; 3 INVALID solutions$" "$WORK/out" || { show; fail "invalid count"; }
+grep -qxF "builds: old earc ${version#earc-plan }, new unknown" "$WORK/out" || { show; fail "an unnamed build"; }
 grep -q "^no scenario was solved by both: no ratio$" "$WORK/out" || { show; fail "a ratio without pairs"; }
 
 # A planner that crashes: that side's failure, named, and no ratio; the
@@ -93,6 +98,18 @@ chmod +x "$WORK/crashes"
   { show; fail "a crashing side ended the comparison"; }
 grep -q "^old solved 3 of 3 plans, new 0 of 3$" "$WORK/out" || { show; fail "crashes not counted"; }
 [ "$(grep -c "^mobile-4-t[012]: new: crashed: SIGSEGV (11); $" "$WORK/out")" -eq 3 ] || { show; fail "crash not named"; }
+
+# A side whose exit status disagrees with its solution, or that writes no
+# solution: named failures, the same as run's.
+declare -A said=([exit1]="exit status 1 disagrees with the solution's solved flag"
+                 [silent]="exit 1 without a readable solution: out of luck")
+for how in exit1 silent; do
+  writeMisreportingPlanner "$WORK/$how" $how
+  "$BENCH" "${BASE[@]}" --old "$PLAN" --new "$WORK/$how" -v > "$WORK/out" 2> "$WORK/err" ||
+    { show; fail "a side that misreports ($how) ended the comparison"; }
+  grep -q "^old solved 3 of 3 plans, new 0 of 3$" "$WORK/out" || { show; fail "$how: plans counted as solved"; }
+  [ "$(grep -cF "new: ${said[$how]}; " "$WORK/out")" -eq 3 ] || { show; fail "$how: not named"; }
+done
 
 # E-ARC: every plan starts from a copy of the database; the file given is
 # not touched. Scenario files may be given instead of a suite.

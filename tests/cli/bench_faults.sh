@@ -48,6 +48,18 @@ grep -q "^INVALID SOLUTION: mobile, 2 robots, method arc, trial 0: INVALID" "$WO
 got=$(query "$WORK/invalid.sqlite" "SELECT success, failure FROM trials")
 echo "$got" | grep -q "^0|invalid solution: INVALID" || fail "invalid solution not recorded as a failure: $got"
 
+# A planner whose exit status disagrees with its solution, and one that
+# writes none: trial failures that say which (compare shares the check).
+for how in exit1 silent; do
+  writeMisreportingPlanner "$WORK/$how-plan" $how
+  "$BENCH" "${BASE[@]}" --methods arc --time-limit 10 --plan-program "$WORK/$how-plan" \
+    --results "$WORK/$how.sqlite" > "$WORK/$how.out" 2>&1 || fail "a run with a planner that misreports ($how) exited $?"
+done
+got=$(query "$WORK/exit1.sqlite" "SELECT success, exit_status, failure FROM trials")
+[ "$got" = "0|1|exit status 1 disagrees with the solution's solved flag" ] || fail "exit 1 with a solved plan: $got"
+got=$(query "$WORK/silent.sqlite" "SELECT success, exit_status, failure FROM trials")
+[ "$got" = "0|1|exit 1 without a readable solution: out of luck" ] || fail "exit 1 without a solution: $got"
+
 # Configuration errors are not trial failures: bad options, and an E-ARC
 # database that was given but cannot be read (a foreign SQLite file, a
 # newer schema), end the run before any trial with one line naming the

@@ -41,3 +41,20 @@ json.dump({"format": "earc.solution.v1", "scenario": s["name"], "method": "arc",
 FAKE
   chmod +x "$1"
 }
+# Writes $1: a stand-in for earc-plan whose `plan` misreports. $2 says
+# how: "exit1" plans (validly) and then exits 1, so that the exit status
+# disagrees with the solution's solved flag; "silent" prints "out of
+# luck" on stderr and exits 1 without writing a solution. Its other
+# subcommands are $BUILD/earc-plan's.
+writeMisreportingPlanner() {
+  cat > "$1" <<FAKE
+#!/bin/bash
+if [ "\$1" != plan ]; then exec "$BUILD/earc-plan" "\$@"; fi
+FAKE
+  case $2 in
+    exit1) echo "\"$BUILD/earc-plan\" \"\$@\"; exit 1" >> "$1" ;;
+    silent) echo 'echo "out of luck" >&2; exit 1' >> "$1" ;;
+    *) fail "writeMisreportingPlanner: no such way to misreport: $2" ;;
+  esac
+  chmod +x "$1"
+}

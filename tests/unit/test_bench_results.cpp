@@ -83,8 +83,10 @@ TEST_CASE("a results database remembers how many trials ran at once, and reads a
     CHECK(db.addTrial(t));
   }
   {
-    // Made a version 1 file, as an earlier earc-bench left it: no jobs column.
+    // Made a version 1 file, as an earlier earc-bench left it: no jobs
+    // column (nor version 3's planner_version).
     exp::Connection c(file.path, exp::OpenMode::ReadWrite);
+    c.exec("ALTER TABLE trials DROP COLUMN planner_version");
     c.exec("ALTER TABLE trials DROP COLUMN jobs");
     c.exec("PRAGMA user_version = 1");
   }
@@ -109,7 +111,7 @@ TEST_CASE("a results database remembers how many trials ran at once, and reads a
     CHECK(db.addTrial(t));
   }
   exp::Connection c(file.path, exp::OpenMode::ReadOnly);
-  CHECK(c.pragmaInt("user_version") == 2);
+  CHECK(c.pragmaInt("user_version") == kResultsSchemaVersion);
   ResultsDb db(file.path, true);
   const auto all = db.trials();
   REQUIRE(all.size() == 2);
@@ -124,6 +126,67 @@ TEST_CASE("a results database remembers how many trials ran at once, and reads a
   CHECK(jobsNote(mixed).rfind("Trials ran 2 at a time (--jobs 2)", 0) == 0);
   CHECK(markdownTable(mixed, {}).find("Trials ran 2 at a time") != std::string::npos);
   CHECK(markdownWideTable(mixed).find("Trials ran 2 at a time") != std::string::npos);
+}
+
+TEST_CASE("a results database records which build planned each trial, and reads and migrates version 2 files") {
+  TempPath file("earc-results-version");
+  {
+    ResultsDb db(file.path);
+    TrialRecord t = trial("arc", 0, true, 1.5);
+    t.jobs = 1;
+    t.planner_version = "0.1.0+aaaaaaa";
+    CHECK(db.addTrial(t));
+  }
+  {
+    ResultsDb db(file.path, true);
+    const auto all = db.trials();
+    REQUIRE(all.size() == 1);
+    CHECK(all[0].planner_version == "0.1.0+aaaaaaa");
+    CHECK(versionNote(all) == "Planned by earc 0.1.0+aaaaaaa.");
+  }
+  {
+    // Made a version 2 file: no planner_version column.
+    exp::Connection c(file.path, exp::OpenMode::ReadWrite);
+    c.exec("ALTER TABLE trials DROP COLUMN planner_version");
+    c.exec("PRAGMA user_version = 2");
+  }
+  {
+    // Read as it is: the build unknown, jobs still there, the file still version 2.
+    ResultsDb db(file.path, true);
+    const auto all = db.trials();
+    REQUIRE(all.size() == 1);
+    CHECK(all[0].planner_version.empty());
+    CHECK(all[0].jobs == 1);
+    CHECK(versionNote(all) == "Which build planned was not recorded for 1 trial (results from before schema version 3, "
+                              "or a planner that does not say).");
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    CHECK(c.pragmaInt("user_version") == 2);
+  }
+  {
+    // Opened for writing: migrated, the old row kept.
+    ResultsDb db(file.path);
+    TrialRecord t = trial("earc", 0, true, 1.0);
+    t.planner_version = "0.1.0+bbbbbbb.dirty";
+    CHECK(db.addTrial(t));
+  }
+  exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+  CHECK(c.pragmaInt("user_version") == 3);
+  ResultsDb db(file.path, true);
+  auto all = db.trials();
+  REQUIRE(all.size() == 2);
+  CHECK(all[0].planner_version.empty());
+  CHECK(all[1].planner_version == "0.1.0+bbbbbbb.dirty");
+  all[0].planner_version = "0.1.0+aaaaaaa";
+  all.push_back(all[0]);
+  CHECK(versionNote(all) ==
+        "Planned by 2 builds: earc 0.1.0+aaaaaaa (2 trials), earc 0.1.0+bbbbbbb.dirty (1 trial): their times are of "
+        "different code.");
+  CHECK(markdownWideTable(all).find("\nPlanned by 2 builds: ") != std::string::npos);
+  CHECK(markdownTable(all, {}).find("\nPlanned by 2 builds: ") != std::string::npos);
+  std::ostringstream csv;
+  writeCsv(all, csv);
+  CHECK(csv.str().find(",jobs,planner_version\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty\n") != std::string::npos);
 }
 
 TEST_CASE("a results database records a trial once per key and reports it as finished") {
@@ -163,7 +226,7 @@ TEST_CASE("a results database without a table of its schema is refused as damage
       c.exec(std::string("DROP TABLE ") + table);
     }
     const std::string want =
-        file.path + ": damaged database file (table " + table + " is missing; schema version 2 has it)";
+        file.path + ": damaged database file (table " + table + " is missing; schema version 3 has it)";
     for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
   }
 }

@@ -45,6 +45,7 @@ struct ComparePlan {
   std::optional<double> makespan, sum_of_costs;  // the solution's stats, when solved
   std::string failure;            // why not solved ("" when solved)
   bool invalid = false;           // solved, but the validator refused it
+  std::string version;            // the build that planned it (plannerVersion), "" unknown
 };
 
 struct ComparePair {

@@ -71,9 +71,18 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
 // how many trials did not record it (results from before schema 2).
 std::string jobsNote(const std::vector<TrialRecord>& trials);
 
+// Which builds planned the trials (TrialRecord::planner_version), in one
+// line: "Planned by earc 0.1.0+66772d4." / "Planned by 2 builds: earc A
+// (N trials), earc B (M trials): ..." / how many trials did not record it.
+std::string versionNote(const std::vector<TrialRecord>& trials);
+
+// What goes under a table: jobsNote and versionNote, a line each, after a
+// blank line; "(no trials)" when there are none.
+std::string trialsNotes(const std::vector<TrialRecord>& trials);
+
 // Markdown: per suite a table of success rate and median planning time
 // (IQR) per robot count and method, the E-ARC/ARC paired ratio, then the
-// databases, then jobsNote.
+// databases, then trialsNotes.
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
 
 // The same results laid out like the paper's figures: one table per suite,
@@ -81,7 +90,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 // "-" where the method was not run), then E-ARC's time over ARC's on the
 // same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
 // (subproblems solved from the database, directly or repaired, over
-// conflicts); then jobsNote.
+// conflicts); then trialsNotes.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
 // One row per trial, RFC 4180 quoting, a header line first.

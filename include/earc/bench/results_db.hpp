@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 2, WAL) that trials are appended to as they finish, each in
+// user_version 3, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -15,9 +15,13 @@
 //     planning_time_s is the planner's own figure (stats.planning_time_s),
 //     NULL when the process died before reporting one.
 //   Version 2 adds trials.jobs: how many trials the run had at once
-//     (--jobs), NULL for trials recorded before it. A version 1 file is
-//     migrated when opened for writing (one BEGIN IMMEDIATE transaction
-//     with its version bump) and read as it is otherwise.
+//     (--jobs), NULL for trials recorded before it.
+//   Version 3 adds trials.planner_version: the earc_version the trial's
+//     solution reported (the build that planned it), NULL for trials
+//     recorded before it and for planners that do not say.
+//   An older file is migrated when opened for writing, each version in one
+//   BEGIN IMMEDIATE transaction with its version bump, and read as it is
+//   otherwise.
 //   databases(id, method, suite, robots, path, construction_time_s,
 //             entries, size_bytes, problems, seed, recorded_at)
 //     robots = 0 for a database that serves every robot count (E-ARC's).
@@ -34,7 +38,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 2;
+inline constexpr int kResultsSchemaVersion = 3;
 
 struct TrialRecord {
   std::string suite;
@@ -55,6 +59,7 @@ struct TrialRecord {
   std::string failure;             // empty on success
   std::string finished_at;         // ISO 8601 UTC
   std::optional<int> jobs;         // trials the run had at once; unknown before schema 2
+  std::string planner_version;     // the solution's earc_version; "" unknown (before schema 3)
 };
 
 struct DatabaseRecord {

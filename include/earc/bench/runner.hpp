@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace earc::bench {
 
 struct RunOptions {
@@ -60,6 +62,25 @@ double wallMargin(double time_limit_s);
 std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
                                             const std::string& solution, const std::string& log_stem,
                                             std::size_t memory_limit_mb);
+
+struct ChildOutcome;
+
+// A plan child's solution file, read once childFailure has found nothing
+// wrong with the child (it exited 0 or 1). Nothing, with `doc` filled,
+// when it can be used; else why not, in one line: "exit N without a
+// readable solution: <last line of err_path>" (no file, not JSON, no
+// boolean "solved"), or "exit status N disagrees with the solution's
+// solved flag" (earc-plan exits 0 exactly when it solved).
+std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::string& solution,
+                                            const std::string& err_path, nlohmann::json& doc);
+
+// The build that wrote a solution (its stats' earc_version), "" when it
+// does not say.
+std::string plannerVersion(const nlohmann::json& solution);
+
+// "exit N" or the signal's name ("SIGSEGV"): how a child that was meant
+// to exit 0 ended.
+std::string exitDescription(const ChildOutcome& outcome);
 
 struct RunSummary {
   std::size_t cells_total = 0;  // trials the options ask for
