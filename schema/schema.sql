@@ -1,4 +1,4 @@
--- The experience database schema, current version (3).
+-- The experience database schema, current version (4).
 --
 -- This file documents the schema; the program never runs it. Databases are
 -- created and upgraded only by the numbered migrations in ../migrations/,
@@ -11,7 +11,7 @@
 -- schema version. A program refuses files with another application_id and
 -- files whose user_version is newer than its own.
 PRAGMA application_id = 1161908803;
-PRAGMA user_version = 3;
+PRAGMA user_version = 4;
 
 -- One row per solved subproblem, in canonical form
 -- (include/earc/experience/keys.hpp).
@@ -29,7 +29,8 @@ CREATE TABLE experiences (
   solve_time_s    REAL    NOT NULL DEFAULT 0,  -- time the solver took (0: unknown)
   retrieved_count INTEGER NOT NULL DEFAULT 0,  -- times handed to a planner
   succeeded_count INTEGER NOT NULL DEFAULT 0,  -- times it resolved the subproblem
-  created_session INTEGER NOT NULL DEFAULT 0   -- store_meta 'sessions' when inserted
+  created_session INTEGER NOT NULL DEFAULT 0,  -- store_meta 'sessions' when inserted
+  made_by         TEXT    NOT NULL DEFAULT ''  -- earc build that solved it ('': before version 4)
 );
 
 -- Index loading and per-class counts read by class.

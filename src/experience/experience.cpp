@@ -1,5 +1,6 @@
 #include "earc/experience/experience.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -163,6 +164,10 @@ std::optional<std::string> findProblem(const Experience& e) {
     return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +
            std::to_string(e.succeeded) + ")";
   if (e.created_at < 0) return "created_at is negative";
+  // A build's name, shown on one line by inspect: short, printable ASCII.
+  if (e.made_by.size() > kMaxMadeBy) return "made_by longer than " + std::to_string(kMaxMadeBy) + " characters";
+  if (std::any_of(e.made_by.begin(), e.made_by.end(), [](char ch) { return ch < 0x20 || ch > 0x7e; }))
+    return "made_by has a character that is not printable ASCII";
   return std::nullopt;
 }
 

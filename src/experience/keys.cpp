@@ -8,6 +8,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "earc/util/version.hpp"
+
 namespace earc::exp {
 
 namespace {
@@ -183,6 +185,7 @@ Experience canonicalExperience(const Canonical& form, const std::vector<Path>& s
   e.paths = form.toCanonical(subproblem_paths);
   e.key = keyOfCanonicalPaths(e.cls.kind, e.paths);
   e.cost = pathCost(e.paths);
+  e.made_by = version();
   return e;
 }
 

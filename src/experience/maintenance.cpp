@@ -183,6 +183,10 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries) {
     r.path_bytes += c.path_bytes;
     r.classes.push_back(std::move(c));
   }
+  Statement builds = db.prepare(r.schema_version >= 4
+                                    ? "SELECT made_by, count(*) AS n FROM experiences GROUP BY made_by ORDER BY n DESC, made_by"
+                                    : "SELECT '', count(*) FROM experiences HAVING count(*) > 0");
+  while (builds.step()) r.builds.emplace_back(builds.textAt(0), builds.int64At(1));
   r.older_path_blobs = count(db, "SELECT count(*) FROM experiences" + olderBlobsWhere());
   Statement sample = db.prepare(selectExperiencesSql(r.schema_version) + " ORDER BY id LIMIT ?1");
   sample.bind(1, sample_entries);
@@ -273,6 +277,18 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
       del.bind(1, settings.older_than_sessions);
       del.run();
       return static_cast<std::int64_t>(sqlite3_changes(db.handle()));
+    });
+  if (!settings.drop_made_by.empty())
+    r.made_by_removed = db.write([&] {
+      Statement del = db.prepare("DELETE FROM experiences WHERE made_by = ?1");
+      std::int64_t removed = 0;
+      for (const std::string& build : settings.drop_made_by) {
+        del.bind(1, std::string_view(build));
+        del.run();
+        removed += sqlite3_changes(db.handle());
+        del.reset();
+      }
+      return removed;
     });
   if (settings.compact) r.blobs_rewritten = db.write([&] { return rewriteOlderBlobs(db); });
   if (settings.vacuum || settings.compact) db.exec("VACUUM");

@@ -74,6 +74,13 @@ END;
 -- inserted since a known id is a range scan.
 CREATE INDEX experiences_keys ON experiences (id, kind, robot_count, signature, base_class, key);
 )sql"},
+    {4, "0004_made_by.sql", R"sql(-- Migration 4: the build that made each row.
+-- The earc build that solved the subproblem (what `earc-db --version`
+-- prints, e.g. "0.1.0+6030a7c"), kept as it is through export and import,
+-- so that a curator can find and drop what one build stored. Rows stored
+-- before this migration have '' (not known).
+ALTER TABLE experiences ADD COLUMN made_by TEXT NOT NULL DEFAULT '';
+)sql"},
 };
 
 }  // namespace

@@ -8,7 +8,7 @@ namespace {
 
 enum Column {
   kId, kKind, kRobotCount, kSignature, kBaseClass, kKey, kPaths, kCost, kSource, kCreatedAt,
-  kSolveTime, kRetrieved, kSucceeded, kCreatedSession
+  kSolveTime, kRetrieved, kSucceeded, kCreatedSession, kMadeBy
 };
 
 const char* typeName(int t) {
@@ -34,6 +34,7 @@ std::string selectExperiencesSql(int schema_version) {
   std::string cols = "id, kind, robot_count, signature, base_class, key, paths, cost, source, created_at, ";
   cols += schema_version >= 2 ? "solve_time_s, retrieved_count, succeeded_count, created_session"
                               : "0.0, 0, 0, 0";
+  cols += schema_version >= 4 ? ", made_by" : ", ''";
   return "SELECT " + cols + " FROM experiences";
 }
 
@@ -54,6 +55,7 @@ Experience readExperience(const Statement& s) {
   expectType(s, e.id, kRetrieved, SQLITE_INTEGER, "retrieved_count");
   expectType(s, e.id, kSucceeded, SQLITE_INTEGER, "succeeded_count");
   expectType(s, e.id, kCreatedSession, SQLITE_INTEGER, "created_session");
+  expectType(s, e.id, kMadeBy, SQLITE_TEXT, "made_by");
   auto kind = kindFromName(s.textAt(kKind));
   if (!kind) throw CorruptRowError(e.id, "unknown kind \"" + s.textAt(kKind) + "\"");
   auto source = sourceFromName(s.textAt(kSource));
@@ -70,14 +72,15 @@ Experience readExperience(const Statement& s) {
   e.retrieved = s.int64At(kRetrieved);
   e.succeeded = s.int64At(kSucceeded);
   e.created_session = s.int64At(kCreatedSession);
+  e.made_by = s.textAt(kMadeBy);
   if (auto problem = findProblem(e)) throw CorruptRowError(e.id, *problem);
   return e;
 }
 
 std::string insertExperienceSql() {
   return "INSERT INTO experiences (kind, robot_count, signature, base_class, key, paths, cost, source, created_at, "
-         "solve_time_s, retrieved_count, succeeded_count, created_session) "
-         "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)";
+         "solve_time_s, retrieved_count, succeeded_count, created_session, made_by) "
+         "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)";
 }
 
 void bindExperience(Statement& insert, const Experience& e) {
@@ -93,7 +96,8 @@ void bindExperience(Statement& insert, const Experience& e) {
       .bind(10, e.solve_time_s)
       .bind(11, e.retrieved)
       .bind(12, e.succeeded)
-      .bind(13, e.created_session);
+      .bind(13, e.created_session)
+      .bind(14, std::string_view(e.made_by));
 }
 
 }  // namespace earc::exp

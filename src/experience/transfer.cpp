@@ -192,7 +192,8 @@ json experienceToJson(const Experience& e) {
               {"solve_time_s", e.solve_time_s},
               {"retrieved", e.retrieved},
               {"succeeded", e.succeeded},
-              {"created_session", e.created_session}};
+              {"created_session", e.created_session},
+              {"made_by", e.made_by}};
 }
 
 Experience experienceFromJson(const json& row, const std::string& file, const std::string& where) {
@@ -232,6 +233,8 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
   e.retrieved = integerField(row, "retrieved", file, w);
   e.succeeded = integerField(row, "succeeded", file, w);
   e.created_session = integerField(row, "created_session", file, w);
+  // Exports of schema versions before 4 have no made_by: not known.
+  if (row.contains("made_by")) e.made_by = textField(row, "made_by", file, w);
   if (auto problem = findProblem(e)) throw InputError(file, w, *problem);
   return e;
 }

@@ -9,6 +9,7 @@
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
+#include "earc/util/version.hpp"
 #include "support.hpp"
 
 using earc::test::discTraits;
@@ -46,6 +47,8 @@ TEST_CASE("an inserted experience is retrieved decoded and unchanged") {
   CHECK(got.source == Source::Build);
   CHECK(got.created_at > 0);
   CHECK(got.created_session == store.session());
+  CHECK(got.made_by == version());  // made by this build
+  CHECK_FALSE(got.made_by.empty());
   CHECK(found.front().distance == 0.0);
 }
 

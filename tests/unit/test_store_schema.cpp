@@ -125,6 +125,7 @@ TEST_CASE("schema.sql describes exactly what the migrations create") {
   documented.exec(readFile(std::filesystem::path(EARC_SOURCE_DIR) / "schema" / "schema.sql"));
   CHECK(describe(documented) == describe(migrated));
   CHECK(describe(migrated).find("col 13 created_session") != std::string::npos);
+  CHECK(describe(migrated).find("col 14 made_by") != std::string::npos);
 }
 
 TEST_CASE("a new file is created at the current version with the EARC application id and WAL") {
@@ -162,6 +163,7 @@ TEST_CASE("a file at every earlier schema version is migrated to the current one
         CHECK(row->paths == sample(1).paths);
         CHECK(row->retrieved == 0);
         CHECK(row->created_at == 1700000000);
+        CHECK(row->made_by.empty());  // stored before version 4: not known
       }
     }
 }

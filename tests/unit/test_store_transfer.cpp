@@ -15,6 +15,7 @@
 #include "earc/experience/transfer.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/scene/robot_signature.hpp"
+#include "earc/util/version.hpp"
 
 using namespace earc;
 using namespace earc::exp;
@@ -40,6 +41,7 @@ void fill(const std::string& path, std::uint64_t seed, int per_class = 20) {
                                           Source::Planner));
     rows.push_back(straightLineExperience(arm_pair, sampleArmQuery(*models[0], *models[1], rng), 4));
     rows.back().solve_time_s = 0.1 * (i + 1) / 3.0;  // not a short decimal
+    rows.back().made_by = i % 2 ? "0.0.9+abc1234" : "";  // an older build's row; one from before schema 4
   }
   auto ids = store.insertAll(rows, -1);
   for (std::size_t i = 0; i < ids.size(); i += 4) store.recordUse(*ids[i], i % 8 == 0);
@@ -115,6 +117,34 @@ TEST_CASE("export then import gives the same rows, every double bit for bit") {
   CHECK(contents(b) == contents(a));
   // JSON equality compares doubles exactly; make sure some are not short decimals.
   CHECK(contents(a)[2]["solve_time_s"].get<double>() == 0.1 * 1 / 3.0);
+  // Each row keeps the build that made it, known or not.
+  CHECK(contents(b)[0]["made_by"] == std::string(version()));
+  CHECK(contents(b)[2]["made_by"] == "");
+  CHECK(contents(b)[5]["made_by"] == "0.0.9+abc1234");
+}
+
+TEST_CASE("an export row without made_by (schema before 4) imports as not known; a bad one is refused") {
+  ScratchDirectory dir("transfer");
+  const std::string jsonl = dir.file("a.jsonl");
+  std::vector<std::string> lines = exportedLines(dir, jsonl, 11);
+  nlohmann::json row = nlohmann::json::parse(lines[1]);
+  row.erase("made_by");
+  lines[1] = row.dump();
+  writeLines(jsonl, lines);
+  {
+    ExperienceStore store(dir.file("b.db"));
+    CHECK(importInto(store, {jsonl}).inserted == lines.size() - 1);
+    CHECK(store.get(1)->made_by.empty());
+  }
+  for (const std::string& bad : {std::string("0.1.0\nrm -rf"), std::string(kMaxMadeBy + 1, 'x')}) {
+    row["made_by"] = bad;
+    lines[1] = row.dump();
+    writeLines(jsonl, lines);
+    const std::string msg = importError(dir.file("c.db"), {jsonl});
+    CHECK(msg.find("line 2") != std::string::npos);
+    CHECK(msg.find("made_by") != std::string::npos);
+    CHECK(msg.size() < 300);
+  }
 }
 
 TEST_CASE("an earc database imports directly with the same rows") {
@@ -343,6 +373,25 @@ TEST_CASE("curate drops entries never retrieved, optionally only old ones") {
   CurateReport r = curateDatabase(a, old);
   CHECK(r.unused_removed == 45);
   CHECK(r.rows_after == 15);
+}
+
+TEST_CASE("curate drops the entries of the builds named, and those of no known build for \"\"") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 12);  // 60 rows: 20 arm rows, 10 by 0.0.9+abc1234, 10 not known; 40 by this build
+  CurateSettings older;
+  older.drop_made_by = {"0.0.9+abc1234", "0.0.1+none"};
+  CurateReport r = curateDatabase(a, older);
+  CHECK(r.made_by_removed == 10);
+  CHECK(r.rows_after == 50);
+  InspectReport seen = inspectDatabase(a, 0);
+  REQUIRE(seen.builds.size() == 2);
+  CHECK(seen.builds[0] == std::pair<std::string, std::int64_t>{std::string(version()), 40});
+  CHECK(seen.builds[1] == std::pair<std::string, std::int64_t>{"", 10});
+  CurateSettings unknown;
+  unknown.drop_made_by = {""};
+  CHECK(curateDatabase(a, unknown).made_by_removed == 10);
+  CHECK(rowCount(a) == 40);
 }
 
 TEST_CASE("curate into a copy merges other files and leaves the original untouched") {

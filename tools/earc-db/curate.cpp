@@ -1,6 +1,6 @@
 // earc-db curate --db FILE [--merge OTHER...] [--dedupe EPS] [--drop-unused
-// [--older-than-sessions N]] [-o OUT] [--vacuum] [--compact]: offline dataset
-// curation.
+// [--older-than-sessions N]] [--drop-made-by BUILD...] [-o OUT] [--vacuum]
+// [--compact]: offline dataset curation.
 // With -o the database is first copied (VACUUM INTO, never cp) and only the
 // copy is changed.
 #include <iostream>
@@ -28,6 +28,7 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
   if (!opt.settings.merge.empty()) out << ", " << r.merged << " merged";
   if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";
   if (opt.settings.drop_unused) out << ", " << r.unused_removed << " unused removed";
+  if (!opt.settings.drop_made_by.empty()) out << ", " << r.made_by_removed << " of the builds named removed";
   out << ", " << r.rows_after << " rows after";
   if (opt.settings.compact) out << ", " << r.blobs_rewritten << " path blobs rewritten in the current format";
   if (r.damaged_rows) out << " (" << r.damaged_rows << " damaged, kept as they were; earc-db verify names them)";
@@ -36,7 +37,8 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
 
 void setupCurate(CLI::App& app) {
   auto opt = std::make_shared<CurateOptions>();
-  CLI::App* sub = app.add_subcommand("curate", "Merge databases, remove near-duplicates and unused entries");
+  CLI::App* sub = app.add_subcommand(
+      "curate", "Merge databases, remove near-duplicates, unused entries and entries of a given build");
   sub->add_option("--db", opt->db, "Experience database file")->required();
   sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)");
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
@@ -47,6 +49,9 @@ void setupCurate(CLI::App& app) {
                   "With --drop-unused: only entries created at least this many planning sessions ago")
       ->check(earc::cli::kFiniteNonNegative)
       ->needs(drop);
+  sub->add_option("--drop-made-by", opt->settings.drop_made_by,
+                  "Delete entries made by this build, as earc-db inspect lists them (\"\": entries whose build is "
+                  "not known); repeatable");
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
   sub->add_flag("--compact", opt->settings.compact,

@@ -11,6 +11,9 @@
 
 namespace {
 
+// Builds named on the "made by" line.
+constexpr std::size_t kListedBuilds = 5;
+
 struct InspectOptions {
   std::string db;
   int entries = 3;
@@ -53,7 +56,7 @@ void printEntry(const earc::exp::Experience& e, std::ostream& out) {
   out << "  #" << e.id << " " << earc::exp::kindName(e.cls.kind) << " x" << e.cls.robot_count
       << (e.cls.base_class.empty() ? "" : " ") << e.cls.base_class << ": cost " << number(e.cost, 0) << " steps, "
       << earc::exp::sourceName(e.source) << ", " << isoTime(e.created_at) << ", solve " << number(e.solve_time_s, 3)
-      << " s, used " << e.succeeded << "/" << e.retrieved << "\n";
+      << " s, used " << e.succeeded << "/" << e.retrieved << (e.made_by.empty() ? "" : ", by " + e.made_by) << "\n";
   for (std::size_t r = 0; r < e.paths.size(); ++r)
     out << "     robot " << r << ": " << state(e.paths[r], 0) << " -> " << state(e.paths[r], e.paths[r].size() - 1)
         << " in " << e.paths[r].size() - 1 << " steps\n";
@@ -69,7 +72,17 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
     out << "          " << r.older_path_blobs
         << " path blobs in an older, larger format (earc-db curate --compact rewrites them)\n";
   out << "sessions  " << r.sessions << "\n"
-      << "entries   " << r.entries << " in " << r.classes.size() << " classes\n\n";
+      << "entries   " << r.entries << " in " << r.classes.size() << " classes\n";
+  // Which builds made them: a few, most rows first.
+  if (!r.builds.empty()) {
+    out << "made by  ";
+    for (std::size_t i = 0; i < r.builds.size() && i < kListedBuilds; ++i)
+      out << (i ? ", " : " ") << (r.builds[i].first.empty() ? "not known" : r.builds[i].first) << " ("
+          << r.builds[i].second << ")";
+    if (r.builds.size() > kListedBuilds) out << " and " << r.builds.size() - kListedBuilds << " more builds";
+    out << "\n";
+  }
+  out << "\n";
   char line[512];
   std::snprintf(line, sizeof line, "%-12s %5s %-28s %8s %5s %9s %8s %9s %9s %8s  %s\n", "kind", "robots", "base class",
                 "entries", "dims", "mean cost", "solve s", "retrieved", "succeeded", "hit rate", "signature");

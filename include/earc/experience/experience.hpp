@@ -49,7 +49,14 @@ struct Experience {
   std::int64_t retrieved = 0;         // recordUse counters
   std::int64_t succeeded = 0;
   std::int64_t created_session = 0;   // set by the store on insert
+  // The earc build that solved it (earc::version(), set when it is made:
+  // canonicalExperience), kept through export and import; '' not known
+  // (stored before schema version 4).
+  std::string made_by;
 };
+
+// The longest build name an experience may carry (Experience::made_by).
+inline constexpr std::size_t kMaxMadeBy = 100;
 
 // Sum over robots of the path length in steps (states - 1).
 double pathCost(const std::vector<Path>& paths);

@@ -35,6 +35,9 @@ struct InspectReport {
   std::int64_t older_path_blobs = 0;  // path blobs in a format older than kPathBlobVersion
   std::int64_t key_bytes = 0;
   std::vector<ClassSummary> classes;
+  // Rows per build that made them (Experience::made_by; '' not known),
+  // most rows first. Schema versions before 4: every row, not known.
+  std::vector<std::pair<std::string, std::int64_t>> builds;
   std::vector<Experience> samples;  // the first entries by id
 };
 
@@ -60,6 +63,7 @@ struct CurateSettings {
   double dedupe_eps = -1.0;            // >= 0: keep one entry per eps-ball in each class
   bool drop_unused = false;            // delete entries never retrieved ...
   int older_than_sessions = 0;         // ... created at least this many sessions ago
+  std::vector<std::string> drop_made_by;  // delete entries made by these builds ("": not known)
   std::string output;                  // non-empty: curate a copy, leave the original untouched
   bool vacuum = false;                 // give freed pages back to the file system
   bool compact = false;                // rewrite older path blobs in the current format, then vacuum
@@ -70,6 +74,7 @@ struct CurateReport {
   std::int64_t merged = 0;
   std::int64_t duplicates_removed = 0;
   std::int64_t unused_removed = 0;
+  std::int64_t made_by_removed = 0;
   std::int64_t rows_after = 0;
   std::int64_t blobs_rewritten = 0;  // compact: older path blobs now in the current format
   // Rows kept as they were whose key or path blob cannot be read (verify
@@ -80,7 +85,7 @@ struct CurateReport {
 
 // Merges, then removes near-duplicates (keeping in each eps-ball the entry
 // that succeeded most, then was retrieved most, then is oldest), then drops
-// unused entries, then (compact) rewrites path blobs of an older format in
+// unused entries, then those made by the builds named, then (compact) rewrites path blobs of an older format in
 // the current one, which gives back exactly the same paths; each step one
 // write transaction. A damaged blob is left as it is.
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
