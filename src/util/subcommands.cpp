@@ -69,13 +69,18 @@ const CLI::Validator kPositiveWholeNumber = wholeNumber(true);
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);
-  app.set_version_flag("--version", program + " " + std::string(version()), "Print the build's version and exit");
+  const std::string version_line = program + " " + std::string(version());
+  app.set_version_flag("--version", version_line, "Print the build's version and exit");
   auto entries = registry();
   // Registration order follows static initialisation order; sort for a stable --help.
   std::sort(entries.begin(), entries.end(),
             [](const SubcommandEntry& a, const SubcommandEntry& b) { return a.name < b.name; });
   for (const auto& e : entries)
     if (e.program == program) e.setup(app);
+  // After a subcommand too (`earc-plan plan --version`), before its required
+  // arguments are asked for.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    sub->set_version_flag("--version", version_line, "Print the build's version and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

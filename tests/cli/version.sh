@@ -19,6 +19,12 @@ for prog in earc-plan earc-db earc-scenario earc-bench; do
   [ -z "$want" ] || [ "$version" = "$want" ] || fail "$prog says $version, earc-plan $want"
   want=$version
 done
+# After a subcommand too, without its required arguments.
+for cmd in "earc-plan plan" "earc-db build" "earc-scenario generate" "earc-bench compare"; do
+  $BUILD/$cmd --version > "$WORK/out" 2> "$WORK/err" || fail "$cmd --version exited $?: $(cat "$WORK/err")"
+  [ "$(cat "$WORK/out")" = "${cmd%% *} $want" ] && [ ! -s "$WORK/err" ] ||
+    fail "$cmd --version: $(cat "$WORK/out" "$WORK/err")"
+done
 # The version of the project's CMakeLists.txt.
 project=$(sed -n 's/^project(earc VERSION \([0-9.]*\) .*/\1/p' "$SRC/CMakeLists.txt")
 [ "${want%%+*}" = "$project" ] || fail "version $want is not the project's $project"
