@@ -72,6 +72,15 @@ std::vector<std::string> lines(const std::string& path) {
   return out;
 }
 
+// Turns a results file into one an earlier earc-bench left at `version`:
+// the columns later versions added are dropped, user_version set.
+void makeOlder(const std::string& path, int version) {
+  exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 3) c.exec("ALTER TABLE trials DROP COLUMN planner_version");
+  if (version < 2) c.exec("ALTER TABLE trials DROP COLUMN jobs");
+  c.exec("PRAGMA user_version = " + std::to_string(version));
+}
+
 }  // namespace
 
 TEST_CASE("a results database remembers how many trials ran at once, and reads and migrates version 1 files") {
@@ -82,14 +91,9 @@ TEST_CASE("a results database remembers how many trials ran at once, and reads a
     t.jobs = 2;
     CHECK(db.addTrial(t));
   }
-  {
-    // Made a version 1 file, as an earlier earc-bench left it: no jobs
-    // column (nor version 3's planner_version).
-    exp::Connection c(file.path, exp::OpenMode::ReadWrite);
-    c.exec("ALTER TABLE trials DROP COLUMN planner_version");
-    c.exec("ALTER TABLE trials DROP COLUMN jobs");
-    c.exec("PRAGMA user_version = 1");
-  }
+  // Made a version 1 file, as an earlier earc-bench left it: no jobs
+  // column (nor version 3's planner_version).
+  makeOlder(file.path, 1);
   {
     // Read as it is: jobs unknown, the file still version 1.
     ResultsDb db(file.path, true);
@@ -144,12 +148,7 @@ TEST_CASE("a results database records which build planned each trial, and reads 
     CHECK(all[0].planner_version == "0.1.0+aaaaaaa");
     CHECK(versionNote(all) == "Planned by earc 0.1.0+aaaaaaa.");
   }
-  {
-    // Made a version 2 file: no planner_version column.
-    exp::Connection c(file.path, exp::OpenMode::ReadWrite);
-    c.exec("ALTER TABLE trials DROP COLUMN planner_version");
-    c.exec("PRAGMA user_version = 2");
-  }
+  makeOlder(file.path, 2);  // no planner_version column
   {
     // Read as it is: the build unknown, jobs still there, the file still version 2.
     ResultsDb db(file.path, true);

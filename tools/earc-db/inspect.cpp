@@ -75,9 +75,9 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
       << "entries   " << r.entries << " in " << r.classes.size() << " classes\n";
   // Which builds made them: a few, most rows first.
   if (!r.builds.empty()) {
-    out << "made by  ";
+    out << "made by   ";
     for (std::size_t i = 0; i < r.builds.size() && i < kListedBuilds; ++i)
-      out << (i ? ", " : " ") << (r.builds[i].first.empty() ? "not known" : r.builds[i].first) << " ("
+      out << (i ? ", " : "") << (r.builds[i].first.empty() ? "not known" : r.builds[i].first) << " ("
           << r.builds[i].second << ")";
     if (r.builds.size() > kListedBuilds) out << " and " << r.builds.size() - kListedBuilds << " more builds";
     out << "\n";

@@ -85,9 +85,10 @@ struct CurateReport {
 
 // Merges, then removes near-duplicates (keeping in each eps-ball the entry
 // that succeeded most, then was retrieved most, then is oldest), then drops
-// unused entries, then those made by the builds named, then (compact) rewrites path blobs of an older format in
-// the current one, which gives back exactly the same paths; each step one
-// write transaction. A damaged blob is left as it is.
+// unused entries, then those made by the builds named, then (compact)
+// rewrites path blobs of an older format in the current one, which gives
+// back exactly the same paths; each step one write transaction. A damaged
+// blob is left as it is.
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
 
 // A consistent copy of a live database (VACUUM INTO; never cp): readers and
