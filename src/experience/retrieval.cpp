@@ -71,14 +71,15 @@ std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, co
 
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
-                                          const std::vector<std::vector<double>>& goals, std::size_t k) {
+                                          const std::vector<std::vector<double>>& goals, std::size_t k,
+                                          std::size_t skip) {
   const std::vector<RobotTraits> traits = traitsOfAll(robots);
   if (!hasExperienceClass(traits)) return {};
   std::vector<Canonical> forms{canonicalize(traits, starts, goals)};
   if (forms.front().symmetric) forms.push_back(swappedRoles(forms.front(), starts, goals));
   std::vector<Candidate> out;
   for (const Canonical& form : forms)
-    for (Match& m : store.nearest(form.cls, form.key, k))
+    for (Match& m : store.nearest(form.cls, form.key, k, skip))
       out.push_back({m.experience.id, m.distance, fitResolution(robots, form.fromCanonical(m.experience.paths))});
   // Two role assignments may both find one row: keep its nearer use.
   std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
@@ -86,7 +87,7 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
   for (Candidate& c : out)
     if (std::none_of(unique.begin(), unique.end(), [&](const Candidate& u) { return u.id == c.id; }))
       unique.push_back(std::move(c));
-  if (unique.size() > k) unique.resize(k);
+  if (unique.size() > k - std::min(k, skip)) unique.resize(k - std::min(k, skip));
   return unique;
 }
 

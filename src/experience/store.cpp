@@ -226,7 +226,8 @@ std::optional<Experience> ExperienceStore::fetchLocked(std::int64_t id) {
   return readExperience(*fetch_);
 }
 
-std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k) {
+std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
+                                            std::size_t skip) {
   std::lock_guard lock(mutex_);
   requireOpen();
   return conn_->read([&] {
@@ -234,7 +235,9 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
     std::vector<Match> out;
     const ClassIndex* index = index_.find(cls);
     if (!index || index->dim() != key.size()) return out;
-    for (const Neighbor& n : index->nearest(key, k)) {
+    const std::vector<Neighbor> near = index->nearest(key, k);
+    for (std::size_t i = skip; i < near.size(); ++i) {
+      const Neighbor& n = near[i];
       try {
         if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
       } catch (const CorruptRowError& e) {

@@ -75,6 +75,27 @@ TEST_CASE("an arm solution learned with one role order is retrieved for the swap
   CHECK(found[0].paths[1].raw() == line(sa, ga, 5).raw());
 }
 
+TEST_CASE("the candidates after the k nearest come without those k") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  auto a = armModel(0, 0, 0), b = armModel(3, 0, 0);
+  std::vector<double> sb{1.1, 1.2, 1.3, 1.4, 1.5}, gb{1.3, 1.2, 1.3, 1.4, 1.5};
+  for (double d : {0.0, 0.2, 0.4, 0.6}) {
+    std::vector<double> sa{0.1 + d, 0.2, 0.3, 0.4, 0.5}, ga{0.3 + d, 0.2, 0.3, 0.4, 0.5};
+    REQUIRE(learn(store, {a.get(), b.get()}, {line(sa, ga, 5), line(sb, gb, 5)}, 0.1).has_value());
+  }
+  const std::vector<double> sa{0.1, 0.2, 0.3, 0.4, 0.5}, ga{0.3, 0.2, 0.3, 0.4, 0.5};
+  auto all = retrieveCandidates(store, {a.get(), b.get()}, {sa, sb}, {ga, gb}, 4);
+  REQUIRE(all.size() == 4);
+  auto next = retrieveCandidates(store, {a.get(), b.get()}, {sa, sb}, {ga, gb}, 4, 1);
+  REQUIRE(next.size() == 3);
+  for (std::size_t i = 0; i < next.size(); ++i) {
+    CHECK(next[i].id == all[i + 1].id);
+    CHECK(next[i].paths[0].raw() == all[i + 1].paths[0].raw());
+  }
+  CHECK(retrieveCandidates(store, {a.get(), b.get()}, {sa, sb}, {ga, gb}, 2, 4).empty());
+}
+
 TEST_CASE("a symmetric arm pair searches both role assignments") {
   ScratchDirectory dir("retrieval");
   ExperienceStore store(dir.file("e.db"));

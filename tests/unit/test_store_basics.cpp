@@ -69,6 +69,13 @@ TEST_CASE("nearest returns the k closest of the class only, nearest first") {
     CHECK(found[i].experience.cls == probe.cls);
   }
   CHECK(store.classes().size() == 2);
+
+  // The next ones after the first 4, without those 4.
+  auto next = store.nearest(probe.cls, probe.key, 10, 4);
+  REQUIRE(next.size() == 6);
+  for (std::size_t i = 0; i < next.size(); ++i) CHECK(next[i].experience.id == found[i + 4].experience.id);
+  CHECK(store.nearest(probe.cls, probe.key, 10, 10).empty());
+  CHECK(store.nearest(probe.cls, probe.key, 3, 10).empty());
 }
 
 TEST_CASE("a near-duplicate is not inserted twice") {

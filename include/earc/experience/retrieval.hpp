@@ -37,10 +37,14 @@ struct Candidate {
 // symmetric arm pair both role assignments are searched and merged.
 // Entries stored under a coarser resolution than the robots' come back
 // with their long steps split (fitResolution), never breaking the
-// resolution rule.
+// resolution rule. With skip > 0, the k nearest less the `skip` nearest
+// (rows not read): the next candidates after a first call with k = skip.
+// (For a symmetric pair, a row found under one role assignment before the
+// skip can come back under the other after it.)
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
-                                          const std::vector<std::vector<double>>& goals, std::size_t k);
+                                          const std::vector<std::vector<double>>& goals, std::size_t k,
+                                          std::size_t skip = 0);
 
 // Paths whose consecutive states some robot cannot reach in one step at
 // its resolution, with every such step split into as many as the slowest

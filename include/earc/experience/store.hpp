@@ -115,8 +115,11 @@ class ExperienceStore {
 
   // Up to k experiences of the class, nearest key first (Euclidean), decoded
   // and checked. Rows that fail decoding are skipped and reported once on
-  // stderr (earc-db verify names them all).
-  std::vector<Match> nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
+  // stderr (earc-db verify names them all). The first `skip` of the k
+  // nearest are left out, unread: a caller that wants more after trying
+  // the k nearest asks for the next ones without reading those again.
+  std::vector<Match> nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
+                             std::size_t skip = 0);
   // The same search without reading rows: ids and distances only.
   std::vector<Neighbor> nearestIds(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
   std::optional<Experience> get(std::int64_t id);

@@ -21,6 +21,7 @@ namespace earc {
 
 struct DatabaseSolverSettings {
   std::size_t k = 10;             // candidates retrieved
+  std::size_t widen_k = 40;       // arms: up to this many when all k are blocked at their ends
   int max_invalid_segments = 3;   // repair only up to this many invalid runs
   double repair_time_s = 0.1;     // composite replanning budget per run
   int retime_iterations = 100;    // retimeShortcut attempts on an answer for arms
