@@ -152,6 +152,28 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
   }
 }
 
+std::size_t shortcutEnds(const CompositeChecker& checker, std::vector<CompositeState>& waypoints) {
+  const std::size_t before = waypoints.size();
+  auto erase = [&](std::size_t from, std::size_t to) {  // waypoints [from, to)
+    waypoints.erase(waypoints.begin() + static_cast<std::ptrdiff_t>(from),
+                    waypoints.begin() + static_cast<std::ptrdiff_t>(to));
+  };
+  // Offsets from the end shrink by a quarter (rounded down) until 1: two
+  // neighbouring waypoints, already joined.
+  for (std::size_t k = waypoints.size() - 1; k >= 2 && waypoints.size() > 2; k = k * 3 / 4)
+    if (checker.motionValid(waypoints.front(), waypoints[k], {.start = true, .end = true})) {
+      erase(1, k);
+      break;
+    }
+  const std::size_t last = waypoints.size() - 1;
+  for (std::size_t d = last; d >= 2 && waypoints.size() > 2; d = d * 3 / 4)
+    if (checker.motionValid(waypoints[last - d], waypoints.back(), {.start = true, .end = true})) {
+      erase(last - d + 1, last);
+      break;
+    }
+  return before - waypoints.size();
+}
+
 void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
                     const Deadline& deadline) {
   const auto& robots = checker.robots();

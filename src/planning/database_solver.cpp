@@ -18,9 +18,13 @@ namespace earc {
 
 namespace {
 
-// Shortcut attempts on a retrieved (or repaired) solution joined to the
-// subproblem's start and goal.
-constexpr int kConnectShortcuts = 100;
+// Random shortcut attempts on a retrieved (or repaired) solution joined to
+// the subproblem's start and goal, after its ends are shortcut
+// (shortcutEnds). Before those, 100 attempts alone: at 16 arms they were
+// about 40% of a database hit's time, and on 60 scenarios the end
+// shortcuts and 30 attempts gave the same median makespan (122 against
+// 121.5) and sum of costs (1193 against 1196.5).
+constexpr int kConnectShortcuts = 30;
 
 // Why a query failed when no candidate was both valid and clear.
 constexpr std::string_view kNoneToRepair = "none to repair";
@@ -259,7 +263,10 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
   // shortcut is a checked straight composite motion, so the result stays
   // as valid as the candidate was.
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdb));
-  if (shortcut) shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
+  if (shortcut) {
+    shortcutEnds(checker, waypoints);
+    shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
+  }
   LocalSolution out = timeStampComposite(robots, waypoints);
   // An answer for two arms comes out long: the stored pair's ends are far
   // from this start and goal in ten joint dimensions, and the composite

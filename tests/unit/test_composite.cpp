@@ -215,6 +215,42 @@ TEST_CASE("A composite motion between states known to be valid is decided by the
   CHECK(end_invalid > 50);
 }
 
+TEST_CASE("Shortcutting a path's ends goes straight to the furthest waypoint tried that the start reaches, and from it to the goal") {
+  // One disc; a wall x in [4.5, 5.5], y in [0, 6]. The path backs away
+  // from its start, climbs over the wall and comes down to a goal right of it.
+  Scenario s = crowd(1, 10);
+  s.obstacles.push_back(Obstacle::makeBox({5, 3}, {1, 6}));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  auto at = [](double x, double y) { return CompositeState{{x, y, 0.0}}; };
+  const std::vector<CompositeState> path{at(2, 2), at(1, 2), at(1, 5), at(2, 8), at(4, 8), at(5, 8),
+                                         at(6, 8), at(8, 8),  at(9, 5), at(9, 2), at(8, 2)};
+  for (std::size_t w = 1; w < path.size(); ++w) REQUIRE(checker.motionValid(path[w - 1], path[w]));
+  // Tried from the start: the goal (10), then 7 (blocked by the wall),
+  // then 5, over it. From the goal: 6 of the 7 left, then 4 (waypoint 6).
+  REQUIRE_FALSE(checker.motionValid(path[0], path[10]));
+  REQUIRE_FALSE(checker.motionValid(path[0], path[7]));
+  REQUIRE(checker.motionValid(path[0], path[5]));
+  REQUIRE(checker.motionValid(path[6], path[10]));
+
+  std::vector<CompositeState> way = path;
+  CHECK(shortcutEnds(checker, way) == 7);
+  CHECK(way == std::vector<CompositeState>{path[0], path[5], path[6], path[10]});
+  for (std::size_t w = 1; w < way.size(); ++w) CHECK(checker.motionValid(way[w - 1], way[w]));
+
+  // Nothing in the way: start to goal in one motion.
+  std::vector<CompositeState> open{at(2, 8), at(1, 9), at(3, 9.5), at(4, 8), at(8, 8.5)};
+  CHECK(shortcutEnds(checker, open) == 3);
+  CHECK(open == std::vector<CompositeState>{at(2, 8), at(8, 8.5)});
+
+  // Round the wall tightly: no waypoint can be skipped.
+  std::vector<CompositeState> tight{at(3, 2), at(3.5, 7), at(6.5, 7), at(7, 2)};
+  std::vector<CompositeState> kept = tight;
+  CHECK(shortcutEnds(checker, kept) == 0);
+  CHECK(kept == tight);
+}
+
 TEST_CASE("A composite motion checked after the checker's deadline reads as invalid") {
   Scenario s = crowd(2);
   RobotModels m(s);

@@ -74,6 +74,16 @@ class CompositeChecker {
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
                        std::mt19937_64& rng, const Deadline& deadline = Deadline());
 
+// Shortcuts a waypoint sequence at its two ends: the first waypoint goes
+// by one straight motion to the furthest waypoint it reaches, and the
+// furthest waypoint from which the last is reached goes straight to it.
+// Tried at waypoints geometrically nearer the end, each a quarter nearer
+// (last, 3/4, 9/16, ... of the way), the first valid motion kept: a few
+// checks each. For a path joined to a start and a goal it was not made
+// for, where the detours are. The waypoints must be valid states; returns
+// the waypoints removed.
+std::size_t shortcutEnds(const CompositeChecker& checker, std::vector<CompositeState>& waypoints);
+
 // Shortens time-stamped paths one robot at a time: robot r goes straight
 // from its state at step i to its state at a later step j in the fewest
 // steps the resolution allows, and the rest of its path comes that many
