@@ -104,12 +104,48 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
   return std::max(0.0, static_cast<double>(first_bad - 1) / instants);
 }
 
+const PlacedBodies& BodiesAlongPaths::at(std::size_t w, std::size_t t, int k) {
+  const std::size_t i = 2 * t + static_cast<std::size_t>(k);
+  auto& placed = placed_[w];
+  auto& known = known_[w];
+  if (placed.size() <= i) {
+    placed.resize(i + 1);
+    known.resize(i + 1, 0);
+  }
+  if (!known[i]) {
+    const RobotModel& m = *robots_[w];
+    q_.resize(static_cast<std::size_t>(m.dim()));
+    m.interpolate(paths_[w].at(t), paths_[w].at(t + 1), static_cast<double>(k) / 2, q_.data());
+    placed[i].place(m, q_.data());
+    known[i] = 1;
+  }
+  return placed[i];
+}
+
+void BodiesAlongPaths::forget(std::size_t w, std::size_t t) {
+  auto& known = known_[w];
+  for (std::size_t i = 2 * t; i < known.size(); ++i) known[i] = 0;
+}
+
 bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const double*>& a,
                                         const std::vector<const double*>& b, KnownValid known) const {
+  return robotMotionValid(r, a, b, known, nullptr, 0);
+}
+
+bool CompositeChecker::robotStepValid(std::size_t r, const std::vector<const double*>& a,
+                                      const std::vector<const double*>& b, KnownValid known, BodiesAlongPaths& along,
+                                      std::size_t t) const {
+  return robotMotionValid(r, a, b, known, &along, t);
+}
+
+bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const double*>& a,
+                                        const std::vector<const double*>& b, KnownValid known,
+                                        BodiesAlongPaths* along, std::size_t t) const {
   const std::size_t n = robots_.size();
   int steps = 0;
   for (std::size_t w = 0; w < n; ++w) steps = std::max(steps, robots_[w]->stepsBetween(a[w], b[w]));
   const int instants = 2 * steps;
+  if (instants != 2) along = nullptr;  // entries hold the instants of one resolution step
   thread_local std::vector<std::vector<double>> q;
   thread_local std::vector<const double*> at;
   thread_local PlacedBodies mine, theirs;
@@ -133,6 +169,10 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
       if (!placed) {
         mine.place(*robots_[r], at[r]);
         placed = true;
+      }
+      if (along) {
+        if (bodiesTouch(mine, along->at(w, t, k))) return false;
+        continue;
       }
       theirs.place(*robots_[w], at[w]);
       if (bodiesTouch(mine, theirs)) return false;
@@ -181,6 +221,7 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
   if (n == 0) return;
   std::vector<double> q;
   std::vector<const double*> from(n), to(n);
+  BodiesAlongPaths along(robots, paths);
   for (int it = 0; it < iterations && !deadline.expired(); ++it) {
     const std::size_t r = uniformIndex(rng, n);
     const std::size_t len = paths[r].size();
@@ -213,9 +254,12 @@ void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, i
         from[w] = paths[w].at(t);
         to[w] = paths[w].at(t + 1);
       }
-      valid = checker.robotMotionValid(r, from, to, {.start = true, .world = t >= i + d});
+      valid = checker.robotStepValid(r, from, to, {.start = true, .world = t >= i + d}, along, t);
     }
-    if (!valid) std::swap(paths[r], shorter);
+    if (valid)
+      along.forget(r, i);
+    else
+      std::swap(paths[r], shorter);
   }
 }
 

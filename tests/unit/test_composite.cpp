@@ -15,6 +15,7 @@
 #include "earc/planning/composite.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/ompl_composite.hpp"
+#include "earc/planning/roadmap.hpp"
 #include "earc/scene/robot_model.hpp"
 
 using namespace earc;
@@ -174,6 +175,68 @@ TEST_CASE("One robot's part of a motion decides it when the others' part is vali
   CHECK(invalid > 200);
   CHECK(start_known > 200);
   CHECK(world_known > 100);
+}
+
+TEST_CASE("A step checked against the other robots' bodies placed once agrees with placing them each time") {
+  // Three arms side by side, close enough to reach into each other,
+  // wandering through random one-step paths; then robot 0's path changes
+  // from step 20 on and the bodies kept for it are forgotten from there.
+  Scenario s;
+  s.name = "row";
+  s.workspace = {{-3, -3}, {6, 3}};
+  s.robots = {arm("a", {0, 0}), arm("b", {1.2, 0}), arm("c", {2.4, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> joint(-2.5, 2.5);
+  auto wander = [&](const RobotModel& model, std::size_t legs) {
+    std::vector<std::vector<double>> way;
+    for (std::size_t i = 0; i <= legs; ++i) way.push_back({joint(rng), joint(rng), joint(rng)});
+    return timeStamp(model, way);
+  };
+  std::vector<Path> paths;
+  for (const RobotModel* model : m.raw) paths.push_back(wander(*model, 4));
+  // `along` is told of the change; `stale` is not, and shows that the
+  // change matters to the answers.
+  BodiesAlongPaths along(m.raw, paths), stale(m.raw, paths);
+  struct Tally {
+    int blocked = 0, stale_differs = 0;
+  };
+  auto agree = [&]() {
+    Tally tally;
+    std::size_t last = 0;
+    for (const auto& p : paths) last = std::max(last, p.size() - 1);
+    std::vector<const double*> from(3), to(3);
+    for (int pass = 0; pass < 2; ++pass)  // the second pass reads what the first placed
+      for (std::size_t t = 0; t < last; ++t)
+        for (std::size_t r = 0; r < 3; ++r) {
+          for (std::size_t w = 0; w < 3; ++w) from[w] = paths[w].at(t), to[w] = paths[w].at(t + 1);
+          for (KnownValid known : {KnownValid{.start = true}, KnownValid{.start = true, .world = true}}) {
+            const bool placed_each_time = checker.robotMotionValid(r, from, to, known);
+            CHECK(checker.robotStepValid(r, from, to, known, along, t) == placed_each_time);
+            tally.stale_differs += checker.robotStepValid(r, from, to, known, stale, t) != placed_each_time;
+            tally.blocked += !placed_each_time;
+          }
+        }
+    return tally;
+  };
+  const Tally before = agree();
+  CHECK(before.blocked > 100);  // the arms reach into each other often
+  CHECK(before.stale_differs == 0);
+  // Robot 0 takes another way from step 20 on.
+  REQUIRE(paths[0].size() > 40);
+  Path changed = paths[0].slice(0, 21);
+  const Path detour = wander(*m.raw[0], 3);
+  std::vector<std::vector<double>> bridge{std::vector<double>(changed.back(), changed.back() + 3),
+                                          std::vector<double>(detour.at(0), detour.at(0) + 3)};
+  changed.append(timeStamp(*m.raw[0], bridge), 1);
+  changed.append(detour, 1);
+  paths[0] = changed;
+  along.forget(0, 20);
+  const Tally after = agree();
+  CHECK(after.blocked > 100);
+  CHECK(after.stale_differs > 10);
 }
 
 TEST_CASE("A composite motion between states known to be valid is decided by the instants between") {

@@ -31,6 +31,28 @@ struct KnownValid {
   bool world = false;  // robotMotionValid only: robot r's own motion against the world
 };
 
+// Robots' bodies along their time-stamped paths (one resolution step per
+// step), placed once for many checks of another robot's motions against
+// them: retiming checks the same steps of the others again for every
+// attempt. Entry (w, t, k): robot w at instant k/2 of its step t -> t+1,
+// k = 1 or 2, interpolated as robotMotionValid interpolates it. The paths
+// must outlive this; tell it when a robot's path changes.
+class BodiesAlongPaths {
+ public:
+  BodiesAlongPaths(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths)
+      : robots_(robots), paths_(paths), placed_(paths.size()), known_(paths.size()) {}
+  const PlacedBodies& at(std::size_t w, std::size_t t, int k);
+  // Robot w's path changed from step t on.
+  void forget(std::size_t w, std::size_t t);
+
+ private:
+  const std::vector<const RobotModel*>& robots_;
+  const std::vector<Path>& paths_;
+  std::vector<std::vector<PlacedBodies>> placed_;  // [w][2 t + k]
+  std::vector<std::vector<char>> known_;
+  std::vector<double> q_;
+};
+
 class CompositeChecker {
  public:
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots)
@@ -56,10 +78,17 @@ class CompositeChecker {
   // other robots' part is known valid, the same answer as motionValid.
   bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
                         KnownValid known = {}) const;
+  // The same for step t -> t+1 of time-stamped paths, a = the paths at t
+  // and b at t + 1, the other robots' bodies taken from `along` (over the
+  // same paths) when the step is one resolution step.
+  bool robotStepValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
+                      KnownValid known, BodiesAlongPaths& along, std::size_t t) const;
 
   const std::vector<const RobotModel*>& robots() const { return robots_; }
 
  private:
+  bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
+                        KnownValid known, BodiesAlongPaths* along, std::size_t t) const;
   bool instantValid(const CompositeState& a, const CompositeState& b, double s, CompositeState& scratch) const;
   const CollisionWorld& world_;
   std::vector<const RobotModel*> robots_;
