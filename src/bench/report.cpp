@@ -266,31 +266,51 @@ std::string jobsNote(const std::vector<TrialRecord>& trials) {
   return note;
 }
 
-std::string versionNote(const std::vector<TrialRecord>& trials) {
+namespace {
+
+// Which builds of `program` did `verb` the trials, by the build each trial
+// recorded in `field`, in one line (see versionNote).
+std::string buildsNote(const std::vector<TrialRecord>& trials, std::string TrialRecord::*field, std::string_view verb,
+                       std::string_view program, std::string_view consequence, std::string_view unknown_what,
+                       std::string_view unknown_why) {
   if (trials.empty()) return "";
-  const auto [by_version, unknown] = countBy(trials, [](const TrialRecord& t) {
-    return t.planner_version.empty() ? std::nullopt : std::optional<std::string>(t.planner_version);
+  const auto [by_version, unknown] = countBy(trials, [&](const TrialRecord& t) {
+    const std::string& v = t.*field;
+    return v.empty() ? std::nullopt : std::optional<std::string>(v);
   });
+  const std::string prefix = std::string(verb) + " by ";
   std::string note;
   if (by_version.size() == 1) {
-    note = "Planned by earc " + by_version.begin()->first + ".";
+    note = prefix + std::string(program) + " " + by_version.begin()->first + ".";
   } else if (by_version.size() > 1) {
-    note = "Planned by " + std::to_string(by_version.size()) + " builds:";
+    note = prefix + std::to_string(by_version.size()) + " builds:";
     bool first = true;
     for (const auto& [version, count] : by_version) {
-      note += std::string(first ? " " : ", ") + "earc " + version + " (" + trialCount(count) + ")";
+      note += std::string(first ? " " : ", ") + std::string(program) + " " + version + " (" + trialCount(count) + ")";
       first = false;
     }
-    note += ": their times are of different code.";
+    note += ": " + std::string(consequence) + ".";
   }
-  addNotRecorded(note, "Which build planned", unknown,
-                 "results from before schema version 3, or a planner that does not say");
+  addNotRecorded(note, unknown_what, unknown, unknown_why);
   return note;
+}
+
+}  // namespace
+
+std::string versionNote(const std::vector<TrialRecord>& trials) {
+  return buildsNote(trials, &TrialRecord::planner_version, "Planned", "earc", "their times are of different code",
+                    "Which build planned", "results from before schema version 3, or a planner that does not say");
+}
+
+std::string benchNote(const std::vector<TrialRecord>& trials) {
+  return buildsNote(trials, &TrialRecord::bench_version, "Timed", "earc-bench",
+                    "they were run and timed by different code", "Which earc-bench timed",
+                    "results from before schema version 4");
 }
 
 std::string trialsNotes(const std::vector<TrialRecord>& trials) {
   if (trials.empty()) return "(no trials)\n";
-  return "\n" + jobsNote(trials) + "\n" + versionNote(trials) + "\n";
+  return "\n" + jobsNote(trials) + "\n" + versionNote(trials) + "\n" + benchNote(trials) + "\n";
 }
 
 std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
@@ -398,7 +418,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at,jobs,planner_version\n";
+         "finished_at,jobs,planner_version,bench_version\n";
   for (const auto& t : trials) {
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
@@ -406,7 +426,7 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(std::optional<double>(t.wall_time_s)) << ',' << opt(t.makespan) << ',' << opt(t.sum_of_costs) << ','
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
         << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
-        << ',' << csvField(t.planner_version) << "\n";
+        << ',' << csvField(t.planner_version) << ',' << csvField(t.bench_version) << "\n";
   }
 }
 

@@ -62,9 +62,13 @@ CREATE TABLE databases (
 //    other's timings, and how depends on the order (see runner.cpp).
 // 3: which build planned the trial, so that every figure can be traced to
 //    its code.
+// 4: which earc-bench ran and timed it: how trials are run changes their
+//    timings too (see d3acb53 in the README), and --plan-program plans
+//    with another build than the one timing.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
+    "ALTER TABLE trials ADD COLUMN bench_version TEXT",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -104,9 +108,10 @@ std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std:
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs, planner_version) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9,"
-    " NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''),"
-    " NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''), NULLIF(?22, '')) ON CONFLICT DO NOTHING";
+    " term_signal, failure, finished_at, jobs, planner_version, bench_version) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7,"
+    " ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''),"
+    " NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''), NULLIF(?22, ''),"
+    " NULLIF(?23, '')) ON CONFLICT DO NOTHING";
 constexpr const char* kInsertDatabase =
     "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
     " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
@@ -120,9 +125,10 @@ constexpr const char* kFinishedTrials =
 // kSelectTrials[v - 1] reads a version v file, older ones without
 // migrating them (table, export, plot): NULL for the columns it lacks.
 constexpr const char* kSelectTrials[] = {
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version FROM trials ORDER BY id",
 };
 static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
@@ -232,6 +238,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     s.bind(20, t.finished_at.empty() ? utcNow() : t.finished_at);
     bindOpt(s, 21, t.jobs);
     s.bind(22, std::string_view(t.planner_version));
+    s.bind(23, std::string_view(t.bench_version));
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -288,6 +295,7 @@ std::vector<TrialRecord> ResultsDb::trials() const {
     t.finished_at = s.textAt(19);
     if (auto v = intOpt(s, 20)) t.jobs = static_cast<int>(*v);
     if (s.columnType(21) != SQLITE_NULL) t.planner_version = s.textAt(21);
+    if (s.columnType(22) != SQLITE_NULL) t.bench_version = s.textAt(22);
     out.push_back(std::move(t));
   }
   return out;

@@ -30,6 +30,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
+#include "earc/util/version.hpp"
 
 namespace fs = std::filesystem;
 
@@ -402,6 +403,7 @@ class Runner {
     t.seed = o_.seed;
     t.time_limit_s = o_.time_limit_s;
     t.jobs = o_.jobs;
+    t.bench_version = earc::version();
     const TrialSeeds seeds = trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;

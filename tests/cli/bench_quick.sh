@@ -22,16 +22,20 @@ RUN=(run --suites mobile --robots 2,4 --methods arc,prioritized,lightning --tria
 grep -q "INVALID SOLUTION" "$WORK/run.err" && fail "a planner produced an invalid solution"
 grep -q "^### mobile" "$WORK/run.out" || fail "no table after the run"
 
-# Every trial records the build that planned it: earc-plan's --version.
+# Every trial records the build that planned it (earc-plan's --version)
+# and the one that ran and timed it (earc-bench's).
 version=$("$BUILD/earc-plan" --version) || fail "earc-plan --version exited $?"
-"$PY" - "$WORK/r.sqlite" "${version#earc-plan }" <<'PYEOF' || fail "results database"
+bench_version=$("$BENCH" --version) || fail "earc-bench --version exited $?"
+"$PY" - "$WORK/r.sqlite" "${version#earc-plan }" "${bench_version#earc-bench }" <<'PYEOF' || fail "results database"
 import sqlite3, sys
 con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
 assert con.execute("PRAGMA application_id").fetchone()[0] == 0x45424E43
-assert con.execute("PRAGMA user_version").fetchone()[0] == 3
+assert con.execute("PRAGMA user_version").fetchone()[0] == 4
 assert {j for (j,) in con.execute("SELECT jobs FROM trials")} == {1}, "trials must record --jobs 1"
 versions = {v for (v,) in con.execute("SELECT planner_version FROM trials")}
 assert versions == {sys.argv[2]}, (versions, sys.argv[2])
+benches = {v for (v,) in con.execute("SELECT bench_version FROM trials")}
+assert benches == {sys.argv[3]}, (benches, sys.argv[3])
 assert con.execute("PRAGMA journal_mode").fetchone()[0] == "wal"
 rows = con.execute("SELECT robots, method, trial, success, planning_time_s, failure, peak_memory_kb FROM trials").fetchall()
 assert len(rows) == 12, rows
@@ -185,7 +189,7 @@ PYEOF
   refused "$WORK/a-file: -o: exists and is not a directory" plot --results "$WORK/r.sqlite" -o "$WORK/a-file"
   "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect(sys.argv[1]); c.execute("PRAGMA user_version = 99"); c.commit()' "$WORK/odd.sqlite"
-  refused "$WORK/odd.sqlite: schema version 99 is newer than this program's version 3; use a newer earc-bench" \
+  refused "$WORK/odd.sqlite: schema version 99 is newer than this program's version 4; use a newer earc-bench" \
     plot --results "$WORK/odd.sqlite" -o "$WORK/fig3"
   echo "not a database" > "$WORK/text.txt"
   refused "$WORK/text.txt: cannot open the results database: not a SQLite database" plot --results "$WORK/text.txt" -o "$WORK/fig3"

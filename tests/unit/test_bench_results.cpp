@@ -76,6 +76,7 @@ std::vector<std::string> lines(const std::string& path) {
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 4) c.exec("ALTER TABLE trials DROP COLUMN bench_version");
   if (version < 3) c.exec("ALTER TABLE trials DROP COLUMN planner_version");
   if (version < 2) c.exec("ALTER TABLE trials DROP COLUMN jobs");
   c.exec("PRAGMA user_version = " + std::to_string(version));
@@ -132,60 +133,100 @@ TEST_CASE("a results database remembers how many trials ran at once, and reads a
   CHECK(markdownWideTable(mixed).find("Trials ran 2 at a time") != std::string::npos);
 }
 
-TEST_CASE("a results database records which build planned each trial, and reads and migrates version 2 files") {
-  TempPath file("earc-results-version");
+namespace {
+
+// A build column that schema version `since` added: written and read
+// back; not there in a file made one version older, which is read as it
+// is; there again once a write migrates the file, the old row kept.
+// `note` says it under tables: of one build (A), of a trial that did not
+// record it, and of two (A twice, B once). Returns the last trials read.
+struct BuildColumn {
+  std::string TrialRecord::*field;
+  int since;
+  std::string (*note)(const std::vector<TrialRecord>&);
+  std::string one, unknown, two;
+};
+
+std::vector<TrialRecord> checkBuildColumn(const BuildColumn& col, const std::string& path) {
+  const std::string a = "0.1.0+aaaaaaa", b = "0.1.0+bbbbbbb.dirty";
   {
-    ResultsDb db(file.path);
+    ResultsDb db(path);
     TrialRecord t = trial("arc", 0, true, 1.5);
     t.jobs = 1;
-    t.planner_version = "0.1.0+aaaaaaa";
+    t.*col.field = a;
     CHECK(db.addTrial(t));
   }
   {
-    ResultsDb db(file.path, true);
+    ResultsDb db(path, true);
     const auto all = db.trials();
     REQUIRE(all.size() == 1);
-    CHECK(all[0].planner_version == "0.1.0+aaaaaaa");
-    CHECK(versionNote(all) == "Planned by earc 0.1.0+aaaaaaa.");
+    CHECK(all[0].*col.field == a);
+    CHECK(col.note(all) == col.one);
   }
-  makeOlder(file.path, 2);  // no planner_version column
+  makeOlder(path, col.since - 1);
   {
-    // Read as it is: the build unknown, jobs still there, the file still version 2.
-    ResultsDb db(file.path, true);
+    ResultsDb db(path, true);
     const auto all = db.trials();
     REQUIRE(all.size() == 1);
-    CHECK(all[0].planner_version.empty());
+    CHECK((all[0].*col.field).empty());
     CHECK(all[0].jobs == 1);
-    CHECK(versionNote(all) == "Which build planned was not recorded for 1 trial (results from before schema version 3, "
-                              "or a planner that does not say).");
-    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
-    CHECK(c.pragmaInt("user_version") == 2);
+    CHECK(col.note(all) == col.unknown);
+    exp::Connection c(path, exp::OpenMode::ReadOnly);
+    CHECK(c.pragmaInt("user_version") == col.since - 1);
   }
   {
-    // Opened for writing: migrated, the old row kept.
-    ResultsDb db(file.path);
+    ResultsDb db(path);
     TrialRecord t = trial("earc", 0, true, 1.0);
-    t.planner_version = "0.1.0+bbbbbbb.dirty";
+    t.*col.field = b;
     CHECK(db.addTrial(t));
   }
-  exp::Connection c(file.path, exp::OpenMode::ReadOnly);
-  CHECK(c.pragmaInt("user_version") == 3);
-  ResultsDb db(file.path, true);
+  exp::Connection c(path, exp::OpenMode::ReadOnly);
+  CHECK(c.pragmaInt("user_version") == kResultsSchemaVersion);
+  ResultsDb db(path, true);
   auto all = db.trials();
   REQUIRE(all.size() == 2);
-  CHECK(all[0].planner_version.empty());
-  CHECK(all[1].planner_version == "0.1.0+bbbbbbb.dirty");
-  all[0].planner_version = "0.1.0+aaaaaaa";
+  CHECK((all[0].*col.field).empty());
+  CHECK(all[1].*col.field == b);
+  all[0].*col.field = a;
   all.push_back(all[0]);
-  CHECK(versionNote(all) ==
-        "Planned by 2 builds: earc 0.1.0+aaaaaaa (2 trials), earc 0.1.0+bbbbbbb.dirty (1 trial): their times are of "
-        "different code.");
+  CHECK(col.note(all) == col.two);
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("a results database records which build planned each trial, and reads and migrates version 2 files") {
+  TempPath file("earc-results-version");
+  const auto all = checkBuildColumn(
+      {&TrialRecord::planner_version, 3, versionNote, "Planned by earc 0.1.0+aaaaaaa.",
+       "Which build planned was not recorded for 1 trial (results from before schema version 3, or a planner that "
+       "does not say).",
+       "Planned by 2 builds: earc 0.1.0+aaaaaaa (2 trials), earc 0.1.0+bbbbbbb.dirty (1 trial): their times are of "
+       "different code."},
+      file.path);
   CHECK(markdownWideTable(all).find("\nPlanned by 2 builds: ") != std::string::npos);
   CHECK(markdownTable(all, {}).find("\nPlanned by 2 builds: ") != std::string::npos);
   std::ostringstream csv;
   writeCsv(all, csv);
-  CHECK(csv.str().find(",jobs,planner_version\n") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty\n") != std::string::npos);
+  CHECK(csv.str().find(",jobs,planner_version,") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,\n") != std::string::npos);
+}
+
+TEST_CASE("a results database records which earc-bench ran each trial, and reads and migrates version 3 files") {
+  TempPath file("earc-results-bench");
+  auto all = checkBuildColumn(
+      {&TrialRecord::bench_version, 4, benchNote, "Timed by earc-bench 0.1.0+aaaaaaa.",
+       "Which earc-bench timed was not recorded for 1 trial (results from before schema version 4).",
+       "Timed by 2 builds: earc-bench 0.1.0+aaaaaaa (2 trials), earc-bench 0.1.0+bbbbbbb.dirty (1 trial): they "
+       "were run and timed by different code."},
+      file.path);
+  // Under a table, after the planner's builds.
+  for (auto& t : all) t.planner_version = "0.1.0+ccccccc";
+  CHECK(trialsNotes(all).find("\nPlanned by earc 0.1.0+ccccccc.\nTimed by 2 builds: ") != std::string::npos);
+  std::ostringstream csv;
+  writeCsv(all, csv);
+  CHECK(csv.str().find(",jobs,planner_version,bench_version\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty\n") != std::string::npos);
 }
 
 TEST_CASE("a results database records a trial once per key and reports it as finished") {
@@ -225,7 +266,7 @@ TEST_CASE("a results database without a table of its schema is refused as damage
       c.exec(std::string("DROP TABLE ") + table);
     }
     const std::string want =
-        file.path + ": damaged database file (table " + table + " is missing; schema version 3 has it)";
+        file.path + ": damaged database file (table " + table + " is missing; schema version 4 has it)";
     for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
   }
 }

@@ -76,7 +76,12 @@ std::string jobsNote(const std::vector<TrialRecord>& trials);
 // (N trials), earc B (M trials): ..." / how many trials did not record it.
 std::string versionNote(const std::vector<TrialRecord>& trials);
 
-// What goes under a table: jobsNote and versionNote, a line each, after a
+// Which builds of earc-bench ran and timed the trials
+// (TrialRecord::bench_version), the same way: "Timed by earc-bench
+// 0.1.0+66772d4." / ... / how many did not record it (before schema 4).
+std::string benchNote(const std::vector<TrialRecord>& trials);
+
+// What goes under a table: jobsNote, versionNote and benchNote, a line each, after a
 // blank line; "(no trials)" when there are none.
 std::string trialsNotes(const std::vector<TrialRecord>& trials);
 

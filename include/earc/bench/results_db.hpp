@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 3, WAL) that trials are appended to as they finish, each in
+// user_version 4, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -19,6 +19,9 @@
 //   Version 3 adds trials.planner_version: the earc_version the trial's
 //     solution reported (the build that planned it), NULL for trials
 //     recorded before it and for planners that do not say.
+//   Version 4 adds trials.bench_version: the earc-bench build that ran and
+//     timed the trial (its --version), which need not be the planner's
+//     (--plan-program); NULL for trials recorded before it.
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -38,7 +41,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 3;
+inline constexpr int kResultsSchemaVersion = 4;
 
 struct TrialRecord {
   std::string suite;
@@ -60,6 +63,7 @@ struct TrialRecord {
   std::string finished_at;         // ISO 8601 UTC
   std::optional<int> jobs;         // trials the run had at once; unknown before schema 2
   std::string planner_version;     // the solution's earc_version; "" unknown (before schema 3)
+  std::string bench_version;       // the earc-bench that ran it; "" unknown (before schema 4)
 };
 
 struct DatabaseRecord {
