@@ -210,10 +210,9 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   // holds only the joints nearest the bases (kArmKeyJoints), so the
   // nearest keys need not be the nearest states: the next ones, ordered
   // by joined length like the first, often hold one that connects. (At
-  // 16 arms, 60 scenarios: hits 104 of 121 subproblems against 92, and
-  // the database misses that remain are the ones ARC's solvers take
-  // longest over. Mobile keys hold whole positions: there the next
-  // candidates are blocked too, and reading them made E-ARC slower.)
+  // 16 arms, 60 scenarios: hits 104 of 121 subproblems against 92. Mobile
+  // keys hold whole positions: there the next candidates are blocked
+  // too, and reading them made E-ARC slower.)
   if (!found && allArms(robots) && settings_.widen_k > settings_.k && candidates.size() >= settings_.k &&
       static_cast<std::size_t>(tally_.ends_blocked) == candidates.size()) {
     const std::size_t tried = candidates.size();

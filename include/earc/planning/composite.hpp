@@ -35,8 +35,8 @@ struct KnownValid {
 // step), placed once for many checks of another robot's motions against
 // them: retiming checks the same steps of the others again for every
 // attempt. Entry (w, t, k): robot w at instant k/2 of its step t -> t+1,
-// k = 1 or 2, interpolated as robotMotionValid interpolates it. The paths
-// must outlive this; tell it when a robot's path changes.
+// k = 0, 1 or 2, interpolated as robotMotionValid interpolates it. The
+// paths must outlive this; tell it when a robot's path changes.
 class BodiesAlongPaths {
  public:
   BodiesAlongPaths(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths)
@@ -79,8 +79,9 @@ class CompositeChecker {
   bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
                         KnownValid known = {}) const;
   // The same for step t -> t+1 of time-stamped paths, a = the paths at t
-  // and b at t + 1, the other robots' bodies taken from `along` (over the
-  // same paths) when the step is one resolution step.
+  // and b at t + 1 (for every robot but r, the states of along's paths),
+  // the other robots' bodies taken from `along` when the step is one
+  // resolution step.
   bool robotStepValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
                       KnownValid known, BodiesAlongPaths& along, std::size_t t) const;
 
