@@ -77,36 +77,18 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
   if (!hasExperienceClass(traits)) return {};
   std::vector<Canonical> forms{canonicalize(traits, starts, goals)};
   if (forms.front().symmetric) forms.push_back(swappedRoles(forms.front(), starts, goals));
-  // Ids first, under every role assignment; only the rows kept are read
-  // (a symmetric pair would otherwise read 2k rows to keep k).
-  struct Found {
-    Neighbor near;
-    std::size_t form;
-  };
-  std::vector<Found> found;
-  for (std::size_t f = 0; f < forms.size(); ++f) {
-    const std::vector<Neighbor> near = store.nearestIds(forms[f].cls, forms[f].key, k);
-    for (std::size_t i = skip; i < near.size(); ++i) found.push_back({near[i], f});
-  }
-  // Two role assignments may both find one row: keep its nearer use.
-  std::stable_sort(found.begin(), found.end(),
-                   [](const Found& a, const Found& b) { return a.near.distance < b.near.distance; });
-  std::vector<Found> unique;
-  for (const Found& f : found)
-    if (std::none_of(unique.begin(), unique.end(), [&](const Found& u) { return u.near.id == f.near.id; }))
-      unique.push_back(f);
-  if (unique.size() > k - std::min(k, skip)) unique.resize(k - std::min(k, skip));
-  std::vector<Neighbor> ids;
-  for (const Found& f : unique) ids.push_back(f.near);
-  std::vector<Match> rows = store.read(ids);
   std::vector<Candidate> out;
-  for (std::size_t i = 0, r = 0; i < unique.size() && r < rows.size(); ++i) {
-    if (rows[r].experience.id != unique[i].near.id) continue;  // skipped: could not be read
-    const Canonical& form = forms[unique[i].form];
-    out.push_back({rows[r].experience.id, rows[r].distance, fitResolution(robots, form.fromCanonical(rows[r].experience.paths))});
-    ++r;
-  }
-  return out;
+  for (const Canonical& form : forms)
+    for (Match& m : store.nearest(form.cls, form.key, k, skip))
+      out.push_back({m.experience.id, m.distance, fitResolution(robots, form.fromCanonical(m.experience.paths))});
+  // Two role assignments may both find one row: keep its nearer use.
+  std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  std::vector<Candidate> unique;
+  for (Candidate& c : out)
+    if (std::none_of(unique.begin(), unique.end(), [&](const Candidate& u) { return u.id == c.id; }))
+      unique.push_back(std::move(c));
+  if (unique.size() > k - std::min(k, skip)) unique.resize(k - std::min(k, skip));
+  return unique;
 }
 
 std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,

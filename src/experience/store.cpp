@@ -232,37 +232,28 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
   requireOpen();
   return conn_->read([&] {
     refreshLocked();
+    std::vector<Match> out;
     const ClassIndex* index = index_.find(cls);
-    if (!index || index->dim() != key.size()) return std::vector<Match>{};
+    if (!index || index->dim() != key.size()) return out;
     const std::vector<Neighbor> near = index->nearest(key, k);
-    return readLocked(std::span<const Neighbor>(near).subspan(std::min(skip, near.size())));
-  });
-}
-
-std::vector<Match> ExperienceStore::read(std::span<const Neighbor> near) {
-  std::lock_guard lock(mutex_);
-  requireOpen();
-  return conn_->read([&] { return readLocked(near); });
-}
-
-std::vector<Match> ExperienceStore::readLocked(std::span<const Neighbor> near) {
-  std::vector<Match> out;
-  for (const Neighbor& n : near) {
-    try {
-      if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
-    } catch (const CorruptRowError& e) {
-      warnSkipped(n.id, e.reason());
-    } catch (const DamagedDatabaseError& e) {
-      // A check still running in the background has the verdict on the
-      // whole file: a damaged file ends planning with its error.
-      // (Only the verdict: this is a read transaction, no place to write.)
-      joinCheckLocked();
-      // The file was damaged after it was opened (quick_check passed then):
-      // this row cannot be read; planning goes on without it.
-      warnSkipped(n.id, e.what());
+    for (std::size_t i = skip; i < near.size(); ++i) {
+      const Neighbor& n = near[i];
+      try {
+        if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
+      } catch (const CorruptRowError& e) {
+        warnSkipped(n.id, e.reason());
+      } catch (const DamagedDatabaseError& e) {
+        // A check still running in the background has the verdict on the
+        // whole file: a damaged file ends planning with its error.
+        // (Only the verdict: this is a read transaction, no place to write.)
+        joinCheckLocked();
+        // The file was damaged after it was opened (quick_check passed then):
+        // this row cannot be read; planning goes on without it.
+        warnSkipped(n.id, e.what());
+      }
     }
-  }
-  return out;
+    return out;
+  });
 }
 
 std::vector<Neighbor> ExperienceStore::nearestIds(const ExperienceClass& cls, std::span<const double> key,

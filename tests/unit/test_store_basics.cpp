@@ -233,14 +233,6 @@ TEST_CASE("a row with a corrupt path blob is skipped by retrieval and named when
   auto found = store.nearest(e.cls, e.key, 5);
   REQUIRE(found.size() == 1);
   CHECK(found.front().experience.id != bad);
-  // Read by id, the same: the corrupt row and one deleted meanwhile left out.
-  const auto ids = store.nearestIds(e.cls, e.key, 5);
-  REQUIRE(ids.size() == 2);
-  auto read = store.read(ids);
-  REQUIRE(read.size() == 1);
-  CHECK(read.front().experience.id == found.front().experience.id);
-  CHECK(read.front().distance == found.front().distance);
-  CHECK(store.read(std::vector<Neighbor>{{found.front().experience.id + 100, 0.0}}).empty());
   CHECK_THROWS_WITH_AS(store.get(bad), doctest::Contains(("row " + std::to_string(bad)).c_str()), CorruptRowError);
 }
 

@@ -122,10 +122,6 @@ class ExperienceStore {
                              std::size_t skip = 0);
   // The same search without reading rows: ids and distances only.
   std::vector<Neighbor> nearestIds(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
-  // The rows of `near` (nearestIds' answers), decoded and checked, in that
-  // order; rows that fail decoding, or that another connection deleted
-  // meanwhile, are skipped, as nearest skips them.
-  std::vector<Match> read(std::span<const Neighbor> near);
   std::optional<Experience> get(std::int64_t id);
 
   // Stores e unless an entry of its class lies within near_duplicate_eps in
@@ -166,7 +162,6 @@ class ExperienceStore {
   void loadTailLocked();
   std::int64_t metaLocked(const char* name);
   std::optional<Experience> fetchLocked(std::int64_t id);
-  std::vector<Match> readLocked(std::span<const Neighbor> near);
   std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps);
   void flushLocked();
   void afterWriteLocked();
