@@ -87,7 +87,8 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
   for (Candidate& c : out)
     if (std::none_of(unique.begin(), unique.end(), [&](const Candidate& u) { return u.id == c.id; }))
       unique.push_back(std::move(c));
-  if (unique.size() > k - std::min(k, skip)) unique.resize(k - std::min(k, skip));
+  const std::size_t wanted = k - std::min(k, skip);
+  if (unique.size() > wanted) unique.resize(wanted);
   return unique;
 }
 

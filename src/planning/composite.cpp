@@ -107,24 +107,19 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
 const PlacedBodies& BodiesAlongPaths::at(std::size_t w, std::size_t t, int k) {
   const std::size_t i = 2 * t + static_cast<std::size_t>(k);
   auto& placed = placed_[w];
-  auto& known = known_[w];
-  if (placed.size() <= i) {
-    placed.resize(i + 1);
-    known.resize(i + 1, 0);
-  }
-  if (!known[i]) {
+  if (placed.size() <= i) placed.resize(i + 1);
+  if (placed[i].empty()) {
     const RobotModel& m = *robots_[w];
     q_.resize(static_cast<std::size_t>(m.dim()));
     m.interpolate(paths_[w].at(t), paths_[w].at(t + 1), static_cast<double>(k) / 2, q_.data());
     placed[i].place(m, q_.data());
-    known[i] = 1;
   }
   return placed[i];
 }
 
 void BodiesAlongPaths::forget(std::size_t w, std::size_t t) {
-  auto& known = known_[w];
-  for (std::size_t i = 2 * t; i < known.size(); ++i) known[i] = 0;
+  auto& placed = placed_[w];
+  for (std::size_t i = 2 * t; i < placed.size(); ++i) placed[i].bodies.clear();  // placed again when asked
 }
 
 bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const double*>& a,

@@ -40,7 +40,7 @@ struct KnownValid {
 class BodiesAlongPaths {
  public:
   BodiesAlongPaths(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths)
-      : robots_(robots), paths_(paths), placed_(paths.size()), known_(paths.size()) {}
+      : robots_(robots), paths_(paths), placed_(paths.size()) {}
   const PlacedBodies& at(std::size_t w, std::size_t t, int k);
   // Robot w's path changed from step t on.
   void forget(std::size_t w, std::size_t t);
@@ -48,8 +48,7 @@ class BodiesAlongPaths {
  private:
   const std::vector<const RobotModel*>& robots_;
   const std::vector<Path>& paths_;
-  std::vector<std::vector<PlacedBodies>> placed_;  // [w][2 t + k]
-  std::vector<std::vector<char>> known_;
+  std::vector<std::vector<PlacedBodies>> placed_;  // [w][2 t + k], empty until placed (as MotionGuard's)
   std::vector<double> q_;
 };
 
