@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <map>
 
 #include "earc/planning/solver.hpp"
@@ -62,6 +63,10 @@ Roadmap& RoadmapSet::forRobot(int robot) {
     rm->grow(initialSamples(robot));
   }
   return *rm;
+}
+
+std::size_t RoadmapSet::built() const {
+  return static_cast<std::size_t>(std::count_if(roadmaps_.begin(), roadmaps_.end(), [](const auto& rm) { return rm != nullptr; }));
 }
 
 std::size_t RoadmapSet::edgeChecks() const {

@@ -2,6 +2,7 @@
 // and whole plans that must validate.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <map>
 #include <random>
 #include <set>
@@ -400,6 +401,36 @@ TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle
   CHECK(&roadmaps.forRobot(2) != &roadmaps.forRobot(0));  // an obstacle within reach
   CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(0));  // its reach crosses the workspace edge
   CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(2));
+}
+
+TEST_CASE("A robot whose straight motion is free takes it without a roadmap; a wall makes it build one") {
+  Scenario s = openScenario(6);
+  s.robots = {disc("free", 0.3, {1, 1, 0}, {5, 1, 0}), disc("walled", 0.3, {1, 4.5, 0}, {5, 4.5, 0})};
+  // A wall across the second robot's straight line, with room to go round
+  // it above and below.
+  s.obstacles.push_back(Obstacle::makeBox({3, 4.5}, {0.2, 1.0}));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  const Deadline deadline(10);
+
+  auto free = individualPath(world, roadmaps, *m.raw[0], 0, deadline, 1);
+  REQUIRE(free.has_value());
+  CHECK(roadmaps.built() == 0);
+  // Exactly the straight motion, one step per resolution unit.
+  CHECK(free->size() == static_cast<std::size_t>(m.raw[0]->stepsBetween(s.robots[0].start.data(), s.robots[0].goal.data())) + 1);
+  for (std::size_t t = 0; t < free->size(); ++t) CHECK(free->at(t)[1] == doctest::Approx(1.0));
+
+  auto walled = individualPath(world, roadmaps, *m.raw[1], 1, deadline, 1);
+  REQUIRE(walled.has_value());
+  CHECK(roadmaps.built() == 1);
+  // Round the wall: somewhere off the straight line, never in the wall.
+  bool detours = false;
+  for (std::size_t t = 0; t < walled->size(); ++t) {
+    detours = detours || std::abs(walled->at(t)[1] - 4.5) > 0.5;
+    CHECK(world.stateValid(*m.raw[1], walled->at(t)));
+  }
+  CHECK(detours);
 }
 
 TEST_CASE("A space-time search among crossing robots returns paths clear of them at every instant") {

@@ -28,6 +28,8 @@ class RoadmapSet {
   Roadmap& forRobot(int robot);
   int initialSamples(int robot) const;
   std::size_t edgeChecks() const;
+  // Roadmaps built so far (each when a robot first needed it).
+  std::size_t built() const;
 
  private:
   const CollisionWorld& world_;
