@@ -268,44 +268,60 @@ std::string jobsNote(const std::vector<TrialRecord>& trials) {
 
 namespace {
 
-// Which builds of `program` did `verb` the trials, by the build each trial
-// recorded in `field`, in one line (see versionNote).
-std::string buildsNote(const std::vector<TrialRecord>& trials, std::string TrialRecord::*field, std::string_view verb,
-                       std::string_view program, std::string_view consequence, std::string_view unknown_what,
-                       std::string_view unknown_why) {
+// One build column of the trials (which planner planned them, which
+// earc-bench timed them) and how the note names it.
+struct BuildColumn {
+  std::string TrialRecord::*field;
+  std::string_view verb;          // "Planned"
+  std::string_view program;       // "earc"
+  std::string_view consequence;   // of more than one build
+  std::string_view unknown_what;  // of trials that do not say
+  std::string_view unknown_why;
+};
+
+// Which builds of the column's program did its verb to the trials, by the
+// build each trial recorded, in one line (see versionNote).
+std::string buildsNote(const std::vector<TrialRecord>& trials, const BuildColumn& column) {
   if (trials.empty()) return "";
-  const auto [by_version, unknown] = countBy(trials, [&](const TrialRecord& t) {
-    const std::string& v = t.*field;
+  const auto [by_version, unknown] = countBy(trials, [&column](const TrialRecord& t) {
+    const std::string& v = t.*column.field;
     return v.empty() ? std::nullopt : std::optional<std::string>(v);
   });
-  const std::string prefix = std::string(verb) + " by ";
+  const std::string prefix = std::string(column.verb) + " by ";
   std::string note;
   if (by_version.size() == 1) {
-    note = prefix + std::string(program) + " " + by_version.begin()->first + ".";
+    note = prefix + std::string(column.program) + " " + by_version.begin()->first + ".";
   } else if (by_version.size() > 1) {
     note = prefix + std::to_string(by_version.size()) + " builds:";
     bool first = true;
     for (const auto& [version, count] : by_version) {
-      note += std::string(first ? " " : ", ") + std::string(program) + " " + version + " (" + trialCount(count) + ")";
+      note += std::string(first ? " " : ", ") + std::string(column.program) + " " + version + " (" + trialCount(count) + ")";
       first = false;
     }
-    note += ": " + std::string(consequence) + ".";
+    note += ": " + std::string(column.consequence) + ".";
   }
-  addNotRecorded(note, unknown_what, unknown, unknown_why);
+  addNotRecorded(note, column.unknown_what, unknown, column.unknown_why);
   return note;
 }
 
 }  // namespace
 
 std::string versionNote(const std::vector<TrialRecord>& trials) {
-  return buildsNote(trials, &TrialRecord::planner_version, "Planned", "earc", "their times are of different code",
-                    "Which build planned", "results from before schema version 3, or a planner that does not say");
+  return buildsNote(trials, {.field = &TrialRecord::planner_version,
+                             .verb = "Planned",
+                             .program = "earc",
+                             .consequence = "their times are of different code",
+                             .unknown_what = "Which build planned",
+                             .unknown_why = "results from before schema version 3, or a planner that does not say"});
 }
 
 std::string benchNote(const std::vector<TrialRecord>& trials) {
-  return buildsNote(trials, &TrialRecord::bench_version, "Timed", "earc-bench",
-                    "they were run and timed by different code", "Which earc-bench timed",
-                    "results from before schema version 4");
+  return buildsNote(trials, {.field = &TrialRecord::bench_version,
+                             .verb = "Timed",
+                             .program = "earc-bench",
+                             .consequence = "they were run and timed by different code",
+                             .unknown_what = "Which earc-bench timed",
+                             .unknown_why = "results from before schema version 4"});
 }
 
 std::string trialsNotes(const std::vector<TrialRecord>& trials) {
