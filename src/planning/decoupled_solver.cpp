@@ -353,6 +353,10 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   const std::size_t n = sub.robots.size();
   const std::size_t window = sub.t_end - sub.t_start;  // steps in the replaced span
   const std::size_t horizon = 4 * window + 100;
+  // Roadmaps are built when a robot first needs one (see individualPath):
+  // build this subproblem's before the search's budget starts, so that
+  // building one does not take the search's time.
+  for (int robot : sub.robots) ctx.roadmaps.forRobot(robot);
   const Deadline deadline = ctx.deadline.capped(settings_.time_budget_s * ctx.budget_scale);
   std::size_t max_expansions = settings_.max_expansions;
   if (settings_.expansions_per_horizon_step > 0)

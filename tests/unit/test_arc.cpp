@@ -240,6 +240,30 @@ TEST_CASE("A subproblem's window spans the conflict and its local query lies on 
   CHECK_FALSE(sub.whole_problem);
 }
 
+TEST_CASE("The decoupled solver builds its robots' roadmaps before its time budget starts") {
+  // The discs' straight paths need no roadmap; the solver needs them, and
+  // building them is not the search's time: with a budget of zero the
+  // search gives up at once, yet the roadmap is there.
+  CrossingFixture f;
+  RobotModels m(f.s);
+  CollisionWorld world(f.s);
+  PlannerSettings settings;
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(f.paths));
+  REQUIRE(c.has_value());
+  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  REQUIRE(roadmaps.built() == 0);
+  SolverContext ctx{world, m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
+  DecoupledSettings none;
+  none.time_budget_s = 0;
+  CHECK_FALSE(DecoupledSolver(none).solve(ctx).solution.has_value());
+  CHECK(roadmaps.built() == 1);  // equal discs share one
+  // With time, the same subproblem is solved on that roadmap.
+  CHECK(DecoupledSolver().solve(ctx).solution.has_value());
+  CHECK(roadmaps.built() == 1);
+}
+
 TEST_CASE("Expanding a subproblem doubles its window and grows its region until it is the whole problem") {
   CrossingFixture f;
   RobotModels m(f.s);
