@@ -1,4 +1,4 @@
--- The experience database schema, current version (4).
+-- The experience database schema, current version (5).
 --
 -- This file documents the schema; the program never runs it. Databases are
 -- created and upgraded only by the numbered migrations in ../migrations/,
@@ -11,7 +11,7 @@
 -- schema version. A program refuses files with another application_id and
 -- files whose user_version is newer than its own.
 PRAGMA application_id = 1161908803;
-PRAGMA user_version = 4;
+PRAGMA user_version = 5;
 
 -- One row per solved subproblem, in canonical form
 -- (include/earc/experience/keys.hpp).
@@ -53,3 +53,17 @@ CREATE TRIGGER experiences_count_deletions AFTER DELETE ON experiences
 BEGIN
   UPDATE store_meta SET value = value + 1 WHERE name = 'deletions';
 END;
+
+-- What was done to the file, and by which build (include/earc/experience/
+-- history.hpp): one line per open that changed it, kept up to date in the
+-- same transaction as each change it counts.
+CREATE TABLE history (
+  id           INTEGER PRIMARY KEY AUTOINCREMENT,  -- order of first change
+  token        INTEGER NOT NULL,  -- random per open: the line it keeps up to date
+  at           INTEGER NOT NULL,  -- Unix seconds, UTC, of the first change
+  program      TEXT    NOT NULL,  -- earc build, as `earc-db --version` prints it
+  operation    TEXT    NOT NULL CHECK (operation IN ('create', 'migrate', 'build', 'import', 'curate', 'learn')),
+  detail       TEXT    NOT NULL DEFAULT '',  -- for people: options, sources, session
+  rows_added   INTEGER NOT NULL DEFAULT 0,
+  rows_removed INTEGER NOT NULL DEFAULT 0
+);

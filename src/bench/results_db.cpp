@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "earc/bench/options.hpp"
+#include "earc/experience/history.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
@@ -327,13 +328,6 @@ bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) 
   return s.step();
 }
 
-std::string utcNow() {
-  std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
+std::string utcNow() { return exp::utcTimeText(std::time(nullptr)); }
 
 }  // namespace earc::bench

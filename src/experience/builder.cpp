@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -212,6 +213,26 @@ std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& ar
   return out;
 }
 
+namespace {
+
+// The build's line in the database's history: what was asked for.
+std::string buildDescription(const BuildSettings& s, std::size_t arm_pair_classes) {
+  std::ostringstream out;
+  out << s.count << (s.kind == RobotKind::Mobile ? " mobile problems" : " arm pair problems") << ", seed " << s.seed;
+  if (s.kind == RobotKind::Mobile) {
+    out << ", mix 2/3/4 robots";
+    for (std::size_t i = 0; i < s.mobile_mix.size(); ++i) out << (i ? "/" : " ") << s.mobile_mix[i];
+    out << ", " << s.mobile_robots.size() << " footprint" << (s.mobile_robots.size() == 1 ? "" : "s");
+  } else {
+    out << ", " << s.arms.size() << " arms, " << arm_pair_classes << " pair class"
+        << (arm_pair_classes == 1 ? "" : "es");
+  }
+  out << ", " << s.time_per_problem_s << " s a problem";
+  return out.str();
+}
+
+}  // namespace
+
 BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested, Progress* progress) {
   const BuildSettings s = withDefaults(requested);
   const auto start = Clock::now();
@@ -220,6 +241,7 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
     arm_pairs = armPairClasses(s.arms, s.resolution);
     if (arm_pairs.empty()) throw std::invalid_argument("build: no two arms of the layout can reach each other");
   }
+  store.describeHistory("build", buildDescription(s, arm_pairs.size()));
   const std::size_t n = static_cast<std::size_t>(s.count);
   std::vector<std::optional<ProblemResult>> results(n);
   std::mutex mutex;

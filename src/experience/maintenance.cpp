@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 
 #include "earc/experience/key_index.hpp"
 #include "earc/experience/path_blob.hpp"
@@ -151,7 +152,7 @@ std::int64_t rewriteOlderBlobs(Connection& db) {
 
 }  // namespace
 
-InspectReport inspectDatabase(const std::string& path, int sample_entries) {
+InspectReport inspectDatabase(const std::string& path, int sample_entries, int history_lines) {
   ExperienceStore store(path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   InspectReport r;
@@ -197,6 +198,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries) {
       // inspect shows what it can; verify names the bad rows
     }
   }
+  r.history = readHistory(db, r.schema_version, history_lines);
   db.exec("COMMIT");
   return r;
 }
@@ -255,12 +257,39 @@ VerifyReport verifyDatabase(const std::string& path) {
 
 namespace {
 
+// The curate's line in the database's history: its options.
+std::string curateDescription(const CurateSettings& s, const std::string& copy_of) {
+  std::ostringstream out;
+  if (!copy_of.empty()) out << "copy of " << copy_of << ":";
+  auto add = [&](const std::string& part) { out << (out.tellp() > 0 ? " " : "") << part; };
+  for (const std::string& m : s.merge) add("--merge " + m);
+  if (s.dedupe_eps >= 0) {
+    std::ostringstream eps;
+    eps << s.dedupe_eps;
+    add("--dedupe " + eps.str());
+  }
+  if (s.drop_unused)
+    add("--drop-unused" +
+        (s.older_than_sessions > 0 ? " --older-than-sessions " + std::to_string(s.older_than_sessions) : ""));
+  for (const std::string& b : s.drop_made_by) add("--drop-made-by \"" + b + "\"");
+  if (s.compact) add("--compact");
+  if (s.vacuum) add("--vacuum");
+  return out.str();
+}
+
 // Curates the database file at `target` in place.
-CurateReport curateFile(const std::string& target, const CurateSettings& settings) {
+// copy_of: the original, when this is the -o copy.
+CurateReport curateFile(const std::string& target, const CurateSettings& settings, const std::string& copy_of = {}) {
   CurateReport r;
   r.curated_path = target;
   ExperienceStore store(target, wholeFileStoreOptions(false));  // curation is not a planning session
+  store.describeHistory("curate", curateDescription(settings, copy_of));
   Connection& db = store.connection();
+  // Rows deleted by a step, counted on the history line in its transaction.
+  auto removed = [&](std::int64_t n) {
+    store.history().record(db, store.schemaVersion(), 0, n);
+    return n;
+  };
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
   if (!settings.merge.empty()) {
     ImportSettings merge;
@@ -268,7 +297,8 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     r.merged = static_cast<std::int64_t>(importInto(store, settings.merge, merge).inserted);
   }
   if (settings.dedupe_eps >= 0)
-    r.duplicates_removed = db.write([&] { return deleteIds(db, nearDuplicates(db, store.schemaVersion(), settings.dedupe_eps)); });
+    r.duplicates_removed =
+        db.write([&] { return removed(deleteIds(db, nearDuplicates(db, store.schemaVersion(), settings.dedupe_eps))); });
   if (settings.drop_unused)
     r.unused_removed = db.write([&] {
       Statement del = db.prepare(
@@ -276,21 +306,23 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
           "(SELECT value FROM store_meta WHERE name = 'sessions') - ?1");
       del.bind(1, settings.older_than_sessions);
       del.run();
-      return static_cast<std::int64_t>(sqlite3_changes(db.handle()));
+      return removed(sqlite3_changes(db.handle()));
     });
   if (!settings.drop_made_by.empty())
     r.made_by_removed = db.write([&] {
       Statement del = db.prepare("DELETE FROM experiences WHERE made_by = ?1");
-      std::int64_t removed = 0;
+      std::int64_t n = 0;
       for (const std::string& build : settings.drop_made_by) {
         del.bind(1, std::string_view(build));
         del.run();
-        removed += sqlite3_changes(db.handle());
+        n += sqlite3_changes(db.handle());
         del.reset();
       }
-      return removed;
+      return removed(n);
     });
   if (settings.compact) r.blobs_rewritten = db.write([&] { return rewriteOlderBlobs(db); });
+  // A curate that changed no rows says so too.
+  db.write([&] { store.history().record(db, store.schemaVersion(), 0, 0, true); });
   if (settings.vacuum || settings.compact) db.exec("VACUUM");
   r.rows_after = count(db, "SELECT count(*) FROM experiences");
   // Damaged rows that curation kept: said, not passed on silently. The
@@ -356,7 +388,7 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   removeDatabaseFiles(tmp);
   try {
     copyDatabase(path, tmp);
-    CurateReport r = curateFile(tmp, settings);
+    CurateReport r = curateFile(tmp, settings, path);
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, out.c_str(), RENAME_NOREPLACE) != 0) {
       const int err = errno;
       throw InputError(out, "", err == EEXIST ? std::string("already exists; not overwriting it")

@@ -2,12 +2,14 @@
 
 #include <filesystem>
 
+#include "earc/experience/history.hpp"
+
 namespace earc::exp {
 
 namespace {
 
 // The tables each schema version has.
-constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}};
+constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}, {"history", kHistorySchemaVersion}};
 
 }  // namespace
 
@@ -39,15 +41,25 @@ int checkIdentity(Connection& db) {
 int migrate(Connection& db, int target) {
   if (target < 0) target = currentSchemaVersion();
   const auto steps = migrations();
+  int from = -1;  // the version before this call's first step
   for (;;) {
     // Each step re-reads the version inside its own write transaction, so
     // two processes opening a new file at once apply every step once.
     int reached = db.write([&]() -> int {
       int version = checkIdentity(db);
       if (version >= target) return version;
+      if (from < 0) from = version;
       const Migration& m = steps[static_cast<std::size_t>(version)];
       db.exec(m.sql);
       db.exec("PRAGMA user_version = " + std::to_string(m.version));
+      // The last step says in the history who created or migrated the
+      // file, in its own transaction: a crash before it leaves no line.
+      if (m.version == target) {
+        const std::string to = "schema " + std::to_string(target);
+        HistoryWriter(from == 0 ? "create" : "migrate", from == 0 ? to : "schema " + std::to_string(from) + " to " +
+                                                                        std::to_string(target))
+            .record(db, m.version, 0, 0, true);
+      }
       return -1;
     });
     if (reached >= 0) return reached;

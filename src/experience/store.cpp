@@ -266,6 +266,12 @@ std::vector<Neighbor> ExperienceStore::nearestIds(const ExperienceClass& cls, st
   return index->nearest(key, k);
 }
 
+void ExperienceStore::describeHistory(std::string operation, std::string detail) {
+  std::lock_guard lock(mutex_);
+  history_.describe(std::move(operation), std::move(detail));
+  history_described_ = true;
+}
+
 std::optional<Experience> ExperienceStore::get(std::int64_t id) {
   std::lock_guard lock(mutex_);
   requireOpen();
@@ -310,6 +316,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     Statement insert = conn_->prepare(insertExperienceSql());
     std::vector<std::optional<std::int64_t>> result;
     result.reserve(rows.size());
+    std::int64_t stored = 0;
     for (const Experience& e : rows) {
       if (eps >= 0 && (within(index_.find(e.cls), e) || within(batch_index.find(e.cls), e))) {
         result.push_back(std::nullopt);
@@ -324,7 +331,10 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
         if (result.size() % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
       }
       result.push_back(id);
+      ++stored;
     }
+    if (!history_described_) history_.describe("learn", "planning session " + std::to_string(session_));
+    history_.record(*conn_, version_, stored, 0);
     return result;
   });
   // Committed: now the rows may enter the in-memory index.

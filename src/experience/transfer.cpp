@@ -1,5 +1,6 @@
 #include "earc/experience/transfer.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -249,7 +250,8 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path)
   count.step();
   const std::int64_t rows = count.int64At(0);
   count.reset();
-  out << json{{"format", kExportFormat}, {"schema_version", store.schemaVersion()}, {"rows", rows}}.dump() << "\n";
+  out << json{{"format", kExportFormat}, {"schema_version", std::min(store.schemaVersion(), kExperienceRowsSchemaVersion)},
+                {"rows", rows}}.dump() << "\n";
   Statement select = db.prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
   std::size_t written = 0;
   while (select.step()) {

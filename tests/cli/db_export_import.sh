@@ -36,9 +36,17 @@ sys.exit(not rows or any(r["made_by"] != sys.argv[2] for r in rows))
 PY
 "$DB" inspect --db "$WORK/b.db" > "$WORK/out" || fail "inspect exited $?"
 grep -q "^made by   $build (40)$" "$WORK/out" || fail "inspect: no made-by line: $(cat "$WORK/out")"
+# ...and its history says who created the file and what the import added.
+grep -q "  create  by $build: schema " "$WORK/out" || fail "inspect: no creation in the history: $(cat "$WORK/out")"
+grep -q "  import  by $build, +40 -0 rows: from $WORK/a.jsonl$" "$WORK/out" ||
+  fail "inspect: no import in the history: $(cat "$WORK/out")"
 "$DB" curate --db "$WORK/b.db" --drop-made-by "$build" -o "$WORK/none.db" > "$WORK/out" || fail "curate --drop-made-by exited $?"
 grep -q "40 of the builds named removed, 0 rows after" "$WORK/out" || fail "curate --drop-made-by said: $(cat "$WORK/out")"
 [ "$(count "$WORK/b.db")" = 40 ] || fail "curate -o changed the original"
+"$DB" inspect --db "$WORK/none.db" --history 1 > "$WORK/out" || fail "inspect of the curated copy exited $?"
+grep -q "^history (last 1 of 3):$" "$WORK/out" || fail "inspect --history 1: $(cat "$WORK/out")"
+grep -q "  curate  by $build, +0 -40 rows: copy of $WORK/b.db: --drop-made-by \"$build\"$" "$WORK/out" ||
+  fail "inspect: no curate in the copy's history: $(cat "$WORK/out")"
 
 # -q: the same work and nothing printed, as build and plan do with -q.
 "$DB" export --db "$WORK/a.db" -o "$WORK/q.jsonl" -q > "$WORK/out" 2>&1 || fail "export -q exited $?"

@@ -29,6 +29,13 @@ sessions=$(q "$F" "select value from store_meta where name = 'sessions'")
 [ "$(q "$F" "select value from store_meta where name = 'sessions'")" -eq $((sessions + 1)) ] ||
   fail "a learning plan did not count its session"
 [ "$(q "$F" "select sum(retrieved_count) from experiences")" -gt 0 ] || fail "no usage counted while learning"
+# A plan on a new file solves from scratch and learns: the file's history
+# says who created it and counts what the session learned.
+"$PLAN" plan "$SCEN" -o "$WORK/n.json" --method earc --db "$WORK/new.db" --seed 1 -q || fail "plan, new file: exit $?"
+learned=$(stat_of "$WORK/n.json" db_learned)
+[ "$learned" -gt 0 ] || fail "a plan on an empty database learned nothing"
+[ "$(q "$WORK/new.db" "select group_concat(operation || ' ' || rows_added || ' ' || detail, '; ') from history")" = \
+  "create 0 schema 5; learn $learned planning session 1" ] || fail "the history does not count what the plan learned"
 leftNothingBeside "$F" "a learning plan"
 
 # --no-learn: the same file, byte for byte.

@@ -82,6 +82,13 @@ TEST_CASE("two processes inserting into one new file at once lose no row and dup
   CHECK(max_count == 1);
   for (int child = 0; child < 2; ++child)
     for (int i = 0; i < kRowsPerChild; ++i) CHECK(markers.count(child * 1000 + i) == 1);
+  // One creation (whichever child won the race) and one line per child
+  // counting its own rows.
+  const HistoryTail history = readHistory(c, currentSchemaVersion(), 10);
+  REQUIRE(history.lines.size() == 3);
+  CHECK(history.lines[0].operation == "create");
+  CHECK(history.lines[1].rows_added == kRowsPerChild);
+  CHECK(history.lines[2].rows_added == kRowsPerChild);
   CHECK(c.pragmaInt("user_version") == currentSchemaVersion());
 }
 
@@ -148,6 +155,14 @@ TEST_CASE("a writer killed at random moments loses no reported commit and leaves
     std::set<std::int64_t> stored;
     while (rows.step()) stored.insert(rows.int64At(0));
     for (std::int64_t m : reported) CHECK_MESSAGE(stored.count(m) == 1, "reported commit " << m << " is missing");
+    // Each killed writer's history line counts exactly its committed rows.
+    Statement per_round = c.prepare("SELECT CAST(solve_time_s AS INTEGER) / 100000, count(*) FROM experiences GROUP BY 1");
+    std::vector<std::int64_t> committed;
+    while (per_round.step()) committed.push_back(per_round.int64At(1));
+    std::vector<std::int64_t> counted;
+    for (const HistoryLine& l : readHistory(c, currentSchemaVersion(), 100).lines)
+      if (l.operation == "learn") counted.push_back(l.rows_added);
+    CHECK(counted == committed);
   }
   CHECK(verifyDatabase(path).ok());
   ExperienceStore reopened(path);  // and the file is usable for writing again

@@ -157,6 +157,12 @@ TEST_CASE("a file at every earlier schema version is migrated to the current one
       ExperienceStore store(path, options);
       CHECK(store.schemaVersion() == currentSchemaVersion());
       CHECK(store.size() == (v >= 1 ? 1u : 0u));
+      // The history says who created or migrated the file, and from what.
+      const HistoryTail history = readHistory(store.connection(), store.schemaVersion(), 10);
+      REQUIRE(history.lines.size() == 1);
+      CHECK(history.lines[0].operation == (v == 0 ? "create" : "migrate"));
+      const std::string now = std::to_string(currentSchemaVersion());
+      CHECK(history.lines[0].detail == (v == 0 ? "schema " + now : "schema " + std::to_string(v) + " to " + now));
       if (v >= 1) {
         auto row = store.get(1);
         REQUIRE(row.has_value());

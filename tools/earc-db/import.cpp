@@ -3,6 +3,7 @@
 // before anything is written; the import applies in one transaction, so a
 // bad row anywhere means nothing is imported (exit 2, the row named).
 #include <iostream>
+#include <sstream>
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/schema.hpp"
@@ -35,6 +36,12 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
     earc::exp::StoreOptions options;
     options.new_session = false;
     earc::exp::ExperienceStore store(opt.db, options);
+    std::ostringstream from;
+    from << "from";
+    for (const auto& in : opt.inputs) from << " " << in;
+    if (opt.dedupe >= 0) from << ", --dedupe " << opt.dedupe;
+    if (opt.mark_imported) from << ", --mark-imported";
+    store.describeHistory("import", from.str());
     return earc::exp::insertImported(store, rows, settings);
   });
   out << "imported " << report.inserted << " of " << report.read << " rows into " << opt.db;

@@ -3,7 +3,6 @@
 // readable form. Never writes.
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
@@ -13,10 +12,13 @@ namespace {
 
 // Builds named on the "made by" line.
 constexpr std::size_t kListedBuilds = 5;
+// Characters of a history line's detail shown.
+constexpr std::size_t kShownDetail = 110;
 
 struct InspectOptions {
   std::string db;
   int entries = 3;
+  int history = 10;
 };
 
 std::string bytes(std::int64_t n) {
@@ -37,15 +39,6 @@ std::string number(double v, int decimals) {
   return buf;
 }
 
-std::string isoTime(std::int64_t unix_seconds) {
-  std::time_t t = static_cast<std::time_t>(unix_seconds);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::string state(const earc::Path& p, std::size_t t) {
   std::string s = "(";
   for (int d = 0; d < p.dim(); ++d) s += (d ? ", " : "") + number(p.at(t)[d], 3);
@@ -55,15 +48,37 @@ std::string state(const earc::Path& p, std::size_t t) {
 void printEntry(const earc::exp::Experience& e, std::ostream& out) {
   out << "  #" << e.id << " " << earc::exp::kindName(e.cls.kind) << " x" << e.cls.robot_count
       << (e.cls.base_class.empty() ? "" : " ") << e.cls.base_class << ": cost " << number(e.cost, 0) << " steps, "
-      << earc::exp::sourceName(e.source) << ", " << isoTime(e.created_at) << ", solve " << number(e.solve_time_s, 3)
+      << earc::exp::sourceName(e.source) << ", " << earc::exp::utcTimeText(e.created_at) << ", solve " << number(e.solve_time_s, 3)
       << " s, used " << e.succeeded << "/" << e.retrieved << (e.made_by.empty() ? "" : ", by " + e.made_by) << "\n";
   for (std::size_t r = 0; r < e.paths.size(); ++r)
     out << "     robot " << r << ": " << state(e.paths[r], 0) << " -> " << state(e.paths[r], e.paths[r].size() - 1)
         << " in " << e.paths[r].size() - 1 << " steps\n";
 }
 
+// The last lines of the file's history, oldest first.
+void printHistory(const earc::exp::HistoryTail& h, int schema_version, std::ostream& out) {
+  if (schema_version < earc::exp::kHistorySchemaVersion) {
+    out << "\nhistory: none kept before schema version " << earc::exp::kHistorySchemaVersion
+        << " (the next read-write open migrates the file and starts it)\n";
+    return;
+  }
+  if (h.lines.empty()) return;
+  out << "\nhistory";
+  if (h.total > static_cast<std::int64_t>(h.lines.size())) out << " (last " << h.lines.size() << " of " << h.total << ")";
+  out << ":\n";
+  for (const auto& l : h.lines) {
+    out << "  " << earc::exp::utcTimeText(l.at) << "  " << l.operation << "  by " << l.program;
+    if (l.rows_added || l.rows_removed || l.operation == "build" || l.operation == "import" || l.operation == "curate")
+      out << ", +" << l.rows_added << " -" << l.rows_removed << " rows";
+    // Bounded like every inspect line (details keep up to 500 characters).
+    if (!l.detail.empty())
+      out << ": " << (l.detail.size() <= kShownDetail ? l.detail : l.detail.substr(0, kShownDetail - 3) + "...");
+    out << "\n";
+  }
+}
+
 void runInspect(const InspectOptions& opt, std::ostream& out) {
-  const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::inspectDatabase(opt.db, opt.entries); });
+  const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::inspectDatabase(opt.db, opt.entries, opt.history); });
   out << "database  " << r.path << "\n"
       << "schema    version " << r.schema_version << " (application_id 0x45415243 \"EARC\")\n"
       << "size      " << bytes(r.file_bytes) << " file, " << bytes(r.wal_bytes) << " WAL; blobs "
@@ -101,7 +116,7 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
   if (!r.samples.empty()) {
     out << "\nfirst " << r.samples.size() << " entries:\n";
     for (const auto& e : r.samples) printEntry(e, out);
-  }
+  }  printHistory(r.history, r.schema_version, out);
 }
 
 void setupInspect(CLI::App& app) {
@@ -109,6 +124,8 @@ void setupInspect(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("inspect", "Show what an experience database holds (read-only)");
   sub->add_option("--db", opt->db, "Experience database file")->required();
   sub->add_option("--entries", opt->entries, "Entries to show in readable form")->check(CLI::Range(0, 1000));
+  sub->add_option("--history", opt->history, "Lines of the file's history to show (the last ones)")
+      ->check(CLI::Range(0, 100000));
   sub->callback([opt] { runInspect(*opt, std::cout); });
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "earc/experience/experience.hpp"
+#include "earc/experience/history.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 
@@ -39,10 +40,11 @@ struct InspectReport {
   // most rows first. Schema versions before 4: every row, not known.
   std::vector<std::pair<std::string, std::int64_t>> builds;
   std::vector<Experience> samples;  // the first entries by id
+  HistoryTail history;              // the last lines of the file's history
 };
 
 // Reads without writing (opens read-only; older schemas are fine).
-InspectReport inspectDatabase(const std::string& path, int sample_entries);
+InspectReport inspectDatabase(const std::string& path, int sample_entries, int history_lines = 10);
 
 struct VerifyReport {
   int schema_version = 0;

@@ -30,6 +30,11 @@ std::span<const Migration> migrations();
 // The schema version this program writes and reads: the last migration.
 int currentSchemaVersion();
 
+// The last schema version that changed the experiences table's columns.
+// An export says this version (or its file's, when older): its rows read
+// the same in every program since, whatever later migrations added.
+inline constexpr int kExperienceRowsSchemaVersion = 4;
+
 // Checks that the connection's file is an earc database this program can
 // use (or an empty file): ForeignDatabaseError for another application's
 // SQLite file or not a SQLite file at all, SchemaVersionError for a newer

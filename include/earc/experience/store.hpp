@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "earc/experience/experience.hpp"
+#include "earc/experience/history.hpp"
 #include "earc/experience/key_index.hpp"
 #include "earc/experience/sqlite.hpp"
 
@@ -156,6 +157,14 @@ class ExperienceStore {
   // the planner: bypasses the index and the mutex.
   Connection& connection();
 
+  // This open's line in the file's history (history.hpp): "learn" in the
+  // planning session unless a command describes itself (build, import,
+  // curate). insert() and insertAll() count their rows on it in their own
+  // transaction; a maintenance command that changes rows through
+  // connection() records them itself, inside its transaction.
+  void describeHistory(std::string operation, std::string detail);
+  const HistoryWriter& history() const { return history_; }
+
  private:
   void openLocked();
   void refreshLocked();
@@ -197,6 +206,8 @@ class ExperienceStore {
   std::exception_ptr check_error_;   // set by the thread, read after join
   bool check_error_reported_ = false;  // thrown to a caller at least once
   bool session_pending_ = false;       // 'sessions' not yet counted
+  HistoryWriter history_;
+  bool history_described_ = false;     // else "learn", "planning session N"
 };
 
 }  // namespace earc::exp

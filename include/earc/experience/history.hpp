@@ -1,0 +1,70 @@
+// The experience database's history (schema 5 on): one line per open that
+// changed the file, saying what it did (created or migrated the file,
+// built, imported, curated, learned while planning), which earc build did
+// it, when, and how many rows it added and removed.
+//
+// A line is written with its open's first change, inside that change's
+// transaction, and brought up to date inside each later one: after a crash
+// at any point the history counts exactly the committed rows. A line is
+// found again by a random token of its open, not by an id remembered from
+// a transaction that may have rolled back.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "earc/experience/sqlite.hpp"
+
+namespace earc::exp {
+
+// The schema version that added the history table.
+inline constexpr int kHistorySchemaVersion = 5;
+
+// The longest detail kept (longer ones are cut, marked with "...").
+inline constexpr std::size_t kMaxHistoryDetail = 500;
+
+// What one open does to a file: its line in the history.
+class HistoryWriter {
+ public:
+  // operation: one of create, migrate, build, import, curate, learn.
+  explicit HistoryWriter(std::string operation = "learn", std::string detail = {});
+  void describe(std::string operation, std::string detail);
+  const std::string& operation() const { return operation_; }
+
+  // Inside a write transaction on a file at schema >= 5 (older: nothing):
+  // counts the rows on this open's line, writing the line when it is the
+  // first change. Both counts zero writes nothing unless even_if_unchanged
+  // (creating or migrating a file; a curate that removed nothing).
+  void record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
+              bool even_if_unchanged = false) const;
+
+ private:
+  std::int64_t token_;
+  std::string operation_;
+  std::string detail_;
+};
+
+struct HistoryLine {
+  std::int64_t id = 0;
+  std::int64_t at = 0;
+  std::string program;
+  std::string operation;
+  std::string detail;
+  std::int64_t rows_added = 0;
+  std::int64_t rows_removed = 0;
+};
+
+// The last `limit` lines, oldest first, and how many lines there are in
+// all. A file before schema 5 has none.
+struct HistoryTail {
+  std::vector<HistoryLine> lines;
+  std::int64_t total = 0;
+};
+HistoryTail readHistory(Connection& db, int schema_version, int limit);
+
+// "2026-11-24T01:02:03Z" (UTC) for Unix seconds.
+std::string utcTimeText(std::int64_t unix_seconds);
+
+}  // namespace earc::exp
