@@ -2,6 +2,7 @@
 #include <map>
 
 #include "earc/planning/solver.hpp"
+#include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
 
 namespace earc {
@@ -58,9 +59,11 @@ Roadmap& RoadmapSet::forRobot(int robot) {
   const int slot = slot_[static_cast<std::size_t>(robot)];
   auto& rm = roadmaps_[static_cast<std::size_t>(slot)];
   if (!rm) {
+    Stopwatch sw;
     rm = std::make_unique<Roadmap>(world_, *models_[static_cast<std::size_t>(robot)], neighbors_,
                                    splitSeed(seed_, static_cast<std::uint64_t>(slot)));
     rm->grow(initialSamples(robot));
+    build_seconds_ += sw.seconds();
   }
   return *rm;
 }

@@ -352,6 +352,31 @@ TEST_CASE("ARC plans four discs crossing in the open, and the solution validates
   CHECK(v.valid);
 }
 
+TEST_CASE("A roadmap built when a solver first asks for it is counted apart from that solver's time") {
+  // Two discs whose straight motions meet head-on: no roadmap for their
+  // own paths; the decoupled solver builds the shared one for the conflict.
+  Scenario s = openScenario(6);
+  s.robots = {disc("w", 0.3, {1, 3, 0}, {5, 3, 0}), disc("e", 0.3, {5, 3, 3.14}, {1, 3, 0})};
+  PlannerSettings settings;
+  settings.seed = 2;
+  settings.trace = true;
+  PlanResult r = plan(s, settings);
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(s, r.solution).valid);
+  CHECK(r.stats["roadmaps_built"].get<int>() == 1);
+  const double building = r.stats["roadmap_build_s"].get<double>();
+  CHECK(building > 0);
+  // The attempt that built it says so, and its time_s leaves it out.
+  double in_attempts = 0;
+  for (const auto& e : r.trace["events"])
+    if (e["type"] == "subproblem")
+      for (const auto& a : e["attempts"]) in_attempts += a.value("roadmap_build_s", 0.0);
+  CHECK(in_attempts == doctest::Approx(building));
+  double solver_time = 0;
+  for (const auto& [name, secs] : r.stats["solver_time_s"].items()) solver_time += secs.get<double>();
+  CHECK(solver_time + building <= r.stats["planning_time_s"].get<double>());
+}
+
 TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the deadline, then says both why") {
   // Two discs must swap ends of a corridor too narrow to pass: no
   // subproblem can ever be solved. ARC must not give up early with time
@@ -441,6 +466,7 @@ TEST_CASE("A robot whose straight motion is free takes it without a roadmap; a w
   auto free = individualPath(world, roadmaps, *m.raw[0], 0, deadline, 1);
   REQUIRE(free.has_value());
   CHECK(roadmaps.built() == 0);
+  CHECK(roadmaps.buildSeconds() == 0);
   // Exactly the straight motion, one step per resolution unit.
   CHECK(free->size() == static_cast<std::size_t>(m.raw[0]->stepsBetween(s.robots[0].start.data(), s.robots[0].goal.data())) + 1);
   for (std::size_t t = 0; t < free->size(); ++t) CHECK(free->at(t)[1] == doctest::Approx(1.0));
@@ -448,6 +474,7 @@ TEST_CASE("A robot whose straight motion is free takes it without a roadmap; a w
   auto walled = individualPath(world, roadmaps, *m.raw[1], 1, deadline, 1);
   REQUIRE(walled.has_value());
   CHECK(roadmaps.built() == 1);
+  CHECK(roadmaps.buildSeconds() > 0);
   // Round the wall: somewhere off the straight line, never in the wall.
   bool detours = false;
   for (std::size_t t = 0; t < walled->size(); ++t) {

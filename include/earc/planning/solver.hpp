@@ -28,8 +28,11 @@ class RoadmapSet {
   Roadmap& forRobot(int robot);
   int initialSamples(int robot) const;
   std::size_t edgeChecks() const;
-  // Roadmaps built so far (each when a robot first needed it).
+  // Roadmaps built so far (each when a robot first needed it), and the
+  // seconds spent building them: a solver that asks for a roadmap first
+  // pays for it, and ARC counts that time apart from the solver's own.
   std::size_t built() const;
+  double buildSeconds() const { return build_seconds_; }
 
  private:
   const CollisionWorld& world_;
@@ -39,6 +42,7 @@ class RoadmapSet {
   std::uint64_t seed_;
   std::vector<int> slot_;  // robot -> roadmap index
   std::vector<std::unique_ptr<Roadmap>> roadmaps_;
+  double build_seconds_ = 0.0;
 };
 
 // Another robot's motion seen as an obstacle: its configuration at local
