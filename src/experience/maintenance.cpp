@@ -203,6 +203,54 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries, int h
   return r;
 }
 
+nlohmann::json inspectJson(const InspectReport& r) {
+  using nlohmann::json;
+  json classes = json::array();
+  for (const ClassSummary& c : r.classes) {
+    // null: never retrieved (the text report's "-")
+    const json hit_rate =
+        c.retrieved > 0 ? json(static_cast<double>(c.succeeded) / static_cast<double>(c.retrieved)) : json(nullptr);
+    classes.push_back({{"kind", kindName(c.cls.kind)},
+                       {"robots", c.cls.robot_count},
+                       {"base_class", c.cls.base_class},
+                       {"signature", c.cls.signature},
+                       {"entries", c.entries},
+                       {"key_dim", c.key_dim},
+                       {"path_bytes", c.path_bytes},
+                       {"retrieved", c.retrieved},
+                       {"succeeded", c.succeeded},
+                       {"hit_rate", hit_rate},
+                       {"mean_cost", c.mean_cost},
+                       {"mean_solve_time_s", c.mean_solve_time_s}});
+  }
+  json builds = json::array();
+  for (const auto& [build, rows] : r.builds) builds.push_back({{"made_by", build}, {"rows", rows}});
+  json lines = json::array();
+  for (const HistoryLine& l : r.history.lines)
+    lines.push_back({{"at", utcTimeText(l.at)},
+                     {"program", l.program},
+                     {"operation", l.operation},
+                     {"detail", l.detail},
+                     {"rows_added", l.rows_added},
+                     {"rows_removed", l.rows_removed}});
+  json samples = json::array();
+  for (const Experience& e : r.samples) samples.push_back(experienceToJson(e));
+  return {{"format", "earc.inspect.v1"},
+          {"database", r.path},
+          {"schema_version", r.schema_version},
+          {"file_bytes", r.file_bytes},
+          {"wal_bytes", r.wal_bytes},
+          {"sessions", r.sessions},
+          {"entries", r.entries},
+          {"path_bytes", r.path_bytes},
+          {"key_bytes", r.key_bytes},
+          {"older_path_blobs", r.older_path_blobs},
+          {"classes", std::move(classes)},
+          {"builds", std::move(builds)},
+          {"history", {{"total", r.history.total}, {"lines", std::move(lines)}}},
+          {"samples", std::move(samples)}};
+}
+
 VerifyReport verifyDatabase(const std::string& path) {
   VerifyReport r;
   requireDatabaseFile(path);

@@ -40,6 +40,17 @@ grep -q "^made by   $build (40)$" "$WORK/out" || fail "inspect: no made-by line:
 grep -q "  create  by $build: schema " "$WORK/out" || fail "inspect: no creation in the history: $(cat "$WORK/out")"
 grep -q "  import  by $build, +40 -0 rows: from $WORK/a.jsonl$" "$WORK/out" ||
   fail "inspect: no import in the history: $(cat "$WORK/out")"
+# inspect --json: the same numbers for scripts.
+"$DB" inspect --db "$WORK/b.db" --json > "$WORK/out.json" || fail "inspect --json exited $?"
+"$PY" - "$WORK/out.json" "$build" <<'PY' || fail "inspect --json: $(head -c 600 "$WORK/out.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+ok = (j["format"] == "earc.inspect.v1" and j["entries"] == 40 and sum(c["entries"] for c in j["classes"]) == 40
+      and j["builds"] == [{"made_by": sys.argv[2], "rows": 40}]
+      and [(l["operation"], l["rows_added"]) for l in j["history"]["lines"]] == [("create", 0), ("import", 40)]
+      and len(j["samples"]) == 3)
+sys.exit(not ok)
+PY
 "$DB" curate --db "$WORK/b.db" --drop-made-by "$build" -o "$WORK/none.db" > "$WORK/out" || fail "curate --drop-made-by exited $?"
 grep -q "40 of the builds named removed, 0 rows after" "$WORK/out" || fail "curate --drop-made-by said: $(cat "$WORK/out")"
 [ "$(count "$WORK/b.db")" = 40 ] || fail "curate -o changed the original"

@@ -151,11 +151,27 @@ TEST_CASE("inspect shows the last lines of the history, and says none is kept be
     ExperienceStore store(path);
     store.insert(sample(rng), -1);
   }
-  InspectReport r = inspectDatabase(path, 0, 2);
+  InspectReport r = inspectDatabase(path, 1, 2);
   CHECK(r.history.total == 4);
   REQUIRE(r.history.lines.size() == 2);
   CHECK(r.history.lines[0].detail == "planning session 2");
   CHECK(r.history.lines[1].detail == "planning session 3");
+
+  // The same report for scripts.
+  const nlohmann::json j = inspectJson(r);
+  CHECK(j["format"] == "earc.inspect.v1");
+  CHECK(j["entries"] == 3);
+  REQUIRE(j["classes"].size() == 1);
+  CHECK(j["classes"][0]["entries"] == 3);
+  CHECK(j["classes"][0]["robots"] == 2);
+  CHECK(j["classes"][0]["hit_rate"].is_null());  // never retrieved
+  CHECK(j["builds"][0]["made_by"] == version());
+  CHECK(j["history"]["total"] == 4);
+  REQUIRE(j["history"]["lines"].size() == 2);
+  CHECK(j["history"]["lines"][1]["operation"] == "learn");
+  CHECK(j["history"]["lines"][1]["rows_added"] == 1);
+  REQUIRE(j["samples"].size() == 1);
+  CHECK(j["samples"][0]["id"] == 1);
 
   const std::string old = dir.file("old.db");
   {

@@ -19,6 +19,7 @@ struct InspectOptions {
   std::string db;
   int entries = 3;
   int history = 10;
+  bool json = false;
 };
 
 std::string bytes(std::int64_t n) {
@@ -79,6 +80,10 @@ void printHistory(const earc::exp::HistoryTail& h, int schema_version, std::ostr
 
 void runInspect(const InspectOptions& opt, std::ostream& out) {
   const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::inspectDatabase(opt.db, opt.entries, opt.history); });
+  if (opt.json) {
+    out << earc::exp::inspectJson(r).dump(2) << "\n";
+    return;
+  }
   out << "database  " << r.path << "\n"
       << "schema    version " << r.schema_version << " (application_id 0x45415243 \"EARC\")\n"
       << "size      " << bytes(r.file_bytes) << " file, " << bytes(r.wal_bytes) << " WAL; blobs "
@@ -126,6 +131,7 @@ void setupInspect(CLI::App& app) {
   sub->add_option("--entries", opt->entries, "Entries to show in readable form")->check(CLI::Range(0, 1000));
   sub->add_option("--history", opt->history, "Lines of the file's history to show (the last ones)")
       ->check(CLI::Range(0, 100000));
+  sub->add_flag("--json", opt->json, "Print the report as one JSON object (format earc.inspect.v1) for scripts");
   sub->callback([opt] { runInspect(*opt, std::cout); });
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "earc/experience/experience.hpp"
 #include "earc/experience/history.hpp"
 #include "earc/experience/sqlite.hpp"
@@ -45,6 +47,11 @@ struct InspectReport {
 
 // Reads without writing (opens read-only; older schemas are fine).
 InspectReport inspectDatabase(const std::string& path, int sample_entries, int history_lines = 10);
+
+// The report for scripts (`earc-db inspect --json`, format
+// "earc.inspect.v1"): every number of the text report, per class and per
+// build, the history lines, and the sample entries as export rows.
+nlohmann::json inspectJson(const InspectReport& r);
 
 struct VerifyReport {
   int schema_version = 0;
