@@ -1,6 +1,7 @@
 -- Migration 5: what was done to the file, and by which build.
--- One line per open that changed the file: created or migrated it, built,
--- imported, curated, or learned in a planning session. The line is written
+-- A line when the file is created or migrated, and one per open that then
+-- added or removed rows: built, imported, curated, or learned in a planning
+-- session. The line is written
 -- with the open's first change and brought up to date in the same
 -- transaction as each later one, so after a crash it still counts exactly
 -- the rows that were committed.
@@ -14,3 +15,6 @@ CREATE TABLE history (
   rows_added   INTEGER NOT NULL DEFAULT 0,
   rows_removed INTEGER NOT NULL DEFAULT 0
 );
+
+-- Each change finds its open's line by token.
+CREATE UNIQUE INDEX history_by_token ON history (token);

@@ -67,3 +67,6 @@ CREATE TABLE history (
   rows_added   INTEGER NOT NULL DEFAULT 0,
   rows_removed INTEGER NOT NULL DEFAULT 0
 );
+
+-- Each change finds its open's line by token.
+CREATE UNIQUE INDEX history_by_token ON history (token);

@@ -5,10 +5,10 @@
 #include <string_view>
 
 #include "earc/bench/options.hpp"
-#include "earc/experience/history.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::bench {
 
@@ -328,6 +328,6 @@ bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) 
   return s.step();
 }
 
-std::string utcNow() { return exp::utcTimeText(std::time(nullptr)); }
+std::string utcNow() { return utcTimeText(std::time(nullptr)); }
 
 }  // namespace earc::bench

@@ -3,6 +3,7 @@
 #include <ctime>
 #include <random>
 
+#include "earc/util/format.hpp"
 #include "earc/util/version.hpp"
 
 namespace earc::exp {
@@ -15,22 +16,18 @@ std::int64_t randomToken() {
   return static_cast<std::int64_t>((high << 32) ^ low);
 }
 
-std::string cutDetail(std::string detail) {
-  if (detail.size() > kMaxHistoryDetail) {
-    detail.resize(kMaxHistoryDetail - 3);
-    detail += "...";
-  }
-  return detail;
-}
+// Details come from command lines (file names, build names): kept
+// printable and bounded, as shown.
+std::string cleanDetail(std::string_view detail) { return printableText(detail, kMaxHistoryDetail); }
 
 }  // namespace
 
 HistoryWriter::HistoryWriter(std::string operation, std::string detail)
-    : token_(randomToken()), operation_(std::move(operation)), detail_(cutDetail(std::move(detail))) {}
+    : token_(randomToken()), operation_(std::move(operation)), detail_(cleanDetail(detail)) {}
 
 void HistoryWriter::describe(std::string operation, std::string detail) {
   operation_ = std::move(operation);
-  detail_ = cutDetail(std::move(detail));
+  detail_ = cleanDetail(detail);
 }
 
 void HistoryWriter::record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
@@ -68,15 +65,6 @@ HistoryTail readHistory(Connection& db, int schema_version, int limit) {
     tail.lines.push_back({last.int64At(0), last.int64At(1), last.textAt(2), last.textAt(3), last.textAt(4),
                           last.int64At(5), last.int64At(6)});
   return tail;
-}
-
-std::string utcTimeText(std::int64_t unix_seconds) {
-  const std::time_t t = static_cast<std::time_t>(unix_seconds);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
 }
 
 }  // namespace earc::exp

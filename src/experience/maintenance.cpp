@@ -247,7 +247,10 @@ nlohmann::json inspectJson(const InspectReport& r) {
           {"older_path_blobs", r.older_path_blobs},
           {"classes", std::move(classes)},
           {"builds", std::move(builds)},
-          {"history", {{"total", r.history.total}, {"lines", std::move(lines)}}},
+          // null: the file's schema keeps no history (before version 5)
+          {"history", r.schema_version >= kHistorySchemaVersion
+                          ? json{{"total", r.history.total}, {"lines", std::move(lines)}}
+                          : json(nullptr)},
           {"samples", std::move(samples)}};
 }
 

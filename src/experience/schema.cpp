@@ -49,16 +49,26 @@ int migrate(Connection& db, int target) {
       int version = checkIdentity(db);
       if (version >= target) return version;
       if (from < 0) from = version;
-      const Migration& m = steps[static_cast<std::size_t>(version)];
-      db.exec(m.sql);
-      db.exec("PRAGMA user_version = " + std::to_string(m.version));
+      // A new file is made whole in one transaction: it appears at the
+      // target version or not at all, and its history's first line names
+      // its creator (another process creating it at the same time finds it
+      // done). An existing file moves one step per transaction.
+      const bool creating = version == 0;
+      do {
+        const Migration& m = steps[static_cast<std::size_t>(version)];
+        db.exec(m.sql);
+        db.exec("PRAGMA user_version = " + std::to_string(m.version));
+        version = m.version;
+      } while (creating && version < target);
       // The last step says in the history who created or migrated the
       // file, in its own transaction: a crash before it leaves no line.
-      if (m.version == target) {
+      // (Two programs migrating one older file at once: the line names the
+      // one that took the last step, from the version it first found.)
+      if (version == target) {
         const std::string to = "schema " + std::to_string(target);
-        HistoryWriter(from == 0 ? "create" : "migrate", from == 0 ? to : "schema " + std::to_string(from) + " to " +
-                                                                        std::to_string(target))
-            .record(db, m.version, 0, 0, true);
+        HistoryWriter(creating ? "create" : "migrate",
+                      creating ? to : "schema " + std::to_string(from) + " to " + std::to_string(target))
+            .record(db, version, 0, 0, true);
       }
       return -1;
     });

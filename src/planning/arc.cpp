@@ -293,8 +293,9 @@ bool ArcRun::resolve(const Conflict& c) {
       Stopwatch sw;
       const double built_before = roadmaps_->buildSeconds();
       SolverOutcome out = solver->solve(ctx);
-      // A roadmap built on the way is the plan's cost, not this solver's:
-      // it would have been built for whichever solver asked first.
+      // A roadmap built on the way is kept for every later subproblem of
+      // the plan: its cost is the plan's (stats.roadmap_build_s), not this
+      // attempt's, which may be the first of many that use it.
       const double building = roadmaps_->buildSeconds() - built_before;
       const double secs = std::max(0.0, sw.seconds() - building);
       out.seconds = secs;

@@ -56,8 +56,14 @@ grep -q "40 of the builds named removed, 0 rows after" "$WORK/out" || fail "cura
 [ "$(count "$WORK/b.db")" = 40 ] || fail "curate -o changed the original"
 "$DB" inspect --db "$WORK/none.db" --history 1 > "$WORK/out" || fail "inspect of the curated copy exited $?"
 grep -q "^history (last 1 of 3):$" "$WORK/out" || fail "inspect --history 1: $(cat "$WORK/out")"
-grep -q "  curate  by $build, +0 -40 rows: copy of $WORK/b.db: --drop-made-by \"$build\"$" "$WORK/out" ||
-  fail "inspect: no curate in the copy's history: $(cat "$WORK/out")"
+grep -q "  curate  by $build, +0 -40 rows: copy of " "$WORK/out" || fail "inspect: no curate in the copy's history: $(cat "$WORK/out")"
+"$DB" inspect --db "$WORK/none.db" --json > "$WORK/out.json" || fail "inspect --json of the curated copy exited $?"
+"$PY" - "$WORK/out.json" "$WORK/b.db" "$build" <<'PY' || fail "the curate's history line: $(head -c 2000 "$WORK/out.json")"
+import json, sys
+line = json.load(open(sys.argv[1]))["history"]["lines"][-1]
+sys.exit(not (line["operation"] == "curate" and line["rows_removed"] == 40 and
+              line["detail"] == 'copy of %s: --drop-made-by "%s"' % (sys.argv[2], sys.argv[3])))
+PY
 
 # -q: the same work and nothing printed, as build and plan do with -q.
 "$DB" export --db "$WORK/a.db" -o "$WORK/q.jsonl" -q > "$WORK/out" 2>&1 || fail "export -q exited $?"

@@ -156,7 +156,7 @@ TEST_CASE("a writer killed at random moments loses no reported commit and leaves
     while (rows.step()) stored.insert(rows.int64At(0));
     for (std::int64_t m : reported) CHECK_MESSAGE(stored.count(m) == 1, "reported commit " << m << " is missing");
     // Each killed writer's history line counts exactly its committed rows.
-    Statement per_round = c.prepare("SELECT CAST(solve_time_s AS INTEGER) / 100000, count(*) FROM experiences GROUP BY 1");
+    Statement per_round = c.prepare("SELECT CAST(solve_time_s AS INTEGER) / 100000, count(*) FROM experiences GROUP BY 1 ORDER BY 1");
     std::vector<std::int64_t> committed;
     while (per_round.step()) committed.push_back(per_round.int64At(1));
     std::vector<std::int64_t> counted;

@@ -68,11 +68,21 @@ TEST_CASE("each open's inserts are counted on its own line; a rolled-back insert
     auto ids = store.insertAll({sample(rng), sample(rng), twin}, 1e-6);
     CHECK(ids[0].has_value());
     CHECK_FALSE(ids[2].has_value());
-    // A batch that fails inside its transaction (a key of another length
-    // in a class that has rows): nothing of it is stored or counted...
-    Experience odd = sample(rng);
-    odd.key.push_back(0.0);
-    CHECK_THROWS_AS(store.insertAll({sample(rng), odd}, 1e-6), std::invalid_argument);
+    // A batch that fails inside its transaction, after its first row was
+    // inserted and counted (a trigger refuses the second): nothing of it
+    // is stored or counted...
+    {
+      Connection other(path, OpenMode::ReadWrite);
+      other.exec("CREATE TRIGGER refuse BEFORE INSERT ON experiences WHEN NEW.solve_time_s = 99 "
+                 "BEGIN SELECT RAISE(ABORT, 'refused by the test'); END");
+    }
+    Experience refused = sample(rng);
+    refused.solve_time_s = 99;
+    CHECK_THROWS_AS(store.insertAll({sample(rng), refused}, 1e-6), StoreError);
+    {
+      Connection other(path, OpenMode::ReadWrite);
+      other.exec("DROP TRIGGER refuse");
+    }
     // ...and the line is still this open's after the rollback.
     REQUIRE(store.insert(sample(rng), 1e-6));
   }
@@ -181,5 +191,37 @@ TEST_CASE("inspect shows the last lines of the history, and says none is kept be
   }
   InspectReport before = inspectDatabase(old, 0);
   CHECK(before.schema_version == kHistorySchemaVersion - 1);
-  CHECK(before.history.total == 0);
+  CHECK(inspectJson(before)["history"].is_null());  // none kept, not an empty one
+  CHECK(inspectJson(r)["history"].is_object());
+}
+
+TEST_CASE("history details from command lines are kept printable, valid UTF-8 and bounded") {
+  ScratchDirectory dir("history");
+  const std::string path = dir.file("h.db");
+  std::mt19937_64 rng(4);
+  {
+    ExperienceStore store(path);
+    store.describeHistory("import", "from a\nb\x1b[31m\xff\xc3" + std::string(600, 'x'));
+    store.insert(sample(rng), -1);
+  }
+  const std::string detail = historyOf(path).back().detail;
+  CHECK(detail.size() <= kMaxHistoryDetail);
+  CHECK(detail.rfind("from a?b?[31m??xxx", 0) == 0);
+  CHECK(detail.ends_with("x..."));
+}
+
+TEST_CASE("exports say the schema version of the experiences table's columns, unchanged since") {
+  // If a migration changes the experiences table, exports must say so:
+  // raise kExperienceRowsSchemaVersion with it.
+  auto columns = [](int version) {
+    Connection c(":memory:", OpenMode::ReadWrite);
+    migrate(c, version);
+    Statement s = c.prepare("SELECT name, type, \"notnull\", dflt_value FROM pragma_table_info('experiences')");
+    std::string out;
+    while (s.step()) out += s.textAt(0) + " " + s.textAt(1) + " " + s.textAt(2) + " " + s.textAt(3) + "\n";
+    return out;
+  };
+  CHECK(kExperienceRowsSchemaVersion <= currentSchemaVersion());
+  CHECK(columns(kExperienceRowsSchemaVersion) == columns(currentSchemaVersion()));
+  CHECK(columns(kExperienceRowsSchemaVersion - 1) != columns(kExperienceRowsSchemaVersion));
 }

@@ -6,14 +6,16 @@
 #include <iostream>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace {
 
 // Builds named on the "made by" line.
 constexpr std::size_t kListedBuilds = 5;
-// Characters of a history line's detail shown.
+// Bytes of a history line's detail, and of its operation and program, shown.
 constexpr std::size_t kShownDetail = 110;
+constexpr std::size_t kShownName = 40;
 
 struct InspectOptions {
   std::string db;
@@ -49,7 +51,7 @@ std::string state(const earc::Path& p, std::size_t t) {
 void printEntry(const earc::exp::Experience& e, std::ostream& out) {
   out << "  #" << e.id << " " << earc::exp::kindName(e.cls.kind) << " x" << e.cls.robot_count
       << (e.cls.base_class.empty() ? "" : " ") << e.cls.base_class << ": cost " << number(e.cost, 0) << " steps, "
-      << earc::exp::sourceName(e.source) << ", " << earc::exp::utcTimeText(e.created_at) << ", solve " << number(e.solve_time_s, 3)
+      << earc::exp::sourceName(e.source) << ", " << earc::utcTimeText(e.created_at) << ", solve " << number(e.solve_time_s, 3)
       << " s, used " << e.succeeded << "/" << e.retrieved << (e.made_by.empty() ? "" : ", by " + e.made_by) << "\n";
   for (std::size_t r = 0; r < e.paths.size(); ++r)
     out << "     robot " << r << ": " << state(e.paths[r], 0) << " -> " << state(e.paths[r], e.paths[r].size() - 1)
@@ -68,12 +70,12 @@ void printHistory(const earc::exp::HistoryTail& h, int schema_version, std::ostr
   if (h.total > static_cast<std::int64_t>(h.lines.size())) out << " (last " << h.lines.size() << " of " << h.total << ")";
   out << ":\n";
   for (const auto& l : h.lines) {
-    out << "  " << earc::exp::utcTimeText(l.at) << "  " << l.operation << "  by " << l.program;
+    // A file's text, bounded and printable like every inspect line.
+    out << "  " << earc::utcTimeText(l.at) << "  " << earc::printableText(l.operation, kShownName) << "  by "
+        << earc::printableText(l.program, kShownName);
     if (l.rows_added || l.rows_removed || l.operation == "build" || l.operation == "import" || l.operation == "curate")
       out << ", +" << l.rows_added << " -" << l.rows_removed << " rows";
-    // Bounded like every inspect line (details keep up to 500 characters).
-    if (!l.detail.empty())
-      out << ": " << (l.detail.size() <= kShownDetail ? l.detail : l.detail.substr(0, kShownDetail - 3) + "...");
+    if (!l.detail.empty()) out << ": " << earc::printableText(l.detail, kShownDetail);
     out << "\n";
   }
 }
@@ -81,7 +83,8 @@ void printHistory(const earc::exp::HistoryTail& h, int schema_version, std::ostr
 void runInspect(const InspectOptions& opt, std::ostream& out) {
   const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::inspectDatabase(opt.db, opt.entries, opt.history); });
   if (opt.json) {
-    out << earc::exp::inspectJson(r).dump(2) << "\n";
+    // Text from the file that is not UTF-8 is replaced, never an error.
+    out << earc::exp::inspectJson(r).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return;
   }
   out << "database  " << r.path << "\n"
@@ -121,7 +124,8 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
   if (!r.samples.empty()) {
     out << "\nfirst " << r.samples.size() << " entries:\n";
     for (const auto& e : r.samples) printEntry(e, out);
-  }  printHistory(r.history, r.schema_version, out);
+  }
+  printHistory(r.history, r.schema_version, out);
 }
 
 void setupInspect(CLI::App& app) {

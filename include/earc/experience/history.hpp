@@ -1,7 +1,8 @@
-// The experience database's history (schema 5 on): one line per open that
-// changed the file, saying what it did (created or migrated the file,
-// built, imported, curated, learned while planning), which earc build did
-// it, when, and how many rows it added and removed.
+// The experience database's history (schema 5 on): a line when the file
+// is created or migrated, and one per open that then added or removed rows
+// (built, imported, curated, learned while planning), saying which earc
+// build did it, when, and how many rows it added and removed. Usage
+// counters and the session count are not in it.
 //
 // A line is written with its open's first change, inside that change's
 // transaction, and brought up to date inside each later one: after a crash
@@ -22,7 +23,8 @@ namespace earc::exp {
 // The schema version that added the history table.
 inline constexpr int kHistorySchemaVersion = 5;
 
-// The longest detail kept (longer ones are cut, marked with "...").
+// The longest detail kept (longer ones are cut, marked with "..."; control
+// characters and bytes that are not UTF-8 become '?').
 inline constexpr std::size_t kMaxHistoryDetail = 500;
 
 // What one open does to a file: its line in the history.
@@ -36,7 +38,8 @@ class HistoryWriter {
   // Inside a write transaction on a file at schema >= 5 (older: nothing):
   // counts the rows on this open's line, writing the line when it is the
   // first change. Both counts zero writes nothing unless even_if_unchanged
-  // (creating or migrating a file; a curate that removed nothing).
+  // (creating or migrating a file; a curate that removed nothing). Once
+  // the line is written, describe() no longer changes it.
   void record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
               bool even_if_unchanged = false) const;
 
@@ -63,8 +66,5 @@ struct HistoryTail {
   std::int64_t total = 0;
 };
 HistoryTail readHistory(Connection& db, int schema_version, int limit);
-
-// "2026-11-24T01:02:03Z" (UTC) for Unix seconds.
-std::string utcTimeText(std::int64_t unix_seconds);
 
 }  // namespace earc::exp

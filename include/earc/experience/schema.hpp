@@ -56,7 +56,8 @@ void requireDatabaseFile(const std::string& path, bool may_be_empty = false);
 
 // Brings the file up to `target` (default: current), one migration per
 // BEGIN IMMEDIATE transaction with its user_version bump, so a crash
-// mid-way leaves the previous version intact. Safe against another process
+// mid-way leaves the previous version intact; a new (empty) file gets every
+// migration in one such transaction. Safe against another process
 // migrating the same file at the same time. Returns the version reached.
 int migrate(Connection& db, int target = -1);
 

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <string_view>
 
@@ -38,5 +40,21 @@ inline std::string oneLine(std::string text) {
     if (c == '\n' || c == '\r') c = ' ';
   return text;
 }
+
+// "2026-11-24T01:02:03Z" (UTC, ISO 8601) for Unix seconds.
+inline std::string utcTimeText(std::int64_t unix_seconds) {
+  const std::time_t t = static_cast<std::time_t>(unix_seconds);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// `text` as printable, valid UTF-8 on one line: control characters
+// (line breaks, escapes) and bytes that are not UTF-8 become '?', and the
+// result is cut at `max_bytes` (ending in "...") on a character boundary.
+// For text from a file shown to people or put in JSON.
+std::string printableText(std::string_view text, std::size_t max_bytes);
 
 }  // namespace earc
