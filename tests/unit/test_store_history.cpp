@@ -23,7 +23,7 @@ using namespace earc::exp;
 
 namespace {
 
-Experience sample(std::mt19937_64& rng, int robots = 2) {
+Experience historySample(std::mt19937_64& rng, int robots = 2) {
   const std::vector<RobotTraits> traits(static_cast<std::size_t>(robots), discTraits(0.3));
   return straightLineExperience(traits, sampleMobileQuery(robots, rng), 6);
 }
@@ -33,7 +33,7 @@ std::vector<HistoryLine> historyOf(const std::string& path) {
   return readHistory(c, currentSchemaVersion(), 1000).lines;
 }
 
-std::int64_t rowsIn(const std::string& path) {
+std::int64_t historyRowCount(const std::string& path) {
   Connection c(path, OpenMode::ReadOnly);
   Statement s = c.prepare("SELECT count(*) FROM experiences");
   s.step();
@@ -60,12 +60,12 @@ TEST_CASE("each open's inserts are counted on its own line; a rolled-back insert
   ScratchDirectory dir("history");
   const std::string path = dir.file("h.db");
   std::mt19937_64 rng(3);
-  const Experience twin = sample(rng);
+  const Experience twin = historySample(rng);
   {
     ExperienceStore store(path);  // planning session 1
     REQUIRE(store.insert(twin, 1e-6));
     CHECK_FALSE(store.insert(twin, 1e-6));  // a near duplicate: not stored, not counted
-    auto ids = store.insertAll({sample(rng), sample(rng), twin}, 1e-6);
+    auto ids = store.insertAll({historySample(rng), historySample(rng), twin}, 1e-6);
     CHECK(ids[0].has_value());
     CHECK_FALSE(ids[2].has_value());
     // A batch that fails inside its transaction, after its first row was
@@ -76,20 +76,20 @@ TEST_CASE("each open's inserts are counted on its own line; a rolled-back insert
       other.exec("CREATE TRIGGER refuse BEFORE INSERT ON experiences WHEN NEW.solve_time_s = 99 "
                  "BEGIN SELECT RAISE(ABORT, 'refused by the test'); END");
     }
-    Experience refused = sample(rng);
+    Experience refused = historySample(rng);
     refused.solve_time_s = 99;
-    CHECK_THROWS_AS(store.insertAll({sample(rng), refused}, 1e-6), StoreError);
+    CHECK_THROWS_AS(store.insertAll({historySample(rng), refused}, 1e-6), StoreError);
     {
       Connection other(path, OpenMode::ReadWrite);
       other.exec("DROP TRIGGER refuse");
     }
     // ...and the line is still this open's after the rollback.
-    REQUIRE(store.insert(sample(rng), 1e-6));
+    REQUIRE(store.insert(historySample(rng), 1e-6));
   }
   {
     ExperienceStore store(path);  // session 2
     store.describeHistory("import", "from a test");
-    REQUIRE(store.insert(sample(rng, 3), -1));
+    REQUIRE(store.insert(historySample(rng, 3), -1));
   }
   auto lines = historyOf(path);
   REQUIRE(lines.size() == 3);
@@ -99,7 +99,7 @@ TEST_CASE("each open's inserts are counted on its own line; a rolled-back insert
   CHECK(lines[2].operation == "import");
   CHECK(lines[2].detail == "from a test");
   CHECK(lines[2].rows_added == 1);
-  CHECK(rowsIn(path) == 5);
+  CHECK(historyRowCount(path) == 5);
 }
 
 TEST_CASE("build, import and curate write what they did; the counts add up to the rows") {
@@ -142,7 +142,7 @@ TEST_CASE("build, import and curate write what they did; the counts add up to th
 
   std::int64_t net = 0;
   for (const HistoryLine& l : lines) net += l.rows_added - l.rows_removed;
-  CHECK(net == rowsIn(copy));
+  CHECK(net == historyRowCount(copy));
 
   // An export's rows read the same in programs since the last change of
   // the experiences table: it says that version, not the file's.
@@ -159,7 +159,7 @@ TEST_CASE("inspect shows the last lines of the history, and says none is kept be
   std::mt19937_64 rng(9);
   for (int i = 0; i < 3; ++i) {
     ExperienceStore store(path);
-    store.insert(sample(rng), -1);
+    store.insert(historySample(rng), -1);
   }
   InspectReport r = inspectDatabase(path, 1, 2);
   CHECK(r.history.total == 4);
@@ -202,7 +202,7 @@ TEST_CASE("history details from command lines are kept printable, valid UTF-8 an
   {
     ExperienceStore store(path);
     store.describeHistory("import", "from a\nb\x1b[31m\xff\xc3" + std::string(600, 'x'));
-    store.insert(sample(rng), -1);
+    store.insert(historySample(rng), -1);
   }
   const std::string detail = historyOf(path).back().detail;
   CHECK(detail.size() <= kMaxHistoryDetail);
