@@ -303,6 +303,21 @@ VerifyReport verifyDatabase(const std::string& path) {
     // The damage integrity_check already met stops the row scan too: once.
     if (std::find(r.problems.begin(), r.problems.end(), e.what()) == r.problems.end()) r.problems.push_back(e.what());
   }
+  // A file created with a history counts every row added or removed since:
+  // a difference means rows were changed outside earc (not damage: a note).
+  if (r.schema_version >= kHistorySchemaVersion && r.problems.empty()) {
+    try {
+      Statement h = db->prepare(
+          "SELECT (SELECT operation FROM history ORDER BY id LIMIT 1), "
+          "(SELECT total(rows_added) - total(rows_removed) FROM history)");
+      if (h.step() && h.textAt(0) == "create" && static_cast<std::int64_t>(h.doubleAt(1)) != r.rows)
+        r.notes.push_back("the history counts " + std::to_string(static_cast<std::int64_t>(h.doubleAt(1))) +
+                          " rows added and not removed, the file holds " + std::to_string(r.rows) +
+                          ": rows were added or deleted outside earc");
+    } catch (const StoreError& e) {
+      r.problems.push_back(e.what());
+    }
+  }
   return r;
 }
 

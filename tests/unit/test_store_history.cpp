@@ -225,3 +225,25 @@ TEST_CASE("exports say the schema version of the experiences table's columns, un
   CHECK(columns(kExperienceRowsSchemaVersion) == columns(currentSchemaVersion()));
   CHECK(columns(kExperienceRowsSchemaVersion - 1) != columns(kExperienceRowsSchemaVersion));
 }
+
+TEST_CASE("verify notes rows added or deleted outside earc, by the history's count") {
+  ScratchDirectory dir("history");
+  const std::string path = dir.file("h.db");
+  std::mt19937_64 rng(6);
+  {
+    ExperienceStore store(path);
+    store.insertAll({historySample(rng), historySample(rng), historySample(rng)}, -1);
+  }
+  VerifyReport sound = verifyDatabase(path);
+  CHECK(sound.ok());
+  CHECK(sound.notes.empty());
+  {
+    Connection c(path, OpenMode::ReadWrite);
+    c.exec("DELETE FROM experiences WHERE id = 2");
+  }
+  VerifyReport edited = verifyDatabase(path);
+  CHECK(edited.ok());  // not damage
+  REQUIRE(edited.notes.size() == 1);
+  CHECK(edited.notes[0] == "the history counts 3 rows added and not removed, the file holds 2: rows were added or "
+                           "deleted outside earc");
+}
