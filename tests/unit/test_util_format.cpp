@@ -1,0 +1,33 @@
+// Text shown to people or put in JSON from files and command lines.
+#include <doctest/doctest.h>
+
+#include "earc/util/format.hpp"
+
+using earc::printableText;
+using earc::utcTimeText;
+
+TEST_CASE("printableText keeps valid UTF-8 and replaces control characters and bad bytes") {
+  CHECK(printableText("plain text", 100) == "plain text");
+  CHECK(printableText("caf\xc3\xa9 \xf0\x9f\xa4\x96", 100) == "caf\xc3\xa9 \xf0\x9f\xa4\x96");  // é and a 4-byte emoji
+  CHECK(printableText("a\nb\tc\x1b[0m\x7f", 100) == "a?b?c?[0m?");
+  CHECK(printableText("\xff\xfe", 100) == "??");                 // never UTF-8
+  CHECK(printableText("\xc0\xaf", 100) == "??");                 // overlong '/'
+  CHECK(printableText("\xed\xa0\x80", 100) == "???");            // a UTF-16 surrogate
+  CHECK(printableText("\xf4\x90\x80\x80", 100) == "????");       // beyond U+10FFFF
+  CHECK(printableText("x\xc3", 100) == "x?");                    // cut short
+}
+
+TEST_CASE("printableText cuts on a character boundary and marks the cut") {
+  CHECK(printableText("abcdef", 6) == "abcdef");
+  CHECK(printableText("abcdefg", 6) == "abc...");
+  // "ab" then é (2 bytes): 5 bytes for 6 allowed would split é; cut before it.
+  CHECK(printableText("ab\xc3\xa9\xc3\xa9xyz", 6) == "ab...");
+  CHECK(printableText("abcdef", 2) == "..");
+  CHECK(printableText("", 0).empty());
+  for (std::size_t max = 0; max < 12; ++max) CHECK(printableText("\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9", max).size() <= max);
+}
+
+TEST_CASE("utcTimeText writes ISO 8601 in UTC") {
+  CHECK(utcTimeText(0) == "1970-01-01T00:00:00Z");
+  CHECK(utcTimeText(1700000000) == "2023-11-14T22:13:20Z");
+}
