@@ -376,7 +376,9 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     });
   if (!settings.drop_made_by.empty())
     r.made_by_removed = db.write([&] {
-      Statement del = db.prepare("DELETE FROM experiences WHERE made_by = ?1");
+      // A pattern (GLOB: '*' any text, '?' one character, case-sensitive);
+      // a build name without those matches itself only.
+      Statement del = db.prepare("DELETE FROM experiences WHERE made_by GLOB ?1");
       std::int64_t n = 0;
       for (const std::string& build : settings.drop_made_by) {
         del.bind(1, std::string_view(build));

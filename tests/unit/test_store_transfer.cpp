@@ -394,6 +394,31 @@ TEST_CASE("curate drops the entries of the builds named, and those of no known b
   CHECK(rowCount(a) == 40);
 }
 
+TEST_CASE("curate --drop-made-by takes patterns: every dirty build's rows, and no more") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 13);  // 10 by 0.0.9+abc1234, 10 not known, 40 by this build (renamed 0.2.0+1234567)
+  {
+    Connection c(a, OpenMode::ReadWrite);
+    // This build's name may end in .dirty itself (a tree with changes).
+    c.exec("UPDATE experiences SET made_by = '0.2.0+1234567' WHERE made_by NOT IN ('', '0.0.9+abc1234')");
+    c.exec("UPDATE experiences SET made_by = '0.0.9+abc1234.dirty' WHERE id IN "
+           "(SELECT id FROM experiences WHERE made_by = '0.0.9+abc1234' LIMIT 4)");
+    c.exec("UPDATE experiences SET made_by = '0.1.0+def5678.dirty' WHERE id IN "
+           "(SELECT id FROM experiences WHERE made_by = '' LIMIT 3)");
+  }
+  CurateSettings dirty;
+  dirty.drop_made_by = {"*.dirty"};
+  CHECK(curateDatabase(a, dirty).made_by_removed == 7);
+  CurateSettings exact;  // a name without wildcards is matched exactly, not as a prefix
+  exact.drop_made_by = {"0.0.9+abc"};
+  CHECK(curateDatabase(a, exact).made_by_removed == 0);
+  CurateSettings one;
+  one.drop_made_by = {"0.0.?+abc1234"};
+  CHECK(curateDatabase(a, one).made_by_removed == 6);
+  CHECK(rowCount(a) == 47);  // 0.2.0's 40 and 7 not known
+}
+
 TEST_CASE("curate into a copy merges other files and leaves the original untouched") {
   ScratchDirectory dir("transfer");
   const std::string a = dir.file("a.db"), b = dir.file("b.db"), out = dir.file("merged.db");

@@ -50,8 +50,9 @@ void setupCurate(CLI::App& app) {
       ->check(earc::cli::kFiniteNonNegative)
       ->needs(drop);
   sub->add_option("--drop-made-by", opt->settings.drop_made_by,
-                  "Delete entries made by this build, as earc-db inspect lists them (\"\": entries whose build is "
-                  "not known); repeatable");
+                  "Delete entries made by this build, as earc-db inspect lists them, or by the builds a pattern "
+                  "matches ('*' any text, '?' one character: '*.dirty'); \"\": entries whose build is not known; "
+                  "repeatable");
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
   sub->add_flag("--compact", opt->settings.compact,

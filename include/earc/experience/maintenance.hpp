@@ -72,7 +72,9 @@ struct CurateSettings {
   double dedupe_eps = -1.0;            // >= 0: keep one entry per eps-ball in each class
   bool drop_unused = false;            // delete entries never retrieved ...
   int older_than_sessions = 0;         // ... created at least this many sessions ago
-  std::vector<std::string> drop_made_by;  // delete entries made by these builds ("": not known)
+  // Delete entries made by these builds ("": not known); each may be a
+  // GLOB pattern ('*' any text, '?' one character): "*.dirty".
+  std::vector<std::string> drop_made_by;
   std::string output;                  // non-empty: curate a copy, leave the original untouched
   bool vacuum = false;                 // give freed pages back to the file system
   bool compact = false;                // rewrite older path blobs in the current format, then vacuum
