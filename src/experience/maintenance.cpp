@@ -309,11 +309,14 @@ VerifyReport verifyDatabase(const std::string& path) {
     try {
       Statement h = db->prepare(
           "SELECT (SELECT operation FROM history ORDER BY id LIMIT 1), "
-          "(SELECT total(rows_added) - total(rows_removed) FROM history)");
-      if (h.step() && h.textAt(0) == "create" && static_cast<std::int64_t>(h.doubleAt(1)) != r.rows)
-        r.notes.push_back("the history counts " + std::to_string(static_cast<std::int64_t>(h.doubleAt(1))) +
-                          " rows added and not removed, the file holds " + std::to_string(r.rows) +
-                          ": rows were added or deleted outside earc");
+          "(SELECT coalesce(sum(rows_added - rows_removed), 0) FROM history)");
+      if (h.step() && h.textAt(0) == "create") {
+        const std::int64_t counted = h.int64At(1);
+        if (counted != r.rows)
+          r.notes.push_back("the history counts " + std::to_string(counted) +
+                            " rows added and not removed, the file holds " + std::to_string(r.rows) +
+                            ": rows were added or deleted outside earc");
+      }
     } catch (const StoreError& e) {
       r.problems.push_back(e.what());
     }
@@ -329,11 +332,7 @@ std::string curateDescription(const CurateSettings& s, const std::string& copy_o
   if (!copy_of.empty()) out << "copy of " << copy_of << ":";
   auto add = [&](const std::string& part) { out << (out.tellp() > 0 ? " " : "") << part; };
   for (const std::string& m : s.merge) add("--merge " + m);
-  if (s.dedupe_eps >= 0) {
-    std::ostringstream eps;
-    eps << s.dedupe_eps;
-    add("--dedupe " + eps.str());
-  }
+  if (s.dedupe_eps >= 0) add("--dedupe " + formatNumber(s.dedupe_eps));
   if (s.drop_unused)
     add("--drop-unused" +
         (s.older_than_sessions > 0 ? " --older-than-sessions " + std::to_string(s.older_than_sessions) : ""));

@@ -84,10 +84,9 @@ ALTER TABLE experiences ADD COLUMN made_by TEXT NOT NULL DEFAULT '';
     {5, "0005_history.sql", R"sql(-- Migration 5: what was done to the file, and by which build.
 -- A line when the file is created or migrated, and one per open that then
 -- added or removed rows: built, imported, curated, or learned in a planning
--- session. The line is written
--- with the open's first change and brought up to date in the same
--- transaction as each later one, so after a crash it still counts exactly
--- the rows that were committed.
+-- session. The line is written with the open's first change and brought up
+-- to date in the same transaction as each later one, so after a crash it
+-- still counts exactly the rows that were committed.
 CREATE TABLE history (
   id           INTEGER PRIMARY KEY AUTOINCREMENT,  -- order of first change
   token        INTEGER NOT NULL,  -- random per open: the line it keeps up to date

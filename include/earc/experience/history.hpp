@@ -33,7 +33,6 @@ class HistoryWriter {
   // operation: one of create, migrate, build, import, curate, learn.
   explicit HistoryWriter(std::string operation = "learn", std::string detail = {});
   void describe(std::string operation, std::string detail);
-  const std::string& operation() const { return operation_; }
 
   // Inside a write transaction on a file at schema >= 5 (older: nothing):
   // counts the rows on this open's line, writing the line when it is the
