@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "earc/bench/child.hpp"
 #include "earc/bench/options.hpp"
@@ -205,6 +206,7 @@ class Comparer {
         progress.setStatus(jobs_[i].name);
         ComparePair p = runPair(jobs_[i], r, (i + static_cast<std::size_t>(r)) % 2 == 1);
         if (interruptFlag().load()) break;
+        if (out.pairs.empty()) stopIfRefused(p);
         out.pairs.push_back(std::move(p));
         progress.tick();
       }
@@ -223,6 +225,18 @@ class Comparer {
   }
 
  private:
+  // A side that refuses the first plan's input (exit status 2: an option
+  // it does not know, a database too new for it, a scenario it cannot
+  // read) would refuse every plan alike: say so at once rather than run
+  // the whole comparison for a table of failures.
+  void stopIfRefused(const ComparePair& first) const {
+    for (const auto& [plan, program, option] : {std::tuple{&first.old_plan, &o_.old_program, "--old"},
+                                                std::tuple{&first.new_plan, &new_, "--new"}})
+      if (plan->refused)
+        throw InputError(*program, option, "refused the first plan (" + first.scenario + "), so would every plan: " +
+                                               plan->failure);
+  }
+
   static std::string describe(const std::string& program, const std::vector<std::string>& args) {
     std::string s = program;
     for (const std::string& a : args) s += " " + a;
@@ -261,6 +275,7 @@ class Comparer {
     spec.memory_limit_mb = o_.memory_limit_mb;
     const ChildOutcome run = runChild(spec, &interruptFlag());
     p.failure = childFailure(run, spec, err);
+    p.refused = run.started && !run.cancelled && !run.killed_at_limit && !run.signal && run.exit_code == 2;
     if (!p.failure.empty()) return p;
     nlohmann::json doc;
     if (auto why = readPlanSolution(run, solution, err, doc)) {

@@ -4,7 +4,8 @@
 # planner whose plans differ (but are valid) is reported as differing; one
 # whose plans are invalid is reported loudly with exit status 1; one that
 # crashes, exits 1 after solving, or writes no solution is that side's
-# named failure and the comparison goes on; E-ARC plans start from copies,
+# named failure and the comparison goes on; one that refuses its input
+# (exit 2) stops it after the first pair; E-ARC plans start from copies,
 # so the given database is left as it was; the CSV and the picture hold a
 # row per plan pair and a point per scenario; bad options end in one line
 # and exit status 2 before any plan runs.
@@ -121,6 +122,24 @@ before=$(sha256sum < "$WORK/m.sqlite")
 grep -q "^same paths: 3 of 3 plan pairs$" "$WORK/out" || { show; fail "E-ARC differs from itself"; }
 [ "$(sha256sum < "$WORK/m.sqlite")" = "$before" ] || fail "the given database changed"
 leftNothingBeside "$WORK/m.sqlite" "compare"
+
+# A side that refuses its input (exit 2: here a database too new for it)
+# would refuse every plan: compare stops after the first pair, in one line
+# naming the program and what it said, exit 2.
+cat > "$WORK/refuses" <<FAKE
+#!/bin/bash
+echo x >> "$WORK/refusals"
+echo "earc-plan: db.sqlite: schema version 5 is newer than this build knows (4)" >&2
+exit 2
+FAKE
+chmod +x "$WORK/refuses"
+"$BENCH" "${BASE[@]}" --old "$WORK/refuses" --new "$PLAN" > "$WORK/out" 2> "$WORK/err"
+rc=$?
+[ $rc -eq 2 ] || { show; fail "a refusing side: exit $rc, not 2"; }
+[ "$(wc -l < "$WORK/err")" -eq 1 ] || { show; fail "a refusing side: not one line"; }
+grep -qxF "earc-bench: error: $WORK/refuses: --old: refused the first plan (mobile-4-t0), so would every plan: exit 2: earc-plan: \
+db.sqlite: schema version 5 is newer than this build knows (4)" "$WORK/err" || { show; fail "the refusal is not named"; }
+[ "$(wc -l < "$WORK/refusals")" -eq 1 ] || fail "planned on after the refusal ($(wc -l < "$WORK/refusals") plans)"
 
 # Bad options: one line, exit 2, nothing planned.
 refused() {  # refused TEXT ARGS...

@@ -46,6 +46,7 @@ struct ComparePlan {
   std::string failure;            // why not solved ("" when solved)
   bool invalid = false;           // solved, but the validator refused it
   std::string version;            // the build that planned it (plannerVersion), "" unknown
+  bool refused = false;           // exit status 2: the program refused its input or options
 };
 
 struct ComparePair {
