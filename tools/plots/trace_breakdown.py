@@ -21,6 +21,12 @@ Prints two tables:
   medians and the median of paired ratios. The bounds leave everything
   else as it was: later conflicts could differ if the answers did.
 
+An attempt's time_s leaves out the roadmaps built when that solver first
+asked for them (the attempt's roadmap_build_s, since 59e46e5): every plan
+needs them whichever solver asks, so every bound keeps them. Traces made
+before 59e46e5 had them inside time_s, so their bounds take a little more
+away; compare runs traced by builds on the same side of that commit.
+
 Every error is one line naming the file, with exit status 2.
 """
 import argparse
