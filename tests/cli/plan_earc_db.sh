@@ -1,6 +1,7 @@
 #!/bin/bash
 # earc-plan plan --method earc --db FILE and the file:
 # - learning (the default) counts the session and writes what it learned;
+# - the summary line says what the database answered and learned;
 # - --no-learn leaves the file exactly as it was (no session count, no usage
 #   counters, nothing beside it) and refuses a missing file instead of
 #   creating one;
@@ -38,6 +39,16 @@ schema=$(q "$WORK/new.db" "pragma user_version")
 [ "$(q "$WORK/new.db" "select group_concat(line, '; ') from (select operation || ' ' || rows_added || ' ' || detail as line from history order by id)")" = \
   "create 0 schema $schema; learn $learned planning session 1" ] || fail "the history does not count what the plan learned"
 leftNothingBeside "$F" "a learning plan"
+# The summary line says what the database did, as the stats count it.
+"$PLAN" plan "$SCEN" -o "$WORK/c.json" --method earc --db "$F" --seed 4 > "$WORK/out" || fail "plan: exit $?"
+hits=$(stat_of "$WORK/c.json" db_hits)
+repairs=$(stat_of "$WORK/c.json" db_repairs)
+line="; database answered $((hits + repairs)) of $(stat_of "$WORK/c.json" subproblems) subproblems ($repairs by repair)"
+line+=", learned $(stat_of "$WORK/c.json" db_learned)"
+grep -q "^solved: 2 robots, method earc, .*, sum of costs [0-9.]*$line\$" "$WORK/out" ||
+  fail "the summary line does not say what the database did: $(cat "$WORK/out")"
+"$PLAN" plan "$SCEN" -o "$WORK/c.json" --method arc --seed 4 > "$WORK/out" || fail "plan (arc): exit $?"
+grep -q "database" "$WORK/out" && fail "ARC's summary line speaks of a database: $(cat "$WORK/out")"
 
 # --no-learn: the same file, byte for byte.
 before=$(md5sum < "$F")

@@ -41,6 +41,16 @@ PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s
   }
 }
 
+// What the experience database did in an E-ARC plan, for the summary
+// line: "; database answered 6 of 8 subproblems (1 by repair), learned 2".
+std::string databaseSummary(const nlohmann::json& st) {
+  if (!st.contains("db_queries")) return "";
+  const int repairs = st.value("db_repairs", 0);
+  return "; database answered " + std::to_string(st.value("db_hits", 0) + repairs) + " of " +
+         std::to_string(st.value("subproblems", 0)) + " subproblems (" + std::to_string(repairs) +
+         " by repair), learned " + std::to_string(st.value("db_learned", 0));
+}
+
 int runPlan(const PlanOptions& o) {
   // Before any planning: no output may overwrite an input or the other
   // output, and each must be writable.
@@ -82,7 +92,8 @@ int runPlan(const PlanOptions& o) {
     if (r.solution.solved)
       out << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
           << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0) << ", makespan "
-          << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0) << "\n";
+          << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0) << databaseSummary(st)
+          << "\n";
     else
       out << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
           << st.value("planning_time_s", 0.0) << " s"
