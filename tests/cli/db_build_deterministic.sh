@@ -1,10 +1,12 @@
 #!/bin/bash
 # earc-db build: the same seed gives the same rows with 1 or 2 threads, for
 # mobile robots (2-4 per problem) and for arm pairs of every class of the
-# default layout; the result verifies and inspect lists its classes.
+# default layout; the result verifies and inspect lists its classes; the
+# kind comes from --scenario when --kind is not given.
 # Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
+SRC=$2
 . "$(dirname "$0")/common.bash"
 DB="$BUILD/earc-db"
 needPython
@@ -49,6 +51,32 @@ for n in 2 3 4; do grep -Eq "^mobile +$n " "$WORK/inspect.out" || fail "no mobil
 "$DB" inspect --db "$WORK/arms-2.db" > "$WORK/inspect.out" || fail "inspect exited $?"
 grep -q "dx=4.000,dy=0.000,dth=3.142" "$WORK/inspect.out" || fail "no facing-pair class: $(cat "$WORK/inspect.out")"
 grep -q "dx=0.000,dy=-3.000,dth=0.000" "$WORK/inspect.out" || fail "no neighbour class: $(cat "$WORK/inspect.out")"
+
+# Without --kind, a --scenario's robots say which kind to build for; a
+# scenario with both kinds needs --kind (one line, exit 2, no file made).
+needBuilt earc-scenario
+"$BUILD/earc-scenario" generate --family arms -n 4 --seed 2 -o "$WORK/a4.json" > /dev/null || fail "generate arms"
+"$DB" build --db "$WORK/from-arms.db" --scenario "$WORK/a4.json" --count 10 --threads 1 -q || fail "build from arms: exit $?"
+"$DB" inspect --db "$WORK/from-arms.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+grep -Eq "^manipulator +2 " "$WORK/inspect.out" || fail "an arm scenario did not give an arm database: $(cat "$WORK/inspect.out")"
+grep -q "^mobile" "$WORK/inspect.out" && fail "an arm scenario gave mobile rows: $(cat "$WORK/inspect.out")"
+"$PY" - "$SRC/tests/data/scenarios/swap-discs.json" "$SRC/tests/data/scenarios/arm-fold.json" "$WORK/mixed.json" <<'PY'
+import json, sys
+mixed = json.load(open(sys.argv[1]))
+arm = json.load(open(sys.argv[2]))["robots"][0]
+arm.update(base=[8, 2, 0], start=[1.57, 0, 0, 0], goal=[1.57, 0.5, 0.5, 0])
+mixed["robots"].append(arm)
+mixed["resolution"]["joint"] = 0.1
+json.dump(mixed, open(sys.argv[3], "w"))
+PY
+"$DB" build --db "$WORK/mixed.db" --scenario "$WORK/mixed.json" --count 5 > "$WORK/out" 2> "$WORK/err"
+rc=$?
+[ $rc -eq 2 ] || fail "a scenario with both kinds: exit $rc, not 2"
+[ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$WORK/mixed.json: \$.robots: holds mobile robots and arms: say which with --kind" \
+  "$WORK/err" || fail "a scenario with both kinds: $(cat "$WORK/err")"
+[ -e "$WORK/mixed.db" ] && fail "a refused build made a file"
+"$DB" build --db "$WORK/mixed.db" --scenario "$WORK/mixed.json" --kind mobile --count 5 --threads 1 -q ||
+  fail "--kind mobile with a mixed scenario: exit $?"
 
 # A different seed gives different rows.
 "$DB" build --db "$WORK/other.db" --count 40 --seed 8 > /dev/null 2>&1 || fail "build --seed 8"

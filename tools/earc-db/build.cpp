@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <iostream>
 #include <set>
 
@@ -23,7 +24,7 @@ namespace {
 
 struct BuildOptions {
   std::string db;
-  std::string kind = "mobile";
+  std::string kind;  // "" : the --scenario's robots say, else mobile
   int count = 0;
   std::string scenario;
   std::string shape;
@@ -108,9 +109,20 @@ std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::S
   return out;
 }
 
+// --kind, or what the scenario holds: a database for an arm cell's
+// scenario is an arm database without being told twice.
+earc::RobotKind kindToBuild(const BuildOptions& opt, const earc::Scenario* scenario) {
+  if (!opt.kind.empty()) return opt.kind == "arms" ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
+  if (!scenario) return earc::RobotKind::Mobile;
+  const auto arms = std::count_if(scenario->robots.begin(), scenario->robots.end(),
+                                  [](const earc::RobotSpec& r) { return r.kind == earc::RobotKind::Manipulator; });
+  if (arms > 0 && arms < static_cast<std::ptrdiff_t>(scenario->robots.size()))
+    throw earc::InputError(opt.scenario, "$.robots", "holds mobile robots and arms: say which with --kind");
+  return arms > 0 ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
+}
+
 void runBuild(const BuildOptions& opt, std::ostream& out) {
   earc::exp::BuildSettings s;
-  s.kind = opt.kind == "arms" ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
   s.count = opt.count;
   s.seed = opt.seed;
   s.threads = opt.threads;
@@ -125,6 +137,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     scenario = earc::loadScenario(opt.scenario);
     s.resolution = scenario->resolution;
   }
+  s.kind = kindToBuild(opt, scenario ? &*scenario : nullptr);
   if (s.kind == earc::RobotKind::Mobile) {
     s.mobile_robots = mobileRobots(opt, scenario ? &*scenario : nullptr);
   } else if (scenario) {
@@ -163,7 +176,7 @@ void setupBuild(CLI::App& app) {
   auto opt = std::make_shared<BuildOptions>();
   CLI::App* sub = app.add_subcommand("build", "Fill a database with solved random subproblems");
   sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
-  sub->add_option("--kind", opt->kind, "Robot kind")->check(CLI::IsMember({"mobile", "arms"}));
+  sub->add_option("--kind", opt->kind, "Robot kind (default: the --scenario's, else mobile)")->check(CLI::IsMember({"mobile", "arms"}));
   sub->add_option("--count", opt->count,
                   "Problems to solve (default " + std::to_string(earc::exp::kDefaultMobileProblems) + " mobile, " +
                       std::to_string(earc::exp::kDefaultArmProblems) + " arms)")
