@@ -67,14 +67,16 @@ refused() {  # what, file, expected text, command...
   local rc=$?
   [ $rc -eq 2 ] || fail "$what: exit $rc, expected 2: $(head -c 400 "$WORK/err")"
   [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "$what: stderr is not one line: $(cat "$WORK/err")"
-  grep -qF "$file" "$WORK/err" || fail "$what: message does not name $file: $(cat "$WORK/err")"
-  grep -q "$text" "$WORK/err" || fail "$what: message lacks '$text': $(cat "$WORK/err")"
+  grep -qF -- "$file" "$WORK/err" || fail "$what: message does not name $file: $(cat "$WORK/err")"
+  grep -q -- "$text" "$WORK/err" || fail "$what: message lacks '$text': $(cat "$WORK/err")"
   [ -e "$WORK/sol.json" ] && fail "$what: a solution was written"
   return 0
 }
 refused "missing file with --no-learn" "$WORK/none.db" "no such" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/none.db" --no-learn -q
 [ -e "$WORK/none.db" ] && fail "a missing file was created under --no-learn"
+refused "no --db" "--db" "method earc needs an experience database file (earc-db build makes one" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc -q
 
 # Damage only quick_check finds: the table's root page is not a b-tree page.
 cp "$F" "$WORK/bad.db"

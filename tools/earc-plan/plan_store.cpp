@@ -7,7 +7,7 @@ namespace earc {
 
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn) {
   if (method != Method::Earc) return nullptr;
-  if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file");
+  if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file (earc-db build makes one; a new file name starts empty)");
   exp::StoreOptions options;
   options.check_in_background = true;
   if (!learn) {
