@@ -2,6 +2,7 @@
 # earc-plan plan --method earc --db FILE and the file:
 # - learning (the default) counts the session and writes what it learned;
 # - the summary line says what the database answered and learned;
+# - --db-k and --db-repair-max reach the database solver;
 # - --no-learn leaves the file exactly as it was (no session count, no usage
 #   counters, nothing beside it) and refuses a missing file instead of
 #   creating one;
@@ -50,6 +51,33 @@ grep -q "^solved: 2 robots, method earc, .*, sum of costs [0-9.]*$line\$" "$WORK
 "$PLAN" plan "$SCEN" -o "$WORK/c.json" --method arc --seed 4 > "$WORK/out" || fail "plan (arc): exit $?"
 grep -q "database" "$WORK/out" && fail "ARC's summary line speaks of a database: $(cat "$WORK/out")"
 
+# --db-k and --db-repair-max reach the database solver: each failed
+# query's trace says how many candidates it read, and with repair off a
+# query whose best candidate had one invalid run says it was not repaired.
+MOB="$SRC/datasets/mobile-obst-16-s1.json"
+"$DB" build --db "$WORK/k.db" --scenario "$MOB" --count 600 --seed 2 -q || fail "build for --db-k"
+details() {  # details TRACE: one line per database attempt's detail
+  "$PY" -c 'import json, sys
+for e in json.load(open(sys.argv[1]))["events"]:
+    for a in e.get("attempts", []) if e.get("type") == "subproblem" else []:
+        if a["solver"] in ("database", "repair"): print(a["solver"], a.get("detail", "-"))' "$1"
+}
+for k in 10 1; do
+  "$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 --db-k $k \
+    --trace "$WORK/k.trace" -q || fail "--db-k $k: exit $?"
+  details "$WORK/k.trace" > "$WORK/k.details"
+  grep -q "^database $k candidates: " "$WORK/k.details" || fail "--db-k $k: no query read $k: $(cat "$WORK/k.details")"
+  grep "candidates: " "$WORK/k.details" | grep -qv "^database $k candidates: " &&
+    fail "--db-k $k: a query read another number: $(cat "$WORK/k.details")"
+done
+"$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 --db-repair-max 0 \
+  --trace "$WORK/k.trace" -q || fail "--db-repair-max 0: exit $?"
+details "$WORK/k.trace" > "$WORK/k.details"
+grep -q "fewest invalid runs 1, too many to repair$" "$WORK/k.details" ||
+  fail "--db-repair-max 0: no query refused to repair one run: $(cat "$WORK/k.details")"
+grep -q "^repair" "$WORK/k.details" && fail "--db-repair-max 0: repaired: $(cat "$WORK/k.details")"
+[ "$(stat_of "$WORK/k.json" db_repairs)" -eq 0 ] || fail "--db-repair-max 0: db_repairs is not 0"
+
 # --no-learn: the same file, byte for byte.
 before=$(md5sum < "$F")
 "$PLAN" plan "$SCEN" -o "$WORK/b.json" --method earc --db "$F" --no-learn --seed 2 -q || fail "--no-learn: exit $?"
@@ -75,6 +103,8 @@ refused() {  # what, file, expected text, command...
 refused "missing file with --no-learn" "$WORK/none.db" "no such" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/none.db" --no-learn -q
 [ -e "$WORK/none.db" ] && fail "a missing file was created under --no-learn"
+refused "--db-k with method arc" "--db-k" "is for method earc" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db-k 3 -q
 refused "no --db" "--db" "method earc needs an experience database file (earc-db build makes one" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc -q
 

@@ -1,6 +1,8 @@
 // earc-plan plan: plan a scenario with one method and write its solution.
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <utility>
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
@@ -24,6 +26,7 @@ struct PlanOptions {
   int window = 0;
   bool no_learn = false;
   bool shadow_decoupled = false;
+  std::optional<int> db_k, db_repair_max;
   bool quiet = false;
 };
 
@@ -73,6 +76,10 @@ int runPlan(const PlanOptions& o) {
   if (o.shadow_decoupled && s.method != Method::Earc)
     throw InputError("", "--shadow-decoupled", "is for method earc");
   s.db_shadow_decoupled = o.shadow_decoupled;
+  for (const auto& [value, option] : {std::pair{&o.db_k, "--db-k"}, std::pair{&o.db_repair_max, "--db-repair-max"}})
+    if (*value && s.method != Method::Earc) throw InputError("", option, "is for method earc");
+  if (o.db_k) s.db_k = *o.db_k;
+  if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
@@ -121,6 +128,14 @@ void setupPlan(CLI::App& app) {
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");
+  cmd->add_option("--db-k", opts->db_k,
+                  "E-ARC: stored solutions retrieved per subproblem, nearest first (default " +
+                      std::to_string(PlannerSettings{}.db_k) + ")")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--db-repair-max", opts->db_repair_max,
+                  "E-ARC: repair a retrieved solution with at most this many invalid runs of segments; 0: never "
+                  "repair (default " + std::to_string(PlannerSettings{}.db_max_invalid_segments) + ")")
+      ->check(CLI::Range(0, 1000));
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }
