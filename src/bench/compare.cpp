@@ -9,7 +9,9 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <tuple>
+#include <utility>
 
 #include "earc/bench/child.hpp"
 #include "earc/bench/options.hpp"
@@ -178,6 +180,9 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
 
 namespace {
 
+// Methods that plan with a database (--db).
+bool usesDb(const std::string& method) { return method == "earc" || method == "lightning"; }
+
 struct Job {
   std::string scenario_file, name;
   std::uint64_t planner_seed = 0;
@@ -189,6 +194,8 @@ class Comparer {
       : o_(o), jobs_(std::move(jobs)), log_(log) {
     const std::string here = executableDir();
     new_ = o.new_program.empty() ? here + "/earc-plan" : o.new_program;
+    old_method_ = o.old_method.empty() ? o.method : o.old_method;
+    new_method_ = o.new_method.empty() ? o.method : o.new_method;
     validator_ = o.validator.empty() ? here + "/earc-plan" : o.validator;
     for (const char* sub : {"solutions", "logs"}) fs::create_directories(o.work_dir + "/" + sub);
   }
@@ -196,7 +203,7 @@ class Comparer {
   CompareSummary run() {
     CompareSummary out;
     log_ << "earc-bench compare: " << jobs_.size() << (jobs_.size() == 1 ? " scenario" : " scenarios") << " x "
-         << o_.repeats << (o_.repeats == 1 ? " repeat" : " repeats") << ", method " << o_.method << ", time limit "
+         << o_.repeats << (o_.repeats == 1 ? " repeat" : " repeats") << ", " << methods() << ", time limit "
          << formatNumber("%g", o_.time_limit_s) << " s\n  old: " << describe(o_.old_program, o_.old_args)
          << "\n  new: " << describe(new_, o_.new_args) << "\n";
     log_.flush();
@@ -219,7 +226,7 @@ class Comparer {
     if (!o_.csv.empty()) writeCsv(out.pairs);
     if (!o_.picture.empty())
       render::writeImage(o_.picture, compareSvg(out.pairs, out.stats,
-                                                "earc-bench compare: method " + o_.method + ", " +
+                                                "earc-bench compare: " + methods() + ", " +
                                                     std::to_string(out.stats.scenarios) + " scenarios"));
     return out;
   }
@@ -243,12 +250,17 @@ class Comparer {
     return s;
   }
 
-  bool usesDb() const { return o_.method == "earc" || o_.method == "lightning"; }
+  const std::string& methodOf(const std::string& side) const { return side == "old" ? old_method_ : new_method_; }
+
+  // "method earc", or "methods old arc, new earc".
+  std::string methods() const {
+    return old_method_ == new_method_ ? "method " + old_method_ : "methods old " + old_method_ + ", new " + new_method_;
+  }
 
   // The database a plan starts from: a fresh copy of the given one (and of
   // its write-ahead log), so that neither side sees what the other did.
   std::string freshDb(const std::string& side) const {
-    const std::string copy = o_.work_dir + "/db-" + side + (o_.method == "lightning" ? ".lightning" : ".sqlite");
+    const std::string copy = o_.work_dir + "/db-" + side + (methodOf(side) == "lightning" ? ".lightning" : ".sqlite");
     for (const char* ext : {"", "-wal", "-shm", "-journal"}) fs::remove(copy + ext);
     fs::copy_file(o_.db, copy);
     if (fs::exists(o_.db + "-wal")) fs::copy_file(o_.db + "-wal", copy + "-wal");
@@ -263,9 +275,9 @@ class Comparer {
     fs::remove(solution);
     ChildSpec spec;
     spec.argv = {side == "old" ? o_.old_program : new_, "plan", job.scenario_file, "-o", solution, "--method",
-                 o_.method, "--time-limit", std::to_string(o_.time_limit_s), "--seed",
+                 methodOf(side), "--time-limit", std::to_string(o_.time_limit_s), "--seed",
                  std::to_string(job.planner_seed), "-q"};
-    if (usesDb()) {
+    if (usesDb(methodOf(side))) {
       spec.argv.insert(spec.argv.end(), {"--db", freshDb(side), "--no-learn"});
     }
     for (const std::string& a : side == "old" ? o_.old_args : o_.new_args) spec.argv.push_back(a);
@@ -412,7 +424,7 @@ class Comparer {
   const CompareOptions& o_;
   std::vector<Job> jobs_;
   std::ostream& log_;
-  std::string new_, validator_;
+  std::string new_, validator_, old_method_, new_method_;
 };
 
 // Every option checked, and the scenarios made or read, before any plan.
@@ -421,12 +433,21 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
   requireExecutable(o.old_program, "--old");
   if (!o.new_program.empty()) requireExecutable(o.new_program, "--new");
   else requireExecutable(executableDir() + "/earc-plan", "--new (default: earc-plan beside earc-bench)");
-  if (std::find(allMethods().begin(), allMethods().end(), o.method) == allMethods().end())
-    throw InputError("", "--method", "unknown method '" + o.method + "' (earc, arc, lightning, prioritized, coupled)");
-  if (o.method == "earc" || o.method == "lightning") {
-    if (o.db.empty()) throw InputError("", "--db", "method " + o.method + " needs a database to start from");
-    if (!fs::is_regular_file(o.db)) throw InputError(o.db, "--db", "no such file");
+  for (const auto& [method, option] : {std::pair{&o.method, "--method"}, std::pair{&o.old_method, "--old-method"},
+                                       std::pair{&o.new_method, "--new-method"}}) {
+    if (method->empty() && option != std::string_view("--method")) continue;
+    if (std::find(allMethods().begin(), allMethods().end(), *method) == allMethods().end())
+      throw InputError("", option, "unknown method '" + *method + "' (earc, arc, lightning, prioritized, coupled)");
   }
+  const std::string& old_method = o.old_method.empty() ? o.method : o.old_method;
+  const std::string& new_method = o.new_method.empty() ? o.method : o.new_method;
+  if (usesDb(old_method) && usesDb(new_method) && old_method != new_method)
+    throw InputError("", "--db", "methods " + old_method + " and " + new_method + " read different kinds of database");
+  for (const std::string* method : {&old_method, &new_method})
+    if (usesDb(*method)) {
+      if (o.db.empty()) throw InputError("", "--db", "method " + *method + " needs a database to start from");
+      if (!fs::is_regular_file(o.db)) throw InputError(o.db, "--db", "no such file");
+    }
   if (!o.picture.empty()) render::requireImageOutput(o.picture, "--picture");
   requireSeparateOutputs(o.db, "--db", {{o.csv, "--csv"}, {o.picture, "--picture"}});
   std::vector<Job> jobs;

@@ -7,7 +7,9 @@
 # named failure and the comparison goes on; one that refuses its input
 # (exit 2) stops it after the first pair; E-ARC plans start from copies,
 # so the given database is left as it was; the CSV and the picture hold a
-# row per plan pair and a point per scenario; bad options end in one line
+# row per plan pair and a point per scenario; two methods can be compared
+# (--old-method/--new-method), only the one that plans with a database
+# getting a copy; bad options end in one line
 # and exit status 2 before any plan runs.
 # Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
 # under an address-space limit, which AddressSanitizer cannot live with.)
@@ -122,6 +124,14 @@ before=$(sha256sum < "$WORK/m.sqlite")
 grep -q "^same paths: 3 of 3 plan pairs$" "$WORK/out" || { show; fail "E-ARC differs from itself"; }
 [ "$(sha256sum < "$WORK/m.sqlite")" = "$before" ] || fail "the given database changed"
 leftNothingBeside "$WORK/m.sqlite" "compare"
+# One method against another: ARC (no database) against E-ARC, plan by plan.
+"$BENCH" compare --old "$PLAN" --old-method arc --new-method earc --db "$WORK/m.sqlite" --work-dir "$WORK/w4" \
+  --time-limit 10 "$WORK"/w/scenarios/mobile-4-t*.json > "$WORK/out" 2> "$WORK/err" || { show; fail "ARC against E-ARC exited $?"; }
+grep -q "^earc-bench compare: 3 scenarios x 1 repeat, methods old arc, new earc, time limit 10 s$" "$WORK/out" ||
+  { show; fail "the methods compared are not named"; }
+grep -q "^old solved 3 of 3 plans, new 3 of 3$" "$WORK/out" || { show; fail "ARC against E-ARC: solved counts"; }
+ls "$WORK/w4" | grep -q "^db-old" && fail "ARC's side was given a database"
+[ "$(sha256sum < "$WORK/m.sqlite")" = "$before" ] || fail "the given database changed (two methods)"
 
 # A side that refuses its input (exit 2: here a database too new for it)
 # would refuse every plan: compare stops after the first pair, in one line
@@ -157,6 +167,10 @@ refused "--old" --suite mobile --robots 4
 refused "/nonexistent: --old: no such file" --old /nonexistent
 refused "--db: method earc needs a database" --old "$PLAN" --method earc
 refused "--method: unknown method 'astar'" --old "$PLAN" --method astar
+refused "--new-method: unknown method 'astar'" --old "$PLAN" --new-method astar
+refused "--db: method earc needs a database" --old "$PLAN" --old-method arc --new-method earc
+refused "--db: methods lightning and earc read different kinds of database" --old "$PLAN" --old-method lightning \
+  --new-method earc --db "$WORK/m.sqlite"
 refused "--robots: suite mobile has no 5-robot trials" --old "$PLAN" --suite mobile --robots 5
 echo '{"format": "earc.scenario.v1", "robots": [' > "$WORK/broken.json"
 refused "$WORK/broken.json" --old "$PLAN" "$WORK/broken.json"

@@ -2,7 +2,7 @@
 // another, plan by plan on the same scenarios (see earc/bench/compare.hpp).
 //
 //   earc-bench compare --old PROGRAM [--new PROGRAM] [--old-arg A]... [--new-arg A]...
-//     [SCENARIO.json...] [--suite S --robots N --trials T] [--method M] [--db FILE]
+//     [SCENARIO.json...] [--suite S --robots N --trials T] [--method M] [--old-method M] [--new-method M] [--db FILE]
 //     [--time-limit S] [--seed S] [--repeats R] [--csv FILE] [--picture FILE.svg|png]
 //
 // Exit status 0 when the comparison finished, 1 when some solution was
@@ -34,6 +34,8 @@ void setupCompare(CLI::App& app) {
       ->check(earc::cli::kPositiveWholeNumber)
       ->capture_default_str();
   cmd->add_option("--method", o->method, "earc, arc, lightning, prioritized or coupled")->capture_default_str();
+  cmd->add_option("--old-method", o->old_method, "The old side's method (default: --method), e.g. arc against earc");
+  cmd->add_option("--new-method", o->new_method, "The new side's method (default: --method)");
   cmd->add_option("--db", o->db, "Database for earc or lightning, copied afresh for every plan");
   cmd->add_option("--time-limit", o->time_limit_s, "Planning time limit per plan, seconds")
       ->check(earc::cli::kFinitePositive)

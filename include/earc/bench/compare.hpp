@@ -26,6 +26,7 @@ struct CompareOptions {
   int robots = 32;
   int trials = 20;
   std::string method = "arc";
+  std::string old_method, new_method;  // one side's method; empty: `method`
   std::string db;             // earc and lightning: copied afresh for every plan
   double time_limit_s = 20.0;
   std::uint64_t seed = 1;
