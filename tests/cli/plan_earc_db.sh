@@ -2,7 +2,8 @@
 # earc-plan plan --method earc --db FILE and the file:
 # - learning (the default) counts the session and writes what it learned;
 # - the summary line says what the database answered and learned;
-# - --db-k and --db-repair-max reach the database solver;
+# - --db-k and --db-repair-max reach the database solver, and
+#   --db-max-stretch refuses answers longer than its bound;
 # - --no-learn leaves the file exactly as it was (no session count, no usage
 #   counters, nothing beside it) and refuses a missing file instead of
 #   creating one;
@@ -78,6 +79,24 @@ grep -q "fewest invalid runs 1, too many to repair$" "$WORK/k.details" ||
 grep -q "^repair" "$WORK/k.details" && fail "--db-repair-max 0: repaired: $(cat "$WORK/k.details")"
 [ "$(stat_of "$WORK/k.json" db_repairs)" -eq 0 ] || fail "--db-repair-max 0: db_repairs is not 0"
 
+# --db-max-stretch: an answer longer than F times its slowest robot's
+# straight-motion steps is refused (the trace says by how much), the
+# subproblem is planned from scratch, and the plan still solves; by
+# default nothing is refused.
+[ "$(stat_of "$WORK/k.json" db_refused_too_long)" -eq 0 ] || fail "an answer refused as too long by default"
+"$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 --db-max-stretch 1.05 \
+  --trace "$WORK/k.trace" -q || fail "--db-max-stretch 1.05: exit $?"
+details "$WORK/k.trace" > "$WORK/k.details"
+"$PY" - "$WORK/k.details" "$(stat_of "$WORK/k.json" db_refused_too_long)" <<'PY' || fail "--db-max-stretch: $(cat "$WORK/k.details")"
+import re, sys
+refused = [re.search(r"answer (\d+) steps, more than 1.05 x (\d+)$", l) for l in open(sys.argv[1])]
+refused = [m for m in refused if m]
+assert refused, "nothing refused at 1.05"
+assert all(int(m.group(1)) > 1.05 * int(m.group(2)) for m in refused), "refused an answer within the bound"
+assert len(refused) == int(sys.argv[2]), "stats db_refused_too_long %s, trace %d" % (sys.argv[2], len(refused))
+PY
+"$PLAN" validate "$MOB" "$WORK/k.json" > /dev/null || fail "--db-max-stretch: the plan is not valid"
+
 # --no-learn: the same file, byte for byte.
 before=$(md5sum < "$F")
 "$PLAN" plan "$SCEN" -o "$WORK/b.json" --method earc --db "$F" --no-learn --seed 2 -q || fail "--no-learn: exit $?"
@@ -105,6 +124,8 @@ refused "missing file with --no-learn" "$WORK/none.db" "no such" \
 [ -e "$WORK/none.db" ] && fail "a missing file was created under --no-learn"
 refused "--db-k with method arc" "--db-k" "is for method earc" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db-k 3 -q
+refused "--db-max-stretch with method arc" "--db-max-stretch" "is for method earc" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db-max-stretch 3 -q
 refused "no --db" "--db" "method earc needs an experience database file (earc-db build makes one" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc -q
 

@@ -27,6 +27,7 @@ struct PlanOptions {
   bool no_learn = false;
   bool shadow_decoupled = false;
   std::optional<int> db_k, db_repair_max;
+  std::optional<double> db_max_stretch;
   bool quiet = false;
 };
 
@@ -78,7 +79,9 @@ int runPlan(const PlanOptions& o) {
   s.db_shadow_decoupled = o.shadow_decoupled;
   for (const auto& [value, option] : {std::pair{&o.db_k, "--db-k"}, std::pair{&o.db_repair_max, "--db-repair-max"}})
     if (*value && s.method != Method::Earc) throw InputError("", option, "is for method earc");
+  if (o.db_max_stretch && s.method != Method::Earc) throw InputError("", "--db-max-stretch", "is for method earc");
   if (o.db_k) s.db_k = *o.db_k;
+  if (o.db_max_stretch) s.db_max_stretch = *o.db_max_stretch;
   if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
@@ -136,6 +139,11 @@ void setupPlan(CLI::App& app) {
                   "E-ARC: repair a retrieved solution with at most this many invalid runs of segments; 0: never "
                   "repair (default " + std::to_string(PlannerSettings{}.db_max_invalid_segments) + ")")
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--db-max-stretch", opts->db_max_stretch,
+                  "E-ARC: refuse a database answer longer than this many times the steps its slowest robot needs "
+                  "to go straight from start to goal, and plan that subproblem from scratch (shorter plans for "
+                  "arms, slower; default 0: any length)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }

@@ -25,6 +25,9 @@ struct DatabaseSolverSettings {
   int max_invalid_segments = 3;   // repair only up to this many invalid runs
   double repair_time_s = 0.1;     // composite replanning budget per run
   int retime_iterations = 100;    // retimeShortcut attempts on an answer for arms
+  // Refuse an answer longer than this many times the steps its slowest
+  // robot needs to go straight from start to goal (0: take any length).
+  double max_stretch = 0.0;
   bool learn = true;              // insert subproblems solved from scratch, count uses
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
@@ -67,11 +70,13 @@ class DatabaseSolver : public SubproblemSolver {
   int hits_ = 0;
   int repairs_ = 0;
   int crowded_ = 0;  // valid candidates refused for running into other robots
+  int too_long_ = 0;  // answers refused for max_stretch
   // What became of the last query's candidates (its trace detail), and why
   // it failed; why is empty when the subproblem's size has no class.
   struct Tally {
     std::size_t candidates = 0;
     int ends_blocked = 0, invalid = 0, crowded = 0;
+    std::size_t too_long = 0;  // the length of an answer refused for max_stretch
     std::string why;
   } tally_;
   struct Shadow {

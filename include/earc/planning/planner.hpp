@@ -36,6 +36,7 @@ struct PlannerSettings {
   // E-ARC's database solver.
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
+  double db_max_stretch = 0.0;        // refuse longer answers (DatabaseSolverSettings::max_stretch); 0: off
   bool db_learn = true;               // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
   // Diagnostic: also run the decoupled solver on every subproblem put to
   // the database and report what each solved (stats
