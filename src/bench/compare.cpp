@@ -149,6 +149,9 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
       svg << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + size << "\" stroke=\""
           << stroke << "\"/>\n<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + size << "\" y2=\"" << y
           << "\" stroke=\"" << stroke << "\"/>\n";
+      // Over more than two decades 2 and 5 get grid lines but no labels:
+      // their labels would run into each other ("0.00010.0002").
+      if (m != 1 && dhi - dlo > 2) continue;
       svg << "<text x=\"" << x << "\" y=\"" << top + size + 16 << "\" text-anchor=\"middle\">" << formatNumber("%g", v)
           << "</text>\n<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">" << formatNumber("%g", v)
           << "</text>\n";

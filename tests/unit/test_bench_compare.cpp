@@ -146,6 +146,15 @@ TEST_CASE("The comparison's picture has a point per paired scenario, hollow wher
   // Decades 0.01 to 10 are labelled: every point is inside the axes.
   CHECK(svg.find(">0.01<") != std::string::npos);
   CHECK(svg.find(">10<") != std::string::npos);
+  // Over three decades only the decades are labelled (the 2s and 5s ran
+  // into each other); over two, 2 and 5 are too.
+  CHECK(svg.find(">0.02<") == std::string::npos);
+  CHECK(svg.find(">0.05<") == std::string::npos);
+  const std::vector<ComparePair> narrow = {pair("a", 0, solvedIn(0.01), solvedIn(0.02)),
+                                           pair("b", 0, solvedIn(0.2), solvedIn(0.1))};
+  const std::string two = compareSvg(narrow, compareStats(narrow, 1), "two decades");
+  CHECK(two.find(">0.02<") != std::string::npos);
+  CHECK(two.find(">0.5<") != std::string::npos);
   // An empty comparison still draws its axes.
   CHECK(count(compareSvg({}, compareStats({}, 1), "none"), "<circle") == 0);
 }
