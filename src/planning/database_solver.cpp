@@ -143,8 +143,9 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     if (bound < 1e15) longest = static_cast<std::size_t>(bound);
   }
   auto tooLong = [&](const LocalSolution& sol) {
-    if (sol.length() <= longest) return false;
-    tally_.too_long = sol.length();
+    const std::size_t steps = sol.length() - 1;  // it holds a state per instant
+    if (steps <= longest) return false;
+    tally_.too_long = steps;
     ++too_long_;
     return true;
   };

@@ -76,7 +76,7 @@ class DatabaseSolver : public SubproblemSolver {
   struct Tally {
     std::size_t candidates = 0;
     int ends_blocked = 0, invalid = 0, crowded = 0;
-    std::size_t too_long = 0;  // the length of an answer refused for max_stretch
+    std::size_t too_long = 0;  // the steps of an answer refused for max_stretch
     std::string why;
   } tally_;
   struct Shadow {
