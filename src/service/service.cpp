@@ -3,6 +3,8 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <tuple>
 
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
@@ -63,6 +65,25 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
     if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
     s.initial_window = static_cast<int>(w.get<std::uint64_t>());
+  }
+  // E-ARC's retrieval settings, as earc-plan plan's --db-k, --db-repair-max
+  // and --db-max-stretch.
+  auto earcOnly = [&](const char* name) {
+    if (s.method != Method::Earc) throw badField(name, "is for method earc");
+  };
+  for (auto [name, target, least] : {std::tuple{"db_k", &s.db_k, 1}, std::tuple{"db_repair_max", &s.db_max_invalid_segments, 0}})
+    if (const json& v = field(request, name); !v.is_null()) {
+      earcOnly(name);
+      if (!v.is_number_unsigned() || v.get<std::uint64_t>() < static_cast<std::uint64_t>(least) ||
+          v.get<std::uint64_t>() > 1000)
+        throw badField(name, "must be a whole number from " + std::to_string(least) + " to 1000");
+      *target = static_cast<int>(v.get<std::uint64_t>());
+    }
+  if (const json& f = field(request, "db_max_stretch"); !f.is_null()) {
+    earcOnly("db_max_stretch");
+    if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0)
+      throw badField("db_max_stretch", "must be a number >= 0 (0: any length)");
+    s.db_max_stretch = f.get<double>();
   }
   return s;
 }
@@ -127,7 +148,7 @@ json Service::handle(const json& request) {
     json response;
     if (name == "plan") {
       requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
-                                 "window"});
+                                 "window", "db_k", "db_repair_max", "db_max_stretch"});
       response = plan(request);
     } else if (name == "ping") {
       requireKnownKeys(request, {"id", "op"});

@@ -69,11 +69,19 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   CHECK(r["ok"] == false);
   CHECK(r["error"].get<std::string>().find("missing.json") != std::string::npos);
 
+  r = reply(svc, json{{"id", 12}, {"scenario_file", kScenarioFile}, {"method", "arc"}, {"db_k", 3}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("$.db_k: is for method earc") != std::string::npos);
+
+  r = reply(svc, json{{"id", 13}, {"scenario_file", kScenarioFile}, {"db_max_stretch", -1}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("$.db_max_stretch") != std::string::npos);
+
   r = reply(svc, R"({"id": 11, "op": "ping"})");
   CHECK(r["ok"] == true);
   CHECK(r["protocol"] == service::kProtocol);
-  CHECK(svc.counters().errors == 7);
-  CHECK(svc.counters().requests == 8);
+  CHECK(svc.counters().errors == 9);
+  CHECK(svc.counters().requests == 10);
 }
 
 TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {
@@ -109,9 +117,20 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
   REQUIRE(r["solved"] == true);
   CHECK(r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>() >= 1);
 
+  // E-ARC's retrieval settings per request: a bound of one straight
+  // motion refuses answers that wait or turn aside, and the plan still
+  // solves from scratch; db_k and db_repair_max are taken.
+  r = reply(svc, json{{"id", "strict"}, {"scenario", scenarioToJson(scenario)}, {"seed", 3}, {"learn", false},
+                      {"db_max_stretch", 1.0}, {"db_k", 2}, {"db_repair_max", 0}}
+                     .dump());
+  REQUIRE(r["solved"] == true);
+  CHECK(r["stats"]["db_refused_too_long"].get<int>() >= 1);
+  CHECK(r["stats"]["db_repairs"].get<int>() == 0);
+  CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
+
   r = reply(svc, R"({"op": "stats"})");
-  CHECK(r["stats"]["plans"] == 2);
-  CHECK(r["stats"]["solved"] == 2);
+  CHECK(r["stats"]["plans"] == 3);
+  CHECK(r["stats"]["solved"] == 3);
   svc.close();
 }
 

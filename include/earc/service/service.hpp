@@ -9,7 +9,9 @@
 //    "scenario": {earc.scenario.v1} | "scenario_file": "path",
 //    "method": "earc"|"arc"|"prioritized"|"coupled"|"lightning",
 //    "time_limit": seconds > 0, "seed": integer >= 0, "learn": bool,
-//    "window": steps > 0}
+//    "window": steps > 0,
+//    method earc only: "db_k": 1..1000, "db_repair_max": 0..1000,
+//    "db_max_stretch": number >= 0}
 //   {"id": any, "op": "ping"}
 //   {"id": any, "op": "stats"}
 // Responses echo "id" (null when the request had none or was unreadable):
