@@ -189,21 +189,26 @@ std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials) {
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
                         const std::string& a, const std::string& b) {
   using Key = std::tuple<int, std::uint64_t, double>;
-  std::map<Key, double> ta, tb;
+  std::map<Key, const TrialRecord*> ta, tb;
   for (const auto& t : trials) {
     if (t.suite != suite || t.robots != robots || !t.success || !t.planning_time_s) continue;
-    if (t.method == a) ta[{t.trial, t.seed, t.time_limit_s}] = *t.planning_time_s;
-    if (t.method == b) tb[{t.trial, t.seed, t.time_limit_s}] = *t.planning_time_s;
+    if (t.method == a) ta[{t.trial, t.seed, t.time_limit_s}] = &t;
+    if (t.method == b) tb[{t.trial, t.seed, t.time_limit_s}] = &t;
   }
-  std::vector<double> ratios, paired_a, paired_b;
-  for (const auto& [k, va] : ta) {
+  std::vector<double> ratios, paired_a, paired_b, makespans_a, makespans_b;
+  for (const auto& [k, ra] : ta) {
     auto it = tb.find(k);
-    if (it == tb.end() || it->second <= 0) continue;
-    ratios.push_back(va / it->second);
-    paired_a.push_back(va);
-    paired_b.push_back(it->second);
+    if (it == tb.end() || *it->second->planning_time_s <= 0) continue;
+    ratios.push_back(*ra->planning_time_s / *it->second->planning_time_s);
+    paired_a.push_back(*ra->planning_time_s);
+    paired_b.push_back(*it->second->planning_time_s);
+    if (ra->makespan && it->second->makespan) {
+      makespans_a.push_back(static_cast<double>(*ra->makespan));
+      makespans_b.push_back(static_cast<double>(*it->second->makespan));
+    }
   }
-  PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt, std::nullopt, std::nullopt};
+  PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt, std::nullopt, std::nullopt,
+                quantile(makespans_a, 0.5), quantile(makespans_b, 0.5)};
   if (ratios.empty()) return r;
   r.of_medians = *quantile(paired_a, 0.5) / *quantile(paired_b, 0.5);
   constexpr std::uint64_t kSeed = 1;
@@ -410,12 +415,16 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
     if (r.pairs == 0) continue;
     ratio_rows.push_back("| " + c.suite + " | " + std::to_string(c.robots) + " | " + std::to_string(r.pairs) +
                          " | " + withInterval("%.3f", *r.of_medians, *r.of_medians_interval) + " | " +
-                         withInterval("%.3f", *r.median, *r.median_interval) + " |");
+                         withInterval("%.3f", *r.median, *r.median_interval) + " | " +
+                         (r.makespan_a ? formatNumber("%g", *r.makespan_a) + " / " + formatNumber("%g", *r.makespan_b)
+                                       : std::string("-")) +
+                         " |");
   }
   if (!ratio_rows.empty()) {
     out << "\n### E-ARC / ARC planning time, paired by seed\n\n"
-        << "| suite | robots | pairs solved by both | ratio of medians [95% interval] | median of ratios [95% interval] |\n"
-        << "|:---|---:|---:|---:|---:|\n";
+        << "| suite | robots | pairs solved by both | ratio of medians [95% interval] | median of ratios [95% interval] "
+           "| median makespan E-ARC / ARC |\n"
+        << "|:---|---:|---:|---:|---:|---:|\n";
     for (const auto& row : ratio_rows) out << row << "\n";
   }
   if (!databases.empty()) {

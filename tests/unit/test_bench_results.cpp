@@ -327,7 +327,21 @@ TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones"
   CHECK(r.median_interval->second == doctest::Approx(0.75));
   CHECK(r.of_medians_interval->first == doctest::Approx(0.5));
   CHECK(r.of_medians_interval->second == doctest::Approx(0.75));
-  CHECK(md.find("| mobile | 4 | 2 | 0.667 [0.500, 0.750] | 0.625 [0.500, 0.750] |") != std::string::npos);
+  CHECK(md.find("| mobile | 4 | 2 | 0.667 [0.500, 0.750] | 0.625 [0.500, 0.750] | 100 / 100 |") != std::string::npos);
+  // Makespans on the same pairs only: E-ARC's unpaired trial 3 does not
+  // count; none known, none shown.
+  t[0].makespan = 100;
+  t[1].makespan = 110;
+  t[2].makespan = 200;
+  t[3].makespan = 130;
+  t[6].makespan = 999;
+  r = pairedRatio(t, "mobile", 4, "earc", "arc");
+  CHECK(*r.makespan_a == doctest::Approx(120));
+  CHECK(*r.makespan_b == doctest::Approx(150));
+  CHECK(markdownTable(t, {}).find("| 0.625 [0.500, 0.750] | 120 / 150 |") != std::string::npos);
+  for (TrialRecord& x : t) x.makespan.reset();
+  CHECK_FALSE(pairedRatio(t, "mobile", 4, "earc", "arc").makespan_a);
+  CHECK(markdownTable(t, {}).find("| 0.625 [0.500, 0.750] | - |") != std::string::npos);
 }
 
 TEST_CASE("the wide table has a row per robot count, a column per method, the paired ratio and the hit rate") {

@@ -62,6 +62,9 @@ struct PairedRatio {
   // 95% bootstrap intervals of both, resampling the pairs (bootstrapInterval
   // with a fixed seed: the table is the same every time it is printed).
   std::optional<std::pair<double, double>> median_interval, of_medians_interval;
+  // Plan length on the same pairs (those whose trials both have one): a
+  // faster method may plan longer paths.
+  std::optional<double> makespan_a, makespan_b;
 };
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
                         const std::string& a, const std::string& b);
