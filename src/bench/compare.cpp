@@ -216,7 +216,7 @@ class Comparer {
         progress.setStatus(jobs_[i].name);
         ComparePair p = runPair(jobs_[i], r, (i + static_cast<std::size_t>(r)) % 2 == 1);
         if (interruptFlag().load()) break;
-        if (out.pairs.empty()) stopIfRefused(p);
+        if (out.pairs.empty()) stopIfRefused(p, jobs_[i]);
         out.pairs.push_back(std::move(p));
         progress.tick();
       }
@@ -235,14 +235,16 @@ class Comparer {
   }
 
  private:
-  // A side that refuses the first plan's input (exit status 2: an option
-  // it does not know, a database too new for it, a scenario it cannot
-  // read) would refuse every plan alike: say so at once rather than run
-  // the whole comparison for a table of failures.
-  void stopIfRefused(const ComparePair& first) const {
+  // A side that refuses the first plan's input for a reason that is not
+  // the scenario's (exit status 2 and a message that does not name the
+  // scenario file: an option it does not know, a database too new for
+  // it) would refuse every plan alike: say so at once rather than run
+  // the whole comparison for a table of failures. A scenario it cannot
+  // read is that pair's failure, as any other.
+  void stopIfRefused(const ComparePair& first, const Job& job) const {
     for (const auto& [plan, program, option] : {std::tuple{&first.old_plan, &o_.old_program, "--old"},
                                                 std::tuple{&first.new_plan, &new_, "--new"}})
-      if (plan->refused)
+      if (plan->refused && plan->failure.find(job.scenario_file) == std::string::npos)
         throw InputError(*program, option, "refused the first plan (" + first.scenario + "), so would every plan: " +
                                                plan->failure);
   }

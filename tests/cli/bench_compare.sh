@@ -4,8 +4,9 @@
 # planner whose plans differ (but are valid) is reported as differing; one
 # whose plans are invalid is reported loudly with exit status 1; one that
 # crashes, exits 1 after solving, or writes no solution is that side's
-# named failure and the comparison goes on; one that refuses its input
-# (exit 2) stops it after the first pair; E-ARC plans start from copies,
+# named failure and the comparison goes on; one that refuses its options
+# or database (exit 2, not naming the scenario) stops it after the first
+# pair, one that refuses a scenario fails that pair; E-ARC plans start from copies,
 # so the given database is left as it was; the CSV and the picture hold a
 # row per plan pair and a point per scenario; two methods can be compared
 # (--old-method/--new-method), only the one that plans with a database
@@ -150,6 +151,20 @@ rc=$?
 grep -qxF "earc-bench: error: $WORK/refuses: --old: refused the first plan (mobile-4-t0), so would every plan: exit 2: earc-plan: \
 db.sqlite: schema version 5 is newer than this build knows (4)" "$WORK/err" || { show; fail "the refusal is not named"; }
 [ "$(wc -l < "$WORK/refusals")" -eq 1 ] || fail "planned on after the refusal ($(wc -l < "$WORK/refusals") plans)"
+
+# A refusal that names the scenario (one this side cannot read) is that
+# pair's failure; the comparison goes on.
+cat > "$WORK/picky" <<FAKE
+#!/bin/bash
+echo "earc-plan: error: \$2: \\\$.robots[0]: a robot kind this build does not know" >&2
+exit 2
+FAKE
+chmod +x "$WORK/picky"
+"$BENCH" "${BASE[@]}" --old "$WORK/picky" --new "$PLAN" -v > "$WORK/out" 2> "$WORK/err" ||
+  { show; fail "a scenario refused by one side ended the comparison"; }
+grep -q "^old solved 0 of 3 plans, new 3 of 3$" "$WORK/out" || { show; fail "scenario refusals not counted"; }
+[ "$(grep -c "^mobile-4-t[012]: old: exit 2: earc-plan: error: .*/mobile-4-t[012].json: \$.robots\[0\]: a robot kind" \
+  "$WORK/out")" -eq 3 ] || { show; fail "scenario refusals not named"; }
 
 # Bad options: one line, exit 2, nothing planned.
 refused() {  # refused TEXT ARGS...

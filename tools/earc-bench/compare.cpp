@@ -6,7 +6,8 @@
 //     [--time-limit S] [--seed S] [--repeats R] [--csv FILE] [--picture FILE.svg|png]
 //
 // Exit status 0 when the comparison finished, 1 when some solution was
-// INVALID, 2 for bad options, 130 when interrupted.
+// INVALID, 2 for bad options or a side that refused the first plan's
+// options or database, 130 when interrupted.
 #include <iostream>
 
 #include "earc/bench/compare.hpp"
