@@ -68,8 +68,11 @@ for k in 10 1; do
     --trace "$WORK/k.trace" -q || fail "--db-k $k: exit $?"
   details "$WORK/k.trace" > "$WORK/k.details"
   grep -q "^database $k candidates: " "$WORK/k.details" || fail "--db-k $k: no query read $k: $(cat "$WORK/k.details")"
-  grep "candidates: " "$WORK/k.details" | grep -qv "^database $k candidates: " &&
-    fail "--db-k $k: a query read another number: $(cat "$WORK/k.details")"
+  "$PY" - "$WORK/k.details" $k <<'PY' || fail "--db-k $k: a query read more: $(cat "$WORK/k.details")"
+import re, sys
+read = [int(m.group(1)) for m in (re.match(r"database (\d+) candidates: ", l) for l in open(sys.argv[1])) if m]
+assert max(read) <= int(sys.argv[2]), read
+PY
 done
 "$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 --db-repair-max 0 \
   --trace "$WORK/k.trace" -q || fail "--db-repair-max 0: exit $?"
@@ -82,8 +85,14 @@ grep -q "^repair" "$WORK/k.details" && fail "--db-repair-max 0: repaired: $(cat 
 # --db-max-stretch: an answer longer than F times its slowest robot's
 # straight-motion steps is refused (the trace says by how much), the
 # subproblem is planned from scratch, and the plan still solves; by
-# default nothing is refused.
+# default nothing is refused; a bound that is not a number is refused.
+"$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 -q || fail "plan: exit $?"
 [ "$(stat_of "$WORK/k.json" db_refused_too_long)" -eq 0 ] || fail "an answer refused as too long by default"
+for bad in nan inf -1; do
+  "$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --db-max-stretch=$bad -q \
+    > /dev/null 2> "$WORK/err" && fail "--db-max-stretch $bad was taken"
+  grep -qF -- "--db-max-stretch" "$WORK/err" || fail "--db-max-stretch $bad: $(cat "$WORK/err")"
+done
 "$PLAN" plan "$MOB" -o "$WORK/k.json" --method earc --db "$WORK/k.db" --no-learn --seed 1 --db-max-stretch 1.05 \
   --trace "$WORK/k.trace" -q || fail "--db-max-stretch 1.05: exit $?"
 details "$WORK/k.trace" > "$WORK/k.details"

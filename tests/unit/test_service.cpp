@@ -75,13 +75,21 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
 
   r = reply(svc, json{{"id", 13}, {"scenario_file", kScenarioFile}, {"db_max_stretch", -1}}.dump());
   CHECK(r["ok"] == false);
-  CHECK(r["error"].get<std::string>().find("$.db_max_stretch") != std::string::npos);
+  CHECK(r["error"].get<std::string>().find("$.db_max_stretch: must be a number >= 0") != std::string::npos);
+  for (const json& bad : {json(0), json(1001), json(2.5), json(-1), json("3")}) {
+    r = reply(svc, json{{"id", 14}, {"scenario_file", kScenarioFile}, {"db_k", bad}}.dump());
+    CHECK(r["ok"] == false);
+    CHECK(r["error"].get<std::string>().find("$.db_k: must be a whole number from 1 to 1000") != std::string::npos);
+  }
+  r = reply(svc, json{{"id", 15}, {"scenario_file", kScenarioFile}, {"db_repair_max", 1001}}.dump());
+  CHECK(r["error"].get<std::string>().find("$.db_repair_max: must be a whole number from 0 to 1000") !=
+        std::string::npos);
 
   r = reply(svc, R"({"id": 11, "op": "ping"})");
   CHECK(r["ok"] == true);
   CHECK(r["protocol"] == service::kProtocol);
-  CHECK(svc.counters().errors == 9);
-  CHECK(svc.counters().requests == 10);
+  CHECK(svc.counters().errors == 15);
+  CHECK(svc.counters().requests == 16);
 }
 
 TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {

@@ -46,13 +46,17 @@ PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s
 }
 
 // What the experience database did in an E-ARC plan, for the summary
-// line: "; database answered 6 of 8 subproblems (1 by repair), learned 2".
+// line: "; database answered 6 of 8 subproblems (1 by repair), learned 2":
+// of the subproblems solved, as db_hit_rate counts them.
 std::string databaseSummary(const nlohmann::json& st) {
   if (!st.contains("db_queries")) return "";
-  const int repairs = st.value("db_repairs", 0);
-  return "; database answered " + std::to_string(st.value("db_hits", 0) + repairs) + " of " +
-         std::to_string(st.value("subproblems", 0)) + " subproblems (" + std::to_string(repairs) +
-         " by repair), learned " + std::to_string(st.value("db_learned", 0));
+  const nlohmann::json by = st.value("subproblems_by_solver", nlohmann::json::object());
+  int solved = 0;
+  for (const auto& [name, count] : by.items()) solved += count.get<int>();
+  const int repairs = by.value("repair", 0);
+  return "; database answered " + std::to_string(by.value("database", 0) + repairs) + " of " +
+         std::to_string(solved) + " subproblems (" + std::to_string(repairs) + " by repair), learned " +
+         std::to_string(st.value("db_learned", 0));
 }
 
 int runPlan(const PlanOptions& o) {
@@ -143,7 +147,7 @@ void setupPlan(CLI::App& app) {
                   "E-ARC: refuse a database answer longer than this many times the steps its slowest robot needs "
                   "to go straight from start to goal, and plan that subproblem from scratch (shorter plans for "
                   "arms, slower; default 0: any length)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(earc::cli::kFiniteNonNegative);
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }
