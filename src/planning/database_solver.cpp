@@ -98,9 +98,12 @@ void DatabaseSolver::shadow(SolverContext& ctx, const SolverOutcome& db) {
       general = static_cast<std::size_t>(t.ends_blocked) == t.candidates ? "every candidate blocked at its ends"
                                                                           : "every candidate blocked or crowded";
     else
-      for (char ch : t.why) {
-        if (!std::isdigit(static_cast<unsigned char>(ch)))
-          general += ch;
+      for (std::size_t i = 0; i < t.why.size(); ++i) {
+        const auto digit = [&](std::size_t j) { return j < t.why.size() && std::isdigit(static_cast<unsigned char>(t.why[j])); };
+        // A decimal point inside a number ("1.05") is part of it.
+        const bool in_number = digit(i) || (t.why[i] == '.' && i > 0 && digit(i - 1) && digit(i + 1));
+        if (!in_number)
+          general += t.why[i];
         else if (general.empty() || general.back() != 'N')
           general += 'N';
       }
@@ -252,7 +255,9 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     tryFrom(tried);
   }
   if (found) return std::move(*found);
-  if (tally_.too_long) return refusedTooLong("answer");
+  // A candidate refused as too long does not stop a repair of one tried
+  // before it (shorter when joined): the repaired answer is bounded too.
+  if (tally_.too_long && !best) return refusedTooLong("answer");
   if (tally_.crowded >= kCrowdedGiveUp) return failed(kBusy);
   if (!best) return failed(kNoneToRepair);
   if (best->runs.size() > static_cast<std::size_t>(settings_.max_invalid_segments))
