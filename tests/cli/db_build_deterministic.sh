@@ -77,6 +77,16 @@ rc=$?
 [ -e "$WORK/mixed.db" ] && fail "a refused build made a file"
 "$DB" build --db "$WORK/mixed.db" --scenario "$WORK/mixed.json" --kind mobile --count 5 --threads 1 -q ||
   fail "--kind mobile with a mixed scenario: exit $?"
+# A footprint option says mobile, whatever the scenario holds; with
+# --kind arms it would be ignored, so it is refused.
+"$DB" build --db "$WORK/discs.db" --scenario "$WORK/a4.json" --shape disc --radius 0.3 --count 5 --threads 1 -q ||
+  fail "--shape with an arm scenario: exit $?"
+"$DB" inspect --db "$WORK/discs.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+grep -Eq "^mobile +2 .*mobile:disc:r=0.3" "$WORK/inspect.out" || fail "--shape disc did not build discs: $(cat "$WORK/inspect.out")"
+"$DB" build --db "$WORK/refused.db" --kind arms --shape disc --count 5 > "$WORK/out" 2> "$WORK/err"
+[ $? -eq 2 ] && grep -qF -- "--shape: is for mobile robots, not --kind arms" "$WORK/err" ||
+  fail "--kind arms --shape disc: $(cat "$WORK/err")"
+[ -e "$WORK/refused.db" ] && fail "a refused build made a file"
 
 # A different seed gives different rows.
 "$DB" build --db "$WORK/other.db" --count 40 --seed 8 > /dev/null 2>&1 || fail "build --seed 8"

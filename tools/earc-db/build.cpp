@@ -109,11 +109,16 @@ std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::S
   return out;
 }
 
-// --kind, or what the scenario holds: a database for an arm cell's
-// scenario is an arm database without being told twice.
+// --kind, or a footprint option (mobile), or what the scenario holds: a
+// database for an arm cell's scenario is an arm database without being
+// told twice.
 earc::RobotKind kindToBuild(const BuildOptions& opt, const earc::Scenario* scenario) {
+  const bool footprint = !opt.shape.empty() || !opt.size.empty() || opt.radius != 0.0;
+  if (opt.kind == "arms" && footprint)
+    throw earc::InputError("", !opt.shape.empty() ? "--shape" : !opt.size.empty() ? "--size" : "--radius",
+                           "is for mobile robots, not --kind arms");
   if (!opt.kind.empty()) return opt.kind == "arms" ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
-  if (!scenario) return earc::RobotKind::Mobile;
+  if (!scenario || footprint) return earc::RobotKind::Mobile;
   const auto arms = std::count_if(scenario->robots.begin(), scenario->robots.end(),
                                   [](const earc::RobotSpec& r) { return r.kind == earc::RobotKind::Manipulator; });
   if (arms > 0 && arms < static_cast<std::ptrdiff_t>(scenario->robots.size()))
