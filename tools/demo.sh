@@ -13,10 +13,16 @@ mkdir -p "$out"
 scenario=$src/datasets/mobile-obst-16-s1.json
 db=$out/earc-mobile.sqlite
 bin=$src/build
-[ -e "$db" ] || "$bin/earc-db" build --db "$db" --scenario "$scenario" --seed 1
+# Built aside and moved into place when complete: an interrupted build
+# leaves no half-filled database for the next run to take as finished.
+if [ ! -e "$db" ]; then
+  rm -f "$db.partial" "$db.partial-wal" "$db.partial-shm"
+  "$bin/earc-db" build --db "$db.partial" --scenario "$scenario" --seed 1
+  mv "$db.partial" "$db"
+fi
 "$bin/earc-plan" plan "$scenario" -o "$out/mobile-obst-16-s1.solution.json" --method earc --db "$db" \
   --time-limit 60 --seed 1
 "$bin/earc-plan" validate "$scenario" "$out/mobile-obst-16-s1.solution.json"
 "$bin/earc-plan" render "$scenario" "$out/mobile-obst-16-s1.solution.json" -o "$out/mobile-obst-16-s1.svg"
 echo "picture: $out/mobile-obst-16-s1.svg"
-echo "experience database: $db (earc-db inspect --db $db)"
+echo "experience database: $db ($bin/earc-db inspect --db $db)"
