@@ -68,6 +68,20 @@ bool allArms(const std::vector<const RobotModel*>& robots) {
 
 }  // namespace
 
+std::string withoutNumbers(std::string_view text) {
+  std::string out;
+  auto digit = [&](std::size_t j) { return j < text.size() && std::isdigit(static_cast<unsigned char>(text[j])); };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    // A decimal point inside a number ("1.05") is part of it.
+    const bool in_number = digit(i) || (text[i] == '.' && i > 0 && digit(i - 1) && digit(i + 1));
+    if (!in_number)
+      out += text[i];
+    else if (out.empty() || out.back() != 'N')
+      out += 'N';
+  }
+  return out;
+}
+
 SolverOutcome DatabaseSolver::solve(SolverContext& ctx) {
   SolverOutcome out = query(ctx);
   if (settings_.shadow_decoupled) shadow(ctx, out);
@@ -98,15 +112,7 @@ void DatabaseSolver::shadow(SolverContext& ctx, const SolverOutcome& db) {
       general = static_cast<std::size_t>(t.ends_blocked) == t.candidates ? "every candidate blocked at its ends"
                                                                           : "every candidate blocked or crowded";
     else
-      for (std::size_t i = 0; i < t.why.size(); ++i) {
-        const auto digit = [&](std::size_t j) { return j < t.why.size() && std::isdigit(static_cast<unsigned char>(t.why[j])); };
-        // A decimal point inside a number ("1.05") is part of it.
-        const bool in_number = digit(i) || (t.why[i] == '.' && i > 0 && digit(i - 1) && digit(i + 1));
-        if (!in_number)
-          general += t.why[i];
-        else if (general.empty() || general.back() != 'N')
-          general += 'N';
-      }
+      general = withoutNumbers(t.why);
     ++s.database_failed_where_decoupled_failed[general];
   }
 }

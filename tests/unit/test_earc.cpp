@@ -114,6 +114,14 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
   CHECK(second.stats["db_hit_rate"].get<double>() > 0.0);
 }
 
+TEST_CASE("failure reasons add up across queries with their numbers taken out") {
+  CHECK(withoutNumbers("fewest invalid runs 4, too many to repair") == "fewest invalid runs N, too many to repair");
+  CHECK(withoutNumbers("answer 95 steps, more than 1.05 x 16") == "answer N steps, more than N x N");
+  CHECK(withoutNumbers("answer 95 steps, more than 3 x 16") == withoutNumbers("answer 7 steps, more than 12.5 x 2"));
+  CHECK(withoutNumbers("ends. 3. .5") == "ends. N. .N");  // a point not between digits stays
+  CHECK(withoutNumbers("") == "");
+}
+
 TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the database") {
   TempDb tmp;
   exp::ExperienceStore store(tmp.file());

@@ -11,6 +11,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "earc/experience/store.hpp"
@@ -31,6 +32,10 @@ struct DatabaseSolverSettings {
   bool learn = true;              // insert subproblems solved from scratch, count uses
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
+
+// A failure reason with each number (3, 16, 1.05) replaced by N, so that
+// reasons of different queries add up: "answer N steps, more than N x N".
+std::string withoutNumbers(std::string_view text);
 
 class DatabaseSolver : public SubproblemSolver {
  public:
