@@ -405,12 +405,18 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   PlanResult r = runArc(scenario, settings, std::move(hierarchy));
   // The hit rate: subproblems solved from the database (as retrieved or
   // repaired) over all subproblems solved.
-  int subproblems = 0;
-  const nlohmann::json by = r.stats.value("subproblems_by_solver", nlohmann::json::object());
-  for (const auto& [name, count] : by.items()) subproblems += count.get<int>();
-  const int from_db = by.value("database", 0) + by.value("repair", 0);
-  r.stats["db_hit_rate"] = subproblems > 0 ? static_cast<double>(from_db) / subproblems : 0.0;
+  const DatabaseAnswers a = databaseAnswers(r.stats);
+  r.stats["db_hit_rate"] = a.solved > 0 ? static_cast<double>(a.answered()) / a.solved : 0.0;
   return r;
+}
+
+DatabaseAnswers databaseAnswers(const nlohmann::json& stats) {
+  DatabaseAnswers a;
+  const nlohmann::json by = stats.value("subproblems_by_solver", nlohmann::json::object());
+  for (const auto& [name, count] : by.items()) a.solved += count.get<int>();
+  a.retrieved = by.value("database", 0);
+  a.repaired = by.value("repair", 0);
+  return a;
 }
 
 }  // namespace earc

@@ -7,6 +7,7 @@
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/subcommands.hpp"
 #include "earc/validate/validator.hpp"
@@ -50,12 +51,9 @@ PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s
 // of the subproblems solved, as db_hit_rate counts them.
 std::string databaseSummary(const nlohmann::json& st) {
   if (!st.contains("db_queries")) return "";
-  const nlohmann::json by = st.value("subproblems_by_solver", nlohmann::json::object());
-  int solved = 0;
-  for (const auto& [name, count] : by.items()) solved += count.get<int>();
-  const int repairs = by.value("repair", 0);
-  return "; database answered " + std::to_string(by.value("database", 0) + repairs) + " of " +
-         std::to_string(solved) + " subproblems (" + std::to_string(repairs) + " by repair), learned " +
+  const DatabaseAnswers a = databaseAnswers(st);
+  return "; database answered " + std::to_string(a.answered()) + " of " + std::to_string(a.solved) +
+         " subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
          std::to_string(st.value("db_learned", 0));
 }
 
@@ -78,12 +76,12 @@ int runPlan(const PlanOptions& o) {
   s.trace = !o.trace.empty();
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
-  if (o.shadow_decoupled && s.method != Method::Earc)
-    throw InputError("", "--shadow-decoupled", "is for method earc");
+  for (const auto& [given, option] :
+       {std::pair{o.shadow_decoupled, "--shadow-decoupled"}, std::pair{o.db_k.has_value(), "--db-k"},
+        std::pair{o.db_repair_max.has_value(), "--db-repair-max"},
+        std::pair{o.db_max_stretch.has_value(), "--db-max-stretch"}})
+    if (given && s.method != Method::Earc) throw InputError("", option, "is for method earc");
   s.db_shadow_decoupled = o.shadow_decoupled;
-  for (const auto& [value, option] : {std::pair{&o.db_k, "--db-k"}, std::pair{&o.db_repair_max, "--db-repair-max"}})
-    if (*value && s.method != Method::Earc) throw InputError("", option, "is for method earc");
-  if (o.db_max_stretch && s.method != Method::Earc) throw InputError("", "--db-max-stretch", "is for method earc");
   if (o.db_k) s.db_k = *o.db_k;
   if (o.db_max_stretch) s.db_max_stretch = *o.db_max_stretch;
   if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;

@@ -33,6 +33,16 @@ struct DatabaseSolverSettings {
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
 
+// What the database answered in an E-ARC plan, from the plan's stats
+// (subproblems_by_solver): the subproblems solved in all, and those solved
+// by a retrieved answer or a repaired one. db_hit_rate and earc-plan's
+// summary line both count this way.
+struct DatabaseAnswers {
+  int solved = 0, retrieved = 0, repaired = 0;
+  int answered() const { return retrieved + repaired; }
+};
+DatabaseAnswers databaseAnswers(const nlohmann::json& stats);
+
 // A failure reason with each number (3, 16, 1.05) replaced by N, so that
 // reasons of different queries add up: "answer N steps, more than N x N".
 std::string withoutNumbers(std::string_view text);
