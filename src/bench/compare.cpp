@@ -186,6 +186,12 @@ namespace {
 // Methods that plan with a database (--db).
 bool usesDb(const std::string& method) { return method == "earc" || method == "lightning"; }
 
+// One side's method: --old-method or --new-method, else --method.
+const std::string& sideMethod(const CompareOptions& o, bool old_side) {
+  const std::string& own = old_side ? o.old_method : o.new_method;
+  return own.empty() ? o.method : own;
+}
+
 struct Job {
   std::string scenario_file, name;
   std::uint64_t planner_seed = 0;
@@ -197,8 +203,8 @@ class Comparer {
       : o_(o), jobs_(std::move(jobs)), log_(log) {
     const std::string here = executableDir();
     new_ = o.new_program.empty() ? here + "/earc-plan" : o.new_program;
-    old_method_ = o.old_method.empty() ? o.method : o.old_method;
-    new_method_ = o.new_method.empty() ? o.method : o.new_method;
+    old_method_ = sideMethod(o, true);
+    new_method_ = sideMethod(o, false);
     validator_ = o.validator.empty() ? here + "/earc-plan" : o.validator;
     for (const char* sub : {"solutions", "logs"}) fs::create_directories(o.work_dir + "/" + sub);
   }
@@ -444,8 +450,8 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
     if (std::find(allMethods().begin(), allMethods().end(), *method) == allMethods().end())
       throw InputError("", option, "unknown method '" + *method + "' (earc, arc, lightning, prioritized, coupled)");
   }
-  const std::string& old_method = o.old_method.empty() ? o.method : o.old_method;
-  const std::string& new_method = o.new_method.empty() ? o.method : o.new_method;
+  const std::string& old_method = sideMethod(o, true);
+  const std::string& new_method = sideMethod(o, false);
   if (usesDb(old_method) && usesDb(new_method) && old_method != new_method)
     throw InputError("", "--db", "methods " + old_method + " and " + new_method + " read different kinds of database");
   for (const std::string* method : {&old_method, &new_method})
