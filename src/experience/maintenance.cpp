@@ -208,8 +208,7 @@ nlohmann::json inspectJson(const InspectReport& r) {
   json classes = json::array();
   for (const ClassSummary& c : r.classes) {
     // null: never retrieved (the text report's "-")
-    const json hit_rate =
-        c.retrieved > 0 ? json(static_cast<double>(c.succeeded) / static_cast<double>(c.retrieved)) : json(nullptr);
+    const json hit_rate = c.hitRate() ? json(*c.hitRate()) : json(nullptr);
     classes.push_back({{"kind", kindName(c.cls.kind)},
                        {"robots", c.cls.robot_count},
                        {"base_class", c.cls.base_class},

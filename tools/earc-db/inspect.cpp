@@ -112,7 +112,7 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
   out << line;
   for (const auto& c : r.classes) {
     char rate[16] = "-";
-    if (c.retrieved > 0) std::snprintf(rate, sizeof rate, "%.1f%%", 100.0 * c.succeeded / c.retrieved);
+    if (const auto h = c.hitRate()) std::snprintf(rate, sizeof rate, "%.1f%%", 100.0 * *h);
     // The signature after the buffer: 64 robots' signatures would not fit in it.
     std::snprintf(line, sizeof line, "%-12s %5d %-28s %8lld %5lld %9s %8s %9lld %9lld %8s  ",
                   earc::exp::kindName(c.cls.kind), c.cls.robot_count, c.cls.base_class.empty() ? "-" : c.cls.base_class.c_str(),

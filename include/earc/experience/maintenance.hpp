@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct ClassSummary {
   std::int64_t succeeded = 0;
   double mean_cost = 0.0;        // steps summed over robots
   double mean_solve_time_s = 0.0;
+  // Of the entries handed out, the share used; none when never retrieved.
+  std::optional<double> hitRate() const {
+    if (retrieved <= 0) return std::nullopt;
+    return static_cast<double>(succeeded) / static_cast<double>(retrieved);
+  }
 };
 
 struct InspectReport {
