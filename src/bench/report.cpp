@@ -198,13 +198,16 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
   std::vector<double> ratios, paired_a, paired_b, makespans_a, makespans_b;
   for (const auto& [k, ra] : ta) {
     auto it = tb.find(k);
-    if (it == tb.end() || *it->second->planning_time_s <= 0) continue;
-    ratios.push_back(*ra->planning_time_s / *it->second->planning_time_s);
-    paired_a.push_back(*ra->planning_time_s);
-    paired_b.push_back(*it->second->planning_time_s);
-    if (ra->makespan && it->second->makespan) {
+    if (it == tb.end()) continue;
+    const TrialRecord& rb = *it->second;
+    const double va = *ra->planning_time_s, vb = *rb.planning_time_s;
+    if (vb <= 0) continue;
+    ratios.push_back(va / vb);
+    paired_a.push_back(va);
+    paired_b.push_back(vb);
+    if (ra->makespan && rb.makespan) {
       makespans_a.push_back(static_cast<double>(*ra->makespan));
-      makespans_b.push_back(static_cast<double>(*it->second->makespan));
+      makespans_b.push_back(static_cast<double>(*rb.makespan));
     }
   }
   PairedRatio r{static_cast<int>(ratios.size()), quantile(ratios, 0.5), std::nullopt, std::nullopt, std::nullopt,
