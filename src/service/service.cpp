@@ -9,6 +9,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/format.hpp"
@@ -194,6 +195,12 @@ json Service::plan(const json& request) {
     st["db_entries"] = store_->size();
   }
   counters_.learned += st.value("db_learned", 0);
+  if (s.method == Method::Earc) {
+    const DatabaseAnswers a = databaseAnswers(st);
+    counters_.db_subproblems += a.solved;
+    counters_.db_answered += a.answered();
+    counters_.db_refused_too_long += st.value("db_refused_too_long", 0);
+  }
   json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
   if (r.solution.solved) {
     ++counters_.solved;
@@ -216,6 +223,11 @@ json Service::stats() {
     st["db"] = store_->path();
     st["db_entries"] = store_->size();
     st["db_session"] = store_->session();
+    const ServiceCounters& c = counters_;
+    st["db_subproblems"] = c.db_subproblems;
+    st["db_answered"] = c.db_answered;
+    st["db_hit_rate"] = c.db_subproblems > 0 ? static_cast<double>(c.db_answered) / c.db_subproblems : 0.0;
+    st["db_refused_too_long"] = c.db_refused_too_long;
   }
   return st;
 }

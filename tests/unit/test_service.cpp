@@ -123,7 +123,8 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
   // The same problem again: now solved from the database, nothing new.
   r = reply(svc, json{{"id", "again"}, {"scenario", scenarioToJson(scenario)}, {"seed", 3}}.dump());
   REQUIRE(r["solved"] == true);
-  CHECK(r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>() >= 1);
+  const int answered_again = r["stats"]["db_hits"].get<int>() + r["stats"]["db_repairs"].get<int>();
+  CHECK(answered_again >= 1);
 
   // E-ARC's retrieval settings per request: a bound of one straight
   // motion refuses answers that wait or turn aside, and the plan still
@@ -132,13 +133,24 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
                       {"db_max_stretch", 1.0}, {"db_k", 2}, {"db_repair_max", 0}}
                      .dump());
   REQUIRE(r["solved"] == true);
-  CHECK(r["stats"]["db_refused_too_long"].get<int>() >= 1);
+  const int refused_strict = r["stats"]["db_refused_too_long"].get<int>();
+  CHECK(refused_strict >= 1);
   CHECK(r["stats"]["db_repairs"].get<int>() == 0);
+  const int answered_strict = r["stats"]["db_hits"].get<int>();
   CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
 
   r = reply(svc, R"({"op": "stats"})");
   CHECK(r["stats"]["plans"] == 3);
   CHECK(r["stats"]["solved"] == 3);
+  // The session's database answers: the second and third plans' (the
+  // first had an empty database).
+  const json& session = r["stats"];
+  const int answered = answered_again + answered_strict;
+  CHECK(session["db_answered"].get<int>() == answered);
+  CHECK(session["db_subproblems"].get<int>() > answered);
+  CHECK(session["db_refused_too_long"].get<int>() == refused_strict);
+  CHECK(session["db_hit_rate"].get<double>() ==
+        doctest::Approx(static_cast<double>(answered) / session["db_subproblems"].get<int>()));
   svc.close();
 }
 

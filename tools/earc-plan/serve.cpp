@@ -254,7 +254,10 @@ int runServe(const ServeOptions& o) {
   const auto& n = service.counters();
   std::cerr << "earc-plan serve: " << (g_signal ? (g_signal == SIGINT ? "SIGINT" : "SIGTERM") : "end of input")
             << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
-            << " experiences learned; database closed\n";
+            << " experiences learned";
+  if (n.db_subproblems > 0)
+    std::cerr << ", database answered " << n.db_answered << " of " << n.db_subproblems << " subproblems";
+  std::cerr << "; database closed\n";
   return 0;
 }
 
