@@ -170,6 +170,15 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
   db_.reset(raw);
   if (rc != SQLITE_OK) {
     std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);
+    // SQLite says "unable to open database file" for all of these: the
+    // usual causes said as the output checks say them.
+    std::error_code ec;
+    std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!std::filesystem::is_directory(dir, ec))
+      why = "no directory " + dir.string();
+    else if (mode != OpenMode::ReadWrite && !std::filesystem::exists(path, ec))
+      why = "no such file";
     throw StoreError(path + ": cannot open: " + why);
   }
   sqlite3* db = db_.get();

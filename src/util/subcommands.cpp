@@ -91,6 +91,15 @@ int runProgram(const std::string& program, const std::string& description, int a
     std::replace(what.begin(), what.end(), '\n', ' ');
     std::string help = program;  // and the subcommand, when one was named
     for (const CLI::App* sub : app.get_subcommands()) help += " " + sub->get_name();
+    // No command recognised: CLI11 says only that one is required; name
+    // the word it could not place instead.
+    if (app.get_subcommands().empty() && argc > 1) {
+      const std::string word = argv[1];
+      std::string names;
+      for (const auto& entry : entries)
+        if (entry.program == program) names += (names.empty() ? "" : ", ") + entry.name;
+      what = (word.rfind('-', 0) == 0 ? "unknown option " : "unknown command ") + word + " (commands: " + names + ")";
+    }
     std::cerr << program << ": error: " << what << " (see " << help << " --help)\n";
     return kExitBadInput;
   } catch (const InputError& e) {

@@ -135,6 +135,17 @@ refused "--db-k with method arc" "--db-k" "is for method earc" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db-k 3 -q
 refused "--db-max-stretch with method arc" "--db-max-stretch" "is for method earc" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db-max-stretch 3 -q
+refused "--trace with method prioritized" "--trace" "is for methods arc and earc" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method prioritized --trace "$WORK/t.json" -q
+[ -e "$WORK/t.json" ] && fail "a refused --trace was written"
+refused "--db with method arc" "--db" "is for methods earc and lightning" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db "$F" -q
+for bad in inf nan 0 -1; do
+  refused "--time-limit $bad" "--time-limit" "$bad" \
+    "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --time-limit $bad -q
+done
+refused "--db in a missing directory" "$WORK/nodir/x.db" "no directory $WORK/nodir" \
+  "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/nodir/x.db" -q
 refused "no --db" "--db" "method earc needs an experience database file (earc-db build makes one" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc -q
 

@@ -2,8 +2,8 @@
 # earc-plan plan --method lightning --db FILE: the Lightning database file
 # is created by the first solution, recalled from (and left as it was) with
 # --no-learn, and refused with one line naming it (exit 2) when it is
-# missing under --no-learn, is not a Lightning database of this space, or
-# is damaged.
+# missing under --no-learn, cannot be written (before planning), is not a
+# Lightning database of this space, or is damaged.
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
@@ -46,6 +46,9 @@ refused "missing file with --no-learn" "$WORK/none.lightning" \
 refused "a database of another space" "$DBF" \
   "$PLAN" plan "$WORK/arms.json" -o "$WORK/d.json" --method lightning --db "$DBF" -q
 [ "$(md5sum < "$DBF")" = "$before" ] || fail "a refused plan changed the database file"
+refused "a file in a missing directory" "no directory $WORK/nodir" \
+  "$PLAN" plan "$WORK/two.json" -o "$WORK/d.json" --method lightning --db "$WORK/nodir/x.lightning" -q
+[ -e "$WORK/d.json" ] && fail "a plan whose database cannot be written wrote a solution"
 echo "not a database" > "$WORK/text.lightning"
 refused "a text file" "$WORK/text.lightning" \
   "$PLAN" plan "$WORK/two.json" -o "$WORK/e.json" --method lightning --db "$WORK/text.lightning" -q

@@ -3,7 +3,8 @@
 # version, and exits 0; built from a git checkout, the version names the
 # checkout's commit (".dirty" allowed: tracked files may differ from it).
 # A plan's solution reports the same version in its stats, so a result can
-# be traced to its code.
+# be traced to its code. A word that is no command is named, with the
+# program's commands.
 set -u
 BUILD=$1
 SRC=$2
@@ -43,3 +44,15 @@ fi
 "$BUILD/earc-plan" plan "$WORK/s.json" -o "$WORK/sol.json" --method arc --seed 3 -q > /dev/null 2>&1 ||
   fail "earc-plan plan exited $?"
 grep -q "\"earc_version\": *\"$want\"" "$WORK/sol.json" || fail "the solution does not say earc_version $want"
+
+# A word that is no command, or an option before any, is named with the
+# program's commands: one line, exit 2.
+for prog in earc-plan earc-db earc-scenario earc-bench; do
+  for word in frobnicate --frobnicate; do
+    "$BUILD/$prog" $word > "$WORK/out" 2> "$WORK/err"
+    rc=$?
+    [ $rc -eq 2 ] || fail "$prog $word: exit $rc, expected 2"
+    [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -q -- "unknown .* $word (commands: " "$WORK/err" ||
+      fail "$prog $word: $(cat "$WORK/err")"
+  done
+done

@@ -70,7 +70,6 @@ int runPlan(const PlanOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError("", "--method", e.what());
   }
-  if (!(o.time_limit > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
   s.time_limit_s = o.time_limit;
   s.seed = o.seed;
   s.trace = !o.trace.empty();
@@ -85,9 +84,17 @@ int runPlan(const PlanOptions& o) {
   if (o.db_k) s.db_k = *o.db_k;
   if (o.db_max_stretch) s.db_max_stretch = *o.db_max_stretch;
   if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;
+  // Only ARC and E-ARC find conflicts and make subproblems to trace.
+  if (!o.trace.empty() && s.method != Method::Arc && s.method != Method::Earc)
+    throw InputError("", "--trace", "is for methods arc and earc (the others make no subproblems to trace)");
+  // A database the method would not read is a mistake, not a no-op.
+  if (!o.db.empty() && s.method != Method::Earc && s.method != Method::Lightning)
+    throw InputError("", "--db", "is for methods earc and lightning");
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
+    // Written after planning: its directory is checked before.
+    if (!o.no_learn) requireWritableOutput({"--db", o.db});
     s.lightning_db = o.db;
   }
   auto store = openStoreForPlanning(s.method, o.db, s.db_learn);
@@ -124,7 +131,9 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--db", opts->db,
                   "Experience database (method earc, SQLite); Lightning database (method lightning, OMPL's "
                   "format, created when missing unless --no-learn; without it Lightning starts empty)");
-  cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")->capture_default_str();
+  cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")
+      ->check(earc::cli::kFinitePositive)
+      ->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for every random choice")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")

@@ -214,7 +214,6 @@ void installSignals() {
 }
 
 int runServe(const ServeOptions& o) {
-  if (!(o.time_limit > 0)) throw InputError("", "--time-limit", "must be a positive number of seconds");
   service::ServiceSettings settings;
   try {
     methodFromName(o.method);
@@ -269,6 +268,7 @@ void setupServe(CLI::App& app) {
   cmd->add_option("--socket", opts->socket, "Also accept requests on this Unix domain socket");
   cmd->add_option("--method", opts->method, "Method for requests that name none")->capture_default_str();
   cmd->add_option("--time-limit", opts->time_limit, "Time limit for requests that give none (s)")
+      ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for requests that give none")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
