@@ -355,11 +355,14 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     return n;
   };
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
-  if (!settings.merge.empty()) {
-    ImportSettings merge;
-    merge.near_duplicate_eps = std::max(0.0, settings.dedupe_eps);  // never the same row twice
-    r.merged = static_cast<std::int64_t>(importInto(store, settings.merge, merge).inserted);
-  }
+  // "Never retrieved" says nothing about a file no plan has used yet (a
+  // fresh build): there --drop-unused would empty it. Refused before any
+  // step changes the file.
+  if (settings.drop_unused && r.rows_before > 0 &&
+      count(db, "SELECT count(*) FROM experiences WHERE retrieved_count > 0") == 0)
+    throw InputError(copy_of.empty() ? target : copy_of, "--drop-unused",
+                     "no entry has been retrieved yet (no plan has used this file): it would remove all " +
+                         std::to_string(r.rows_before) + "; plan with the file first");
   if (settings.dedupe_eps >= 0)
     r.duplicates_removed =
         db.write([&] { return removed(deleteIds(db, nearDuplicates(db, store.schemaVersion(), settings.dedupe_eps))); });
@@ -372,6 +375,15 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
       del.run();
       return removed(sqlite3_changes(db.handle()));
     });
+  // Merged after the steps above, which judge this file's own rows: rows
+  // from another file are new here (this session), never retrieved here,
+  // and are checked against the rows kept for near duplicates instead.
+  if (!settings.merge.empty()) {
+    ImportSettings merge;
+    merge.near_duplicate_eps = std::max(0.0, settings.dedupe_eps);  // never the same row twice
+    merge.keep_sessions = false;
+    r.merged = static_cast<std::int64_t>(importInto(store, settings.merge, merge).inserted);
+  }
   if (!settings.drop_made_by.empty())
     r.made_by_removed = db.write([&] {
       // A pattern (GLOB: '*' any text, '?' one character, case-sensitive);

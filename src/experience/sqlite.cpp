@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <optional>
 #include <thread>
 
 #include "earc/util/format.hpp"
@@ -23,6 +24,29 @@ std::string fileOf(sqlite3* db) {
   return f && *f ? f : "<memory>";
 }
 
+// "truncated: N bytes, its header says M" when the file is shorter than the
+// pages its SQLite header counts (a copy cut short): the one damage worth
+// naming more plainly than SQLite's "malformed".
+std::optional<std::string> truncation(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  unsigned char h[100] = {};
+  if (!in.read(reinterpret_cast<char*>(h), sizeof h) || std::memcmp(h, "SQLite format 3", 16) != 0)
+    return std::nullopt;
+  auto be32 = [&](int at) {
+    return std::uint64_t{h[at]} << 24 | std::uint64_t{h[at + 1]} << 16 | std::uint64_t{h[at + 2]} << 8 | h[at + 3];
+  };
+  std::uint64_t page = std::uint64_t{h[16]} << 8 | h[17];
+  if (page == 1) page = 65536;
+  // The page count is valid only when written by the same change as the
+  // header's counter (SQLite 3.7.0 and later).
+  if (be32(92) != be32(24)) return std::nullopt;
+  const std::uint64_t want = be32(28) * page;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec || size >= want) return std::nullopt;
+  return "truncated: " + std::to_string(size) + " bytes, its header says " + std::to_string(want);
+}
+
 // Errors that say what is wrong with the file rather than which statement
 // met it: the user can act on "damaged" or "not a SQLite database", not on
 // the SQL that happened to read the bad page first.
@@ -32,9 +56,12 @@ std::string fileOf(sqlite3* db) {
   const std::string message = oneLine(raw_message);
   const int primary = rc & 0xff;
   if (primary == SQLITE_NOTADB) throw ForeignDatabaseError(file + ": not a SQLite database");
-  if (primary == SQLITE_CORRUPT)
+  if (primary == SQLITE_CORRUPT) {
+    if (auto cut = truncation(file))
+      throw DamagedDatabaseError(file + ": damaged database file (" + *cut + "); restore a copy or rebuild it");
     throw DamagedDatabaseError(file + ": damaged database file (" + message +
                                "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
+  }
   if (primary == SQLITE_IOERR && (rc == SQLITE_IOERR_SHORT_READ || rc == SQLITE_IOERR_TRUNCATE))
     throw DamagedDatabaseError(file + ": damaged database file (truncated: " + message + ")");
   std::string msg = file + ": " + std::string(context) + ": " + message;

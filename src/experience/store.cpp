@@ -284,13 +284,13 @@ std::optional<std::int64_t> ExperienceStore::insert(const Experience& e, double 
 }
 
 std::vector<std::optional<std::int64_t>> ExperienceStore::insertAll(const std::vector<Experience>& batch,
-                                                                    double near_duplicate_eps) {
+                                                                    double near_duplicate_eps, SessionStamp stamp) {
   std::lock_guard lock(mutex_);
-  return insertLocked(batch, near_duplicate_eps);
+  return insertLocked(batch, near_duplicate_eps, stamp);
 }
 
 std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std::vector<Experience>& batch,
-                                                                       double eps) {
+                                                                       double eps, SessionStamp stamp) {
   requireWritable();
   awaitCheckLocked();
   std::vector<Experience> rows = batch;
@@ -298,7 +298,9 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
   for (Experience& e : rows) {
     if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
     if (e.created_at == 0) e.created_at = now;
-    e.created_session = session_;
+    // A row kept as given may name a session later than this file's
+    // count; curate --drop-unused then counts it as recent, never as old.
+    if (stamp == SessionStamp::ThisSession) e.created_session = session_;
   }
   auto within = [eps](const ClassIndex* index, const Experience& e) {
     if (!index) return false;

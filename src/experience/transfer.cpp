@@ -285,7 +285,10 @@ ImportReport insertImported(ExperienceStore& store, const std::vector<Experience
                             const ImportSettings& settings) {
   ImportReport report;
   report.read = rows.size();
-  for (const auto& id : store.insertAll(rows, settings.near_duplicate_eps)) (id ? report.inserted : report.duplicates)++;
+  const auto stamp = settings.keep_sessions ? ExperienceStore::SessionStamp::AsGiven
+                                            : ExperienceStore::SessionStamp::ThisSession;
+  for (const auto& id : store.insertAll(rows, settings.near_duplicate_eps, stamp))
+    (id ? report.inserted : report.duplicates)++;
   return report;
 }
 

@@ -60,7 +60,7 @@ size=$(stat -c %s "$WORK/good.db")
 
 # --- Truncated database: half the file, and less than one page.
 head -c $((size / 2)) "$WORK/good.db" > "$WORK/half.db"
-every_command "truncated to half" "$WORK/half.db" "damaged database file"
+every_command "truncated to half" "$WORK/half.db" "damaged database file .truncated: [0-9]+ bytes, its header says [0-9]+."
 head -c 1000 "$WORK/good.db" > "$WORK/stub.db"
 every_command "truncated to 1000 bytes" "$WORK/stub.db" "damaged database file|not a SQLite database"
 

@@ -47,7 +47,7 @@ void fill(const std::string& path, std::uint64_t seed, int per_class = 20) {
   for (std::size_t i = 0; i < ids.size(); i += 4) store.recordUse(*ids[i], i % 8 == 0);
 }
 
-// Every row of a database except id and created_session, in id order.
+// Every row of a database except its id, in id order.
 std::vector<nlohmann::json> contents(const std::string& path) {
   StoreOptions ro;
   ro.read_only = true;
@@ -57,7 +57,6 @@ std::vector<nlohmann::json> contents(const std::string& path) {
   while (s.step()) {
     nlohmann::json row = experienceToJson(readExperience(s));
     row.erase("id");
-    row.erase("created_session");
     out.push_back(std::move(row));
   }
   return out;
@@ -108,13 +107,24 @@ TEST_CASE("export then import gives the same rows, every double bit for bit") {
   ScratchDirectory dir("transfer");
   const std::string a = dir.file("a.db"), b = dir.file("b.db"), jsonl = dir.file("a.jsonl");
   fill(a, 1);
-  CHECK(exportJsonl(a, jsonl) == 60);
+  {
+    // Rows learned in a later planning session keep that session too.
+    RobotSpec disc;
+    disc.radius = 0.3;
+    const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+    std::mt19937_64 rng(2);
+    ExperienceStore later(a);
+    REQUIRE(later.session() > 0);
+    later.insertAll({straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5)}, -1);
+  }
+  CHECK(exportJsonl(a, jsonl) == 61);
   ExperienceStore store(b);
   ImportReport r = importInto(store, {jsonl});
   store.close();
-  CHECK(r.read == 60);
-  CHECK(r.inserted == 60);
+  CHECK(r.read == 61);
+  CHECK(r.inserted == 61);
   CHECK(contents(b) == contents(a));
+  CHECK(contents(b).back()["created_session"].get<std::int64_t>() > 0);
   // JSON equality compares doubles exactly; make sure some are not short decimals.
   CHECK(contents(a)[2]["solve_time_s"].get<double>() == 0.1 * 1 / 3.0);
   // Each row keeps the build that made it, known or not.
@@ -417,6 +427,42 @@ TEST_CASE("curate --drop-made-by takes patterns: every dirty build's rows, and n
   one.drop_made_by = {"0.0.?+abc1234"};
   CHECK(curateDatabase(a, one).made_by_removed == 6);
   CHECK(rowCount(a) == 47);  // 0.2.0's 40 and 7 not known
+}
+
+TEST_CASE("curate --drop-unused judges this file's own rows: merged rows stay, a never-used file is refused") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), b = dir.file("b.db"), fresh = dir.file("fresh.db");
+  fill(a, 14);  // 60 rows, 15 of them retrieved
+  fill(b, 15);  // 60 others, never retrieved in a
+  CurateSettings s;
+  s.drop_unused = true;
+  s.merge = {b};
+  CurateReport r = curateDatabase(a, s);
+  CHECK(r.unused_removed == 45);
+  CHECK(r.merged == 60);
+  CHECK(rowCount(a) == 75);
+  // A file no plan has used: every row is "unused"; refused, unchanged.
+  {
+    ExperienceStore store(fresh);
+    std::mt19937_64 rng(3);
+    RobotSpec disc;
+    disc.radius = 0.3;
+    const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
+    for (int i = 0; i < 5; ++i)
+      store.insert(straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5), -1);
+  }
+  CurateSettings drop;
+  drop.drop_unused = true;
+  drop.dedupe_eps = 1e-9;
+  try {
+    curateDatabase(fresh, drop);
+    FAIL("--drop-unused emptied a file no plan has used");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find(fresh) != std::string::npos);
+    CHECK(what.find("--drop-unused: no entry has been retrieved yet") != std::string::npos);
+  }
+  CHECK(rowCount(fresh) == 5);
 }
 
 TEST_CASE("curate into a copy merges other files and leaves the original untouched") {

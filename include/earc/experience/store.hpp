@@ -133,8 +133,12 @@ class ExperienceStore {
   std::optional<std::int64_t> insert(const Experience& e, double near_duplicate_eps);
   // Several experiences in ONE transaction, each checked against the store
   // and the batch's earlier entries: all are stored (or skipped as
-  // duplicates) or, on error, none.
-  std::vector<std::optional<std::int64_t>> insertAll(const std::vector<Experience>& batch, double near_duplicate_eps);
+  // duplicates) or, on error, none. SessionStamp::AsGiven keeps each row's
+  // created_session (an import restoring exported rows) instead of this
+  // session's.
+  enum class SessionStamp { ThisSession, AsGiven };
+  std::vector<std::optional<std::int64_t>> insertAll(const std::vector<Experience>& batch, double near_duplicate_eps,
+                                                     SessionStamp stamp = SessionStamp::ThisSession);
 
   // Counts one retrieval of row id, and one success when it resolved the
   // subproblem. Buffered; written by flush().
@@ -171,7 +175,8 @@ class ExperienceStore {
   void loadTailLocked();
   std::int64_t metaLocked(const char* name);
   std::optional<Experience> fetchLocked(std::int64_t id);
-  std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps);
+  std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps,
+                                                        SessionStamp stamp = SessionStamp::ThisSession);
   void flushLocked();
   void afterWriteLocked();
   void warnSkipped(std::int64_t id, const std::string& why);

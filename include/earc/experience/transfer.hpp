@@ -39,6 +39,10 @@ std::vector<Experience> readImportSource(const std::string& path);
 struct ImportSettings {
   double near_duplicate_eps = -1.0;  // < 0: store every row
   bool mark_imported = false;        // set every row's source to 'import'
+  // Keep each row's created_session (export then import gives the same
+  // rows); false: stamp them with this session, as rows new to the file
+  // (curate --merge).
+  bool keep_sessions = true;
 };
 
 struct ImportReport {
