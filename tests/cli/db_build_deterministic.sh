@@ -83,6 +83,10 @@ rc=$?
   fail "--shape with an arm scenario: exit $?"
 "$DB" inspect --db "$WORK/discs.db" > "$WORK/inspect.out" || fail "inspect exited $?"
 grep -Eq "^mobile +2 .*mobile:disc:r=0.3" "$WORK/inspect.out" || fail "--shape disc did not build discs: $(cat "$WORK/inspect.out")"
+# --size alone sizes the default box.
+"$DB" build --db "$WORK/boxes.db" --size 0.8x0.4 --count 5 --threads 1 -q || fail "--size without --shape: exit $?"
+"$DB" inspect --db "$WORK/boxes.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+grep -Eq "^mobile +2 .*mobile:box:0.8x0.4" "$WORK/inspect.out" || fail "--size did not build 0.8x0.4 boxes: $(cat "$WORK/inspect.out")"
 "$DB" build --db "$WORK/refused.db" --kind arms --shape disc --count 5 > "$WORK/out" 2> "$WORK/err"
 [ $? -eq 2 ] && grep -qF -- "--shape: is for mobile robots, not --kind arms" "$WORK/err" ||
   fail "--kind arms --shape disc: $(cat "$WORK/err")"

@@ -68,8 +68,8 @@ refused "nodir/r.txt: --report: cannot write: no directory nodir" "$DB" build --
 refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
 refused "--window" "$PLAN" plan s.json -o x.json --window 0
 refused "--time-per-problem" "$DB" build --db other.db --time-per-problem nan
-refused "--size: needs --shape" "$DB" build --db other.db --size 1x1
-refused "--size: needs --shape" "$DB" build --db other.db --size 1x1 --report r.txt
+refused "--radius: is for --shape disc" "$DB" build --db other.db --radius 0.3
+refused "--radius: is for --shape disc" "$DB" build --db other.db --size 1x1 --radius 0.3 --report r.txt
 [ -e r.txt ] && fail "a refused build made its report"
 # Unsigned options refuse a sign instead of wrapping -1 to 2^64-1.
 refused "--seed: '-1' is not a whole number" "$DB" build --db other.db --seed -1

@@ -80,12 +80,12 @@ earc::geo::Vec2 parseSize(const std::string& text) {
 // the one given by --shape/--size/--radius, or the builder's default.
 std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::Scenario* scenario) {
   std::vector<earc::RobotSpec> out;
-  // A footprint option that would be ignored is a mistake, not a default.
-  if (opt.shape.empty() && (!opt.size.empty() || opt.radius != 0.0))
-    throw earc::InputError("", opt.size.empty() ? "--radius" : "--size", "needs --shape (box or disc)");
-  if (opt.shape == "disc" && !opt.size.empty()) throw earc::InputError("", "--size", "is for --shape box");
-  if (opt.shape == "box" && opt.radius != 0.0) throw earc::InputError("", "--radius", "is for --shape disc");
-  if (scenario && opt.shape.empty()) {
+  // --size sizes the default box; --radius needs --shape disc, as in
+  // earc-scenario. A footprint option that would be ignored is a mistake.
+  const std::string shape = !opt.shape.empty() ? opt.shape : !opt.size.empty() || opt.radius != 0.0 ? "box" : "";
+  if (shape == "disc" && !opt.size.empty()) throw earc::InputError("", "--size", "is for --shape box");
+  if (shape == "box" && opt.radius != 0.0) throw earc::InputError("", "--radius", "is for --shape disc");
+  if (scenario && shape.empty()) {
     std::set<std::string> seen;
     for (const auto& r : scenario->robots)
       if (r.kind == earc::RobotKind::Mobile &&
@@ -94,10 +94,10 @@ std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::S
     if (out.empty()) throw earc::InputError(opt.scenario, "$.robots", "no mobile robot to build for");
     return out;
   }
-  if (opt.shape.empty()) return out;  // builder default
+  if (shape.empty()) return out;  // builder default
   earc::RobotSpec r;
   r.kind = earc::RobotKind::Mobile;
-  if (opt.shape == "disc") {
+  if (shape == "disc") {
     if (!(opt.radius > 0)) throw earc::InputError("", "--radius", "a disc needs a positive radius");
     r.shape = earc::MobileShape::Disc;
     r.radius = opt.radius;
@@ -190,7 +190,7 @@ void setupBuild(CLI::App& app) {
                   "Take robot geometry (mobile footprints or the arm layout) and resolution from this scenario")
       ->check(CLI::ExistingFile);
   sub->add_option("--shape", opt->shape, "Mobile footprint (default: box 0.6x0.4)")->check(CLI::IsMember({"box", "disc"}));
-  sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH");
+  sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH (a box without --shape)");
   sub->add_option("--radius", opt->radius, "Disc footprint radius")->check(earc::cli::kFinitePositive);
   sub->add_option("--seed", opt->seed, "Random seed (the result depends only on it)")->check(earc::cli::kWholeNumber);
   sub->add_option("--threads", opt->threads, "Solver threads")->check(CLI::Range(1, 256));
