@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "earc/io/input_error.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
@@ -154,6 +155,11 @@ bool refuseTooLarge(const Scenario& scenario, const PlannerSettings& settings, P
                      "): coarsen the resolution or split the problem"}};
   result.stats["planning_time_s"] = 0.0;
   return true;
+}
+
+Scenario requireRobots(Scenario scenario, const std::string& source) {
+  if (scenario.robots.empty()) throw InputError(source, "$.robots", "empty: no robots to plan for");
+  return scenario;
 }
 
 PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {

@@ -97,13 +97,13 @@ Scenario scenarioFrom(const json& request) {
   if (!file.is_null()) {
     if (!file.is_string() || file.get<std::string>().empty())
       throw badField("scenario_file", "must be a file name");
-    return loadScenario(file.get<std::string>());
+    return requireRobots(loadScenario(file.get<std::string>()), file.get<std::string>());
   }
   if (!inline_doc.is_object()) throw badField("scenario", "must be a scenario object (earc.scenario.v1)");
   // Errors name "scenario" and the JSON path inside it.
   Scenario s = scenarioFromJson(inline_doc, "scenario");
   checkScenarioGeometry(s, "scenario");
-  return s;
+  return requireRobots(std::move(s), "scenario");
 }
 
 void requireKnownKeys(const json& request, const std::set<std::string>& known) {

@@ -138,6 +138,9 @@ refused "--db-max-stretch with method arc" "--db-max-stretch" "is for method ear
 refused "--trace with method prioritized" "--trace" "is for methods arc and earc" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method prioritized --trace "$WORK/t.json" -q
 [ -e "$WORK/t.json" ] && fail "a refused --trace was written"
+"$PY" -c 'import json,sys; d=json.load(open(sys.argv[1])); d["robots"]=[]; json.dump(d,open(sys.argv[2],"w"))' "$SCEN" "$WORK/none.json"
+refused "a scenario without robots" "$WORK/none.json" "\$.robots: empty: no robots to plan for" \
+  "$PLAN" plan "$WORK/none.json" -o "$WORK/sol.json" --method arc -q
 refused "--db with method arc" "--db" "is for methods earc and lightning" \
   "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method arc --db "$F" -q
 for bad in inf nan 0 -1; do

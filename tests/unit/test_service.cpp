@@ -57,6 +57,12 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   const std::string why = r["error"].get<std::string>();
   CHECK(why.find("$.robots[2]") != std::string::npos);
 
+  json none = scenarioToJson(serviceScenario());
+  none["robots"] = json::array();
+  r = reply(svc, json{{"id", 11}, {"scenario", none}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("scenario: $.robots: empty") != std::string::npos);
+
   r = reply(svc, json{{"id", 8}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limt", 3}}.dump());
   CHECK(r["ok"] == false);
   CHECK(r["error"].get<std::string>().find("$.time_limt") != std::string::npos);
@@ -88,8 +94,8 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   r = reply(svc, R"({"id": 11, "op": "ping"})");
   CHECK(r["ok"] == true);
   CHECK(r["protocol"] == service::kProtocol);
-  CHECK(svc.counters().errors == 15);
-  CHECK(svc.counters().requests == 16);
+  CHECK(svc.counters().errors == 16);
+  CHECK(svc.counters().requests == 17);
 }
 
 TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {

@@ -63,7 +63,7 @@ int runPlan(const PlanOptions& o) {
   requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db}, {"-o", o.output}, {"--trace", o.trace}});
   requireWritableOutput({"-o", o.output});
   requireWritableOutput({"--trace", o.trace});
-  Scenario scenario = loadScenario(o.scenario);
+  Scenario scenario = requireRobots(loadScenario(o.scenario), o.scenario);
   PlannerSettings s;
   try {
     s.method = methodFromName(o.method);

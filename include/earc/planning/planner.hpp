@@ -66,6 +66,10 @@ struct PlanResult {
 // Method::Earc; pass nullptr otherwise. The solution reported as solved has
 // passed validateSolution; a solution that did not is reported unsolved
 // with FailureCause::InvalidResult.
+// The scenario, unless it has no robot: "solved: 0 robots" would hide a
+// scenario that lost its robots (InputError naming `source` and $.robots).
+Scenario requireRobots(Scenario scenario, const std::string& source);
+
 PlanResult plan(const Scenario& scenario, const PlannerSettings& settings,
                 exp::ExperienceStore* store = nullptr);
 
