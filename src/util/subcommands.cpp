@@ -66,6 +66,19 @@ CLI::Validator wholeNumber(bool positive) {
 const CLI::Validator kWholeNumber = wholeNumber(false);
 const CLI::Validator kPositiveWholeNumber = wholeNumber(true);
 
+CLI::Validator wholeNumberIn(long least, long most) {
+  const std::string range = std::to_string(least) + ".." + std::to_string(most);
+  return CLI::Validator(
+      [least, most, range](std::string& text) -> std::string {
+        // More digits than any long holds is out of range, not an error.
+        const bool digits = isDigits(text);
+        if (!digits || text.size() > 18 || std::stol(text) < least || std::stol(text) > most)
+          return "'" + text + "' is not a whole number in " + range;
+        return {};
+      },
+      "N in " + range);
+}
+
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);

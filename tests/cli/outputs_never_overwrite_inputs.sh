@@ -67,6 +67,9 @@ refused "nodir/r.txt: --report: cannot write: no directory nodir" "$DB" build --
 # Parse errors: one line, exit 2.
 refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
 refused "--window" "$PLAN" plan s.json -o x.json --window 0
+# Counts take digits only: CLI11 alone read 0x10 as 16 and called 1e3 out of range.
+refused "--window: '0x10' is not a whole number in 1..1000000" "$PLAN" plan s.json -o x.json --window 0x10
+refused "--window: '1e3' is not a whole number in 1..1000000" "$PLAN" plan s.json -o x.json --window 1e3
 refused "--time-per-problem" "$DB" build --db other.db --time-per-problem nan
 refused "--radius: is for --shape disc" "$DB" build --db other.db --radius 0.3
 refused "--radius: is for --shape disc" "$DB" build --db other.db --size 1x1 --radius 0.3 --report r.txt

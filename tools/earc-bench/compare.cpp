@@ -29,7 +29,7 @@ void setupCompare(CLI::App& app) {
   cmd->add_option("--new-arg", o->new_args, "An argument added to the new side's plan command (repeatable)");
   cmd->add_option("--suite", o->suite, "Suite of the generated scenarios")->capture_default_str();
   cmd->add_option("--robots", o->robots, "Robots of the generated scenarios")
-      ->check(CLI::Range(2, 1000000))
+      ->check(earc::cli::wholeNumberIn(2, 1000000))
       ->capture_default_str();
   cmd->add_option("--trials", o->trials, "Generated scenarios (the same as earc-bench run's trials for this seed)")
       ->check(earc::cli::kPositiveWholeNumber)

@@ -165,9 +165,9 @@ void runBenchRetrieval(const BenchRetrievalOptions& opt, std::ostream& out) {
 void setupBenchRetrieval(CLI::App& app) {
   auto opt = std::make_shared<BenchRetrievalOptions>();
   CLI::App* sub = app.add_subcommand("bench-retrieval", "Time k-closest retrieval per class on synthetic entries");
-  sub->add_option("--entries", opt->entries, "Entries per class")->check(CLI::Range(1, 10000000));
-  sub->add_option("--queries", opt->queries, "Queries per class")->check(CLI::Range(1, 1000000));
-  sub->add_option("--k", opt->k, "Experiences retrieved per query")->check(CLI::Range(1, 1000));
+  sub->add_option("--entries", opt->entries, "Entries per class")->check(earc::cli::wholeNumberIn(1, 10000000));
+  sub->add_option("--queries", opt->queries, "Queries per class")->check(earc::cli::wholeNumberIn(1, 1000000));
+  sub->add_option("--k", opt->k, "Experiences retrieved per query")->check(earc::cli::wholeNumberIn(1, 1000));
   sub->add_option("--seed", opt->seed, "Random seed")->check(earc::cli::kWholeNumber);
   sub->callback([opt] { runBenchRetrieval(*opt, std::cout); });
 }

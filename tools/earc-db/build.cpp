@@ -185,7 +185,7 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--count", opt->count,
                   "Problems to solve (default " + std::to_string(earc::exp::kDefaultMobileProblems) + " mobile, " +
                       std::to_string(earc::exp::kDefaultArmProblems) + " arms)")
-      ->check(CLI::Range(1, 10000000));
+      ->check(earc::cli::wholeNumberIn(1, 10000000));
   sub->add_option("--scenario", opt->scenario,
                   "Take robot geometry (mobile footprints or the arm layout) and resolution from this scenario")
       ->check(CLI::ExistingFile);
@@ -193,7 +193,7 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH (a box without --shape)");
   sub->add_option("--radius", opt->radius, "Disc footprint radius")->check(earc::cli::kFinitePositive);
   sub->add_option("--seed", opt->seed, "Random seed (the result depends only on it)")->check(earc::cli::kWholeNumber);
-  sub->add_option("--threads", opt->threads, "Solver threads")->check(CLI::Range(1, 256));
+  sub->add_option("--threads", opt->threads, "Solver threads")->check(earc::cli::wholeNumberIn(1, 256));
   sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
       ->check(earc::cli::kFinitePositive);
   sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)")

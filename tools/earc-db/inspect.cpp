@@ -132,9 +132,9 @@ void setupInspect(CLI::App& app) {
   auto opt = std::make_shared<InspectOptions>();
   CLI::App* sub = app.add_subcommand("inspect", "Show what an experience database holds (read-only)");
   sub->add_option("--db", opt->db, "Experience database file")->required();
-  sub->add_option("--entries", opt->entries, "Entries to show in readable form")->check(CLI::Range(0, 1000));
+  sub->add_option("--entries", opt->entries, "Entries to show in readable form")->check(earc::cli::wholeNumberIn(0, 1000));
   sub->add_option("--history", opt->history, "Lines of the file's history to show (the last ones)")
-      ->check(CLI::Range(0, 100000));
+      ->check(earc::cli::wholeNumberIn(0, 100000));
   sub->add_flag("--json", opt->json, "Print the report as one JSON object (format earc.inspect.v1) for scripts");
   sub->callback([opt] { runInspect(*opt, std::cout); });
 }

@@ -137,7 +137,7 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--seed", opts->seed, "Seed for every random choice")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")
-      ->check(CLI::Range(1, 1000000));
+      ->check(earc::cli::wholeNumberIn(1, 1000000));
   cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
@@ -145,11 +145,11 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--db-k", opts->db_k,
                   "E-ARC: stored solutions retrieved per subproblem, nearest first (default " +
                       std::to_string(PlannerSettings{}.db_k) + ")")
-      ->check(CLI::Range(1, 1000));
+      ->check(earc::cli::wholeNumberIn(1, 1000));
   cmd->add_option("--db-repair-max", opts->db_repair_max,
                   "E-ARC: repair a retrieved solution with at most this many invalid runs of segments; 0: never "
                   "repair (default " + std::to_string(PlannerSettings{}.db_max_invalid_segments) + ")")
-      ->check(CLI::Range(0, 1000));
+      ->check(earc::cli::wholeNumberIn(0, 1000));
   cmd->add_option("--db-max-stretch", opts->db_max_stretch,
                   "E-ARC: refuse a database answer longer than this many times the steps its slowest robot needs "
                   "to go straight from start to goal, and plan that subproblem from scratch (shorter plans for "

@@ -65,7 +65,7 @@ void setupGenerate(CLI::App& app) {
   sub->add_option("--family", opt->family, "mobile or arms")
       ->check(CLI::IsMember({"mobile", "arms"}))
       ->capture_default_str();
-  sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(CLI::Range(2, 128))->capture_default_str();
+  sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(earc::cli::wholeNumberIn(2, 128))->capture_default_str();
   // The flag alone stands for "default", not for -1 (which a user could
   // type, and which used to be taken as the family's default).
   sub->add_option_function<std::string>(

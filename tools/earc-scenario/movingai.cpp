@@ -52,7 +52,7 @@ void setupMovingAi(CLI::App& app) {
   auto opt = std::make_shared<MovingAiOptions>();
   CLI::App* sub = app.add_subcommand("movingai", "Make a scenario from a MovingAI .map file");
   sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (den520d, random-32-32-10, random-32-32-20)")->required();
-  sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(CLI::Range(1, 1024))->capture_default_str();
+  sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(earc::cli::wholeNumberIn(1, 1024))->capture_default_str();
   sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
       ->check(CLI::IsMember({"box", "disc"}))

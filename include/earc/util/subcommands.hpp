@@ -56,5 +56,8 @@ extern const CLI::Validator kFinitePositive;
 extern const CLI::Validator kWholeNumber;
 // Counts (trials, jobs, repeats): the same, and not 0.
 extern const CLI::Validator kPositiveWholeNumber;
+// A whole number from least to most, digits only: CLI11's Range lets "0x10"
+// through as 16 and calls "1e3" out of range.
+CLI::Validator wholeNumberIn(long least, long most);
 
 }  // namespace earc::cli
