@@ -10,8 +10,8 @@
 # so the given database is left as it was; the CSV and the picture hold a
 # row per plan pair and a point per scenario; two methods can be compared
 # (--old-method/--new-method), only the one that plans with a database
-# getting a copy; bad options end in one line
-# and exit status 2 before any plan runs.
+# getting a copy; a CSV on stdout is not mixed with the report; bad
+# options end in one line and exit status 2 before any plan runs.
 # Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
 # under an address-space limit, which AddressSanitizer cannot live with.)
 set -u
@@ -46,10 +46,14 @@ assert all(float(r["old_time_s"]) > 0 and float(r["new_time_s"]) > 0 for r in ro
 svg = open(sys.argv[2]).read()
 assert svg.count("<circle") == 3 and 'stroke="#d62728"' not in svg, svg
 PYEOF
-# Repeats: each scenario planned twice a side, both pairs recorded.
+# Repeats: each scenario planned twice a side, both pairs recorded. The
+# CSV on stdout itself (a pipe) is the CSV alone: the report goes to stderr.
 "$BENCH" compare --suite mobile --robots 4 --trials 1 --seed 4 --time-limit 10 --work-dir "$WORK/w" --repeats 2 \
-  --old "$PLAN" --csv "$WORK/rep.csv" > "$WORK/out" 2> "$WORK/err" || { show; fail "repeats: compare failed"; }
-grep -q "^same paths: 2 of 2 plan pairs$" "$WORK/out" || { show; fail "repeats: not two pairs"; }
+  --old "$PLAN" --csv /dev/stdout 2> "$WORK/err" | cat > "$WORK/rep.csv"
+rc=${PIPESTATUS[0]}
+[ $rc -eq 0 ] || { show; fail "repeats: compare exited $rc"; }
+grep -q "^same paths: 2 of 2 plan pairs$" "$WORK/err" || { show; fail "repeats: not two pairs on stderr"; }
+head -n 1 "$WORK/rep.csv" | grep -q "^scenario,repeat," || fail "repeats: --csv /dev/stdout: $(head -n 2 "$WORK/rep.csv")"
 [ "$(cut -d, -f1,2 "$WORK/rep.csv" | tail -n +2 | tr '\n' ' ')" = '"mobile-4-t0",0 "mobile-4-t0",1 ' ] ||
   fail "repeats: CSV rows $(cat "$WORK/rep.csv")"
 # The scenarios are the ones earc-bench run plans for this seed.

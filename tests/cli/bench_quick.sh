@@ -3,7 +3,8 @@
 # A quick benchmark end to end: mobile robots, 2 and 4 of them, methods arc,
 # prioritized and lightning, 2 trials per cell under a short limit (the
 # Lightning databases are built on the way); then the table, the CSV and
-# the OMPL benchmark logs must be well formed, plot must draw the figures
+# the OMPL benchmark logs must be well formed (a CSV on stdout alone, its
+# summary on stderr), plot must draw the figures
 # (leaving out odd values with a warning) and refuse bad input in one
 # line, and a second run must find nothing left to do. Skipped (77)
 # without /usr/bin/python3.
@@ -124,6 +125,20 @@ for p in logs:
         for r in runs:
             assert r["solved"] in ("0", "1") and float(r["time"]) >= 0
 PYEOF
+
+# An output that is stdout itself holds the CSV alone: the summary lines
+# go to stderr, whether stdout is a file or a pipe (as earc-plan's do).
+"$BENCH" export --results "$WORK/r.sqlite" --csv /dev/stdout > "$WORK/stdout.csv" 2> "$WORK/export.err" ||
+  fail "export --csv /dev/stdout exited $?"
+cmp -s "$WORK/stdout.csv" "$WORK/r.csv" || fail "export --csv /dev/stdout > FILE: $(head -2 "$WORK/stdout.csv")"
+grep -qx "/dev/stdout: 12 trials" "$WORK/export.err" || fail "export --csv /dev/stdout said: $(cat "$WORK/export.err")"
+"$BENCH" export --results "$WORK/r.sqlite" --databases-csv /dev/stdout --csv "$WORK/r2.csv" 2> "$WORK/export.err" |
+  cat > "$WORK/stdout.csv"
+rc=${PIPESTATUS[0]}
+[ $rc -eq 0 ] || fail "export --databases-csv /dev/stdout exited $rc"
+cmp -s "$WORK/stdout.csv" "$WORK/dbs.csv" || fail "export --databases-csv /dev/stdout | ...: $(head -2 "$WORK/stdout.csv")"
+[ "$(cat "$WORK/export.err")" = "$WORK/r2.csv: 12 trials
+/dev/stdout: 2 databases" ] || fail "export --databases-csv /dev/stdout said: $(cat "$WORK/export.err")"
 
 # Suite names come from the results database: one like '../../escaped'
 # must not write outside the --ompl-log directory.

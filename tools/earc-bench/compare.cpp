@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "earc/bench/compare.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace earc {
@@ -56,7 +57,8 @@ void setupCompare(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("-v,--verbose", o->verbose, "One line per scenario");
   cmd->callback([o] {
-    const bench::CompareSummary s = bench::runCompare(*o, std::cout);
+    // With --csv /dev/stdout the report goes to stderr, not into the CSV.
+    const bench::CompareSummary s = bench::runCompare(*o, summaryStream({o->csv, o->picture}));
     cli::setExitCode(s.interrupted ? 130 : s.stats.invalid ? 1 : 0);
   });
 }

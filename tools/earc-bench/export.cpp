@@ -13,6 +13,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace earc {
@@ -58,19 +59,22 @@ void setupExport(CLI::App& app) {
       for (const std::string& f : bench::omplLogFiles(trials, o->ompl_dir)) outputs.emplace_back(f, "--ompl-log");
     }
     bench::requireSeparateOutputs(o->results, "--results", outputs);
+    // A CSV on stdout itself (--csv /dev/stdout) must not get the summary
+    // lines in among its rows: they go to stderr then.
+    std::ostream& summary = summaryStream({o->csv, o->databases_csv});
     if (!o->csv.empty()) {
       auto out = openOut(o->csv, "--csv");
       bench::writeCsv(trials, out);
-      std::cout << o->csv << ": " << trials.size() << " trials\n";
+      summary << o->csv << ": " << trials.size() << " trials\n";
     }
     if (!o->databases_csv.empty()) {
       auto out = openOut(o->databases_csv, "--databases-csv");
       const auto dbs = db.databases();
       bench::writeDatabasesCsv(dbs, out);
-      std::cout << o->databases_csv << ": " << dbs.size() << " databases\n";
+      summary << o->databases_csv << ": " << dbs.size() << " databases\n";
     }
     if (!o->ompl_dir.empty())
-      for (const std::string& f : bench::writeOmplLogs(trials, o->ompl_dir)) std::cout << f << "\n";
+      for (const std::string& f : bench::writeOmplLogs(trials, o->ompl_dir)) summary << f << "\n";
   });
 }
 
