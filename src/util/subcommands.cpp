@@ -90,10 +90,19 @@ int runProgram(const std::string& program, const std::string& description, int a
             [](const SubcommandEntry& a, const SubcommandEntry& b) { return a.name < b.name; });
   for (const auto& e : entries)
     if (e.program == program) e.setup(app);
-  // After a subcommand too (`earc-plan plan --version`), before its required
-  // arguments are asked for.
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    // After a subcommand too (`earc-plan plan --version`), before its required
+    // arguments are asked for.
     sub->set_version_flag("--version", version_line, "Print the build's version and exit");
+    // CLI11 lets one occurrence of a repeatable option take every argument
+    // up to the next option: `compare --new-arg=--db-k=5 s.json` gave the
+    // scenario to the planner and compared generated ones. Where positional
+    // arguments may follow, each occurrence takes one (repeat the option).
+    const bool positionals = !sub->get_options([](const CLI::Option* o) { return o->get_positional(); }).empty();
+    if (positionals)
+      for (CLI::Option* o : sub->get_options([](const CLI::Option* o) { return o->nonpositional(); }))
+        o->allow_extra_args(false);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

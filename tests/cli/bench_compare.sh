@@ -10,8 +10,10 @@
 # so the given database is left as it was; the CSV and the picture hold a
 # row per plan pair and a point per scenario; two methods can be compared
 # (--old-method/--new-method), only the one that plans with a database
-# getting a copy; a CSV on stdout is not mixed with the report; bad
-# options end in one line and exit status 2 before any plan runs.
+# getting a copy; --old-arg/--new-arg take one argument each, so scenario
+# files after them stay scenarios; a CSV on stdout is not mixed with the
+# report; bad options end in one line and exit status 2 before any plan
+# runs.
 # Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
 # under an address-space limit, which AddressSanitizer cannot live with.)
 set -u
@@ -137,6 +139,17 @@ grep -q "^earc-bench compare: 3 scenarios x 1 repeat, methods old arc, new earc,
 grep -q "^old solved 3 of 3 plans, new 3 of 3$" "$WORK/out" || { show; fail "ARC against E-ARC: solved counts"; }
 ls "$WORK/w4" | grep -q "^db-old" && fail "ARC's side was given a database"
 [ "$(sha256sum < "$WORK/m.sqlite")" = "$before" ] || fail "the given database changed (two methods)"
+
+# Each --old-arg/--new-arg takes one argument: a scenario file after
+# --new-arg=X is a scenario (not the suite's generated ones), and X alone
+# goes to the new side's plan command.
+"$BENCH" compare --old "$PLAN" --old-method arc --new-method earc --db "$WORK/m.sqlite" --work-dir "$WORK/w5" \
+  --time-limit 10 --suite mobile --robots 4 --trials 2 --old-arg=--window=20 --new-arg=--db-k=5 \
+  "$WORK/w/scenarios/mobile-4-t0.json" > "$WORK/out" 2> "$WORK/err" || { show; fail "--new-arg then a file: exited $?"; }
+grep -q "^earc-bench compare: 1 scenario x 1 repeat, methods old arc, new earc, " "$WORK/out" ||
+  { show; fail "the scenario file after --new-arg=X was not taken as the scenario"; }
+grep -q "^  old: $PLAN --window=20$" "$WORK/out" && grep -q "^  new: .*/earc-plan --db-k=5$" "$WORK/out" ||
+  { show; fail "the sides' plan commands got other arguments than one each"; }
 
 # A side that refuses its input (exit 2: here a database too new for it)
 # would refuse every plan: compare stops after the first pair, in one line
