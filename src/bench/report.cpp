@@ -37,11 +37,26 @@ int methodRank(const std::string& m) {
   return static_cast<int>(it - all.begin());
 }
 
-bool cellLess(const std::string& sa, int ra, const std::string& ma, const std::string& sb, int rb,
-              const std::string& mb) {
-  auto ka = std::make_tuple(suiteRank(sa), sa, ra, methodRank(ma), ma);
-  auto kb = std::make_tuple(suiteRank(sb), sb, rb, methodRank(mb), mb);
-  return ka < kb;
+// Where a cell goes in the tables (see summarize).
+auto cellOrder(const CellSummary& c) {
+  return std::make_tuple(suiteRank(c.suite), c.suite, c.time_limit_s, c.robots, methodRank(c.method), c.method);
+}
+
+// Whether a trial or cell is of the table row of cell c: the same suite,
+// time limit and robot count.
+template <class T>
+bool ofRow(const T& x, const CellSummary& c) {
+  return x.suite == c.suite && x.time_limit_s == c.time_limit_s && x.robots == c.robots;
+}
+
+// The heading of a cell's table: its suite, and its time limit where the
+// suite ran under several ("mobile, time limit 10 s"), as an OMPL log's
+// name gets its limit where its cell has several.
+std::string tableHeading(const std::vector<CellSummary>& cells, const CellSummary& c) {
+  const bool several = std::any_of(cells.begin(), cells.end(), [&c](const CellSummary& x) {
+    return x.suite == c.suite && x.time_limit_s != c.time_limit_s;
+  });
+  return several ? c.suite + ", time limit " + formatNumber("%g", c.time_limit_s) + " s" : c.suite;
 }
 
 // "0.60 [0.45, 0.78]": a value and its interval in one format.
@@ -161,12 +176,12 @@ std::vector<TrialRecord> TrialFilter::apply(std::vector<TrialRecord> trials) con
 }
 
 std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials) {
-  std::map<std::tuple<std::string, int, std::string>, std::vector<const TrialRecord*>> cells;
-  for (const auto& t : trials) cells[{t.suite, t.robots, t.method}].push_back(&t);
+  std::map<std::tuple<std::string, int, std::string, double>, std::vector<const TrialRecord*>> cells;
+  for (const auto& t : trials) cells[{t.suite, t.robots, t.method, t.time_limit_s}].push_back(&t);
   std::vector<CellSummary> out;
   for (const auto& [key, list] : cells) {
     CellSummary c;
-    std::tie(c.suite, c.robots, c.method) = key;
+    std::tie(c.suite, c.robots, c.method, c.time_limit_s) = key;
     std::vector<double> times;
     for (const TrialRecord* t : list) {
       ++c.trials;
@@ -180,18 +195,18 @@ std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials) {
     c.q3_s = quantile(times, 0.75);
     out.push_back(std::move(c));
   }
-  std::sort(out.begin(), out.end(), [](const CellSummary& a, const CellSummary& b) {
-    return cellLess(a.suite, a.robots, a.method, b.suite, b.robots, b.method);
-  });
+  std::sort(out.begin(), out.end(),
+            [](const CellSummary& a, const CellSummary& b) { return cellOrder(a) < cellOrder(b); });
   return out;
 }
 
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
-                        const std::string& a, const std::string& b) {
+                        const std::string& a, const std::string& b, std::optional<double> time_limit_s) {
   using Key = std::tuple<int, std::uint64_t, double>;
   std::map<Key, const TrialRecord*> ta, tb;
   for (const auto& t : trials) {
     if (t.suite != suite || t.robots != robots || !t.success || !t.planning_time_s) continue;
+    if (time_limit_s && t.time_limit_s != *time_limit_s) continue;
     if (t.method == a) ta[{t.trial, t.seed, t.time_limit_s}] = &t;
     if (t.method == b) tb[{t.trial, t.seed, t.time_limit_s}] = &t;
   }
@@ -347,13 +362,13 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
             [](const std::string& a, const std::string& b) { return methodRank(a) < methodRank(b) || (methodRank(a) == methodRank(b) && a < b); });
   const bool both = std::find(methods.begin(), methods.end(), "earc") != methods.end() &&
                     std::find(methods.begin(), methods.end(), "arc") != methods.end();
-  std::string suite;
-  std::set<std::pair<std::string, int>> rows;
+  std::string heading;
+  std::set<std::tuple<std::string, double, int>> rows;
   for (const CellSummary& c : cells) {
-    if (!rows.insert({c.suite, c.robots}).second) continue;
-    if (c.suite != suite) {
-      suite = c.suite;
-      out << (out.tellp() > 0 ? "\n" : "") << "### " << suite << "\n\n| robots |";
+    if (!rows.insert({c.suite, c.time_limit_s, c.robots}).second) continue;
+    if (tableHeading(cells, c) != heading) {
+      heading = tableHeading(cells, c);
+      out << (out.tellp() > 0 ? "\n" : "") << "### " << heading << "\n\n| robots |";
       for (const auto& m : methods) out << " " << m << " |";
       if (both) out << " E-ARC / ARC medians [95%] | E-ARC / ARC paired [95%] | E-ARC hit rate |";
       out << "\n|---:|";
@@ -363,9 +378,8 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
     }
     out << "| " << c.robots << " |";
     for (const auto& m : methods) {
-      auto it = std::find_if(cells.begin(), cells.end(), [&](const CellSummary& x) {
-        return x.suite == c.suite && x.robots == c.robots && x.method == m;
-      });
+      auto it = std::find_if(cells.begin(), cells.end(),
+                             [&](const CellSummary& x) { return ofRow(x, c) && x.method == m; });
       if (it == cells.end()) {
         out << " - |";
         continue;
@@ -375,10 +389,10 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
       out << " |";
     }
     if (both) {
-      PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
+      PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc", c.time_limit_s);
       std::int64_t hits = 0, conflicts = 0;
       for (const TrialRecord& t : trials)
-        if (t.suite == c.suite && t.robots == c.robots && t.method == "earc" && t.success) {
+        if (ofRow(t, c) && t.method == "earc" && t.success) {
           hits += t.db_hits.value_or(0);
           conflicts += t.conflicts.value_or(0);
         }
@@ -396,11 +410,11 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases) {
   std::ostringstream out;
   const auto cells = summarize(trials);
-  std::string suite;
+  std::string heading;
   for (const CellSummary& c : cells) {
-    if (c.suite != suite) {
-      suite = c.suite;
-      out << (out.tellp() > 0 ? "\n" : "") << "### " << suite << "\n\n"
+    if (tableHeading(cells, c) != heading) {
+      heading = tableHeading(cells, c);
+      out << (out.tellp() > 0 ? "\n" : "") << "### " << heading << "\n\n"
           << "| robots | method | solved | median time (s) | IQR (s) |\n"
           << "|---:|:---|---:|---:|:---|\n";
     }
@@ -411,13 +425,14 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
   }
   // E-ARC against ARC on the very same scenarios.
   std::vector<std::string> ratio_rows;
-  std::set<std::pair<std::string, int>> seen;
+  std::set<std::tuple<std::string, double, int>> seen;
   for (const CellSummary& c : cells) {
-    if (!seen.insert({c.suite, c.robots}).second) continue;
-    PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc");
+    if (!seen.insert({c.suite, c.time_limit_s, c.robots}).second) continue;
+    PairedRatio r = pairedRatio(trials, c.suite, c.robots, "earc", "arc", c.time_limit_s);
     if (r.pairs == 0) continue;
-    ratio_rows.push_back("| " + c.suite + " | " + std::to_string(c.robots) + " | " + std::to_string(r.pairs) +
-                         " | " + withInterval("%.3f", *r.of_medians, *r.of_medians_interval) + " | " +
+    ratio_rows.push_back("| " + tableHeading(cells, c) + " | " + std::to_string(c.robots) + " | " +
+                         std::to_string(r.pairs) + " | " +
+                         withInterval("%.3f", *r.of_medians, *r.of_medians_interval) + " | " +
                          withInterval("%.3f", *r.median, *r.median_interval) + " | " +
                          (r.makespan_a ? formatNumber("%g", *r.makespan_a) + " / " + formatNumber("%g", *r.makespan_b)
                                        : std::string("-")) +

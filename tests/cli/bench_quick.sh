@@ -4,10 +4,10 @@
 # prioritized and lightning, 2 trials per cell under a short limit (the
 # Lightning databases are built on the way); then the table, the CSV and
 # the OMPL benchmark logs must be well formed (a CSV on stdout alone, its
-# summary on stderr), plot must draw the figures
-# (leaving out odd values with a warning) and refuse bad input in one
-# line, and a second run must find nothing left to do. Skipped (77)
-# without /usr/bin/python3.
+# summary on stderr; trials of two time limits in tables of their own),
+# plot must draw the figures (leaving out odd values with a warning) and
+# refuse bad input in one line, and a second run must find nothing left
+# to do. Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
 SRC=$2
@@ -16,6 +16,18 @@ BENCH="$BUILD/earc-bench"
 needPython
 needBuilt earc-bench earc-plan
 fail() { echo "FAIL: $*"; sed 's/^/  run: /' "$WORK/run.out" "$WORK/run.err" 2>/dev/null | tail -40; exit 1; }
+# Writes $2: a copy of the results file $1 changed by the SQL statements
+# that follow, as other runs or a hand edit may leave a file.
+changedCopy() {
+  "$PY" - "$@" <<'PYEOF' || fail "could not make $2"
+import sqlite3, sys
+src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
+src.backup(dst)
+for statement in sys.argv[3:]:
+    dst.execute(statement)
+dst.commit()
+PYEOF
+}
 
 RUN=(run --suites mobile --robots 2,4 --methods arc,prioritized,lightning --trials 2 --time-limit 10 --seed 7
      --results "$WORK/r.sqlite" --lightning-problems 3 --lightning-problem-time-limit 5)
@@ -62,6 +74,21 @@ grep -q "| 4 | lightning | ./2 " "$WORK/table.md" || fail "no lightning row for 
 grep -q "^### Databases" "$WORK/table.md" || fail "no database table"
 # Reading the closed results leaves no empty -wal and -shm beside them.
 leftNothingBeside "$WORK/r.sqlite" table
+
+# Trials under another time limit, as a second run with --time-limit 20
+# into the same file leaves them, are another experiment: a table each,
+# named by its limit; --time-limit takes one.
+changedCopy "$WORK/r.sqlite" "$WORK/limits.sqlite" "UPDATE trials SET time_limit_s = 20 WHERE trial = 1"
+for wide in "" --wide; do
+  "$BENCH" table --results "$WORK/limits.sqlite" $wide > "$WORK/limits.md" ||
+    fail "table $wide of two time limits exited $?"
+  [ "$(grep -c "^### mobile" "$WORK/limits.md")" -eq 2 ] && grep -qx "### mobile, time limit 10 s" "$WORK/limits.md" &&
+    grep -qx "### mobile, time limit 20 s" "$WORK/limits.md" ||
+    fail "table $wide mixed two time limits: $(cat "$WORK/limits.md")"
+done
+"$BENCH" table --results "$WORK/limits.sqlite" --time-limit 20 > "$WORK/limits.md" || fail "table --time-limit exited $?"
+grep -qx "### mobile" "$WORK/limits.md" && grep -q "| 4 | lightning | ./1 " "$WORK/limits.md" ||
+  fail "table --time-limit 20: $(cat "$WORK/limits.md")"
 
 "$BENCH" export --results "$WORK/r.sqlite" --csv "$WORK/r.csv" --databases-csv "$WORK/dbs.csv" \
   --ompl-log "$WORK/logs" > /dev/null || fail "export exited $?"
@@ -142,13 +169,7 @@ cmp -s "$WORK/stdout.csv" "$WORK/dbs.csv" || fail "export --databases-csv /dev/s
 
 # Suite names come from the results database: one like '../../escaped'
 # must not write outside the --ompl-log directory.
-"$PY" - "$WORK/r.sqlite" "$WORK/odd.sqlite" <<'PYEOF' || fail "could not make odd results"
-import sqlite3, sys
-src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
-src.backup(dst)
-dst.execute("UPDATE trials SET suite = '../../escaped' WHERE robots = 2")
-dst.commit()
-PYEOF
+changedCopy "$WORK/r.sqlite" "$WORK/odd.sqlite" "UPDATE trials SET suite = '../../escaped' WHERE robots = 2"
 mkdir -p "$WORK/deep/a/b"
 "$BENCH" export --results "$WORK/odd.sqlite" --ompl-log "$WORK/deep/a/b/logs" > /dev/null || fail "export of odd suite names exited $?"
 outside=$(find "$WORK" -name '*escaped*' ! -path "$WORK/deep/a/b/logs/*")

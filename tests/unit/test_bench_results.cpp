@@ -360,6 +360,49 @@ TEST_CASE("the wide table has a row per robot count, a column per method, the pa
   CHECK(md.find("| 8 | - | 1/1 8.00 | - | - | - | - |") != std::string::npos);
 }
 
+TEST_CASE("trials under different time limits are kept apart, each limit named where a suite has several") {
+  // Two runs of one cell into one file, at 20 s and at 10 s: what the
+  // 10 s run left unsolved the 20 s run solved, so one cell of both
+  // would be neither experiment's.
+  std::vector<TrialRecord> t = {trial("arc", 0, true, 2),  trial("earc", 0, true, 1),   // 20 s
+                                trial("arc", 1, true, 4),  trial("earc", 1, true, 3),   // 20 s
+                                trial("arc", 0, false, 10), trial("earc", 0, true, 5),  // 10 s
+                                trial("arc", 0, true, 7, "arms", 2)};                    // 60 s, one limit
+  for (std::size_t i = 0; i < 4; ++i) t[i].time_limit_s = 20;
+  t[4].time_limit_s = t[5].time_limit_s = 10;
+  const auto cells = summarize(t);
+  REQUIRE(cells.size() == 5);
+  CHECK(cells[0].method == "earc");
+  CHECK(cells[0].time_limit_s == 10);
+  CHECK(cells[2].time_limit_s == 20);
+  CHECK(cells[3].trials == 2);
+
+  const std::string md = markdownTable(t, {});
+  const auto at10 = md.find("### mobile, time limit 10 s\n"), at20 = md.find("### mobile, time limit 20 s\n");
+  REQUIRE(at10 != std::string::npos);
+  REQUIRE(at20 != std::string::npos);
+  CHECK(at10 < at20);
+  CHECK(md.find("| 4 | arc | 0/1 (0%) | - | - |", at10) < at20);
+  CHECK(md.find("| 4 | arc | 2/2 (100%) | 3.00 | 2.50 - 3.50 |", at20) != std::string::npos);
+  CHECK(md.find("### mobile\n") == std::string::npos);
+  CHECK(md.find("### arms\n") != std::string::npos);  // one limit: no need to name it
+  // Paired within one limit: the 10 s run has no pair, the 20 s run two.
+  CHECK(md.find("| mobile, time limit 10 s | 4 |") == std::string::npos);
+  CHECK(md.find("| mobile, time limit 20 s | 4 | 2 | 0.667 [0.500, 0.750] |") != std::string::npos);
+  CHECK(pairedRatio(t, "mobile", 4, "earc", "arc", 20.0).pairs == 2);
+  CHECK(pairedRatio(t, "mobile", 4, "earc", "arc", 10.0).pairs == 0);
+
+  t[5].db_hits = 1;
+  t[5].conflicts = 1;
+  const std::string wide = markdownWideTable(t);
+  const auto w10 = wide.find("### mobile, time limit 10 s\n"), w20 = wide.find("### mobile, time limit 20 s\n");
+  REQUIRE(w10 != std::string::npos);
+  REQUIRE(w20 != std::string::npos);
+  CHECK(wide.find("| 4 | 1/1 5.00 | 0/1 | - | - | 100% |", w10) < w20);
+  CHECK(wide.find("| 4 | 2/2 2.00 | 2/2 3.00 | 0.67 [0.50, 0.75] | 0.62 [0.50, 0.75] | - |", w20) != std::string::npos);
+  CHECK(wide.find("### arms\n") != std::string::npos);
+}
+
 TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {
   TrialRecord t = trial("arc", 0, false, 1);
   t.failure = "exit 2: bad \"input\", really";

@@ -1,6 +1,7 @@
 // earc-bench table: the results as markdown: success rate and median
 // planning time (IQR) per suite, robot count and method, the E-ARC/ARC
-// ratio paired by seed, and the databases.
+// ratio paired by seed, and the databases; a table per time limit where a
+// suite ran under several.
 //
 //   earc-bench table --results FILE [--seed S] [--time-limit S] [--wide]
 #include <iostream>

@@ -37,24 +37,29 @@ struct TrialFilter {
   std::vector<TrialRecord> apply(std::vector<TrialRecord> trials) const;
 };
 
-// One (suite, robots, method) cell.
+// One (suite, robots, method, time limit) cell. Trials under another time
+// limit are another experiment (what one leaves unsolved another may
+// solve), as they are another OMPL log, so they never share a cell.
 struct CellSummary {
   std::string suite;
   int robots = 0;
   std::string method;
+  double time_limit_s = 0;
   int trials = 0;
   int solved = 0;
   std::optional<double> median_s, q1_s, q3_s;  // planning time of solved trials
 };
 
-// Cells in suite order (allSuites), then robots, then method (allMethods);
-// unknown suites and methods after the known ones, alphabetically.
+// Cells in suite order (allSuites), then time limit, then robots, then
+// method (allMethods); unknown suites and methods after the known ones,
+// alphabetically.
 std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials);
 
 // Method a against b on the scenarios both solved, pairs being the same
-// (suite, robots, trial, seed, time limit): the median of the per-scenario
-// ratios time(a) / time(b), and the ratio of the two medians (what
-// "E-ARC's median is at most 0.6x ARC's" compares).
+// (suite, robots, trial, seed, time limit), with time_limit_s only those
+// under that limit: the median of the per-scenario ratios time(a) /
+// time(b), and the ratio of the two medians (what "E-ARC's median is at
+// most 0.6x ARC's" compares).
 struct PairedRatio {
   int pairs = 0;
   std::optional<double> median;
@@ -67,7 +72,8 @@ struct PairedRatio {
   std::optional<double> makespan_a, makespan_b;
 };
 PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::string& suite, int robots,
-                        const std::string& a, const std::string& b);
+                        const std::string& a, const std::string& b,
+                        std::optional<double> time_limit_s = std::nullopt);
 
 // How many trials ran at once, in one line for under a table: "Trials ran
 // one at a time." / "Trials ran 2 at a time (--jobs 2)." / the mix, and
@@ -90,7 +96,9 @@ std::string trialsNotes(const std::vector<TrialRecord>& trials);
 
 // Markdown: per suite a table of success rate and median planning time
 // (IQR) per robot count and method, the E-ARC/ARC paired ratio, then the
-// databases, then trialsNotes.
+// databases, then trialsNotes. A suite run under several time limits has
+// a table per limit, headed "SUITE, time limit S s", and its ratios are
+// paired within one limit (markdownWideTable too).
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
 
 // The same results laid out like the paper's figures: one table per suite,
