@@ -293,13 +293,28 @@ bool sameFile(const std::string& a, const std::string& b) {
 }
 
 void requireDistinctFiles(const std::vector<NamedPath>& paths) {
+  // A database's companion files hold committed rows (-wal) and its lock
+  // state (-shm): an output written over one loses or corrupts them.
+  auto companion = [](const NamedPath& db, const NamedPath& other) -> std::string {
+    if (!db.database) return "";
+    for (const char* suffix : {"-wal", "-shm", "-journal"})
+      if (sameFile(db.path + suffix, other.path)) return suffix;
+    return "";
+  };
   for (std::size_t j = 1; j < paths.size(); ++j)
-    for (std::size_t i = 0; i < j; ++i)
-      if (!paths[i].path.empty() && !paths[j].path.empty() && sameFile(paths[i].path, paths[j].path))
-        throw InputError(paths[j].path, paths[j].name,
-                         "is the same file as " + paths[i].name +
-                             (paths[i].path == paths[j].path ? "" : " (" + paths[i].path + ")") +
+    for (std::size_t i = 0; i < j; ++i) {
+      const NamedPath &a = paths[i], &b = paths[j];
+      if (a.path.empty() || b.path.empty()) continue;
+      if (sameFile(a.path, b.path))
+        throw InputError(b.path, b.name,
+                         "is the same file as " + a.name + (a.path == b.path ? "" : " (" + a.path + ")") +
                              "; give each its own file");
+      for (const auto& [db, other] : {std::pair{&a, &b}, std::pair{&b, &a}})
+        if (const std::string suffix = companion(*db, *other); !suffix.empty())
+          throw InputError(other->path, other->name,
+                           "is the " + suffix + " file of " + db->name + " (" + db->path +
+                               "), part of that database; give each its own file");
+    }
 }
 
 void requireWritableOutput(const NamedPath& output) {

@@ -49,6 +49,14 @@ refused "e.db: --report: is the same file as --db" "$DB" build --db e.db --repor
 refused "./new.db: --report: is the same file as --db (new.db)" "$DB" build --db new.db --report ./new.db --count 1
 refused "s.json: --report: is the same file as --scenario" "$DB" build --db new.db --scenario s.json --report s.json --count 1
 [ -e new.db ] && fail "a refused build made new.db"
+# A database's -wal and -shm files are part of it (committed rows, locks),
+# whether they exist at the moment or not.
+refused "e.db-wal: -o: is the -wal file of --db (e.db), part of that database" "$DB" export --db e.db -o e.db-wal
+refused "e.db-shm: -o: is the -shm file of --db (e.db)" "$PLAN" plan s.json -o e.db-shm --method earc --db e.db --no-learn
+refused "e.db-wal: --trace: is the -wal file of --db (e.db)" "$PLAN" plan s.json -o new.json --trace e.db-wal --method earc --db e.db
+refused "e.db-journal: --report: is the -journal file of --db (e.db)" "$DB" build --db e.db --report e.db-journal --count 1
+refused "new.db-wal: --db: is the -wal file of -o (new.db)" "$DB" curate --db new.db-wal -o new.db
+[ -e e.db-wal ] || [ -e e.db-shm ] && fail "a refused command left e.db-wal or e.db-shm"
 ln -s s.json link.json
 refused "link.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan s.json -o link.json
 [ -e new.json ] && fail "a refused plan wrote new.json"

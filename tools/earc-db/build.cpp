@@ -135,7 +135,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   s.near_duplicate_eps = opt.dedupe;
   // The report is appended to: as the database or the scenario it would
   // write lines into that file.
-  earc::requireDistinctFiles({{"--scenario", opt.scenario}, {"--db", opt.db}, {"--report", opt.report}});
+  earc::requireDistinctFiles({{"--scenario", opt.scenario}, {"--db", opt.db, true}, {"--report", opt.report}});
   earc::requireWritableOutput({"--report", opt.report});
   std::optional<earc::Scenario> scenario;
   if (!opt.scenario.empty()) {

@@ -18,9 +18,9 @@ struct CurateOptions {
 };
 
 void runCurate(const CurateOptions& opt, std::ostream& out) {
-  std::vector<earc::NamedPath> files{{"--db", opt.db}};
-  for (const auto& in : opt.settings.merge) files.push_back({"--merge", in});
-  files.push_back({"-o", opt.settings.output});
+  std::vector<earc::NamedPath> files{{"--db", opt.db, true}};
+  for (const auto& in : opt.settings.merge) files.push_back({"--merge", in, true});
+  files.push_back({"-o", opt.settings.output, true});
   earc::requireDistinctFiles(files);
   earc::requireWritableOutput({"-o", opt.settings.output});
   const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::curateDatabase(opt.db, opt.settings); });

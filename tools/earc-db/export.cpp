@@ -16,7 +16,7 @@ struct ExportOptions {
 };
 
 void runExport(const ExportOptions& opt, std::ostream& out) {
-  earc::requireDistinctFiles({{"--db", opt.db}, {"-o", opt.out}});
+  earc::requireDistinctFiles({{"--db", opt.db, true}, {"-o", opt.out}});
   earc::requireWritableOutput({"-o", opt.out});
   const std::size_t rows = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out); });
   out << "exported " << rows << " rows from " << opt.db << " to " << opt.out << "\n";

@@ -23,8 +23,8 @@ struct ImportOptions {
 
 void runImport(const ImportOptions& opt, std::ostream& out) {
   // Importing a file into itself would double every row.
-  std::vector<earc::NamedPath> files{{"--db", opt.db}};
-  for (const auto& in : opt.inputs) files.push_back({"input", in});
+  std::vector<earc::NamedPath> files{{"--db", opt.db, true}};
+  for (const auto& in : opt.inputs) files.push_back({"input", in, true});
   earc::requireDistinctFiles(files);
   earc::exp::ImportSettings settings;
   settings.near_duplicate_eps = opt.dedupe;

@@ -60,7 +60,7 @@ std::string databaseSummary(const nlohmann::json& st) {
 int runPlan(const PlanOptions& o) {
   // Before any planning: no output may overwrite an input or the other
   // output, and each must be writable.
-  requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db}, {"-o", o.output}, {"--trace", o.trace}});
+  requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db, true}, {"-o", o.output}, {"--trace", o.trace}});
   requireWritableOutput({"-o", o.output});
   requireWritableOutput({"--trace", o.trace});
   Scenario scenario = requireRobots(loadScenario(o.scenario), o.scenario);

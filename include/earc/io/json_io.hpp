@@ -45,6 +45,8 @@ void syncDirectoryOf(const std::string& path);
 struct NamedPath {
   std::string name;
   std::string path;
+  // An SQLite database: its -wal, -shm and -journal files are part of it.
+  bool database = false;
 };
 // Whether two paths name one file: by identity (links included) when both
 // exist, else by their absolute normal forms.
