@@ -27,6 +27,7 @@ void requireDatabaseFile(const std::string& path, bool may_be_empty) {
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw InputError(path, "", "no such file");
   if (fs::is_directory(st)) throw InputError(path, "", "is a directory, not a file");
+  if (!fs::is_regular_file(st)) throw InputError(path, "", kNotARegularFile);
   // SQLite reads a 0-byte file as an empty database; one whose pages are
   // all still in its WAL is not empty.
   if (!may_be_empty && fs::is_regular_file(st) && fs::file_size(path, ec) == 0 && !ec &&

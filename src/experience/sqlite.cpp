@@ -186,6 +186,15 @@ bool ownWalHeader(const std::string& path, std::int64_t application_id) {
 
 Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
     : path_(path), mode_(mode), settings_(settings) {
+  // SQLite would open a device or FIFO and hang reading it, or write a
+  // journal beside /dev/null: refused before it is touched.
+  {
+    std::error_code ec;
+    const auto st = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(st)) throw StoreError(path + ": is a directory, not a file");
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+      throw StoreError(path + ": " + std::string(kNotARegularFile));
+  }
   const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
   int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
               : query_only                ? SQLITE_OPEN_READWRITE

@@ -70,6 +70,20 @@ every_command "foreign SQLite file" "$WORK/foreign.db" "not an earc experience d
 head -c 5000 /dev/urandom > "$WORK/noise.db"
 every_command "random bytes" "$WORK/noise.db" "not a SQLite database|not an earc experience database or export"
 
+# --- A FIFO or a device as the database: refused before SQLite opens it
+# (it would hang reading a FIFO, and write a journal beside /dev/null).
+mkfifo "$WORK/fifo.db"
+for cmd in "inspect --db" "verify --db" "export -o $WORK/x.jsonl --db" "build --count 1 -q --db" "import $WORK/good.db --db"; do
+  run "fifo" "$WORK/fifo.db" timeout 20 $DB $cmd "$WORK/fifo.db"
+  refused "a FIFO: $cmd" "$WORK/fifo.db" "not a regular file"
+done
+run "fifo" "$WORK/fifo.db" timeout 20 "$DB" import --db "$WORK/target.db" "$WORK/fifo.db"
+refused "a FIFO as an import source" "$WORK/fifo.db" "not a regular file"
+run "null" /dev/null timeout 20 "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db /dev/null
+refused "/dev/null as the database" /dev/null "not a regular file"
+[ -e /dev/null-journal ] && fail "a journal was written beside /dev/null"
+rm -f "$WORK/target.db"*
+
 # --- Newer schema: refused naming both versions, nothing written.
 cp "$WORK/good.db" "$WORK/newer.db"
 sql "$WORK/newer.db" "pragma user_version = 99"

@@ -161,6 +161,8 @@ inline constexpr int kQuickCheckCacheKiB = 2 * 1024;
 // Largest string or blob a hostile file may hand us (bytes): a path blob of
 // 4 robots x 5 joints x 100,000 steps is 16 MB.
 inline constexpr int kHostileMaxLength = 64 << 20;
+// Said of a device, FIFO or socket given as a database.
+inline constexpr const char* kNotARegularFile = "not a regular file (a device, FIFO or socket); a database is a file";
 
 class Connection {
  public:
