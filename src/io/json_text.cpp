@@ -142,7 +142,16 @@ std::string readTextFile(const std::string& path) {
   // an empty or malformed file.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a file");
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // Read in chunks up to a bound: /dev/zero, or a FIFO that never ends,
+  // would otherwise grow memory until the process dies.
+  std::string text;
+  std::vector<char> chunk(std::size_t{1} << 20);
+  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxTextFileBytes)
+      throw InputError(path, "", "more than " + std::to_string(kMaxTextFileBytes >> 20) +
+                                     " MiB: too large to read (is it the file you meant?)");
+  }
   if (in.bad()) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
   return text;
 }

@@ -1,6 +1,7 @@
 #include "earc/service/service.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -97,6 +98,12 @@ Scenario scenarioFrom(const json& request) {
   if (!file.is_null()) {
     if (!file.is_string() || file.get<std::string>().empty())
       throw badField("scenario_file", "must be a file name");
+    // Requests are answered one at a time: a FIFO would hold up every
+    // client until someone wrote to it.
+    std::error_code ec;
+    const auto st = std::filesystem::status(file.get<std::string>(), ec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) && !std::filesystem::is_directory(st))
+      throw InputError(file.get<std::string>(), "scenario_file", "not a regular file (a device, FIFO or socket)");
     return requireRobots(loadScenario(file.get<std::string>()), file.get<std::string>());
   }
   if (!inline_doc.is_object()) throw badField("scenario", "must be a scenario object (earc.scenario.v1)");

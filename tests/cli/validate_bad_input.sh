@@ -22,6 +22,8 @@ expect() {
 
 VALID="$DATA/solutions/swap-discs__valid.json"
 SCEN="$DATA/scenarios/swap-discs.json"
+# A file that never ends is read up to a bound, not until memory runs out.
+expect /dev/zero "$VALID" '^earc-plan: error: /dev/zero: more than 256 MiB: too large to read'
 expect "$DATA/bad/malformed.json" "$VALID" \
   '^earc-plan: error: .*bad/malformed\.json: line 4, column 35 \(.*\): malformed JSON: '
 expect "$DATA/bad/nan.json" "$VALID" \

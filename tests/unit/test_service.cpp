@@ -3,6 +3,7 @@
 // learned rows are reported by id and committed, other processes' rows are
 // picked up, and a stop request cuts planning short.
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
@@ -71,6 +72,11 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   CHECK(r["ok"] == false);
   CHECK(r["error"].get<std::string>().find("$.time_limit") != std::string::npos);
 
+  REQUIRE(::mkfifo(dir.file("fifo.json").c_str(), 0600) == 0);
+  r = reply(svc, json{{"id", 12}, {"scenario_file", dir.file("fifo.json")}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("fifo.json: scenario_file: not a regular file") != std::string::npos);
+
   r = reply(svc, json{{"id", 10}, {"scenario_file", dir.file("missing.json")}}.dump());
   CHECK(r["ok"] == false);
   CHECK(r["error"].get<std::string>().find("missing.json") != std::string::npos);
@@ -94,8 +100,8 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   r = reply(svc, R"({"id": 11, "op": "ping"})");
   CHECK(r["ok"] == true);
   CHECK(r["protocol"] == service::kProtocol);
-  CHECK(svc.counters().errors == 16);
-  CHECK(svc.counters().requests == 17);
+  CHECK(svc.counters().errors == 17);
+  CHECK(svc.counters().requests == 18);
 }
 
 TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {

@@ -22,8 +22,11 @@ inline constexpr const char* kSolutionFormat = "earc.solution.v1";
 // `file` only names the source in errors.
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
 nlohmann::json readJsonFile(const std::string& path);
+// Inputs read whole (scenarios, solutions, traces, maps, Lightning
+// databases) stop here: a scenario of 200,000 obstacles is about 20 MB.
+inline constexpr std::size_t kMaxTextFileBytes = std::size_t{256} << 20;
 // A whole file's bytes. Throws InputError naming the file when it cannot be
-// opened or read, or is a directory.
+// opened or read, is a directory, or holds more than kMaxTextFileBytes.
 std::string readTextFile(const std::string& path);
 // Write atomically (temporary file, fsync, rename): a crash leaves the old
 // file or the new one, never half of one. A symbolic link is written
