@@ -79,6 +79,13 @@ CLI::Validator wholeNumberIn(long least, long most) {
       "N in " + range);
 }
 
+namespace {
+// An error quotes what it was given (robot names, file names, words):
+// control characters in them would split the one line or drive the
+// terminal, so each becomes '?'.
+std::string printable(std::string_view message) { return printableText(message, 16384); }
+}  // namespace
+
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   CLI::App app{description, program};
   app.require_subcommand(1);
@@ -122,13 +129,13 @@ int runProgram(const std::string& program, const std::string& description, int a
         if (entry.program == program) names += (names.empty() ? "" : ", ") + entry.name;
       what = (word.rfind('-', 0) == 0 ? "unknown option " : "unknown command ") + word + " (commands: " + names + ")";
     }
-    std::cerr << program << ": error: " << what << " (see " << help << " --help)\n";
+    std::cerr << program << ": error: " << printable(what) << " (see " << help << " --help)\n";
     return kExitBadInput;
   } catch (const InputError& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << program << ": error: " << printable(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << program << ": error: " << printable(e.what()) << "\n";
     return 1;
   }
   return g_exit_code;

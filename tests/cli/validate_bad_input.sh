@@ -22,6 +22,12 @@ expect() {
 
 VALID="$DATA/solutions/swap-discs__valid.json"
 SCEN="$DATA/scenarios/swap-discs.json"
+# A robot name with a newline and a terminal escape, quoted by the error:
+# still one line, the control characters shown as '?'.
+EVIL=$(mktemp)
+sed 's/"name": "m0"/"name": "evil\\nearc-plan: ok\\u001b[2J"/; s/^    2,$/    3,/' "$SCEN" > "$EVIL"
+expect "$EVIL" "$VALID" 'robot "evil\?earc-plan: ok\?\[2J"'
+rm -f "$EVIL"
 # A file that never ends is read up to a bound, not until memory runs out.
 expect /dev/zero "$VALID" '^earc-plan: error: /dev/zero: more than 256 MiB: too large to read'
 expect "$DATA/bad/malformed.json" "$VALID" \
