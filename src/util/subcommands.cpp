@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
@@ -57,6 +59,12 @@ CLI::Validator wholeNumber(bool positive) {
       [positive, least](std::string& text) -> std::string {
         if (!isDigits(text) || (positive && text.find_first_not_of('0') == std::string::npos))
           return "'" + text + "' is not a whole number >= " + least;
+        // CLI11 saturates a value beyond 2^64 - 1 silently.
+        try {
+          (void)std::stoull(text);
+        } catch (const std::out_of_range&) {
+          return "'" + text + "' is more than 18446744073709551615";
+        }
         return {};
       },
       "N >= " + least);

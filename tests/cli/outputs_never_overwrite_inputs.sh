@@ -84,6 +84,7 @@ refused "--radius: is for --shape disc" "$DB" build --db other.db --size 1x1 --r
 [ -e r.txt ] && fail "a refused build made its report"
 # Unsigned options refuse a sign instead of wrapping -1 to 2^64-1.
 refused "--seed: '-1' is not a whole number" "$DB" build --db other.db --seed -1
+refused "--seed: '99999999999999999999999' is more than 18446744073709551615" "$PLAN" plan s.json -o x.json --seed 99999999999999999999999
 refused "--seed: '-1' is not a whole number" "$PLAN" plan s.json -o x.json --seed -1
 refused "--seed: '-1' is not a whole number" "$GEN" generate -n 2 -o x.json --seed -1
 refused "--seed: '+3' is not a whole number" "$GEN" movingai m.map -n 2 -o x.json --seed +3
