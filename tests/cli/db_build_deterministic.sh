@@ -83,6 +83,10 @@ rc=$?
   fail "--shape with an arm scenario: exit $?"
 "$DB" inspect --db "$WORK/discs.db" > "$WORK/inspect.out" || fail "inspect exited $?"
 grep -Eq "^mobile +2 .*mobile:disc:r=0.3" "$WORK/inspect.out" || fail "--shape disc did not build discs: $(cat "$WORK/inspect.out")"
+# A footprint too large for any query: an error, not "built 0 entries".
+"$DB" build --db "$WORK/huge.db" --shape disc --radius 1e300 --count 5 > "$WORK/out" 2> "$WORK/err"
+[ $? -eq 2 ] && grep -qF -- "--radius: none of 5 problems could be made" "$WORK/err" ||
+  fail "--radius 1e300: $(cat "$WORK/out" "$WORK/err")"
 # --size alone sizes the default box.
 "$DB" build --db "$WORK/boxes.db" --size 0.8x0.4 --count 5 --threads 1 -q || fail "--size without --shape: exit $?"
 "$DB" inspect --db "$WORK/boxes.db" > "$WORK/inspect.out" || fail "inspect exited $?"

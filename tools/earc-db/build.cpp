@@ -166,6 +166,13 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     earc::Progress progress("build", static_cast<std::size_t>(count), !opt.quiet);
     return earc::exp::buildDatabase(store, s, &progress);
   });
+  // A footprint too large for the builder's small queries (starts 0.25-0.9
+  // from the conflict point) places no problem at all: said, not "built 0".
+  if (report.problems > 0 && report.no_query == report.problems)
+    throw earc::InputError("", !opt.size.empty() ? "--size" : opt.radius != 0.0 ? "--radius" : "--scenario",
+                           "none of " + std::to_string(report.problems) +
+                               " problems could be made: no random query of these robots conflicts without "
+                               "their starts or goals touching (too large a footprint?)");
   if (opt.quiet) return;
   char line[256];
   std::snprintf(line, sizeof line,
