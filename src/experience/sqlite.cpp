@@ -1,5 +1,7 @@
 #include "earc/experience/sqlite.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -195,22 +197,54 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
       throw StoreError(path + ": " + std::string(kNotARegularFile));
   }
-  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
+  // Reading a WAL file read-write (query_only) lets SQLite make its -shm
+  // beside it. In a directory nobody may write to (a shared, read-only
+  // copy) it cannot, and without a -wal there nobody can be writing the
+  // file either: it is read as immutable, without locks or -shm.
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code wal_ec;
+  const bool frozen = mode != OpenMode::ReadWrite && ::access(dir.c_str(), W_OK) != 0 &&
+                      !std::filesystem::exists(path + "-wal", wal_ec);
+  const bool query_only = mode == OpenMode::ReadOnly && !frozen && ownWalHeader(path, settings.own_application_id);
+  // Writing needs the file and its directory (for -wal and -shm): said
+  // before any work, not as a failed PRAGMA or a failed commit after it.
+  if (mode == OpenMode::ReadWrite) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) != 0)
+      throw StoreError(path + ": cannot write: directory " + dir.string() +
+                       " is not writable (commands that only read the database work)");
+    if (std::filesystem::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
+      throw StoreError(path + ": cannot write: the file is read-only (commands that only read it work)");
+  }
   int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
               : query_only                ? SQLITE_OPEN_READWRITE
                                           : SQLITE_OPEN_READONLY;
   // The store serializes access itself; the connection need not.
   flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   sqlite3* raw = nullptr;
-  int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
+  std::string name = path;
+  if (frozen) {
+    flags |= SQLITE_OPEN_URI;
+    name = "file:";
+    for (unsigned char c : path) {
+      if (c == '%' || c == '?' || c == '#' || c < 0x21 || c >= 0x7F) {
+        char hex[4];
+        std::snprintf(hex, sizeof hex, "%%%02X", c);
+        name += hex;
+      } else {
+        name += static_cast<char>(c);
+      }
+    }
+    name += "?immutable=1";
+  }
+  int rc = sqlite3_open_v2(name.c_str(), &raw, flags, nullptr);
   db_.reset(raw);
   if (rc != SQLITE_OK) {
     std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);
     // SQLite says "unable to open database file" for all of these: the
     // usual causes said as the output checks say them.
     std::error_code ec;
-    std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    if (dir.empty()) dir = ".";
     if (!std::filesystem::is_directory(dir, ec))
       why = "no directory " + dir.string();
     else if (mode != OpenMode::ReadWrite && !std::filesystem::exists(path, ec))
