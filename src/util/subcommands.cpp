@@ -74,6 +74,9 @@ CLI::Validator wholeNumber(bool positive) {
 const CLI::Validator kWholeNumber = wholeNumber(false);
 const CLI::Validator kPositiveWholeNumber = wholeNumber(true);
 
+const CLI::Validator kFileName(
+    [](std::string& text) -> std::string { return text.empty() ? "an empty file name" : ""; }, "FILE");
+
 CLI::Validator wholeNumberIn(long least, long most) {
   const std::string range = std::to_string(least) + ".." + std::to_string(most);
   return CLI::Validator(

@@ -75,6 +75,10 @@ refused "nodir/r.txt: --report: cannot write: no directory nodir" "$DB" build --
 # Parse errors: one line, exit 2.
 refused "earc-plan: error:" "$PLAN" plan s.json -o x.json --no-such-option
 refused "--window" "$PLAN" plan s.json -o x.json --window 0
+# An empty file name is refused as such, not found wanting after planning.
+refused "--output: an empty file name" "$PLAN" plan s.json -o ""
+refused "--db: an empty file name" "$PLAN" plan s.json -o x.json --method earc --db ""
+refused "--db: an empty file name" "$DB" inspect --db ""
 # Counts take digits only: CLI11 alone read 0x10 as 16 and called 1e3 out of range.
 refused "--window: '0x10' is not a whole number in 1..1000000" "$PLAN" plan s.json -o x.json --window 0x10
 refused "--window: '1e3' is not a whole number in 1..1000000" "$PLAN" plan s.json -o x.json --window 1e3

@@ -35,7 +35,7 @@ std::ofstream openOut(const std::string& path, const char* option) {
 void setupExport(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand("export", "Write results as CSV and as OMPL benchmark logs");
-  cmd->add_option("--results", o->results, "Results database")->required();
+  cmd->add_option("--results", o->results, "Results database")->check(earc::cli::kFileName)->required();
   cmd->add_option("--csv", o->csv, "One row per trial");
   cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
   cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");

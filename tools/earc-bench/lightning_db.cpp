@@ -112,7 +112,7 @@ void setupLightningDb(CLI::App& app) {
   cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")
       ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
-  cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->required();
+  cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->check(earc::cli::kFileName)->required();
   cmd->add_flag("--append", o->append, "Grow an existing database");
   cmd->add_option("--results", o->results, "Record construction time, entries and size in this results database");
   cmd->callback([o] { runLightningDb(*o); });

@@ -27,8 +27,8 @@ struct PlotOptions {
 void setupPlot(CLI::App& app) {
   auto o = std::make_shared<PlotOptions>();
   auto* cmd = app.add_subcommand("plot", "Plot results (PNG and SVG) with tools/plots/plot_results.py");
-  cmd->add_option("--results", o->results, "Results database")->required();
-  cmd->add_option("-o,--output", o->output, "Directory for the figures")->required();
+  cmd->add_option("--results", o->results, "Results database")->check(earc::cli::kFileName)->required();
+  cmd->add_option("-o,--output", o->output, "Directory for the figures")->check(earc::cli::kFileName)->required();
   cmd->add_option("--python", o->python, "Python with matplotlib and numpy")->capture_default_str();
   cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
   cmd->callback([o] {

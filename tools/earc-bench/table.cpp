@@ -23,7 +23,7 @@ struct TableOptions {
 void setupTable(CLI::App& app) {
   auto o = std::make_shared<TableOptions>();
   auto* cmd = app.add_subcommand("table", "Print the results as a markdown table");
-  cmd->add_option("--results", o->results, "Results database")->required();
+  cmd->add_option("--results", o->results, "Results database")->check(earc::cli::kFileName)->required();
   auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
   auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
                     ->check(earc::cli::kFinitePositive);

@@ -187,7 +187,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
 void setupBuild(CLI::App& app) {
   auto opt = std::make_shared<BuildOptions>();
   CLI::App* sub = app.add_subcommand("build", "Fill a database with solved random subproblems");
-  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
+  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->check(earc::cli::kFileName)->required();
   sub->add_option("--kind", opt->kind, "Robot kind (default: the --scenario's, else mobile)")->check(CLI::IsMember({"mobile", "arms"}));
   sub->add_option("--count", opt->count,
                   "Problems to solve (default " + std::to_string(earc::exp::kDefaultMobileProblems) + " mobile, " +

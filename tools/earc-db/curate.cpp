@@ -39,7 +39,7 @@ void setupCurate(CLI::App& app) {
   auto opt = std::make_shared<CurateOptions>();
   CLI::App* sub = app.add_subcommand(
       "curate", "Merge databases, remove near-duplicates, unused entries and entries of a given build");
-  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("--db", opt->db, "Experience database file")->check(earc::cli::kFileName)->required();
   sub->add_option("--merge", opt->settings.merge, "Databases or exports to merge in (validated like import)");
   sub->add_option("--dedupe", opt->settings.dedupe_eps,
                   "Keep one entry per key-distance ball of this radius in each class (the most successful)")

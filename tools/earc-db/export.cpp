@@ -25,8 +25,8 @@ void runExport(const ExportOptions& opt, std::ostream& out) {
 void setupExport(CLI::App& app) {
   auto opt = std::make_shared<ExportOptions>();
   CLI::App* sub = app.add_subcommand("export", "Write every experience as JSON lines (" + std::string(earc::exp::kExportFormat) + ")");
-  sub->add_option("--db", opt->db, "Experience database file")->required();
-  sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->required();
+  sub->add_option("--db", opt->db, "Experience database file")->check(earc::cli::kFileName)->required();
+  sub->add_option("-o,--output", opt->out, "Output file (.jsonl), written atomically")->check(earc::cli::kFileName)->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] { runExport(*opt, earc::cli::unlessQuiet(opt->quiet, earc::summaryStream({opt->out}))); });
 }

@@ -52,7 +52,7 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
 void setupImport(CLI::App& app) {
   auto opt = std::make_shared<ImportOptions>();
   CLI::App* sub = app.add_subcommand("import", "Add experiences from exports (.jsonl) or other earc databases, all or nothing");
-  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->required();
+  sub->add_option("--db", opt->db, "Experience database file (created when missing)")->check(earc::cli::kFileName)->required();
   sub->add_option("inputs", opt->inputs, "Export files or earc databases")->required();
   sub->add_option("--dedupe", opt->dedupe, "Skip rows within this key distance of a stored one (default: keep all)")
       ->check(earc::cli::kFinite);

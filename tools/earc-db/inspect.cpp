@@ -131,7 +131,7 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
 void setupInspect(CLI::App& app) {
   auto opt = std::make_shared<InspectOptions>();
   CLI::App* sub = app.add_subcommand("inspect", "Show what an experience database holds (read-only)");
-  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("--db", opt->db, "Experience database file")->check(earc::cli::kFileName)->required();
   sub->add_option("--entries", opt->entries, "Entries to show in readable form")->check(earc::cli::wholeNumberIn(0, 1000));
   sub->add_option("--history", opt->history, "Lines of the file's history to show (the last ones)")
       ->check(earc::cli::wholeNumberIn(0, 100000));

@@ -26,7 +26,7 @@ int runVerify(const VerifyOptions& opt, std::ostream& out) {
 void setupVerify(CLI::App& app) {
   auto opt = std::make_shared<VerifyOptions>();
   CLI::App* sub = app.add_subcommand("verify", "Check a database's integrity and every row (exit 1 when anything is wrong)");
-  sub->add_option("--db", opt->db, "Experience database file")->required();
+  sub->add_option("--db", opt->db, "Experience database file")->check(earc::cli::kFileName)->required();
   sub->callback([opt] { earc::cli::setExitCode(runVerify(*opt, std::cout)); });
 }
 

@@ -125,17 +125,19 @@ int runPlan(const PlanOptions& o) {
 void setupPlan(CLI::App& app) {
   auto opts = std::make_shared<PlanOptions>();
   auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved)");
-  cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->required();
-  cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->required();
+  cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->check(earc::cli::kFileName)->required();
+  cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->check(earc::cli::kFileName)->required();
   cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled or lightning")->capture_default_str();
   cmd->add_option("--db", opts->db,
                   "Experience database (method earc, SQLite); Lightning database (method lightning, OMPL's "
-                  "format, created when missing unless --no-learn; without it Lightning starts empty)");
+                  "format, created when missing unless --no-learn; without it Lightning starts empty)")
+      ->check(earc::cli::kFileName);
   cmd->add_option("--time-limit", opts->time_limit, "Planning time limit in seconds")
       ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for every random choice")->check(earc::cli::kWholeNumber)->capture_default_str();
-  cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)");
+  cmd->add_option("--trace", opts->trace, "Write a trace of conflicts and subproblems (JSON)")
+      ->check(earc::cli::kFileName);
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")
       ->check(earc::cli::wholeNumberIn(1, 1000000));
   cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");

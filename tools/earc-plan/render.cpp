@@ -71,7 +71,7 @@ void setupRender(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("render", "Draw a scenario or a solution as SVG (or PNG with rsvg-convert)");
   sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
   sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)");
-  sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->required();
+  sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->check(earc::cli::kFileName)->required();
   CLI::Option* step = sub->add_option_function<std::size_t>(
       "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T")->check(earc::cli::kWholeNumber);
   CLI::Option* strip = sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")

@@ -264,7 +264,7 @@ void setupServe(CLI::App& app) {
   auto opts = std::make_shared<ServeOptions>();
   auto* cmd = app.add_subcommand(
       "serve", "Answer planning requests (JSON lines, protocol earc.service.v1) with one experience database open");
-  cmd->add_option("--db", opts->db, "Experience database (created when missing)")->required();
+  cmd->add_option("--db", opts->db, "Experience database (created when missing)")->check(earc::cli::kFileName)->required();
   cmd->add_option("--socket", opts->socket, "Also accept requests on this Unix domain socket");
   cmd->add_option("--method", opts->method, "Method for requests that name none")->capture_default_str();
   cmd->add_option("--time-limit", opts->time_limit, "Time limit for requests that give none (s)")

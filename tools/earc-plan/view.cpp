@@ -47,7 +47,7 @@ void setupView(CLI::App& app) {
   sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
   sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->required();
   sub->add_option("--trace", opt->trace, "Trace written by `earc-plan plan --trace` (earc.trace.v1)");
-  sub->add_option("-o,--output", opt->output, "HTML page to write (.html or .htm)")->required();
+  sub->add_option("-o,--output", opt->output, "HTML page to write (.html or .htm)")->check(earc::cli::kFileName)->required();
   sub->callback([opt] { runView(*opt); });
 }
 

@@ -91,7 +91,7 @@ void setupGenerate(CLI::App& app) {
   CLI::Option* workspace = sub->add_option("--workspace", opt->workspace, "Side of the square workspace (mobile)")
       ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
-  sub->add_option("-o,--output", opt->output, "Scenario file to write")->required();
+  sub->add_option("-o,--output", opt->output, "Scenario file to write")->check(earc::cli::kFileName)->required();
   sub->callback([opt, shape, radius, workspace] {
     if (opt->family == "arms" && (shape->count() || radius->count() || workspace->count()))
       throw CLI::ValidationError("--shape, --radius and --workspace", "apply to --family mobile only");

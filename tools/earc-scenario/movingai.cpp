@@ -58,7 +58,7 @@ void setupMovingAi(CLI::App& app) {
       ->check(CLI::IsMember({"box", "disc"}))
       ->capture_default_str();
   CLI::Option* radius = sub->add_option("--radius", opt->radius, "Disc radius (--shape disc)")->check(earc::cli::kFinitePositive)->capture_default_str();
-  sub->add_option("-o,--output", opt->output, "Scenario file to write")->required();
+  sub->add_option("-o,--output", opt->output, "Scenario file to write")->check(earc::cli::kFileName)->required();
   sub->callback([opt, shape, radius] {
     earc::scenario_cli::requireDiscForRadius(shape, opt->shape, radius);
     runMovingAi(*opt);

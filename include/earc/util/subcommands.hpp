@@ -56,6 +56,9 @@ extern const CLI::Validator kFinitePositive;
 extern const CLI::Validator kWholeNumber;
 // Counts (trials, jobs, repeats): the same, and not 0.
 extern const CLI::Validator kPositiveWholeNumber;
+// A file name: not empty (CLI11 takes `-o ""`, which then failed late with
+// "cannot replace it").
+extern const CLI::Validator kFileName;
 // A whole number from least to most, digits only: CLI11's Range lets "0x10"
 // through as 16 and calls "1e3" out of range.
 CLI::Validator wholeNumberIn(long least, long most);
