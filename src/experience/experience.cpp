@@ -6,7 +6,9 @@
 #include <numbers>
 
 #include "earc/experience/keys.hpp"
+#include "earc/geometry/shapes.hpp"
 #include "earc/scene/robot_signature.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::exp {
 
@@ -32,7 +34,53 @@ std::string quoted(std::string_view s) {
 struct SignedRobot {
   RobotKind kind;
   int dim;
+  std::vector<std::pair<double, double>> joint_limits;  // arms
 };
+
+// The robots a '|'-joined signature names, or (problem) why it names none.
+struct SignedRobots {
+  std::vector<SignedRobot> robots;
+  std::string problem;
+};
+
+// Reading a signature builds robot models, which costs more than decoding
+// the row; rows come class by class, so the last one read is remembered.
+// The reference holds until the next call on this thread.
+const SignedRobots& readSignature(const std::string& signature, const std::vector<std::string_view>& parts) {
+  thread_local std::string known;
+  thread_local bool read_once = false;
+  thread_local SignedRobots last;
+  if (read_once && signature == known) return last;
+  SignedRobots read;
+  for (std::size_t r = 0; r < parts.size() && read.problem.empty(); ++r) {
+    auto spec = robotFromSignature(parts[r]);
+    if (spec)
+      read.robots.push_back({spec->kind, spec->dim(), spec->joint_limits});
+    else
+      read.problem = "robot " + std::to_string(r) + ": " + quoted(parts[r]) +
+                     " is not a geometry signature earc writes";
+  }
+  known = signature;
+  read_once = true;
+  last = std::move(read);
+  return last;
+}
+
+std::vector<std::string_view> signatureParts(const std::string& signature) {
+  std::vector<std::string_view> parts;
+  for (std::size_t at = 0;;) {
+    const std::size_t end = signature.find('|', at);
+    parts.push_back(std::string_view(signature).substr(at, end - at));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return parts;
+}
+
+// How far past a joint limit a stored joint may lie: the checker's 1e-6
+// (RobotModel::withinLimits), and the signature's limits are rounded to 6
+// significant digits (pi is 3.14159 there), 5e-6 of the limit at most.
+double jointLimitSlack(double limit) { return geo::kContactTolerance + 1e-5 * std::abs(limit); }
 
 // A base class string is well formed when it is what baseClassString
 // prints for some transform: three numbers with three decimals, the angle
@@ -90,27 +138,10 @@ std::optional<std::string> signatureProblem(const ExperienceClass& c, const std:
   const std::size_t count = c.signature.empty() ? 0 : countParts(c.signature, '|');
   if (count != static_cast<std::size_t>(c.robot_count))
     return "names " + std::to_string(count) + " robots, expected " + std::to_string(c.robot_count);
-  std::vector<std::string_view> parts;
-  for (std::size_t at = 0;;) {
-    const std::size_t end = c.signature.find('|', at);
-    parts.push_back(std::string_view(c.signature).substr(at, end - at));
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  // Reading a signature builds robot models, which costs more than decoding
-  // the row; rows come class by class, so the last good one is remembered.
-  thread_local std::string known;
-  thread_local std::vector<SignedRobot> robots;
-  if (c.signature != known) {
-    std::vector<SignedRobot> read;
-    for (std::size_t r = 0; r < parts.size(); ++r) {
-      auto spec = robotFromSignature(parts[r]);
-      if (!spec) return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " is not a geometry signature earc writes";
-      read.push_back({spec->kind, spec->dim()});
-    }
-    known = c.signature;
-    robots = std::move(read);
-  }
+  const std::vector<std::string_view> parts = signatureParts(c.signature);
+  const SignedRobots& read = readSignature(c.signature, parts);
+  if (!read.problem.empty()) return read.problem;
+  const std::vector<SignedRobot>& robots = read.robots;
   for (std::size_t r = 0; r < parts.size(); ++r) {
     if (robots[r].kind != c.kind)
       return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " is " +
@@ -118,6 +149,41 @@ std::optional<std::string> signatureProblem(const ExperienceClass& c, const std:
     if (r < paths.size() && paths[r].dim() != robots[r].dim)
       return "robot " + std::to_string(r) + ": " + quoted(parts[r]) + " has " + std::to_string(robots[r].dim) +
              " coordinates, its path " + std::to_string(paths[r].dim());
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> stateProblem(const ExperienceClass& c, const std::vector<Path>& paths) {
+  auto at = [](std::size_t r, std::size_t t) {
+    return "paths[" + std::to_string(r) + "][" + std::to_string(t) + "]: ";
+  };
+  if (c.kind == RobotKind::Mobile) {
+    for (std::size_t r = 0; r < paths.size(); ++r) {
+      const Path& p = paths[r];
+      if (p.dim() < 2) continue;
+      for (std::size_t t = 0; t < p.size(); ++t)
+        for (int i : {0, 1})
+          if (!(std::abs(p.at(t)[i]) <= kMaxStoredPosition))
+            return at(r, t) + (i == 0 ? "x " : "y ") + formatNumber(p.at(t)[i]) + " is beyond +-" +
+                   formatNumber(kMaxStoredPosition) + " of its subproblem's centre";
+    }
+    return std::nullopt;
+  }
+  const std::vector<std::string_view> parts = signatureParts(c.signature);
+  const SignedRobots& read = readSignature(c.signature, parts);
+  if (!read.problem.empty()) return std::nullopt;  // signatureProblem's to say
+  for (std::size_t r = 0; r < paths.size() && r < read.robots.size(); ++r) {
+    const Path& p = paths[r];
+    const auto& limits = read.robots[r].joint_limits;
+    if (limits.size() != static_cast<std::size_t>(p.dim())) continue;  // signatureProblem's too
+    for (std::size_t t = 0; t < p.size(); ++t)
+      for (std::size_t j = 0; j < limits.size(); ++j) {
+        const auto [lo, hi] = limits[j];
+        const double q = p.at(t)[j];
+        if (!(q >= lo - jointLimitSlack(lo) && q <= hi + jointLimitSlack(hi)))
+          return at(r, t) + "joint " + std::to_string(j) + " " + formatNumber(q) + " is outside its limits " +
+                 formatNumber(lo) + "/" + formatNumber(hi);
+      }
   }
   return std::nullopt;
 }
@@ -144,6 +210,7 @@ std::optional<std::string> findProblem(const Experience& e) {
     if (!wellFormedBaseClass(c.base_class)) return "malformed base class \"" + c.base_class + "\"";
   }
   if (auto problem = signatureProblem(c, e.paths)) return "signature: " + *problem;
+  if (auto problem = stateProblem(c, e.paths)) return *problem;
   const int kd = keyDimension(c.kind, c.robot_count, dim);
   if (e.key.size() != static_cast<std::size_t>(kd))
     return "key has " + std::to_string(e.key.size()) + " values, the class needs " + std::to_string(kd);

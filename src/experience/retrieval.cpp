@@ -16,7 +16,10 @@ std::vector<RobotTraits> traitsOfAll(const std::vector<const RobotModel*>& robot
 }
 
 // The experience of a solved subproblem, or nothing when its robots form
-// no class or the paths do not match them.
+// no class, the paths do not match them, or they leave the range the store
+// holds (stateProblem: a scenario in units so coarse that a subproblem
+// spans more than kMaxStoredPosition): not learned, and the plan, solved
+// already, does not fail over it.
 std::optional<Experience> experienceOf(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths,
                                        double solve_time_s, Source source) {
   const std::vector<RobotTraits> traits = traitsOfAll(robots);
@@ -29,6 +32,7 @@ std::optional<Experience> experienceOf(const std::vector<const RobotModel*>& rob
     goals.emplace_back(p.back(), p.back() + p.dim());
   }
   Experience e = canonicalExperience(canonicalize(traits, starts, goals), paths);
+  if (stateProblem(e.cls, e.paths)) return std::nullopt;
   e.source = source;
   e.solve_time_s = solve_time_s;
   return e;

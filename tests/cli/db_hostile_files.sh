@@ -6,8 +6,10 @@
 #   missing and 0-byte files (one wording each for every command that only
 #   reads), truncated database, truncated WAL, foreign SQLite file, newer schema,
 #   import sources with bad rows (JSON: wrong dimension, NaN, a signature
-#   that does not parse or names another kind of robot; SQLite: path
-#   blob with a wrong header or length, NaN in a blob, wrong key length),
+#   that does not parse or names another kind of robot, a state no robot
+#   could take; SQLite: path blob with a wrong header or length, NaN in a
+#   blob, wrong key length, a state no robot could take), a database
+#   holding such states (verify lists them, a plan skips them and solves),
 #   and a seeded loop that flips random bytes of a real database.
 # EARC_HOSTILE_FLIPS sets the loop's rounds (default 15; the unit test
 # test_store_hostile flips 120 more in-process).
@@ -196,11 +198,15 @@ def nan(r): r["paths"][1][2][0] = float("nan")   # json.dumps writes NaN
 def key(r): r["key"] = r["key"][:-1]
 def sig(r): r["signature"] = "|".join(["mobile:disc:-1"] * r["robot_count"])
 def sig_kind(r): r["signature"] = "|".join(["arm:links=1:r=0.1:limits=-1/1"] * r["robot_count"])
+def far(r):  # start, goal, key and cost as they were
+    p = r["paths"][0]
+    p[len(p) // 2][0] = p[len(p) // 2][1] = 1e300
 write("bad-dimension", 3, dim)
 write("bad-nan", 5, nan)
 write("bad-key", 2, key)
 write("bad-signature", 4, sig)
 write("bad-signature-kind", 4, sig_kind)
+write("bad-far-state", 2, far)
 EOF
 bad_import "export with a wrong dimension" "$WORK/bad-dimension.jsonl" "line 4 .*dimension differs"
 bad_import "export with a NaN" "$WORK/bad-nan.jsonl" "line 6 .*(NaN|not valid JSON|parse)"
@@ -209,6 +215,8 @@ bad_import "export with a malformed signature" "$WORK/bad-signature.jsonl" \
   'line 5 \(id [0-9]+\)\.signature: robot 0: "mobile:disc:-1" is not a geometry signature'
 bad_import "export with an arm's signature in a mobile row" "$WORK/bad-signature-kind.jsonl" \
   'line 5 \(id [0-9]+\)\.signature: robot 0: .* is an arm, in a mobile class'
+bad_import "export with a state no robot could take" "$WORK/bad-far-state.jsonl" \
+  'line 3 \(id [0-9]+\): paths\[0\]\[[0-9]+\]: x 1e\+300 is beyond \+-1e\+06 of its subproblem.s centre'
 "$PY" - "$WORK/good.db" "$WORK" <<'EOF' || fail "making bad databases"
 import shutil, sqlite3, struct, sys
 src, work = sys.argv[1], sys.argv[2]
@@ -238,6 +246,36 @@ bad_import "database with a long blob" "$WORK/blob-long.db" "row 5: path blob: .
 bad_import "database with a NaN in a blob" "$WORK/blob-nan.db" "row 5: path blob: .*not finite"
 bad_import "database with a short key" "$WORK/key-length.db" "row 7: key"
 bad_import "database with two bad rows" "$WORK/two-bad.db" "row 2: path blob.*1 more bad row \(row 9\)"
+# States no robot could take, written with SQL past the store's checks:
+# every row's robot 0 at x = y = 1e300 halfway (a version 1 blob, plain
+# doubles), the rest of the row as it was.
+"$PY" - "$WORK/good.db" "$WORK/good.jsonl" "$WORK/far.db" <<'EOF' || fail "making a database with far states"
+import json, shutil, sqlite3, struct, sys
+src, export, dst = sys.argv[1:]
+shutil.copy(src, dst)
+c = sqlite3.connect(dst)
+for line in open(export).read().splitlines()[1:]:
+    r = json.loads(line)
+    p = r["paths"]
+    p[0][len(p[0]) // 2][0] = p[0][len(p[0]) // 2][1] = 1e300
+    blob = b"EPTH" + struct.pack("<HBBHHI", 1, 8, 0, len(p), len(p[0][0]), len(p[0]))
+    blob += b"".join(struct.pack("<d", v) for path in p for q in path for v in q)
+    c.execute("update experiences set paths = ? where id = ?", (blob, r["id"]))
+c.commit()
+EOF
+bad_import "database with a state no robot could take" "$WORK/far.db" \
+  "row 1: paths\[0\]\[[0-9]+\]: x 1e\+300 is beyond .*23 more bad rows"
+# verify lists every such row (exit 1); a plan skips those it retrieves,
+# each with a warning naming the file and the row, and solves validly.
+run "far states" x "$DB" verify --db "$WORK/far.db"
+[ $code -eq 1 ] || fail "far states: verify exit $code: $(head -c 400 "$WORK/out" "$WORK/err")"
+[ "$(grep -c 'row [0-9]*: paths\[0\]\[[0-9]*\]: x 1e+300 is beyond' "$WORK/out")" -eq 24 ] ||
+  fail "far states: verify does not list the 24 rows: $(head -c 800 "$WORK/out")"
+run "far states" x "$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$WORK/far.db" --no-learn -q
+[ $code -eq 0 ] || fail "far states: plan exit $code: $(head -c 400 "$WORK/err")"
+grep -qE "^earc: experience store $WORK/far.db: skipping row [0-9]+: paths\[0\]\[[0-9]+\]: x 1e\+300" "$WORK/err" ||
+  fail "far states: no warning naming the file and a row: $(head -c 400 "$WORK/err")"
+"$PLAN" validate "$SCEN" "$WORK/sol.json" > /dev/null || fail "far states: the plan is not valid"
 # Whole-file commands on such a database: export and curate refuse it in one
 # line (no warning about the row first), inspect shows it with no warning.
 for bad in blob-magic:5 key-length:7; do

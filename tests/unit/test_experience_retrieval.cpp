@@ -143,6 +143,20 @@ TEST_CASE("an entry stored under a coarser resolution comes back in steps the ro
   CHECK(fitResolution(robots, p)[0].raw() == p[0].raw());
 }
 
+TEST_CASE("a solved subproblem beyond what the store holds is not learned, and learning goes on") {
+  ScratchDirectory dir("retrieval");
+  ExperienceStore store(dir.file("e.db"));
+  // Units so coarse (1000 per step) that a 3e6-unit swap is a short plan;
+  // its robots end 1.5e6 from its centre, beyond kMaxStoredPosition.
+  auto m = discModel(1000);
+  std::vector<const RobotModel*> robots{m.get(), m.get()};
+  std::vector<Path> wide{line({0, 0, 0}, {3e6, 0, 0}, 3001), line({3e6, 1, 0}, {0, 1, 0}, 3001)};
+  CHECK_FALSE(learn(store, robots, wide, 0.1).has_value());
+  const std::vector<Path> near{line({0, 0, 0}, {2, 2, 0}, 6), line({2, 0, 1}, {0, 2, 1}, 6)};
+  CHECK(learnAll(store, {{robots, wide, 0.1}, {robots, near, 0.1}}) == 1);
+  CHECK(store.size() == 1);
+}
+
 TEST_CASE("several solved subproblems are learned in one call") {
   ScratchDirectory dir("retrieval");
   ExperienceStore store(dir.file("e.db"));

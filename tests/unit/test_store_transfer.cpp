@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -16,6 +17,7 @@
 #include "earc/gen/generators.hpp"
 #include "earc/scene/robot_signature.hpp"
 #include "earc/util/version.hpp"
+#include "support.hpp"
 
 using namespace earc;
 using namespace earc::exp;
@@ -243,6 +245,101 @@ TEST_CASE("verify names the rows whose signature does not parse or disagrees wit
     REQUIRE(r.problems.size() == 1);
     CHECK(r.problems[0].find("row " + std::to_string(id) + ": signature: ") != std::string::npos);
   }
+}
+
+// States no robot could take, in the middle of the rows fill() writes
+// first (the start, goal, key and cost as they were): x = y = 1e300 for
+// the mobile pair (id 1), joint 0 at 100 rad, far past its limits, for the
+// arm pair (id 3). With `legal`, as far as each may go instead: x = y =
+// 9e5, and joint 0 at its limit pi (which the signature rounds to 3.14159).
+void farMiddleState(std::int64_t id, std::vector<std::vector<std::vector<double>>>& paths, bool legal = false) {
+  auto& q = paths[0][paths[0].size() / 2];
+  if (id == 1)
+    q[0] = q[1] = legal ? 9e5 : 1e300;
+  else
+    q[0] = legal ? gen::kArmJoint1Limit : 100.0;
+}
+
+std::string farMiddleProblem(std::int64_t id, std::size_t states) {
+  return "paths[0][" + std::to_string(states / 2) + "]: " +
+         (id == 1 ? "x 1e+300 is beyond +-1e+06 of its subproblem's centre"
+                   : "joint 0 100 is outside its limits -3.14159/3.14159");
+}
+
+TEST_CASE("an export row with a state its robot could not take is refused, naming the line and the state") {
+  ScratchDirectory dir("transfer");
+  const std::string jsonl = dir.file("a.jsonl");
+  const auto lines = exportedLines(dir, jsonl, 4);
+  for (bool legal : {false, true})
+    for (std::int64_t id : {1, 3}) {
+      CAPTURE(legal);
+      CAPTURE(id);
+      auto changed = lines;
+      auto row = nlohmann::json::parse(changed[static_cast<std::size_t>(id)]);
+      auto paths = row["paths"].get<std::vector<std::vector<std::vector<double>>>>();
+      farMiddleState(id, paths, legal);
+      row["paths"] = paths;
+      changed[static_cast<std::size_t>(id)] = row.dump();
+      writeLines(jsonl, changed);
+      const std::string b = dir.file("b" + std::to_string(legal) + std::to_string(id) + ".db");
+      if (legal) {
+        ExperienceStore store(b);
+        CHECK(importInto(store, {jsonl}).inserted == lines.size() - 1);
+        continue;
+      }
+      const std::string msg = importError(b, {jsonl});
+      CHECK(msg.find("line " + std::to_string(id + 1) + " (id " + std::to_string(id) +
+                     "): " + farMiddleProblem(id, paths[0].size())) != std::string::npos);
+      CHECK(msg.find("nothing was imported") != std::string::npos);
+      CHECK(rowCount(b) == 0);
+    }
+}
+
+TEST_CASE("a row with a state its robot could not take is refused on insert and listed by verify") {
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db");
+  fill(a, 4, 2);
+  // Written with SQL, as a damaged or hand-made file could hold them.
+  std::map<std::int64_t, std::size_t> states;
+  for (std::int64_t id : {1, 3}) {
+    Connection c(a, OpenMode::ReadWrite);
+    Statement get = c.prepare("SELECT paths FROM experiences WHERE id = ?1");
+    get.bind(1, id);
+    REQUIRE(get.step());
+    std::vector<Path> paths = decodePaths(get.blobAt(0), id);
+    get.reset();
+    std::vector<std::vector<std::vector<double>>> raw;
+    for (const Path& p : paths) {
+      raw.emplace_back();
+      for (std::size_t t = 0; t < p.size(); ++t) raw.back().emplace_back(p.at(t), p.at(t) + p.dim());
+    }
+    farMiddleState(id, raw);
+    for (std::size_t r = 0; r < paths.size(); ++r) paths[r] = earc::test::line(raw[r]);
+    states[id] = paths[0].size();
+    Statement put = c.prepare("UPDATE experiences SET paths = ?1 WHERE id = ?2");
+    put.bindBlob(1, encodePaths(paths)).bind(2, id);
+    put.run();
+  }
+  VerifyReport r = verifyDatabase(a);
+  CHECK_FALSE(r.ok());
+  REQUIRE(r.problems.size() == 2);
+  CHECK(r.problems[0].find("row 1: " + farMiddleProblem(1, states[1])) != std::string::npos);
+  CHECK(r.problems[1].find("row 3: " + farMiddleProblem(3, states[3])) != std::string::npos);
+
+  // An insert of such a row is refused, the file left as it was.
+  std::mt19937_64 rng(4);
+  const RobotTraits d = earc::test::discTraits();
+  Experience bad = straightLineExperience(std::vector<RobotTraits>{d, d}, sampleMobileQuery(2, rng), 5);
+  bad.paths[1].mutableAt(2)[1] = -2e6;
+  ExperienceStore store(a);
+  const std::size_t before = store.size();
+  try {
+    store.insert(bad, -1);
+    FAIL("a row with y = -2e6 was inserted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("paths[1][2]: y -2e+06 is beyond +-1e+06") != std::string::npos);
+  }
+  CHECK(store.size() == before);
 }
 
 TEST_CASE("an export row whose key disagrees with its paths is refused") {

@@ -67,10 +67,26 @@ double pathCost(const std::vector<Path>& paths);
 // dimension.
 std::optional<std::string> signatureProblem(const ExperienceClass& c, const std::vector<Path>& paths);
 
+// The farthest a stored mobile state's x or y may lie from 0. Stored
+// mobile paths are relative to their subproblem's centre (keys.hpp), and a
+// subproblem is a conflict's neighbourhood: the builder's are a few units
+// across, and a scenario at the default resolution is at most 5e5 units
+// across (1e7 steps of 0.05). A position beyond this is a damaged or made-up
+// row; retrieved, it is millions of steps from anything in the workspace.
+inline constexpr double kMaxStoredPosition = 1e6;
+
+// Which state of the paths no robot of the class could take, as
+// "paths[r][t]: ...", or nothing: a mobile x or y beyond
+// kMaxStoredPosition, an arm joint outside the limits its signature gives
+// (with the checker's slack and the signature's rounding). Nothing for
+// what signatureProblem finds.
+std::optional<std::string> stateProblem(const ExperienceClass& c, const std::vector<Path>& paths);
+
 // What is wrong with an experience, or nothing: robot count, path
-// dimensions and lengths, finite numbers, signature (signatureProblem), key
-// dimension and agreement with the paths' endpoints, cost, base class form.
-// Used on every insert and on every imported or verified row.
+// dimensions and lengths, finite numbers, signature (signatureProblem),
+// states (stateProblem), key dimension and agreement with the paths'
+// endpoints, cost, base class form. Used on every insert and on every
+// imported, verified or retrieved row.
 std::optional<std::string> findProblem(const Experience& e);
 
 }  // namespace earc::exp

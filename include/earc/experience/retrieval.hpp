@@ -54,8 +54,9 @@ std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, co
 
 // Stores a solved subproblem: paths in subproblem robot order and world
 // frame, all of one length (a LocalSolution). Its starts and goals are the
-// paths' endpoints. Returns the new id, or nothing for a near duplicate or
-// robots that form no class.
+// paths' endpoints. Returns the new id, or nothing for a near duplicate,
+// robots that form no class, or paths beyond what the store holds
+// (stateProblem).
 std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                   const std::vector<Path>& paths, double solve_time_s, Source source = Source::Planner,
                                   double near_duplicate_eps = kNearDuplicateEps);
