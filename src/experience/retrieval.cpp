@@ -42,15 +42,24 @@ std::optional<Experience> experienceOf(const std::vector<const RobotModel*>& rob
 
 std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths) {
   const std::size_t n = paths.empty() ? 0 : paths.front().size();
-  auto stepsAt = [&](std::size_t t) {
+  std::vector<int> steps(n > 0 ? n - 1 : 0);
+  bool fits = true;
+  std::size_t states = n > 0 ? 1 : 0;
+  for (std::size_t t = 0; t + 1 < n; ++t) {
     int k = 0;
     for (std::size_t r = 0; r < robots.size(); ++r)
       k = std::max(k, robots[r]->stepsBetween(paths[r].at(t), paths[r].at(t + 1)));
-    return k;
-  };
-  bool fits = true;
-  for (std::size_t t = 0; t + 1 < n && fits; ++t) fits = stepsAt(t) <= 1;
+    steps[t] = k;
+    fits = fits && k <= 1;
+    states += static_cast<std::size_t>(std::max(1, k));
+  }
   if (fits) return paths;
+  // Counted before anything is split: one state of a made-up row a million
+  // units from the others is 2.8e7 steps of 0.05 there and as many back,
+  // gigabytes before a single check.
+  if (states > kMaxFittedStates)
+    throw NoStepCountError("fitResolution: " + std::to_string(states) + " states at this resolution, more than " +
+                           std::to_string(kMaxFittedStates));
   std::vector<Path> out;
   for (std::size_t r = 0; r < robots.size(); ++r) {
     out.emplace_back(robots[r]->dim());
@@ -58,7 +67,7 @@ std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, co
   }
   std::vector<double> q;
   for (std::size_t t = 0; t + 1 < n; ++t) {
-    const int k = std::max(1, stepsAt(t));  // a step where all wait stays one step
+    const int k = std::max(1, steps[t]);  // a step where all wait stays one step
     for (int j = 1; j <= k; ++j)
       for (std::size_t r = 0; r < robots.size(); ++r) {
         if (j == k) {
@@ -76,15 +85,23 @@ std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, co
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
                                           const std::vector<std::vector<double>>& goals, std::size_t k,
-                                          std::size_t skip) {
+                                          std::size_t skip, std::vector<std::int64_t>* unusable) {
   const std::vector<RobotTraits> traits = traitsOfAll(robots);
   if (!hasExperienceClass(traits)) return {};
   std::vector<Canonical> forms{canonicalize(traits, starts, goals)};
   if (forms.front().symmetric) forms.push_back(swappedRoles(forms.front(), starts, goals));
   std::vector<Candidate> out;
+  std::vector<std::int64_t> unfit;
   for (const Canonical& form : forms)
-    for (Match& m : store.nearest(form.cls, form.key, k, skip))
-      out.push_back({m.experience.id, m.distance, fitResolution(robots, form.fromCanonical(m.experience.paths))});
+    for (Match& m : store.nearest(form.cls, form.key, k, skip)) {
+      // One row the robots cannot follow at their resolution leaves the
+      // others to be tried.
+      try {
+        out.push_back({m.experience.id, m.distance, fitResolution(robots, form.fromCanonical(m.experience.paths))});
+      } catch (const NoStepCountError&) {
+        if (std::find(unfit.begin(), unfit.end(), m.experience.id) == unfit.end()) unfit.push_back(m.experience.id);
+      }
+    }
   // Two role assignments may both find one row: keep its nearer use.
   std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
   std::vector<Candidate> unique;
@@ -93,6 +110,7 @@ std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vec
       unique.push_back(std::move(c));
   const std::size_t wanted = k - std::min(k, skip);
   if (unique.size() > wanted) unique.resize(wanted);
+  if (unusable) *unusable = std::move(unfit);
   return unique;
 }
 

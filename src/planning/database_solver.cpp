@@ -123,21 +123,34 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   for (int r : sub.robots) robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
   tally_ = {};
   if (robots.size() < 2 || robots.size() > kMaxRobots) return {std::nullopt, name(), -1};
-  auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k);
+  // A stored candidate that no step count joins or follows at these
+  // robots' resolution (NoStepCountError: a damaged or made-up row, or one
+  // far outside this workspace at a fine resolution) is passed over like
+  // an invalid one, and the query goes on with the others: one bad row
+  // must not fail every plan that retrieves it.
+  std::vector<std::int64_t> unusable;
+  auto passOver = [&](std::int64_t id) {
+    recordUse(id, false);
+    ++tally_.unusable;
+    ++unusable_;
+  };
+  auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k, 0, &unusable);
   ++queries_;
-  if (candidates.empty()) {
+  for (std::int64_t id : unusable) passOver(id);
+  if (candidates.empty() && unusable.empty()) {
     tally_.why = "no entries of this class";
     return {std::nullopt, name(), -1, 0.0, tally_.why};
   }
   // What became of the candidates, for the trace.
-  tally_.candidates = candidates.size();
+  tally_.candidates = candidates.size() + unusable.size();
   auto failed = [&](std::string_view why) {
     const Tally& t = tally_;
     tally_.why = why;
     return SolverOutcome{std::nullopt, name(), -1, 0.0,
                          std::to_string(t.candidates) + " candidates: " + std::to_string(t.ends_blocked) +
                              " ends blocked, " + std::to_string(t.invalid) + " invalid, " + std::to_string(t.crowded) +
-                             " crowded; " + t.why};
+                             " crowded" + (t.unusable ? ", " + std::to_string(t.unusable) + " unusable" : "") + "; " +
+                             t.why};
   };
   // An answer may come out far longer than the subproblem needs: at 16
   // arms one in five joined answers took 3.7 to 9 times the steps of the
@@ -167,15 +180,21 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   // the first valid one is also the shortest: a longer local solution
   // delays every later step of these robots and makes new conflicts.
   std::vector<std::size_t> joined;
+  constexpr std::size_t kUnjoinable = std::numeric_limits<std::size_t>::max();
   auto joinedLength = [&](exp::Candidate& cand) {
     alignHeadings(robots, sub, cand.paths);
     const auto& p = cand.paths;
     int in = 0, out = 0;
-    for (std::size_t r = 0; r < robots.size(); ++r) {
-      in = std::max(in, robots[r]->stepsBetween(sub.starts[r].data(), p[r].at(0)));
-      out = std::max(out, robots[r]->stepsBetween(p[r].at(p[r].size() - 1), sub.goals[r].data()));
+    try {
+      for (std::size_t r = 0; r < robots.size(); ++r) {
+        in = std::max(in, robots[r]->stepsBetween(sub.starts[r].data(), p[r].at(0)));
+        out = std::max(out, robots[r]->stepsBetween(p[r].at(p[r].size() - 1), sub.goals[r].data()));
+      }
+    } catch (const NoStepCountError&) {
+      passOver(cand.id);  // sorted last, and never tried
+      return kUnjoinable;
     }
-    return p.front().size() + static_cast<std::size_t>(in + out);
+    return p.front().size() + static_cast<std::size_t>(in) + static_cast<std::size_t>(out);
   };
   CompositeChecker checker(ctx.world, robots);
   // The robots outside the subproblem, as the decoupled solver sees them: a
@@ -211,36 +230,42 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return joined[a] < joined[b]; });
     for (std::size_t i : order) {
       if (found || ctx.deadline.expired()) break;
+      if (joined[i] == kUnjoinable) continue;  // passed over when measured
       const auto& c = candidates[i];
-      // A candidate is only usable when the subproblem's start and goal
-      // connect to its ends without collision.
-      if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
-          !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
-        recordUse(c.id, false);
-        ++tally_.ends_blocked;
-        continue;
-      }
-      auto runs = invalidRuns(checker, c.paths);
-      if (runs.empty()) {
-        auto sol = joinClear(c.paths);
-        if (!sol) {
+      try {
+        // A candidate is only usable when the subproblem's start and goal
+        // connect to its ends without collision.
+        if (!checker.motionValid(sub.starts, stateAt(c.paths, 0)) ||
+            !checker.motionValid(stateAt(c.paths, c.paths.front().size() - 1), sub.goals)) {
           recordUse(c.id, false);
-          ++crowded_;
-          if (++tally_.crowded >= kCrowdedGiveUp) break;
+          ++tally_.ends_blocked;
           continue;
         }
-        if (tooLong(*sol)) {
-          recordUse(c.id, false);
+        auto runs = invalidRuns(checker, c.paths);
+        if (runs.empty()) {
+          auto sol = joinClear(c.paths);
+          if (!sol) {
+            recordUse(c.id, false);
+            ++crowded_;
+            if (++tally_.crowded >= kCrowdedGiveUp) break;
+            continue;
+          }
+          if (tooLong(*sol)) {
+            recordUse(c.id, false);
+            break;
+          }
+          found = SolverOutcome{std::move(*sol), "database", c.id};
+          recordUse(c.id, true);
+          ++hits_;
           break;
         }
-        found = SolverOutcome{std::move(*sol), "database", c.id};
-        recordUse(c.id, true);
-        ++hits_;
-        break;
+        recordUse(c.id, false);
+        ++tally_.invalid;
+        if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
+      } catch (const NoStepCountError&) {
+        // Its ends join, but a shortcut across it has no step count.
+        passOver(c.id);
       }
-      recordUse(c.id, false);
-      ++tally_.invalid;
-      if (!best || runs.size() < best->runs.size()) best = Repairable{i, std::move(runs)};
     }
   };
   tryFrom(0);
@@ -251,13 +276,23 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   // 16 arms, 60 scenarios: hits 104 of 121 subproblems against 92. Mobile
   // keys hold whole positions: there the next candidates are blocked
   // too, and reading them made E-ARC slower.)
-  if (!found && allArms(robots) && settings_.widen_k > settings_.k && candidates.size() >= settings_.k &&
-      static_cast<std::size_t>(tally_.ends_blocked) == candidates.size()) {
+  if (!found && allArms(robots) && settings_.widen_k > settings_.k && tally_.candidates >= settings_.k &&
+      static_cast<std::size_t>(tally_.ends_blocked + tally_.unusable) == tally_.candidates) {
     const std::size_t tried = candidates.size();
-    for (auto& c : exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.widen_k, settings_.k))
-      if (std::none_of(candidates.begin(), candidates.end(), [&](const exp::Candidate& u) { return u.id == c.id; }))
-        candidates.push_back(std::move(c));
-    tally_.candidates = candidates.size();
+    std::vector<std::int64_t> more_unusable;
+    auto seen = [&](std::int64_t id) {
+      return std::any_of(candidates.begin(), candidates.end(), [&](const exp::Candidate& u) { return u.id == id; }) ||
+             std::find(unusable.begin(), unusable.end(), id) != unusable.end();
+    };
+    for (auto& c : exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.widen_k, settings_.k,
+                                           &more_unusable))
+      if (!seen(c.id)) candidates.push_back(std::move(c));
+    for (std::int64_t id : more_unusable)
+      if (!seen(id)) {
+        unusable.push_back(id);
+        passOver(id);
+      }
+    tally_.candidates = candidates.size() + unusable.size();
     tryFrom(tried);
   }
   if (found) return std::move(*found);
@@ -279,7 +314,13 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     return failed(fix.why);
   }
   const std::vector<Path>& repaired = *fix.paths;
-  auto sol = joinClear(repaired);
+  std::optional<LocalSolution> sol;
+  try {
+    sol = joinClear(repaired);
+  } catch (const NoStepCountError&) {
+    passOver(c.id);
+    return failed("repaired but unusable");
+  }
   if (!sol) {
     recordUse(c.id, false);
     ++crowded_;
@@ -374,6 +415,7 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   stats["db_repairs"] = repairs_;
   stats["db_refused_crowded"] = crowded_;
   stats["db_refused_too_long"] = too_long_;
+  stats["db_skipped_unusable"] = unusable_;
   stats["db_learned"] = learned;
   stats["db_learned_ids"] = std::move(learned_ids);
   stats["db_learn_candidates"] = pending_.size();

@@ -307,7 +307,7 @@ std::optional<RobotSpec> robotFromSignature(std::string_view signature) {
 int RobotModel::stepsBetween(const double* a, const double* b) const {
   const double d = distance(a, b);
   if (!(d >= 0.0) || d > static_cast<double>(INT_MAX))
-    throw std::invalid_argument("robot '" + spec_.name + "': no finite step count between these configurations");
+    throw NoStepCountError("robot '" + spec_.name + "': no finite step count between these configurations");
   if (d == 0.0) return 0;
   return std::max(1, static_cast<int>(std::ceil(d - kStepSlack)));
 }

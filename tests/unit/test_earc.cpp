@@ -264,15 +264,22 @@ TEST_CASE("E-ARC without a database is refused with a clear error") {
   CHECK_THROWS_WITH_AS(plan(crossing(0, 0, 6), earcSettings(1), nullptr), doctest::Contains("--db"), InputError);
 }
 
+// Two discs in a 10 x 10 world drive side by side in +x from x = 4 to 6,
+// a at y = 4 and b at y = 6.
+Scenario sideBySide() {
+  Scenario s;
+  s.name = "parallel";
+  s.workspace = {{0, 0}, {10, 10}};
+  s.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0})};
+  return s;
+}
+
 TEST_CASE("A retrieved mobile solution is turned to the start headings and shortcut before use") {
   TempDb tmp;
   exp::ExperienceStore store(tmp.file());
   // Stored: two discs drive side by side in +x, facing along x, robot a
   // with a pointless loop up and back that a shortcut removes.
-  Scenario open;
-  open.name = "parallel";
-  open.workspace = {{0, 0}, {10, 10}};
-  open.robots = {disc("a", {4, 4, 0}, {6, 4, 0}), disc("b", {4, 6, 0}, {6, 6, 0})};
+  const Scenario open = sideBySide();
   const RobotModels owned(open);
   const std::vector<const RobotModel*>& models = owned.raw;
   std::vector<CompositeState> way{{{4, 4, 0}, {4, 6, 0}}, {{5, 4, 0}, {5, 6, 0}}, {{5, 5, 0}, {5, 6, 0}},
@@ -303,6 +310,60 @@ TEST_CASE("A retrieved mobile solution is turned to the start headings and short
   // The loop is gone: 2 units at 0.05 per step are 40 steps.
   CHECK(out.solution->length() < stored_steps);
   CHECK(out.solution->length() <= 41);
+}
+
+TEST_CASE("A stored candidate no step count follows is passed over, and the query goes on with the others") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  // Stored at 0.05 per step: two discs side by side in +x, and the same
+  // with one state of a's 9.5e5 units away in x and y, within what the
+  // store holds (kMaxStoredPosition), as a made-up row could be.
+  const Scenario open = sideBySide();
+  const RobotModels coarse(open);
+  const std::vector<Path> stored =
+      timeStampComposite(coarse.raw, {{{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}}).paths;
+  std::vector<Path> far = stored;
+  double* q = far[0].mutableAt(far[0].size() / 2);
+  q[0] = q[1] = 5 + 9.5e5;
+  const auto far_id = exp::learn(store, coarse.raw, far, 0.1, exp::Source::Build, -1);
+  REQUIRE(far_id.has_value());
+
+  // Asked at 5e-4 per step, that state is 2.7e9 steps away: more than an
+  // int counts.
+  Scenario fine = open;
+  fine.resolution.translation = 5e-4;
+  const RobotModels models(fine);
+  CollisionWorld world(fine);
+  RoadmapSet roadmaps(world, models.raw, 300, 10, 1);
+  Subproblem sub = pairSubproblem({{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}});
+  std::vector<Path> plan_paths{line({sub.starts[0], sub.goals[0]}), line({sub.starts[1], sub.goals[1]})};
+  SolverContext ctx{world, models.raw, roadmaps, plan_paths, sub, Deadline(30), 7};
+  {
+    DatabaseSolver alone(store, DatabaseSolverSettings{});
+    SolverOutcome none = alone.solve(ctx);
+    CHECK_FALSE(none.solution.has_value());
+    CHECK(none.detail == "1 candidates: 0 ends blocked, 0 invalid, 0 crowded, 1 unusable; none to repair");
+  }
+  // With a sound row beside it, the sound one answers.
+  const auto sound_id = exp::learn(store, coarse.raw, stored, 0.1, exp::Source::Build, -1);
+  REQUIRE(sound_id.has_value());
+  DatabaseSolver solver(store, DatabaseSolverSettings{});
+  SolverOutcome out = solver.solve(ctx);
+  REQUIRE(out.solution.has_value());
+  CHECK(out.how == "database");
+  CHECK(out.entry == *sound_id);
+  CompositeChecker checker(world, models.raw);
+  const auto& p = out.solution->paths;
+  for (std::size_t t = 0; t + 1 < p[0].size(); ++t) REQUIRE(checker.motionValid(stateAt(p, t), stateAt(p, t + 1)));
+  nlohmann::json stats;
+  solver.finish(stats);
+  CHECK(stats["db_skipped_unusable"].get<int>() == 1);
+  CHECK(stats["db_hits"].get<int>() == 1);
+  // Its use counted as a failure, as an invalid candidate's is.
+  auto row = store.get(*far_id);
+  REQUIRE(row.has_value());
+  CHECK(row->retrieved == 2);
+  CHECK(row->succeeded == 0);
 }
 
 namespace {

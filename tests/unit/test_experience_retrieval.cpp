@@ -157,6 +157,24 @@ TEST_CASE("a solved subproblem beyond what the store holds is not learned, and l
   CHECK(store.size() == 1);
 }
 
+TEST_CASE("a stored path the robots cannot follow is refused before it is split") {
+  auto m = discModel(0.05);
+  std::vector<const RobotModel*> robots{m.get(), m.get()};
+  // One state 1e4 units out: 2.8e5 steps of 0.05 there and as many back.
+  std::vector<Path> far{line({{0, 0, 0}, {1e4, 1e4, 0}, {1, 0, 0}}), line({{1, 1, 0}, {1, 1, 0}, {0, 1, 0}})};
+  CHECK_THROWS_WITH_AS(fitResolution(robots, far), doctest::Contains("more than 100000"), NoStepCountError);
+  // Too far for an int count of steps at all.
+  far[0].mutableAt(1)[0] = 1e300;
+  CHECK_THROWS_AS(fitResolution(robots, far), NoStepCountError);
+  // The longest it splits: the first state, then one stored step into
+  // kMaxFittedStates - 2 and one of a step (0.25 per step: exact sums).
+  auto quarter = discModel(0.25);
+  const double reach = 0.25 * static_cast<double>(kMaxFittedStates - 2);
+  std::vector<Path> longest{line({{0, 0, 0}, {reach, 0, 0}, {reach, 0.25, 0}}),
+                            line({{1, 1, 0}, {1, 1, 0}, {1.25, 1, 0}})};
+  CHECK(fitResolution({quarter.get(), quarter.get()}, longest)[0].size() == kMaxFittedStates);
+}
+
 TEST_CASE("several solved subproblems are learned in one call") {
   ScratchDirectory dir("retrieval");
   ExperienceStore store(dir.file("e.db"));

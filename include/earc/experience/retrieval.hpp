@@ -40,16 +40,26 @@ struct Candidate {
 // resolution rule. With skip > 0, the k nearest less the `skip` nearest
 // (rows not read): the next candidates after a first call with k = skip.
 // (For a symmetric pair, a row found under one role assignment before the
-// skip can come back under the other after it.)
+// skip can come back under the other after it.) A row the robots cannot
+// follow at their resolution (fitResolution throws NoStepCountError) is
+// left out, its id put in `unusable` when given.
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
                                           const std::vector<std::vector<double>>& goals, std::size_t k,
-                                          std::size_t skip = 0);
+                                          std::size_t skip = 0, std::vector<std::int64_t>* unusable = nullptr);
+
+// The most states fitResolution makes of a stored solution. Stored ones
+// are tens to hundreds of states (at most 287 in a 198-row database the
+// builder made, 76 on average), split by the ratio of two scenarios'
+// resolutions: this leaves a ratio of 300 to the longest.
+inline constexpr std::size_t kMaxFittedStates = 100'000;
 
 // Paths whose consecutive states some robot cannot reach in one step at
 // its resolution, with every such step split into as many as the slowest
 // robot needs (all robots move together, as in the coupled solver's time
-// stamping). Paths that already fit are returned unchanged.
+// stamping). Paths that already fit are returned unchanged. Throws
+// NoStepCountError for a step too long for an int count, or when the
+// split paths would hold more than kMaxFittedStates states.
 std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths);
 
 // Stores a solved subproblem: paths in subproblem robot order and world

@@ -86,11 +86,12 @@ class DatabaseSolver : public SubproblemSolver {
   int repairs_ = 0;
   int crowded_ = 0;  // valid candidates refused for running into other robots
   int too_long_ = 0;  // answers refused for max_stretch
+  int unusable_ = 0;  // candidates passed over: no step count joins or follows them (NoStepCountError)
   // What became of the last query's candidates (its trace detail), and why
   // it failed; why is empty when the subproblem's size has no class.
   struct Tally {
     std::size_t candidates = 0;
-    int ends_blocked = 0, invalid = 0, crowded = 0;
+    int ends_blocked = 0, invalid = 0, crowded = 0, unusable = 0;
     std::size_t too_long = 0;  // the steps of an answer refused for max_stretch
     std::string why;
   } tally_;

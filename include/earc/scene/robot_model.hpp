@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,18 @@
 #include "earc/scene/scenario.hpp"
 
 namespace earc {
+
+// Thrown by stepsBetween when no int counts the steps between two
+// configurations: a coordinate that is not a number, or a distance beyond
+// INT_MAX steps (a damaged stored path, or one far outside the workspace
+// at a fine resolution); and by exp::fitResolution for a stored path too
+// long to split. An invalid_argument, as it always was, for the callers
+// that report it as bad input; a type of its own for the database solver,
+// which passes over the stored candidate it came from.
+class NoStepCountError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 class RobotModel {
  public:
@@ -27,7 +40,8 @@ class RobotModel {
   virtual double distance(const double* a, const double* b) const = 0;
 
   // Whole number of steps a straight motion from a to b takes: ceil of
-  // distance (minus a 1e-9 slack), 0 only when a equals b.
+  // distance (minus a 1e-9 slack), 0 only when a equals b. Throws
+  // NoStepCountError when that is no int.
   int stepsBetween(const double* a, const double* b) const;
 
   // out = the configuration at fraction s in [0, 1] of the straight motion
