@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "earc/experience/retrieval.hpp"
+#include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/composite.hpp"
@@ -404,12 +405,21 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   // The ids of the rows inserted (each committed when learn returns), so
   // that a caller such as `earc-plan serve` can report what it stored.
   nlohmann::json learned_ids = nlohmann::json::array();
-  for (const auto& p : pending_)
-    if (auto id = exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) {
-      ++learned;
-      learned_ids.push_back(*id);
-    }
-  store_.flush();
+  // The plan is made: a database that cannot take what it learned (a full
+  // disk) costs the lesson, not the plan. Each row commits on its own, so
+  // those before the failure stay; a damaged file is still an error.
+  try {
+    for (const auto& p : pending_)
+      if (auto id = exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) {
+        ++learned;
+        learned_ids.push_back(*id);
+      }
+    store_.flush();
+  } catch (const exp::DamagedDatabaseError&) {
+    throw;
+  } catch (const exp::StoreError& e) {
+    stats["db_learn_error"] = oneLine(e.what());
+  }
   stats["db_queries"] = queries_;
   stats["db_hits"] = hits_;
   stats["db_repairs"] = repairs_;

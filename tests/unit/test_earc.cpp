@@ -114,6 +114,30 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
   CHECK(second.stats["db_hit_rate"].get<double>() > 0.0);
 }
 
+TEST_CASE("A database that cannot take what E-ARC learned costs the lesson, not the plan") {
+  TempDb tmp;
+  Scenario s = crossing(0, 0, 6);
+  std::size_t before = 0;
+  {
+    exp::ExperienceStore store(tmp.file());
+    before = store.size();
+    store.flush();
+    // As a full disk would: every insert fails (a temporary trigger, seen
+    // by this connection only; the file is not changed).
+    store.connection().exec(
+        "CREATE TEMP TRIGGER no_room BEFORE INSERT ON main.experiences "
+        "BEGIN SELECT RAISE(ABORT, 'database or disk is full'); END");
+    PlanResult r = plan(s, earcSettings(1), &store);
+    REQUIRE(r.solution.solved);
+    CHECK(validateSolution(s, r.solution).valid);
+    CHECK(r.stats["db_learn_candidates"].get<int>() >= 1);
+    CHECK(r.stats["db_learned"].get<int>() == 0);
+    CHECK(r.stats.value("db_learn_error", std::string()).find("full") != std::string::npos);
+  }
+  exp::ExperienceStore store(tmp.file());
+  CHECK(store.size() == before);
+}
+
 TEST_CASE("failure reasons add up across queries with their numbers taken out") {
   CHECK(withoutNumbers("fewest invalid runs 4, too many to repair") == "fewest invalid runs N, too many to repair");
   CHECK(withoutNumbers("answer 95 steps, more than 1.05 x 16") == "answer N steps, more than N x N");

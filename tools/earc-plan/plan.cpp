@@ -9,6 +9,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 #include "earc/validate/validator.hpp"
 #include "plan_store.hpp"
@@ -38,7 +39,14 @@ struct PlanOptions {
 PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store) {
   try {
     PlanResult planned = plan(scenario, s, &store);
-    store.awaitCheck();
+    try {
+      store.awaitCheck();  // also counts the session, a write
+    } catch (const exp::DamagedDatabaseError&) {
+      throw;
+    } catch (const exp::StoreError& e) {
+      // A full disk: the plan stands (see runPlan).
+      if (!planned.stats.contains("db_learn_error")) planned.stats["db_learn_error"] = oneLine(e.what());
+    }
     return planned;
   } catch (const exp::DamagedDatabaseError&) {
     store.awaitCheck();
@@ -103,6 +111,17 @@ int runPlan(const PlanOptions& o) {
   // solution written. Busy stays exit 1.
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
                        : plan(scenario, s, nullptr);
+  // What could not be written to the database (a full disk) is said once,
+  // after the plan is saved; closing here, not in the destructor, keeps it
+  // to that one line.
+  std::string learn_error = r.stats.value("db_learn_error", std::string());
+  if (store) {
+    try {
+      store->close();
+    } catch (const exp::StoreError& e) {
+      if (learn_error.empty()) learn_error = oneLine(e.what());
+    }
+  }
   saveSolution(o.output, r.solution);
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {
@@ -119,6 +138,9 @@ int runPlan(const PlanOptions& o) {
           << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
     out << "solution: " << o.output << "\n";
   }
+  if (!learn_error.empty())
+    std::cerr << "earc-plan: warning: " << printableText(learn_error, 4096)
+              << " (the plan is written; the database keeps what it had)\n";
   return r.solution.solved ? 0 : 1;
 }
 
