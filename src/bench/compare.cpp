@@ -244,8 +244,9 @@ class Comparer {
   // A side that refuses the first plan's input for a reason that is not
   // the scenario's (exit status 2 and a message that does not name the
   // scenario file: an option it does not know, a database too new for
-  // it) would refuse every plan alike: say so at once rather than run
-  // the whole comparison for a table of failures. A scenario it cannot
+  // it) would refuse every plan alike, and so would one that exits 0
+  // without a solution (not an earc-plan at all): say so at once rather
+  // than run the whole comparison for a table of failures. A scenario it cannot
   // read is that pair's failure, as any other.
   void stopIfRefused(const ComparePair& first, const Job& job) const {
     for (const auto& [plan, program, option] : {std::tuple{&first.old_plan, &o_.old_program, "--old"},
@@ -253,6 +254,10 @@ class Comparer {
       if (plan->refused && plan->failure.find(job.scenario_file) == std::string::npos)
         throw InputError(*program, option, "refused the first plan (" + first.scenario + "), so would every plan: " +
                                                plan->failure);
+      else if (plan->silent)
+        throw InputError(*program, option, "exited 0 on the first plan (" + first.scenario +
+                                               ") without a readable solution: is it an earc-plan? (" +
+                                               plan->failure + ")");
   }
 
   static std::string describe(const std::string& program, const std::vector<std::string>& args) {
@@ -303,6 +308,7 @@ class Comparer {
     nlohmann::json doc;
     if (auto why = readPlanSolution(run, solution, err, doc)) {
       p.failure = *why;
+      p.silent = run.exit_code == 0;
       return p;
     }
     p.version = plannerVersion(doc);

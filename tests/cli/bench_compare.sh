@@ -169,6 +169,14 @@ grep -qxF "earc-bench: error: $WORK/refuses: --old: refused the first plan (mobi
 db.sqlite: schema version 5 is newer than this build knows (4)" "$WORK/err" || { show; fail "the refusal is not named"; }
 [ "$(wc -l < "$WORK/refusals")" -eq 1 ] || fail "planned on after the refusal ($(wc -l < "$WORK/refusals") plans)"
 
+# A program that exits 0 without writing a solution is no earc-plan: the
+# same stop, not a table of failures with exit 0.
+"$BENCH" "${BASE[@]}" --old /bin/true --new "$PLAN" > "$WORK/out" 2> "$WORK/err"
+rc=$?
+[ $rc -eq 2 ] && [ "$(wc -l < "$WORK/err")" -eq 1 ] &&
+  grep -qF "earc-bench: error: /bin/true: --old: exited 0 on the first plan (mobile-4-t0) without a readable solution: is it an earc-plan?" "$WORK/err" ||
+  { show; fail "/bin/true as --old: exit $rc"; }
+
 # A refusal that names the scenario (one this side cannot read) is that
 # pair's failure; the comparison goes on.
 cat > "$WORK/picky" <<FAKE

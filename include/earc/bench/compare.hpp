@@ -48,6 +48,7 @@ struct ComparePlan {
   bool invalid = false;           // solved, but the validator refused it
   std::string version;            // the build that planned it (plannerVersion), "" unknown
   bool refused = false;           // exit status 2: the program refused its input or options
+  bool silent = false;            // exit status 0 without a readable solution: not an earc-plan
 };
 
 struct ComparePair {
