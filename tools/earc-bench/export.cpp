@@ -6,8 +6,8 @@
 // The OMPL logs (one per suite, robot count and time limit; planners are the
 // methods) load with ompl_benchmark_statistics.py DIR/*.log -d OUT.db and
 // so into Planner Arena.
-#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
@@ -26,11 +26,6 @@ struct ExportOptions {
   double time_limit = 0;
 };
 
-std::ofstream openOut(const std::string& path, const char* option) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, option, "cannot write");
-  return out;
-}
 
 void setupExport(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
@@ -63,14 +58,18 @@ void setupExport(CLI::App& app) {
     // lines in among its rows: they go to stderr then.
     std::ostream& summary = summaryStream({o->csv, o->databases_csv});
     if (!o->csv.empty()) {
-      auto out = openOut(o->csv, "--csv");
+      // Written whole, as every output (README: a killed command leaves
+      // no half file).
+      std::ostringstream out;
       bench::writeCsv(trials, out);
+      writeTextFileAtomic(o->csv, out.str());
       summary << o->csv << ": " << trials.size() << " trials\n";
     }
     if (!o->databases_csv.empty()) {
-      auto out = openOut(o->databases_csv, "--databases-csv");
+      std::ostringstream out;
       const auto dbs = db.databases();
       bench::writeDatabasesCsv(dbs, out);
+      writeTextFileAtomic(o->databases_csv, out.str());
       summary << o->databases_csv << ": " << dbs.size() << " databases\n";
     }
     if (!o->ompl_dir.empty())
