@@ -1,13 +1,15 @@
 #include "earc/experience/sqlite.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <optional>
+#include <random>
 #include <thread>
 
 #include "earc/util/format.hpp"
@@ -198,14 +200,23 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
       throw StoreError(path + ": " + std::string(kNotARegularFile));
   }
   // Reading a WAL file read-write (query_only) lets SQLite make its -shm
-  // beside it. In a directory nobody may write to (a shared, read-only
-  // copy) it cannot, and without a -wal there nobody can be writing the
-  // file either: it is read as immutable, without locks or -shm.
+  // beside it. In a directory nobody may write to (a read-only mount, an
+  // immutable directory, or one with no write permission for anyone: a
+  // shared, read-only copy) it cannot; and with no -wal or -journal there,
+  // nobody can be writing the file either: it is read as immutable,
+  // without locks or -shm. A directory only this user may not write to is
+  // not enough: its owner could start writing while it is read.
   std::filesystem::path dir = std::filesystem::path(path).parent_path();
   if (dir.empty()) dir = ".";
-  std::error_code wal_ec;
-  const bool frozen = mode != OpenMode::ReadWrite && ::access(dir.c_str(), W_OK) != 0 &&
-                      !std::filesystem::exists(path + "-wal", wal_ec);
+  auto nobodyWrites = [&] {
+    if (::access(dir.c_str(), W_OK) == 0) return false;
+    if (errno == EROFS || errno == EPERM) return true;
+    struct stat st {};
+    return ::stat(dir.c_str(), &st) == 0 && (st.st_mode & 0222) == 0;
+  };
+  std::error_code side_ec;
+  const bool frozen = mode != OpenMode::ReadWrite && !std::filesystem::exists(path + "-wal", side_ec) &&
+                      !std::filesystem::exists(path + "-journal", side_ec) && nobodyWrites();
   const bool query_only = mode == OpenMode::ReadOnly && !frozen && ownWalHeader(path, settings.own_application_id);
   // Writing needs the file and its directory (for -wal and -shm): said
   // before any work, not as a failed PRAGMA or a failed commit after it.
