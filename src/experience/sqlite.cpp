@@ -66,6 +66,20 @@ std::optional<std::string> truncation(const std::string& file) {
     throw DamagedDatabaseError(file + ": damaged database file (" + message +
                                "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
   }
+  if (primary == SQLITE_CANTOPEN) {
+    // A WAL database is read through a -shm file beside it, which SQLite
+    // must be able to make: in a directory this user may not write to
+    // (a shared copy) it cannot, and says only "unable to open".
+    std::error_code ec;
+    std::filesystem::path real = std::filesystem::weakly_canonical(file, ec);
+    if (ec) real = file;
+    std::filesystem::path dir = real.parent_path();
+    if (dir.empty()) dir = ".";
+    if (::access(dir.c_str(), W_OK) != 0)
+      throw StoreError(file + ": cannot read: SQLite needs to make " + real.filename().string() +
+                       "-shm beside it and directory " + dir.string() +
+                       " is not writable (copy the database to a writable directory)");
+  }
   if (primary == SQLITE_IOERR && (rc == SQLITE_IOERR_SHORT_READ || rc == SQLITE_IOERR_TRUNCATE))
     throw DamagedDatabaseError(file + ": damaged database file (truncated: " + message + ")");
   std::string msg = file + ": " + std::string(context) + ": " + message;
@@ -199,34 +213,21 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
       throw StoreError(path + ": " + std::string(kNotARegularFile));
   }
-  // Reading a WAL file read-write (query_only) lets SQLite make its -shm
-  // beside it. In a directory nobody may write to (a read-only mount, an
-  // immutable directory, or one with no write permission for anyone: a
-  // shared, read-only copy) it cannot; and with no -wal or -journal there,
-  // nobody can be writing the file either: it is read as immutable,
-  // without locks or -shm. A directory only this user may not write to is
-  // not enough: its owner could start writing while it is read.
-  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  // SQLite keeps -wal and -shm beside the real file, through any link.
+  std::error_code link_ec;
+  std::filesystem::path real = std::filesystem::weakly_canonical(path, link_ec);
+  if (link_ec) real = path;
+  std::filesystem::path dir = real.parent_path();
   if (dir.empty()) dir = ".";
-  auto nobodyWrites = [&] {
-    if (::access(dir.c_str(), W_OK) == 0) return false;
-    if (errno == EROFS || errno == EPERM) return true;
-    struct stat st {};
-    return ::stat(dir.c_str(), &st) == 0 && (st.st_mode & 0222) == 0;
-  };
-  std::error_code side_ec;
-  const bool frozen = mode != OpenMode::ReadWrite && !std::filesystem::exists(path + "-wal", side_ec) &&
-                      !std::filesystem::exists(path + "-journal", side_ec) && nobodyWrites();
-  const bool query_only = mode == OpenMode::ReadOnly && !frozen && ownWalHeader(path, settings.own_application_id);
+  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
   // Writing needs the file and its directory (for -wal and -shm): said
   // before any work, not as a failed PRAGMA or a failed commit after it.
   if (mode == OpenMode::ReadWrite) {
     std::error_code ec;
     if (std::filesystem::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) != 0)
-      throw StoreError(path + ": cannot write: directory " + dir.string() +
-                       " is not writable (commands that only read the database work)");
-    if (std::filesystem::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
-      throw StoreError(path + ": cannot write: the file is read-only (commands that only read it work)");
+      throw StoreError(path + ": cannot write: directory " + dir.string() + " is not writable");
+    if (std::filesystem::exists(real, ec) && ::access(real.c_str(), W_OK) != 0)
+      throw StoreError(path + ": cannot write: the file is read-only");
   }
   int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
               : query_only                ? SQLITE_OPEN_READWRITE
@@ -234,22 +235,7 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
   // The store serializes access itself; the connection need not.
   flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   sqlite3* raw = nullptr;
-  std::string name = path;
-  if (frozen) {
-    flags |= SQLITE_OPEN_URI;
-    name = "file:";
-    for (unsigned char c : path) {
-      if (c == '%' || c == '?' || c == '#' || c < 0x21 || c >= 0x7F) {
-        char hex[4];
-        std::snprintf(hex, sizeof hex, "%%%02X", c);
-        name += hex;
-      } else {
-        name += static_cast<char>(c);
-      }
-    }
-    name += "?immutable=1";
-  }
-  int rc = sqlite3_open_v2(name.c_str(), &raw, flags, nullptr);
+  int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
   db_.reset(raw);
   if (rc != SQLITE_OK) {
     std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);

@@ -1,9 +1,9 @@
 #!/bin/bash
-# A database in a directory nobody may write to (a shared, read-only copy):
-# every command that only reads it works (inspect, verify, export, import
-# from it, E-ARC with --no-learn) and leaves nothing beside it; a command
-# that would write is refused before any work, with one line saying the
-# directory is not writable, and the file is unchanged. As root, chmod
+# A database in a directory this user may not write to: SQLite cannot make
+# the -shm its WAL mode reads through, so every command refuses it with one
+# line saying why (copy it somewhere writable); a command that would write
+# is refused before any work, saying the directory is not writable; the
+# file is unchanged and nothing is left beside it. As root, chmod
 # does not stop writes: the directory is made immutable (chattr +i), and
 # the test is skipped where neither works.
 set -u
@@ -32,13 +32,18 @@ if touch "$RO/probe" 2> /dev/null; then
 fi
 trap '[ $immutable -eq 1 ] && chattr -i "$RO"; chmod -R u+w "$WORK"; rm -rf "$WORK"' EXIT
 
-"$DB" inspect --db "$RO/r.db" > "$WORK/out" 2> "$WORK/err" || fail "inspect: $(cat "$WORK/err")"
-grep -q "^database  $RO/r.db" "$WORK/out" || fail "inspect: $(head -3 "$WORK/out")"
-"$DB" verify --db "$RO/r.db" > "$WORK/out" 2> "$WORK/err" || fail "verify: $(cat "$WORK/err")"
-"$DB" export --db "$RO/r.db" -o "$WORK/r.jsonl" -q || fail "export exited $?"
-"$DB" import --db "$WORK/copy.db" "$RO/r.db" -q || fail "import from it exited $?"
-"$PLAN" plan "$SCEN" -o "$WORK/sol.json" --method earc --db "$RO/r.db" --no-learn -q || fail "plan --no-learn exited $?"
-"$PLAN" validate "$SCEN" "$WORK/sol.json" > /dev/null || fail "plan --no-learn: not valid"
+# Reading: SQLite's WAL mode must make r.db-shm there; refused with one
+# line that says so (reading such a file as immutable would trust that
+# nobody writes it, which no check at open can promise).
+for cmd in "$DB inspect --db" "$DB verify --db" "$DB export -o $WORK/r.jsonl --db" \
+  "$PLAN plan $SCEN -o $WORK/sol.json --method earc --no-learn --db"; do
+  $cmd "$RO/r.db" > "$WORK/out" 2> "$WORK/err"
+  rc=$?
+  [ $rc -eq 2 ] || fail "$cmd: exit $rc, expected 2: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$RO/r.db" "$WORK/err" &&
+    grep -qF "cannot read: SQLite needs to make r.db-shm beside it and directory $(cd "$RO" && pwd -P) is not writable" \
+      "$WORK/err" || fail "$cmd: $(cat "$WORK/err")"
+done
 
 # Writing: refused at once, one line, nothing written.
 for cmd in "$PLAN plan $SCEN -o $WORK/sol2.json --method earc --db" "$DB build --count 2 -q --db" \
@@ -47,9 +52,9 @@ for cmd in "$PLAN plan $SCEN -o $WORK/sol2.json --method earc --db" "$DB build -
   rc=$?
   [ $rc -eq 2 ] || fail "$cmd: exit $rc, expected 2: $(cat "$WORK/err")"
   [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF "$RO/r.db" "$WORK/err" &&
-    grep -qF "cannot write: directory $RO is not writable" "$WORK/err" || fail "$cmd: $(cat "$WORK/err")"
+    grep -qF "cannot write: directory $(cd "$RO" && pwd -P) is not writable" "$WORK/err" || fail "$cmd: $(cat "$WORK/err")"
 done
-[ -e "$WORK/sol2.json" ] && fail "a refused plan wrote a solution"
+[ -e "$WORK/sol.json" ] || [ -e "$WORK/sol2.json" ] && fail "a refused plan wrote a solution"
 [ "$(md5sum < "$RO/r.db")" = "$before" ] || fail "the file changed"
-leftNothingBeside "$RO/r.db" "reading a read-only directory"
+
 echo "ok"
