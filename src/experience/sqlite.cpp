@@ -84,6 +84,7 @@ std::optional<std::string> truncation(const std::string& file) {
     throw DamagedDatabaseError(file + ": damaged database file (truncated: " + message + ")");
   std::string msg = file + ": " + std::string(context) + ": " + message;
   if (isBusy(rc)) throw BusyError(msg);
+  if (primary == SQLITE_FULL) throw NoSpaceError(msg);
   throw StoreError(msg);
 }
 

@@ -405,9 +405,10 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   // The ids of the rows inserted (each committed when learn returns), so
   // that a caller such as `earc-plan serve` can report what it stored.
   nlohmann::json learned_ids = nlohmann::json::array();
-  // The plan is made: a database that cannot take what it learned (a full
-  // disk) costs the lesson, not the plan. Each row commits on its own, so
-  // those before the failure stay; a damaged file is still an error.
+  // The plan is made: a disk with no room for what it learned costs the
+  // lesson, not the plan. Each row commits on its own, so those before the
+  // failure stay, and SQLite rolled the failed one back. Anything else (a
+  // damaged file, a lock held through every retry) is still an error.
   try {
     for (const auto& p : pending_)
       if (auto id = exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) {
@@ -415,9 +416,7 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
         learned_ids.push_back(*id);
       }
     store_.flush();
-  } catch (const exp::DamagedDatabaseError&) {
-    throw;
-  } catch (const exp::StoreError& e) {
+  } catch (const exp::NoSpaceError& e) {
     stats["db_learn_error"] = oneLine(e.what());
   }
   stats["db_queries"] = queries_;

@@ -122,11 +122,14 @@ TEST_CASE("A database that cannot take what E-ARC learned costs the lesson, not 
     exp::ExperienceStore store(tmp.file());
     before = store.size();
     store.flush();
-    // As a full disk would: every insert fails (a temporary trigger, seen
-    // by this connection only; the file is not changed).
-    store.connection().exec(
-        "CREATE TEMP TRIGGER no_room BEFORE INSERT ON main.experiences "
-        "BEGIN SELECT RAISE(ABORT, 'database or disk is full'); END");
+    // A full disk, as SQLite reports it (SQLITE_FULL): no page may be
+    // added to the file, and every insert of a row first writes 4 MB
+    // (a temporary trigger, seen by this connection only).
+    exp::Connection& c = store.connection();
+    c.exec("PRAGMA max_page_count = " + std::to_string(c.pragmaInt("page_count")));
+    c.exec("CREATE TEMP TRIGGER no_room BEFORE INSERT ON main.experiences BEGIN "
+           "INSERT INTO history (token, at, program, operation, detail) "
+           "VALUES (0, 0, 'test', 'learn', zeroblob(4000000)); END");
     PlanResult r = plan(s, earcSettings(1), &store);
     REQUIRE(r.solution.solved);
     CHECK(validateSolution(s, r.solution).valid);

@@ -41,10 +41,8 @@ PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s
     PlanResult planned = plan(scenario, s, &store);
     try {
       store.awaitCheck();  // also counts the session, a write
-    } catch (const exp::DamagedDatabaseError&) {
-      throw;
-    } catch (const exp::StoreError& e) {
-      // A full disk: the plan stands (see runPlan).
+    } catch (const exp::NoSpaceError& e) {
+      // The plan stands (see runPlan).
       if (!planned.stats.contains("db_learn_error")) planned.stats["db_learn_error"] = oneLine(e.what());
     }
     return planned;
@@ -111,18 +109,22 @@ int runPlan(const PlanOptions& o) {
   // solution written. Busy stays exit 1.
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
                        : plan(scenario, s, nullptr);
+  saveSolution(o.output, r.solution);
   // What could not be written to the database (a full disk) is said once,
-  // after the plan is saved; closing here, not in the destructor, keeps it
-  // to that one line.
+  // after the plan is saved. Closing here, not in the destructor, keeps it
+  // to one line; another error at close (the file found damaged) is a
+  // warning, as the destructor's was.
   std::string learn_error = r.stats.value("db_learn_error", std::string());
+  std::string close_error;
   if (store) {
     try {
       store->close();
-    } catch (const exp::StoreError& e) {
+    } catch (const exp::NoSpaceError& e) {
       if (learn_error.empty()) learn_error = oneLine(e.what());
+    } catch (const exp::StoreError& e) {
+      close_error = oneLine(e.what());
     }
   }
-  saveSolution(o.output, r.solution);
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {
     const auto& st = r.stats;
@@ -141,6 +143,8 @@ int runPlan(const PlanOptions& o) {
   if (!learn_error.empty())
     std::cerr << "earc-plan: warning: " << printableText(learn_error, 4096)
               << " (the plan is written; the database keeps what it had)\n";
+  else if (!close_error.empty())
+    std::cerr << "earc-plan: warning: closing " << printableText(close_error, 4096) << "\n";
   return r.solution.solved ? 0 : 1;
 }
 

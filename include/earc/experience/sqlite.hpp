@@ -63,6 +63,13 @@ class BusyError : public StoreError {
   using StoreError::StoreError;
 };
 
+// The disk (or the file's page limit) has no room for a write: SQLite
+// rolled the transaction back, and the file holds what it held.
+class NoSpaceError : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
 // A stored row failed validation; what() names the row id.
 class CorruptRowError : public StoreError {
  public:
