@@ -285,8 +285,11 @@ ImportReport insertImported(ExperienceStore& store, const std::vector<Experience
                             const ImportSettings& settings) {
   ImportReport report;
   report.read = rows.size();
-  const auto stamp = settings.keep_sessions ? ExperienceStore::SessionStamp::AsGiven
-                                            : ExperienceStore::SessionStamp::ThisSession;
+  // Sessions count one file's planning sessions: kept only when the rows
+  // restore an empty file (export then import gives the same rows); into
+  // a file with rows of its own they are new there, as curate --merge's.
+  const auto stamp = settings.keep_sessions && store.size() == 0 ? ExperienceStore::SessionStamp::AsGiven
+                                                                  : ExperienceStore::SessionStamp::ThisSession;
   for (const auto& id : store.insertAll(rows, settings.near_duplicate_eps, stamp))
     (id ? report.inserted : report.duplicates)++;
   return report;

@@ -127,6 +127,16 @@ TEST_CASE("export then import gives the same rows, every double bit for bit") {
   CHECK(r.inserted == 61);
   CHECK(contents(b) == contents(a));
   CHECK(contents(b).back()["created_session"].get<std::int64_t>() > 0);
+  // Into a file with rows of its own, the rows are new there: this session.
+  std::int64_t session = 0;
+  {
+    ExperienceStore more(b);
+    session = more.session();
+    CHECK(importInto(more, {jsonl}).inserted == 61);
+  }
+  const auto rows = contents(b);
+  REQUIRE(rows.size() == 122);
+  for (std::size_t i = 61; i < rows.size(); ++i) CHECK(rows[i]["created_session"].get<std::int64_t>() == session);
   // JSON equality compares doubles exactly; make sure some are not short decimals.
   CHECK(contents(a)[2]["solve_time_s"].get<double>() == 0.1 * 1 / 3.0);
   // Each row keeps the build that made it, known or not.

@@ -39,9 +39,9 @@ std::vector<Experience> readImportSource(const std::string& path);
 struct ImportSettings {
   double near_duplicate_eps = -1.0;  // < 0: store every row
   bool mark_imported = false;        // set every row's source to 'import'
-  // Keep each row's created_session (export then import gives the same
-  // rows); false: stamp them with this session, as rows new to the file
-  // (curate --merge).
+  // Keep each row's created_session when the target is empty (export then
+  // import gives the same rows); into a file with rows, and always when
+  // false (curate --merge), they are stamped with this session.
   bool keep_sessions = true;
 };
 
