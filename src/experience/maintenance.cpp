@@ -355,23 +355,25 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
     return n;
   };
   r.rows_before = count(db, "SELECT count(*) FROM experiences");
-  // "Never retrieved" says nothing about a file no plan has used yet (a
-  // fresh build): there --drop-unused would empty it. Refused before any
-  // step changes the file.
+  // "Never retrieved" says nothing about a file no learning plan has used
+  // yet (a fresh build): there --drop-unused would empty it. Refused before
+  // any step changes the file; --older-than-sessions sparing recent rows
+  // is another matter.
+  const std::string unused = "retrieved_count = 0 AND created_session <= "
+                             "(SELECT value FROM store_meta WHERE name = 'sessions') - " +
+                             std::to_string(settings.older_than_sessions);
   if (settings.drop_unused && r.rows_before > 0 &&
-      count(db, "SELECT count(*) FROM experiences WHERE retrieved_count > 0") == 0)
+      count(db, "SELECT count(*) FROM experiences WHERE retrieved_count > 0") == 0 &&
+      count(db, "SELECT count(*) FROM experiences WHERE " + unused) == r.rows_before)
     throw InputError(copy_of.empty() ? target : copy_of, "--drop-unused",
-                     "no entry has been retrieved yet (no plan has used this file): it would remove all " +
+                     "no entry has been retrieved yet (no learning plan has used this file): it would remove all " +
                          std::to_string(r.rows_before) + "; plan with the file first");
   if (settings.dedupe_eps >= 0)
     r.duplicates_removed =
         db.write([&] { return removed(deleteIds(db, nearDuplicates(db, store.schemaVersion(), settings.dedupe_eps))); });
   if (settings.drop_unused)
     r.unused_removed = db.write([&] {
-      Statement del = db.prepare(
-          "DELETE FROM experiences WHERE retrieved_count = 0 AND created_session <= "
-          "(SELECT value FROM store_meta WHERE name = 'sessions') - ?1");
-      del.bind(1, settings.older_than_sessions);
+      Statement del = db.prepare("DELETE FROM experiences WHERE " + unused);
       del.run();
       return removed(sqlite3_changes(db.handle()));
     });

@@ -570,6 +570,10 @@ TEST_CASE("curate --drop-unused judges this file's own rows: merged rows stay, a
     CHECK(what.find("--drop-unused: no entry has been retrieved yet") != std::string::npos);
   }
   CHECK(rowCount(fresh) == 5);
+  // Sparing the rows of the last session, it would not empty the file.
+  drop.older_than_sessions = 1;
+  CHECK(curateDatabase(fresh, drop).unused_removed == 0);
+  CHECK(rowCount(fresh) == 5);
 }
 
 TEST_CASE("curate into a copy merges other files and leaves the original untouched") {
