@@ -304,10 +304,14 @@ bool sameFile(const std::string& a, const std::string& b) {
 void requireDistinctFiles(const std::vector<NamedPath>& paths) {
   // A database's companion files hold committed rows (-wal) and its lock
   // state (-shm): an output written over one loses or corrupts them.
+  // SQLite keeps them beside the real file, through any link.
   auto companion = [](const NamedPath& db, const NamedPath& other) -> std::string {
     if (!db.database) return "";
+    std::error_code ec;
+    const fs::path real = fs::weakly_canonical(db.path, ec);
     for (const char* suffix : {"-wal", "-shm", "-journal"})
-      if (sameFile(db.path + suffix, other.path)) return suffix;
+      if (sameFile(db.path + suffix, other.path) || (!ec && sameFile(real.string() + suffix, other.path)))
+        return suffix;
     return "";
   };
   for (std::size_t j = 1; j < paths.size(); ++j)

@@ -56,6 +56,10 @@ refused "e.db-shm: -o: is the -shm file of --db (e.db)" "$PLAN" plan s.json -o e
 refused "e.db-wal: --trace: is the -wal file of --db (e.db)" "$PLAN" plan s.json -o new.json --trace e.db-wal --method earc --db e.db
 refused "e.db-journal: --report: is the -journal file of --db (e.db)" "$DB" build --db e.db --report e.db-journal --count 1
 refused "new.db-wal: --db: is the -wal file of -o (new.db)" "$DB" curate --db new.db-wal -o new.db
+# Through a link: SQLite keeps the -wal beside the real file.
+mkdir real && cp e.db real/e.db && ln -s real/e.db linked.db
+refused "real/e.db-wal: -o: is the -wal file of --db (linked.db)" "$DB" export --db linked.db -o real/e.db-wal
+rm -rf real linked.db
 [ -e e.db-wal ] || [ -e e.db-shm ] && fail "a refused command left e.db-wal or e.db-shm"
 ln -s s.json link.json
 refused "link.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan s.json -o link.json
