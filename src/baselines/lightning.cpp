@@ -240,9 +240,9 @@ void LightningDatabase::save(const std::string& path) const {
   if (!impl_->db->save(tmp)) fail("");
   std::string body;
   try {
-    body = readTextFile(tmp);
-  } catch (const std::exception&) {
-    fail("");
+    body = readTextFile(tmp);  // to checksum it; bounded like every read
+  } catch (const std::exception& e) {
+    fail(std::string(": ") + e.what());
   }
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::app);

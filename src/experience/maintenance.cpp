@@ -416,11 +416,15 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
 
 constexpr const char* kDatabaseFileSuffixes[] = {"-wal", "-shm", "-journal"};
 
+}  // namespace
+
 void removeDatabaseFiles(const std::string& path) {
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
   for (const char* suffix : kDatabaseFileSuffixes) std::filesystem::remove(path + suffix, ignored);
 }
+
+namespace {
 
 // The temporary a curate of process `pid` works in.
 std::string curateTemporary(const std::string& out, const std::string& pid) { return out + ".tmp." + pid; }

@@ -87,6 +87,7 @@ grep -Eq "^mobile +2 .*mobile:disc:r=0.3" "$WORK/inspect.out" || fail "--shape d
 "$DB" build --db "$WORK/huge.db" --shape disc --radius 1e300 --count 5 > "$WORK/out" 2> "$WORK/err"
 [ $? -eq 2 ] && grep -qF -- "--radius: none of 5 problems could be made" "$WORK/err" ||
   fail "--radius 1e300: $(cat "$WORK/out" "$WORK/err")"
+[ -e "$WORK/huge.db" ] && fail "a build that made nothing left its new file"
 # --size alone sizes the default box.
 "$DB" build --db "$WORK/boxes.db" --size 0.8x0.4 --count 5 --threads 1 -q || fail "--size without --shape: exit $?"
 "$DB" inspect --db "$WORK/boxes.db" > "$WORK/inspect.out" || fail "inspect exited $?"

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <set>
 
@@ -159,6 +160,8 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   const int count = s.count > 0 ? s.count
                                 : (s.kind == earc::RobotKind::Mobile ? earc::exp::kDefaultMobileProblems
                                                                      : earc::exp::kDefaultArmProblems);
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(opt.db, ec);
   const auto report = earc::exp::withInputErrors(opt.db, [&] {
     earc::exp::StoreOptions options;
     options.new_session = false;  // building is not a planning session
@@ -168,11 +171,16 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   });
   // A footprint too large for the builder's small queries (starts 0.25-0.9
   // from the conflict point) places no problem at all: said, not "built 0".
-  if (report.problems > 0 && report.no_query == report.problems)
-    throw earc::InputError("", !opt.size.empty() ? "--size" : opt.radius != 0.0 ? "--radius" : "--scenario",
+  // A file this build made holds nothing then: it goes too.
+  if (report.problems > 0 && report.no_query == report.problems) {
+    if (!existed) earc::exp::removeDatabaseFiles(opt.db);
+    const bool from_scenario = opt.size.empty() && opt.radius == 0.0 && !opt.scenario.empty();
+    throw earc::InputError(from_scenario ? opt.scenario : "",
+                           from_scenario ? "$.robots" : !opt.size.empty() ? "--size" : "--radius",
                            "none of " + std::to_string(report.problems) +
                                " problems could be made: no random query of these robots conflicts without "
                                "their starts or goals touching (too large a footprint?)");
+  }
   if (opt.quiet) return;
   char line[256];
   std::snprintf(line, sizeof line,

@@ -126,4 +126,7 @@ auto withInputErrors(const std::string& path, F&& f) -> decltype(f()) {
   }
 }
 
+// Removes a database file and its -wal, -shm and -journal, if there.
+void removeDatabaseFiles(const std::string& path);
+
 }  // namespace earc::exp
