@@ -139,14 +139,15 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
   const std::size_t n = robots_.size();
   int steps = 0;
   for (std::size_t w = 0; w < n; ++w) steps = std::max(steps, robots_[w]->stepsBetween(a[w], b[w]));
-  const int instants = 2 * steps;
+  // stepsBetween allows up to INT_MAX steps: twice that needs 64 bits.
+  const long long instants = 2LL * steps;
   if (instants != 2) along = nullptr;  // entries hold the instants of one resolution step
   thread_local std::vector<std::vector<double>> q;
   thread_local std::vector<const double*> at;
   thread_local PlacedBodies mine, theirs;
   q.resize(n);
   at.resize(n);
-  for (int k = known.start ? 1 : 0; k <= instants - (known.end && instants > 0 ? 1 : 0); ++k) {
+  for (long long k = known.start ? 1 : 0; k <= instants - (known.end && instants > 0 ? 1 : 0); ++k) {
     if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
     for (std::size_t w = 0; w < n; ++w) {
       if (instants == 0) {  // as motionValid: the state itself, not interpolated
@@ -166,7 +167,7 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
         placed = true;
       }
       if (along) {
-        if (bodiesTouch(mine, along->at(w, t, k))) return false;
+        if (bodiesTouch(mine, along->at(w, t, static_cast<int>(k)))) return false;  // k <= 2 here
         continue;
       }
       theirs.place(*robots_[w], at[w]);
