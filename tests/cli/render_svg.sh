@@ -41,6 +41,12 @@ grep -q "t = 10" "$WORK/step.svg" || fail "the step is not shown"
 wellformed "$WORK/strip.svg" || fail "strip SVG is not well-formed"
 [ "$(count "$WORK/strip.svg" 'class="panel"')" -eq 3 ] || fail "strip does not have 3 panels"
 [ "$(count "$WORK/strip.svg" 'class="robot"')" -eq 12 ] || fail "strip does not have 4 robots in each panel"
+# An empty or non-numeric item is refused, not dropped.
+for bad in 0,,20 0,x,20; do
+  "$PLAN" render "$WORK/arms.json" "$WORK/arms.sol.json" -o "$WORK/bad.svg" --strip $bad > /dev/null 2> "$WORK/err" &&
+    fail "--strip $bad was taken"
+  grep -q -- "--strip: " "$WORK/err" || fail "--strip $bad: $(cat "$WORK/err")"
+done
 
 "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --step 1 --strip 1,2 > /dev/null 2>&1 \
   && fail "--step and --strip together accepted"

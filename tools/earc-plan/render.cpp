@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "earc/bench/options.hpp"
+#include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 #include "earc/render/svg.hpp"
 #include "earc/util/subcommands.hpp"
 
@@ -74,10 +77,19 @@ void setupRender(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->check(earc::cli::kFileName)->required();
   CLI::Option* step = sub->add_option_function<std::size_t>(
       "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T")->check(earc::cli::kWholeNumber);
-  CLI::Option* strip = sub->add_option("--strip", opt->steps, "Draw several time steps side by side: T1,T2,...")
-      ->delimiter(',')
-      ->check(earc::cli::kWholeNumber)
-      ->excludes(step);
+  // Split here, not by CLI11, which dropped an empty item ("0,,5") silently.
+  CLI::Option* strip = sub->add_option_function<std::string>(
+                              "--strip",
+                              [opt](const std::string& list) {
+                                opt->steps.clear();
+                                for (const std::string& item : earc::bench::splitOptionList(list, "--strip")) {
+                                  if (!earc::isDigits(item) || item.size() > 18)
+                                    throw earc::InputError("", "--strip", "'" + item + "' is not a whole number");
+                                  opt->steps.push_back(std::stoull(item));
+                                }
+                              },
+                              "Draw several time steps side by side: T1,T2,...")
+                           ->excludes(step);
   sub->add_option("--width", opt->width, "Width of one panel in pixels")
       ->check(CLI::Range(100.0, 20000.0))
       ->capture_default_str();
