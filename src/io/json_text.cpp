@@ -171,9 +171,18 @@ std::string directoryOf(const std::string& path) {
 // A symbolic link's final target (the link itself stays), else the path.
 std::string throughLinks(const std::string& path) {
   std::error_code ec;
-  if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
-  const fs::path target = fs::weakly_canonical(path, ec);
-  return ec ? path : target.string();
+  fs::path p = path;
+  // A link whose target does not exist yet (weakly_canonical leaves it
+  // unresolved) is followed by hand, as the shell's `> link` would: the
+  // target is created and the link kept.
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    const fs::path to = fs::read_symlink(p, ec);
+    if (ec) return path;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  if (p == fs::path(path)) return path;
+  const fs::path target = fs::weakly_canonical(p, ec);
+  return ec ? p.lexically_normal().string() : target.string();
 }
 
 // Where an output's bytes go: the path to write (a link's target), and

@@ -107,6 +107,15 @@ ln -s target.json out-link.json
 "$PLAN" plan s.json -o out-link.json -q || fail "plan through a link exited $?"
 [ -L out-link.json ] || fail "the link was replaced by a file"
 "$PLAN" validate s.json target.json > /dev/null || fail "the link's target does not hold the solution"
+# ... also when the target does not exist yet (it is created, as `> link`
+# would), and a target in a missing directory is refused like any output.
+ln -s new-target.json dangling.json
+"$PLAN" plan s.json -o dangling.json -q || fail "plan through a dangling link exited $?"
+[ -L dangling.json ] || fail "the dangling link was replaced by a file"
+"$PLAN" validate s.json new-target.json > /dev/null || fail "the dangling link's new target does not hold the solution"
+ln -s nodir/t.json nowhere.json
+refused "nowhere.json: -o: cannot write: no directory nodir" "$PLAN" plan s.json -o nowhere.json
+[ -L nowhere.json ] || fail "a refused plan replaced the link"
 
 # A FIFO given as the output stays a FIFO, and its reader gets the solution.
 mkfifo pipe
