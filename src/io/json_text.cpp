@@ -171,6 +171,11 @@ std::string directoryOf(const std::string& path) {
 // A symbolic link's final target (the link itself stays), else the path.
 std::string throughLinks(const std::string& path) {
   std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+  if (fs::exists(path, ec)) {  // /dev/stdout -> a pipe: kept as given when unresolvable
+    const fs::path target = fs::weakly_canonical(path, ec);
+    return ec ? path : target.string();
+  }
   fs::path p = path;
   // A link whose target does not exist yet (weakly_canonical leaves it
   // unresolved) is followed by hand, as the shell's `> link` would: the
