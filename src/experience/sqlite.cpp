@@ -1,9 +1,8 @@
 #include "earc/experience/sqlite.hpp"
 
-#include <sys/stat.h>
 #include <unistd.h>
 
-#include <cerrno>
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -28,23 +27,49 @@ std::string fileOf(sqlite3* db) {
   return f && *f ? f : "<memory>";
 }
 
+// The 100-byte header of an SQLite file, read before SQLite opens it;
+// nothing for a short or unreadable file or one without SQLite's magic.
+using SqliteHeader = std::array<unsigned char, 100>;
+std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  SqliteHeader h{};
+  if (!in.read(reinterpret_cast<char*>(h.data()), h.size())) return std::nullopt;
+  static constexpr char kMagic[] = "SQLite format 3";  // and its NUL: 16 bytes
+  if (std::memcmp(h.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
+  return h;
+}
+
+// The header's big-endian 32-bit number at byte `at`.
+std::uint64_t be32(const SqliteHeader& h, int at) {
+  return std::uint64_t{h[at]} << 24 | std::uint64_t{h[at + 1]} << 16 | std::uint64_t{h[at + 2]} << 8 | h[at + 3];
+}
+
+// Where SQLite keeps a database's -wal and -shm: beside the real file,
+// through any link.
+struct RealFile {
+  std::filesystem::path path, dir;
+};
+RealFile realFile(const std::string& path) {
+  std::error_code ec;
+  RealFile f{std::filesystem::weakly_canonical(path, ec), {}};
+  if (ec) f.path = path;
+  f.dir = f.path.parent_path();
+  if (f.dir.empty()) f.dir = ".";
+  return f;
+}
+
 // "truncated: N bytes, its header says M" when the file is shorter than the
 // pages its SQLite header counts (a copy cut short): the one damage worth
 // naming more plainly than SQLite's "malformed".
 std::optional<std::string> truncation(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  unsigned char h[100] = {};
-  if (!in.read(reinterpret_cast<char*>(h), sizeof h) || std::memcmp(h, "SQLite format 3", 16) != 0)
-    return std::nullopt;
-  auto be32 = [&](int at) {
-    return std::uint64_t{h[at]} << 24 | std::uint64_t{h[at + 1]} << 16 | std::uint64_t{h[at + 2]} << 8 | h[at + 3];
-  };
-  std::uint64_t page = std::uint64_t{h[16]} << 8 | h[17];
+  const auto h = sqliteHeader(file);
+  if (!h) return std::nullopt;
+  std::uint64_t page = std::uint64_t{(*h)[16]} << 8 | (*h)[17];
   if (page == 1) page = 65536;
   // The page count is valid only when written by the same change as the
   // header's counter (SQLite 3.7.0 and later).
-  if (be32(92) != be32(24)) return std::nullopt;
-  const std::uint64_t want = be32(28) * page;
+  if (be32(*h, 92) != be32(*h, 24)) return std::nullopt;
+  const std::uint64_t want = be32(*h, 28) * page;
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(file, ec);
   if (ec || size >= want) return std::nullopt;
@@ -70,14 +95,10 @@ std::optional<std::string> truncation(const std::string& file) {
     // A WAL database is read through a -shm file beside it, which SQLite
     // must be able to make: in a directory this user may not write to
     // (a shared copy) it cannot, and says only "unable to open".
-    std::error_code ec;
-    std::filesystem::path real = std::filesystem::weakly_canonical(file, ec);
-    if (ec) real = file;
-    std::filesystem::path dir = real.parent_path();
-    if (dir.empty()) dir = ".";
-    if (::access(dir.c_str(), W_OK) != 0)
-      throw StoreError(file + ": cannot read: SQLite needs to make " + real.filename().string() +
-                       "-shm beside it and directory " + dir.string() +
+    const RealFile real = realFile(file);
+    if (::access(real.dir.c_str(), W_OK) != 0)
+      throw StoreError(file + ": cannot read: SQLite needs to make " + real.path.filename().string() +
+                       "-shm beside it and directory " + real.dir.string() +
                        " is not writable (copy the database to a writable directory)");
   }
   if (primary == SQLITE_IOERR && (rc == SQLITE_IOERR_SHORT_READ || rc == SQLITE_IOERR_TRUNCATE))
@@ -192,13 +213,9 @@ namespace {
 // file, is false.
 bool ownWalHeader(const std::string& path, std::int64_t application_id) {
   if (application_id == 0) return false;
-  std::ifstream in(path, std::ios::binary);
-  unsigned char h[100] = {};
-  if (!in.read(reinterpret_cast<char*>(h), sizeof h)) return false;
-  static constexpr char kMagic[] = "SQLite format 3";  // and its NUL: 16 bytes
-  if (std::memcmp(h, kMagic, sizeof kMagic) != 0 || h[18] != 2 || h[19] != 2) return false;
-  const std::int64_t id = (std::int64_t{h[68]} << 24) | (h[69] << 16) | (h[70] << 8) | h[71];
-  return id == application_id;
+  const auto h = sqliteHeader(path);
+  if (!h || (*h)[18] != 2 || (*h)[19] != 2) return false;
+  return static_cast<std::int64_t>(be32(*h, 68)) == application_id;
 }
 
 }  // namespace
@@ -214,12 +231,8 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
       throw StoreError(path + ": " + std::string(kNotARegularFile));
   }
-  // SQLite keeps -wal and -shm beside the real file, through any link.
-  std::error_code link_ec;
-  std::filesystem::path real = std::filesystem::weakly_canonical(path, link_ec);
-  if (link_ec) real = path;
-  std::filesystem::path dir = real.parent_path();
-  if (dir.empty()) dir = ".";
+  const RealFile real = realFile(path);
+  const std::filesystem::path& dir = real.dir;
   const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
   // Writing needs the file and its directory (for -wal and -shm): said
   // before any work, not as a failed PRAGMA or a failed commit after it.
@@ -227,7 +240,7 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     std::error_code ec;
     if (std::filesystem::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) != 0)
       throw StoreError(path + ": cannot write: directory " + dir.string() + " is not writable");
-    if (std::filesystem::exists(real, ec) && ::access(real.c_str(), W_OK) != 0)
+    if (std::filesystem::exists(real.path, ec) && ::access(real.path.c_str(), W_OK) != 0)
       throw StoreError(path + ": cannot write: the file is read-only");
   }
   int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
