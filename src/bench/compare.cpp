@@ -18,6 +18,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/runner.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/experience/maintenance.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/render/svg.hpp"
@@ -277,7 +278,7 @@ class Comparer {
   // its write-ahead log), so that neither side sees what the other did.
   std::string freshDb(const std::string& side) const {
     const std::string copy = o_.work_dir + "/db-" + side + (methodOf(side) == "lightning" ? ".lightning" : ".sqlite");
-    for (const char* ext : {"", "-wal", "-shm", "-journal"}) fs::remove(copy + ext);
+    exp::removeDatabaseFiles(copy);
     fs::copy_file(o_.db, copy);
     if (fs::exists(o_.db + "-wal")) fs::copy_file(o_.db + "-wal", copy + "-wal");
     return copy;

@@ -52,11 +52,12 @@ void requireSeparateOutputs(const std::string& input, const std::string& input_o
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto& [path, option] = outputs[i];
     if (path.empty()) continue;
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+    if (sameFile(path, input))
+      throw InputError(path, option, "is the " + input_option + " file; writing it would destroy that");
+    for (const char* suffix : kDatabaseCompanions)
       if (sameFile(path, input + suffix))
         throw InputError(path, option,
-                         "is the " + input_option + " file" + (*suffix ? std::string("'s ") + suffix + " file" : "") +
-                             "; writing it would destroy that");
+                         "is the " + input_option + " file's " + suffix + " file; writing it would destroy that");
     for (std::size_t j = 0; j < i; ++j)
       if (!outputs[j].first.empty() && sameFile(path, outputs[j].first))
         throw InputError(path, option, "is the same file as " + outputs[j].second + " " + outputs[j].first);

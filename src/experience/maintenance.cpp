@@ -414,14 +414,12 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
   return r;
 }
 
-constexpr const char* kDatabaseFileSuffixes[] = {"-wal", "-shm", "-journal"};
-
 }  // namespace
 
 void removeDatabaseFiles(const std::string& path) {
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
-  for (const char* suffix : kDatabaseFileSuffixes) std::filesystem::remove(path + suffix, ignored);
+  for (const char* suffix : kDatabaseCompanions) std::filesystem::remove(path + suffix, ignored);
 }
 
 namespace {
@@ -444,7 +442,7 @@ void removeStaleTemporaries(const std::string& out) {
     std::string name = it->path().filename().string();
     if (name.rfind(prefix, 0) != 0) continue;
     std::string pid = name.substr(prefix.size());
-    for (std::string_view suffix : kDatabaseFileSuffixes)
+    for (std::string_view suffix : kDatabaseCompanions)
       if (pid.ends_with(suffix)) pid.erase(pid.size() - suffix.size());
     // A PID, nothing else: export's OUT.tmp.PID.RANDOM is not ours.
     if (!isDigits(pid) || pid.size() > 9) continue;

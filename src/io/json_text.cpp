@@ -323,7 +323,7 @@ void requireDistinctFiles(const std::vector<NamedPath>& paths) {
     if (!db.database) return "";
     std::error_code ec;
     const fs::path real = fs::weakly_canonical(db.path, ec);
-    for (const char* suffix : {"-wal", "-shm", "-journal"})
+    for (const char* suffix : kDatabaseCompanions)
       if (sameFile(db.path + suffix, other.path) || (!ec && sameFile(real.string() + suffix, other.path)))
         return suffix;
     return "";

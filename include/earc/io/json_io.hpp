@@ -45,10 +45,14 @@ void syncDirectoryOf(const std::string& path);
 
 // A command's file argument: what the user called it ("-o", "--trace",
 // "scenario") and the path given.
+// The files SQLite keeps beside a database (committed rows not yet in it,
+// lock state, a rollback in progress): part of the database.
+inline constexpr const char* kDatabaseCompanions[] = {"-wal", "-shm", "-journal"};
+
 struct NamedPath {
   std::string name;
   std::string path;
-  // An SQLite database: its -wal, -shm and -journal files are part of it.
+  // An SQLite database: its kDatabaseCompanions files are part of it.
   bool database = false;
 };
 // Whether two paths name one file: by identity (links included) when both
