@@ -457,16 +457,16 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   // The hit rate: subproblems solved from the database (as retrieved or
   // repaired) over all subproblems solved.
   const DatabaseAnswers a = databaseAnswers(r.stats);
-  r.stats["db_hit_rate"] = a.solved > 0 ? static_cast<double>(a.answered()) / a.solved : 0.0;
+  r.stats["db_hit_rate"] = a.hitRate();
   return r;
 }
 
 DatabaseAnswers databaseAnswers(const nlohmann::json& stats) {
   DatabaseAnswers a;
   const nlohmann::json by = stats.value("subproblems_by_solver", nlohmann::json::object());
-  for (const auto& [name, count] : by.items()) a.solved += count.get<int>();
-  a.retrieved = by.value("database", 0);
-  a.repaired = by.value("repair", 0);
+  for (const auto& [name, count] : by.items()) a.solved += count.get<std::int64_t>();
+  a.retrieved = by.value("database", std::int64_t{0});
+  a.repaired = by.value("repair", std::int64_t{0});
   return a;
 }
 

@@ -203,9 +203,7 @@ json Service::plan(const json& request) {
   }
   counters_.learned += st.value("db_learned", 0);
   if (s.method == Method::Earc) {
-    const DatabaseAnswers a = databaseAnswers(st);
-    counters_.db_subproblems += a.solved;
-    counters_.db_answered += a.answered();
+    counters_.db += databaseAnswers(st);
     counters_.db_refused_too_long += st.value("db_refused_too_long", 0);
   }
   json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
@@ -231,9 +229,9 @@ json Service::stats() {
     st["db_entries"] = store_->size();
     st["db_session"] = store_->session();
     const ServiceCounters& c = counters_;
-    st["db_subproblems"] = c.db_subproblems;
-    st["db_answered"] = c.db_answered;
-    st["db_hit_rate"] = c.db_subproblems > 0 ? static_cast<double>(c.db_answered) / c.db_subproblems : 0.0;
+    st["db_subproblems"] = c.db.solved;
+    st["db_answered"] = c.db.answered();
+    st["db_hit_rate"] = c.db.hitRate();
     st["db_refused_too_long"] = c.db_refused_too_long;
   }
   return st;

@@ -254,8 +254,7 @@ int runServe(const ServeOptions& o) {
   std::cerr << "earc-plan serve: " << (g_signal ? (g_signal == SIGINT ? "SIGINT" : "SIGTERM") : "end of input")
             << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
             << " experiences learned";
-  if (n.db_subproblems > 0)
-    std::cerr << ", database answered " << n.db_answered << " of " << n.db_subproblems << " subproblems";
+  if (n.db.solved > 0) std::cerr << ", database answered " << n.db.answered() << " of " << n.db.solved << " subproblems";
   std::cerr << "; database closed\n";
   return 0;
 }

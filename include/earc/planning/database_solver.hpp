@@ -9,6 +9,7 @@
 // learned (inserted when planning ends).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <string_view>
@@ -35,11 +36,19 @@ struct DatabaseSolverSettings {
 
 // What the database answered in an E-ARC plan, from the plan's stats
 // (subproblems_by_solver): the subproblems solved in all, and those solved
-// by a retrieved answer or a repaired one. db_hit_rate and earc-plan's
-// summary line both count this way.
+// by a retrieved answer or a repaired one. db_hit_rate, earc-plan's
+// summary line and earc-plan serve's session counts all count this way.
 struct DatabaseAnswers {
-  int solved = 0, retrieved = 0, repaired = 0;
-  int answered() const { return retrieved + repaired; }
+  std::int64_t solved = 0, retrieved = 0, repaired = 0;
+  std::int64_t answered() const { return retrieved + repaired; }
+  // Answered over solved; 0 when nothing was solved.
+  double hitRate() const { return solved > 0 ? static_cast<double>(answered()) / static_cast<double>(solved) : 0.0; }
+  DatabaseAnswers& operator+=(const DatabaseAnswers& o) {
+    solved += o.solved;
+    retrieved += o.retrieved;
+    repaired += o.repaired;
+    return *this;
+  }
 };
 DatabaseAnswers databaseAnswers(const nlohmann::json& stats);
 

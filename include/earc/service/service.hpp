@@ -33,6 +33,8 @@
 #include <string_view>
 #include <vector>
 
+#include "earc/planning/database_solver.hpp"
+
 namespace earc::exp { class ExperienceStore; }
 
 namespace earc::service {
@@ -54,11 +56,10 @@ struct ServiceCounters {
   std::int64_t solved = 0;
   std::int64_t errors = 0;    // responses with ok false
   std::int64_t learned = 0;   // experiences inserted
-  // Over method earc's plans: the subproblems solved, and how many of
-  // them the database answered (as retrieved or repaired) or refused as
-  // too long (db_max_stretch).
-  std::int64_t db_subproblems = 0;
-  std::int64_t db_answered = 0;
+  // Over method earc's plans: the subproblems solved and how many of them
+  // the database answered (as retrieved or repaired), and answers refused
+  // as too long (db_max_stretch).
+  DatabaseAnswers db;
   std::int64_t db_refused_too_long = 0;
 };
 
