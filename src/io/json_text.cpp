@@ -18,6 +18,7 @@
 #include <unordered_set>
 
 #include "earc/io/json_io.hpp"
+#include "earc/util/memory_reserve.hpp"
 #include "json_reader.hpp"
 
 namespace earc {
@@ -156,7 +157,20 @@ std::string readTextFile(const std::string& path) {
   return text;
 }
 
-json readJsonFile(const std::string& path) { return parseJsonText(readTextFile(path), path); }
+json readJsonFile(const std::string& path) {
+  std::size_t bytes = 0;
+  try {
+    const std::string text = readTextFile(path);
+    bytes = text.size();
+    return parseJsonText(text, path);
+  } catch (const std::bad_alloc&) {
+    // A document takes several times its text in memory; say which file
+    // did not fit rather than only "std::bad_alloc".
+    const std::string size =
+        bytes ? " (" + formatNumber("%.1f", static_cast<double>(bytes) / (1 << 20)) + " MB of JSON)" : "";
+    throw OutOfMemory(path + ": out of memory while reading it" + size + " (is the memory limit, ulimit -v, too low?)");
+  }
+}
 
 namespace {
 

@@ -14,6 +14,7 @@
 #include "earc/planning/planner.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/format.hpp"
+#include "earc/util/memory_reserve.hpp"
 
 namespace earc::service {
 
@@ -172,8 +173,10 @@ json Service::handle(const json& request) {
     return out;
   } catch (const InputError& e) {
     return error(id, e.what());
-  } catch (const std::bad_alloc&) {
-    return error(id, "out of memory while handling the request");
+  } catch (const std::bad_alloc& e) {
+    json out = error(id, outOfMemoryMessage(e, "while handling the request"));
+    armMemoryReserve();  // given back to let this request unwind; set aside for the next
+    return out;
   } catch (const std::exception& e) {
     // Not the client's fault (a database error, say): said as it is.
     return error(id, std::string("internal error: ") + e.what());

@@ -8,6 +8,7 @@
 
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
+#include "earc/util/memory_reserve.hpp"
 #include "earc/util/version.hpp"
 
 namespace earc::cli {
@@ -98,6 +99,7 @@ std::string printable(std::string_view message) { return printableText(message, 
 }  // namespace
 
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
+  armMemoryReserve();
   CLI::App app{description, program};
   app.require_subcommand(1);
   const std::string version_line = program + " " + std::string(version());
@@ -145,6 +147,9 @@ int runProgram(const std::string& program, const std::string& description, int a
   } catch (const InputError& e) {
     std::cerr << program << ": error: " << printable(e.what()) << "\n";
     return kExitBadInput;
+  } catch (const std::bad_alloc& e) {
+    std::cerr << program << ": error: " << printable(outOfMemoryMessage(e)) << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << program << ": error: " << printable(e.what()) << "\n";
     return 1;
