@@ -212,6 +212,9 @@ class ArcRun {
   void traceEvent(nlohmann::json ev) {
     if (settings_.trace) events_.push_back(std::move(ev));
   }
+  void report(std::atomic<int> PlanProgress::*field, int value) {
+    if (settings_.progress) (settings_.progress->*field).store(value, std::memory_order_relaxed);
+  }
 
   const Scenario& scenario_;
   const PlannerSettings& settings_;
@@ -279,6 +282,8 @@ bool ArcRun::resolve(const Conflict& c) {
     if (deadline_.expired()) return false;
     Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.max_expansions), models_, paths_, world_,
                                       settings_);
+    report(&PlanProgress::subproblem_robots, static_cast<int>(sub.robots.size()));
+    report(&PlanProgress::expansions, level);
     nlohmann::json ev;
     if (settings_.trace)
       ev = {{"type", "subproblem"}, {"id", subproblem_id_}, {"conflict", conflicts_ - 1}, {"robots", sub.robots},
@@ -363,6 +368,7 @@ PlanResult ArcRun::run() {
       break;
     }
     paths_.push_back(std::move(*p));
+    report(&PlanProgress::individual_paths, static_cast<int>(paths_.size()));
   }
   const double individual_s = clock.seconds();
   bool solved = false;
@@ -380,6 +386,13 @@ PlanResult ArcRun::run() {
         break;
       }
       ++conflicts_;
+      report(&PlanProgress::conflicts, conflicts_);
+      report(&PlanProgress::conflict_step, static_cast<int>(c->t));
+      if (settings_.progress) {
+        std::size_t steps = 0;
+        for (const Path& p : paths_) steps = std::max(steps, p.size());
+        report(&PlanProgress::steps, static_cast<int>(steps));
+      }
       traceEvent({{"type", "conflict"}, {"id", conflicts_ - 1}, {"robots", {c->a, c->b}}, {"t", c->t},
                   {"place", {c->place.x, c->place.y}}, {"at_s", clock.seconds()}});
       if (!resolve(*c)) {

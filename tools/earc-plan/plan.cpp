@@ -1,7 +1,14 @@
 // earc-plan plan: plan a scenario with one method and write its solution.
+#include <unistd.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <utility>
 
 #include "earc/experience/maintenance.hpp"
@@ -51,6 +58,74 @@ PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s
     throw;
   }
 }
+
+// On a terminal, a plan that takes a while says how far it has got: one
+// line on stderr, redrawn in place four times a second from the first half
+// second on, and cleared before the summary. Nothing when stderr is not a
+// terminal or with -q.
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, std::string method, double limit_s, int robots, const PlanProgress& progress)
+      : method_(std::move(method)), limit_s_(limit_s), robots_(robots), progress_(progress) {
+    if (enabled && isatty(STDERR_FILENO)) thread_ = std::thread([this] { run(); });
+  }
+  ~ProgressLine() { stop(); }
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  void stop() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  void run() {
+    using namespace std::chrono;
+    const auto start = steady_clock::now();
+    bool drawn = false;
+    std::unique_lock lock(mutex_);
+    for (auto next = start + milliseconds(500); !wake_.wait_until(lock, next, [this] { return stopping_; });
+         next += milliseconds(250)) {
+      const double elapsed = duration<double>(steady_clock::now() - start).count();
+      std::fprintf(stderr, "\r%s\033[K", text(elapsed).c_str());
+      std::fflush(stderr);
+      drawn = true;
+    }
+    if (drawn) std::fputs("\r\033[K", stderr);
+  }
+
+  std::string text(double elapsed) const {
+    std::string line = "planning (" + method_ + "): " + formatNumber("%.1f", elapsed) + " s of " +
+                       formatNumber(limit_s_) + " s";
+    const int paths = progress_.individual_paths.load(std::memory_order_relaxed);
+    const int conflicts = progress_.conflicts.load(std::memory_order_relaxed);
+    if (conflicts > 0) {
+      line += ", conflict " + std::to_string(conflicts) + " at step " +
+              std::to_string(progress_.conflict_step.load(std::memory_order_relaxed)) + " of " +
+              std::to_string(progress_.steps.load(std::memory_order_relaxed)) + ": " +
+              std::to_string(progress_.subproblem_robots.load(std::memory_order_relaxed)) + " robots";
+      if (const int level = progress_.expansions.load(std::memory_order_relaxed); level > 0)
+        line += ", window expanded " + std::to_string(level) + (level == 1 ? " time" : " times");
+    } else if (paths > 0) {
+      line += ", individual paths " + std::to_string(paths) + " of " + std::to_string(robots_);
+    }
+    return line;
+  }
+
+  const std::string method_;
+  const double limit_s_;
+  const int robots_;
+  const PlanProgress& progress_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
 
 // What the experience database did in an E-ARC plan, for the summary
 // line: "; database answered 6 of 8 subproblems (1 by repair), learned 2":
@@ -107,8 +182,12 @@ int runPlan(const PlanOptions& o) {
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
+  PlanProgress progress;
+  s.progress = &progress;
+  ProgressLine line(!o.quiet, o.method, o.time_limit, static_cast<int>(scenario.robots.size()), progress);
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
                        : plan(scenario, s, nullptr);
+  line.stop();
   saveSolution(o.output, r.solution);
   // What could not be written to the database (a full disk) is said once,
   // after the plan is saved. Closing here, not in the destructor, keeps it

@@ -4,6 +4,7 @@
 // (on request) a trace of what it did.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -19,6 +20,18 @@ namespace exp { class ExperienceStore; }
 enum class Method { Arc, Earc, Prioritized, Coupled, Lightning };
 const char* methodName(Method m);
 Method methodFromName(const std::string& name);  // throws std::invalid_argument
+
+// How far a running plan has got, for a progress line that another thread
+// draws (`earc-plan plan` on a terminal). ARC and E-ARC fill it in; the
+// other methods report only their time.
+struct PlanProgress {
+  std::atomic<int> individual_paths{0};   // robots with an individual path so far
+  std::atomic<int> conflicts{0};          // conflicts found; the last is being resolved
+  std::atomic<int> conflict_step{0};      // its time step (conflicts are resolved in time order)
+  std::atomic<int> steps{0};              // of the longest path then
+  std::atomic<int> subproblem_robots{0};  // robots in the subproblem being solved
+  std::atomic<int> expansions{0};         // its window expansion level
+};
 
 struct PlannerSettings {
   Method method = Method::Arc;
@@ -50,6 +63,8 @@ struct PlannerSettings {
   // would take more time-stamped scalars than this (all robots together;
   // 8 bytes each) is refused as too large before planning starts.
   std::int64_t max_path_scalars = std::int64_t{1} << 24;  // 128 MiB
+  // Filled in as planning goes when set; read by whoever set it.
+  PlanProgress* progress = nullptr;
 };
 
 enum class FailureCause { TimeLimit, InvalidInput, NoIndividualPath, SubproblemUnsolved, InvalidResult, TooLarge };
