@@ -240,26 +240,38 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
   return e;
 }
 
-std::size_t exportJsonl(const std::string& db_path, const std::string& out_path) {
+std::size_t exportJsonl(const std::string& db_path, const std::string& out_path, Progress* progress) {
   ExperienceStore store(db_path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
-  std::ostringstream out;
+  // Streamed to the file a megabyte at a time: 50,000 rows are about
+  // 700 MB of text, too much to build in memory first.
+  AtomicFile file(out_path);
+  std::string chunk;
+  constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
   // One read transaction: the header's count and the rows are one snapshot.
   db.exec("BEGIN");
   Statement count = db.prepare("SELECT count(*) FROM experiences");
   count.step();
   const std::int64_t rows = count.int64At(0);
   count.reset();
-  out << json{{"format", kExportFormat}, {"schema_version", std::min(store.schemaVersion(), kExperienceRowsSchemaVersion)},
-                {"rows", rows}}.dump() << "\n";
+  if (progress) progress->setTotal(static_cast<std::size_t>(rows));
+  chunk += json{{"format", kExportFormat}, {"schema_version", std::min(store.schemaVersion(), kExperienceRowsSchemaVersion)},
+                {"rows", rows}}.dump() + "\n";
   Statement select = db.prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
   std::size_t written = 0;
   while (select.step()) {
-    out << experienceToJson(readExperience(select)).dump() << "\n";
+    chunk += experienceToJson(readExperience(select)).dump() + "\n";
     ++written;
+    if (progress) progress->tick();
+    if (chunk.size() >= kChunkBytes) {
+      file.write(chunk);
+      chunk.clear();
+    }
   }
   db.exec("COMMIT");
-  writeTextFileAtomic(out_path, out.str());
+  file.write(chunk);
+  file.commit();
+  if (progress) progress->finish();
   return written;
 }
 

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <unordered_set>
+#include <utility>
 
 #include "earc/io/json_io.hpp"
 #include "earc/util/memory_reserve.hpp"
@@ -236,50 +237,50 @@ void writeAll(int fd, std::string_view bytes, const std::string& path) {
   }
 }
 
-void writeTextFileAtomic(const std::string& given, const std::string& text) {
+AtomicFile::AtomicFile(const std::string& given) : given_(given) {
   const OutputTarget target = outputTarget({"", given});
-  const std::string& path = target.path;
-  if (target.special) {
+  path_ = target.path;
+  special_ = target.special;
+  if (special_) {
     // A device or FIFO: renaming a file over it would destroy it.
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-    if (fd < 0) throw InputError(given, "", std::string("cannot open for writing: ") + std::strerror(errno));
-    try {
-      writeAll(fd, text, given);
-    } catch (...) {
-      ::close(fd);
-      throw;
-    }
-    ::close(fd);
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) throw InputError(given, "", std::string("cannot open for writing: ") + std::strerror(errno));
     return;
   }
-  const std::string dir = directoryOf(path);
+  const std::string dir = directoryOf(path_);
   // Same directory, so the rename stays on one file system and is atomic.
   std::random_device rd;
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
+  tmp_ = path_ + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
   // Written as an anonymous file (O_TMPFILE) and named only once complete
   // and synced: a process killed while writing leaves nothing behind. A
   // named temporary is the fallback where the file system has no O_TMPFILE.
-  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
-  const bool anonymous = fd >= 0;
-  if (!anonymous) fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError(given, "", "cannot write in " + dir + ": " + std::strerror(errno));
-  bool named = !anonymous;  // whether `tmp` names the file
-  auto discard = [&] {
-    if (named) ::unlink(tmp.c_str());
-  };
-  try {
-    writeAll(fd, text, given);
-  } catch (...) {
+  fd_ = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  anonymous_ = fd_ >= 0;
+  if (!anonymous_) fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw InputError(given, "", "cannot write in " + dir + ": " + std::strerror(errno));
+  named_ = !anonymous_;
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (named_ && !committed_) ::unlink(tmp_.c_str());
+}
+
+void AtomicFile::write(std::string_view text) { writeAll(fd_, text, given_); }
+
+void AtomicFile::commit() {
+  const int fd = std::exchange(fd_, -1);
+  if (special_) {
     ::close(fd);
-    discard();
-    throw;
+    committed_ = true;
+    return;
   }
   bool ok = ::fsync(fd) == 0;
   std::string why = ok ? "" : std::strerror(errno);
-  if (ok && anonymous) {
-    named = ::linkat(AT_FDCWD, ("/proc/self/fd/" + std::to_string(fd)).c_str(), AT_FDCWD, tmp.c_str(),
-                     AT_SYMLINK_FOLLOW) == 0;
-    if (!named) {
+  if (ok && anonymous_) {
+    named_ = ::linkat(AT_FDCWD, ("/proc/self/fd/" + std::to_string(fd)).c_str(), AT_FDCWD, tmp_.c_str(),
+                      AT_SYMLINK_FOLLOW) == 0;
+    if (!named_) {
       ok = false;
       why = std::string("cannot name the written file: ") + std::strerror(errno);
     }
@@ -288,16 +289,17 @@ void writeTextFileAtomic(const std::string& given, const std::string& text) {
     ok = false;
     why = std::strerror(errno);
   }
-  if (!ok) {
-    discard();
-    throw std::runtime_error(given + ": cannot flush: " + why);
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    why = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw InputError(given, "", "cannot replace it: " + why);
-  }
-  syncDirectoryOf(path);  // make the rename itself durable
+  if (!ok) throw std::runtime_error(given_ + ": cannot flush: " + why);
+  if (::rename(tmp_.c_str(), path_.c_str()) != 0)
+    throw InputError(given_, "", std::string("cannot replace it: ") + std::strerror(errno));
+  committed_ = true;
+  syncDirectoryOf(path_);  // make the rename itself durable
+}
+
+void writeTextFileAtomic(const std::string& path, const std::string& text) {
+  AtomicFile file(path);
+  file.write(text);
+  file.commit();
 }
 
 void syncDirectoryOf(const std::string& path) {

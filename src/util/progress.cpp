@@ -22,6 +22,11 @@ void Progress::setStatus(const std::string& status) {
   status_ = status;
 }
 
+void Progress::setTotal(std::size_t total) {
+  std::lock_guard lock(mutex_);
+  total_ = total;
+}
+
 void Progress::finish() {
   if (!enabled_ || finished_) return;
   draw(true);

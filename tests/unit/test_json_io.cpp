@@ -523,6 +523,29 @@ TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("a file written in pieces appears whole at commit, and not at all without it") {
+  const std::string dir = tempDir();
+  const std::string path = dir + "/rows.jsonl";
+  earc::writeTextFileAtomic(path, "old");
+  {
+    earc::AtomicFile file(path);
+    file.write("one\n");
+    file.write("two\n");
+    CHECK(earc::readTextFile(path) == "old");  // nothing seen before commit
+    file.commit();
+  }
+  CHECK(earc::readTextFile(path) == "one\ntwo\n");
+  {
+    earc::AtomicFile abandoned(path);  // an error on the way: never committed
+    abandoned.write("half");
+  }
+  CHECK(earc::readTextFile(path) == "one\ntwo\n");
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  CHECK(files == 1);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("a process killed while writing a file atomically leaves neither the file nor a temporary") {
   const std::string dir = tempDir();
   const std::string path = dir + "/big.json";

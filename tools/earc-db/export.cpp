@@ -18,7 +18,10 @@ struct ExportOptions {
 void runExport(const ExportOptions& opt, std::ostream& out) {
   earc::requireDistinctFiles({{"--db", opt.db, true}, {"-o", opt.out}});
   earc::requireWritableOutput({"-o", opt.out});
-  const std::size_t rows = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out); });
+  // The bar goes to stderr on a terminal only: never into `-o /dev/stdout`.
+  earc::Progress progress("export", 0, !opt.quiet);
+  const std::size_t rows =
+      earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out, &progress); });
   out << "exported " << rows << " rows from " << opt.db << " to " << opt.out << "\n";
 }
 

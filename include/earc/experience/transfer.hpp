@@ -14,6 +14,7 @@
 
 #include "earc/experience/experience.hpp"
 #include "earc/experience/store.hpp"
+#include "earc/util/progress.hpp"
 
 namespace earc::exp {
 
@@ -23,8 +24,9 @@ inline constexpr const char* kExportFormat = "earc.experiences.v1";
 
 // Writes every row of the database at db_path to out_path (atomically:
 // temporary file, fsync, rename). Doubles are written in the shortest form
-// that reads back to the same double. Returns the number of rows.
-std::size_t exportJsonl(const std::string& db_path, const std::string& out_path);
+// that reads back to the same double. Returns the number of rows. Counts
+// rows on `progress` when given.
+std::size_t exportJsonl(const std::string& db_path, const std::string& out_path, Progress* progress = nullptr);
 
 // One row as an export line's object, and back. experienceFromJson throws
 // InputError(file, where, reason) for anything malformed or inconsistent.

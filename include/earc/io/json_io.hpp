@@ -35,6 +35,24 @@ std::string readTextFile(const std::string& path);
 // InputError naming the file when it cannot be written.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
+// The same for output too large to hold in memory at once: write() it as
+// it comes; commit() names the file. Destroyed uncommitted (an error on the
+// way), it leaves the old file as it was and no temporary.
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  void write(std::string_view text);
+  void commit();
+
+ private:
+  std::string given_, path_, tmp_;
+  int fd_ = -1;
+  bool special_ = false, anonymous_ = false, named_ = false, committed_ = false;
+};
+
 // Writes all of `bytes` to fd (retrying short writes); throws naming `path`.
 // The caller closes fd.
 void writeAll(int fd, std::string_view bytes, const std::string& path);
