@@ -1,10 +1,15 @@
 #include "earc/bench/results_db.hpp"
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <ctime>
 #include <iterator>
+#include <limits>
 #include <string_view>
 
 #include "earc/bench/options.hpp"
+#include "earc/bench/suites.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
@@ -90,16 +95,180 @@ void bindOpt(Statement& s, int i, const std::optional<int>& v) {
   if (v) s.bind(i, static_cast<std::int64_t>(*v)); else s.bind(i, std::string_view(""));
 }
 
-std::optional<double> doubleOpt(const Statement& s, int c) {
-  if (s.columnType(c) == SQLITE_NULL) return std::nullopt;
-  return s.doubleAt(c);
-}
-std::optional<std::int64_t> intOpt(const Statement& s, int c) {
-  if (s.columnType(c) == SQLITE_NULL) return std::nullopt;
-  return s.int64At(c);
+constexpr std::int64_t kNoCountLimit = std::numeric_limits<std::int64_t>::max();
+
+// A value of a results row as a message shows it: 12, 1.5, inf, 'text'
+// (cut short, on one line), NULL, a blob.
+std::string resultValueText(const Statement& s, int c) {
+  switch (s.columnType(c)) {
+    case SQLITE_INTEGER: return std::to_string(s.int64At(c));
+    case SQLITE_FLOAT: return formatNumber(s.doubleAt(c));
+    case SQLITE_TEXT: return "'" + printableText(s.textAt(c), 40) + "'";
+    case SQLITE_BLOB: return "a blob";
+    default: return "NULL";
+  }
 }
 
-std::uint64_t seedFrom(const std::string& text) { return text.empty() ? 0 : std::stoull(text); }
+// "2026-11-24T01:02:03Z", as utcNow() writes it.
+bool isUtcTimeText(std::string_view t) {
+  constexpr std::string_view kShape = "0000-00-00T00:00:00Z";
+  if (t.size() != kShape.size()) return false;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (kShape[i] == '0' ? !isDigits(t.substr(i, 1)) : t[i] != kShape[i]) return false;
+  return true;
+}
+
+// One row of a results table as read back: each value checked, as it is
+// read, against what addTrial and addDatabase write (results_db.hpp). A
+// value no run writes throws InputError naming the file, the table, the
+// row's id (column 0 of every select) and the column (SQLite's name of
+// it). Columns an older schema lacks are selected as NULL and read as
+// optional, so they never fail.
+class CheckedResultRow {
+ public:
+  CheckedResultRow(const Statement& s, const std::string& path, std::string_view table)
+      : s_(s), path_(path), table_(table), id_(s.int64At(0)) {}
+
+  [[noreturn]] void bad(int c, const std::string& reason) const {
+    throw InputError(path_, std::string(table_) + " row id " + std::to_string(id_) + ", column " +
+                                s_.columnName(c),
+                     reason);
+  }
+  bool isNull(int c) const { return s_.columnType(c) == SQLITE_NULL; }
+  std::string value(int c) const { return resultValueText(s_, c); }
+
+  // An INTEGER from lo to most; `what` is what it must be ("a robot count
+  // from 2 to 128").
+  std::int64_t integer(int c, std::int64_t lo, std::int64_t most, std::string_view what) const {
+    // The type first: after a conversion (int64At of a TEXT value) SQLite
+    // no longer says what the value was.
+    if (s_.columnType(c) != SQLITE_INTEGER || s_.int64At(c) < lo || s_.int64At(c) > most)
+      bad(c, value(c) + " is not " + std::string(what));
+    return s_.int64At(c);
+  }
+  std::optional<std::int64_t> optInteger(int c, std::int64_t lo, std::int64_t most, std::string_view what) const {
+    if (isNull(c)) return std::nullopt;
+    return integer(c, lo, most, what);
+  }
+  std::optional<std::int64_t> optCount(int c) const { return optInteger(c, 0, kNoCountLimit, "a count (0 or more)"); }
+  // Seconds: a finite REAL (or a whole number SQLite stored as INTEGER),
+  // 0 or more, above 0 where `positive`.
+  double seconds(int c, bool positive = false) const {
+    const int type = s_.columnType(c);
+    const bool number = type == SQLITE_FLOAT || type == SQLITE_INTEGER;
+    if (!number || !std::isfinite(s_.doubleAt(c)) || s_.doubleAt(c) < 0 || (positive && s_.doubleAt(c) == 0))
+      bad(c, value(c) + " is not a number of seconds" + (positive ? " above 0" : " (0 or more)"));
+    return s_.doubleAt(c);
+  }
+  std::optional<double> optSeconds(int c) const {
+    if (isNull(c)) return std::nullopt;
+    return seconds(c);
+  }
+  std::string text(int c) const {
+    if (s_.columnType(c) != SQLITE_TEXT) bad(c, value(c) + " is not text");
+    return s_.textAt(c);
+  }
+  // TEXT or NULL; NULL reads as "".
+  std::string optText(int c) const { return isNull(c) ? std::string() : text(c); }
+  // One of `names`, which the message lists.
+  std::string oneOf(int c, const std::vector<std::string>& names, const char* what) const {
+    const std::string v = text(c);
+    if (std::find(names.begin(), names.end(), v) == names.end()) {
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      bad(c, value(c) + " is not " + what + " (" + list + ")");
+    }
+    return v;
+  }
+  // A seed as addTrial writes it: std::to_string of a 64-bit unsigned number.
+  std::uint64_t seed(int c) const {
+    std::uint64_t v = 0;
+    const std::string t = s_.columnType(c) == SQLITE_TEXT ? s_.textAt(c) : std::string();
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || std::to_string(v) != t)
+      bad(c, value(c) + " is not a seed (a whole number from 0 to 2^64-1 as decimal text)");
+    return v;
+  }
+  std::string utcTime(int c) const {
+    if (s_.columnType(c) != SQLITE_TEXT || !isUtcTimeText(s_.textAt(c)))
+      bad(c, value(c) + " is not a UTC time like 2026-11-24T01:02:03Z");
+    return s_.textAt(c);
+  }
+
+ private:
+  const Statement& s_;
+  const std::string& path_;
+  std::string_view table_;
+  std::int64_t id_;
+};
+
+// What a trial's robot count must be, in messages.
+const std::string& robotCountText() {
+  static const std::string text = "a robot count from 2 to " + std::to_string(kMaxResultsRobots);
+  return text;
+}
+
+std::vector<std::string> knownSuiteNames() {
+  std::vector<std::string> names;
+  for (const Suite& s : allSuites()) names.push_back(s.name);
+  return names;
+}
+
+TrialRecord readTrialRow(const CheckedResultRow& r) {
+  static const std::vector<std::string> suites = knownSuiteNames();
+  TrialRecord t;
+  t.suite = r.oneOf(1, suites, "a suite earc-bench runs");
+  t.robots = static_cast<int>(r.integer(2, 2, kMaxResultsRobots, robotCountText()));
+  t.method = r.oneOf(3, allMethods(), "a method earc-bench runs");
+  t.trial = static_cast<int>(r.integer(4, 0, std::numeric_limits<int>::max(), "a trial number (0 or more)"));
+  t.seed = r.seed(5);
+  t.time_limit_s = r.seconds(6, true);
+  t.scenario_seed = r.seed(7);
+  t.planner_seed = r.seed(8);
+  t.success = r.integer(9, 0, 1, "0 or 1") == 1;
+  t.planning_time_s = r.optSeconds(10);
+  t.wall_time_s = r.seconds(11);
+  t.makespan = r.optCount(12);
+  t.sum_of_costs = r.optCount(13);
+  t.conflicts = r.optCount(14);
+  t.db_hits = r.optCount(15);
+  t.peak_memory_kb = r.optCount(16);
+  if (auto v = r.optInteger(17, 0, 255, "an exit status from 0 to 255")) t.exit_status = static_cast<int>(*v);
+  if (auto v = r.optInteger(18, 1, 127, "a signal number from 1 to 127")) t.term_signal = static_cast<int>(*v);
+  t.failure = r.optText(19);
+  // A solved trial has no failure, a failed one says why (runner.cpp).
+  if (t.success && !r.isNull(19)) r.bad(19, r.value(19) + " beside success 1: a solved trial has no failure");
+  if (!t.success && t.failure.empty()) r.bad(19, r.value(19) + " beside success 0: a failed trial says why it failed");
+  if (t.success && t.planning_time_s && *t.planning_time_s > t.time_limit_s * kSolvedTimeLimitSlack)
+    r.bad(10, formatNumber(*t.planning_time_s) + " s of a solved trial is beyond its time limit of " +
+                  formatNumber(t.time_limit_s) + " s");
+  t.finished_at = r.utcTime(20);
+  if (auto v = r.optInteger(21, 1, std::numeric_limits<int>::max(), "a number of jobs (1 or more)"))
+    t.jobs = static_cast<int>(*v);
+  t.planner_version = r.optText(22);
+  t.bench_version = r.optText(23);
+  return t;
+}
+
+DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
+  static const std::vector<std::string> suites = knownSuiteNames();
+  static const std::vector<std::string> methods = {"earc", "lightning"};
+  DatabaseRecord d;
+  d.method = r.oneOf(1, methods, "a method with a database");
+  d.suite = r.oneOf(2, suites, "a suite earc-bench runs");
+  static const std::string robots = "0 (every robot count) or " + robotCountText();
+  d.robots = static_cast<int>(r.integer(3, 0, kMaxResultsRobots, robots));
+  if (d.robots == 1) r.bad(3, "1 is not " + robots);
+  d.path = r.text(4);
+  if (d.path.empty()) r.bad(4, "'' is not a path");
+  d.construction_time_s = r.optSeconds(5);
+  d.entries = r.optCount(6);
+  d.size_bytes = r.optCount(7);
+  d.problems = r.optCount(8);
+  if (!r.isNull(9)) d.seed = r.seed(9);
+  d.recorded_at = r.utcTime(10);
+  return d;
+}
 
 }  // namespace
 
@@ -120,11 +289,12 @@ constexpr const char* kInsertDatabase =
 constexpr const char* kFinishedTrials =
     "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2";
 #define EARC_TRIAL_COLUMNS_V1                                                                                  \
-  "suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"      \
+  "id, suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"      \
   " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure," \
   " finished_at"
 // kSelectTrials[v - 1] reads a version v file, older ones without
 // migrating them (table, export, plot): NULL for the columns it lacks.
+// The row's id first, for CheckedResultRow.
 constexpr const char* kSelectTrials[] = {
     "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL FROM trials ORDER BY id",
     "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL FROM trials ORDER BY id",
@@ -134,7 +304,7 @@ constexpr const char* kSelectTrials[] = {
 static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
 constexpr const char* kSelectDatabases =
-    "SELECT method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
+    "SELECT id, method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
 constexpr const char* kHasDatabase =
     "SELECT 1 FROM databases WHERE method = ?1 AND path = ?2 LIMIT 1";
@@ -212,6 +382,9 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     for (const char* sql : kWriteStatements) impl_->prepare(sql);
   impl_->prepare(kSelectTrials[version - 1]);
   for (const char* sql : kReadStatements) impl_->prepare(sql);
+  // Every row checked before any work, whatever the command then reads.
+  trials();
+  databases();
 }
 
 ResultsDb::~ResultsDb() = default;
@@ -272,53 +445,14 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 std::vector<TrialRecord> ResultsDb::trials() const {
   Statement s = impl_->prepare(kSelectTrials[impl_->version - 1]);
   std::vector<TrialRecord> out;
-  while (s.step()) {
-    TrialRecord t;
-    t.suite = s.textAt(0);
-    t.robots = static_cast<int>(s.int64At(1));
-    t.method = s.textAt(2);
-    t.trial = static_cast<int>(s.int64At(3));
-    t.seed = seedFrom(s.textAt(4));
-    t.time_limit_s = s.doubleAt(5);
-    t.scenario_seed = seedFrom(s.textAt(6));
-    t.planner_seed = seedFrom(s.textAt(7));
-    t.success = s.int64At(8) != 0;
-    t.planning_time_s = doubleOpt(s, 9);
-    t.wall_time_s = s.doubleAt(10);
-    t.makespan = intOpt(s, 11);
-    t.sum_of_costs = intOpt(s, 12);
-    t.conflicts = intOpt(s, 13);
-    t.db_hits = intOpt(s, 14);
-    t.peak_memory_kb = intOpt(s, 15);
-    if (auto v = intOpt(s, 16)) t.exit_status = static_cast<int>(*v);
-    if (auto v = intOpt(s, 17)) t.term_signal = static_cast<int>(*v);
-    if (s.columnType(18) != SQLITE_NULL) t.failure = s.textAt(18);
-    t.finished_at = s.textAt(19);
-    if (auto v = intOpt(s, 20)) t.jobs = static_cast<int>(*v);
-    if (s.columnType(21) != SQLITE_NULL) t.planner_version = s.textAt(21);
-    if (s.columnType(22) != SQLITE_NULL) t.bench_version = s.textAt(22);
-    out.push_back(std::move(t));
-  }
+  while (s.step()) out.push_back(readTrialRow(CheckedResultRow(s, impl_->path, "trials")));
   return out;
 }
 
 std::vector<DatabaseRecord> ResultsDb::databases() const {
   Statement s = impl_->prepare(kSelectDatabases);
   std::vector<DatabaseRecord> out;
-  while (s.step()) {
-    DatabaseRecord d;
-    d.method = s.textAt(0);
-    d.suite = s.textAt(1);
-    d.robots = static_cast<int>(s.int64At(2));
-    d.path = s.textAt(3);
-    d.construction_time_s = doubleOpt(s, 4);
-    d.entries = intOpt(s, 5);
-    d.size_bytes = intOpt(s, 6);
-    d.problems = intOpt(s, 7);
-    if (s.columnType(8) != SQLITE_NULL) d.seed = seedFrom(s.textAt(8));
-    d.recorded_at = s.textAt(9);
-    out.push_back(std::move(d));
-  }
+  while (s.step()) out.push_back(readDatabaseRow(CheckedResultRow(s, impl_->path, "databases")));
   return out;
 }
 

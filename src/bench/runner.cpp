@@ -38,9 +38,6 @@ namespace earc::bench {
 
 namespace {
 
-// A solution may report a planning time this much over the limit (the
-// planners poll their deadline) and still count.
-constexpr double kTimeLimitSlack = 1.01;
 // Wall-clock limit of one `earc-plan validate` (a 32-robot solution with a
 // long makespan takes seconds; a hang must not stop the run).
 constexpr double kValidateWallLimitS = 300.0;
@@ -452,7 +449,7 @@ class Runner {
                 TrialRecord& t) {
     const auto why = validateSolution(plan_, scenario, solution, work_ + "/logs/" + stem, o_.memory_limit_mb);
     if (!why) {
-      if (t.planning_time_s && *t.planning_time_s > o_.time_limit_s * kTimeLimitSlack) {
+      if (t.planning_time_s && *t.planning_time_s > o_.time_limit_s * kSolvedTimeLimitSlack) {
         t.failure = "solved after the time limit (" + fmtSeconds(*t.planning_time_s) + " s)";
         return;
       }

@@ -5,8 +5,8 @@
 # Lightning databases are built on the way); then the table, the CSV and
 # the OMPL benchmark logs must be well formed (a CSV on stdout alone, its
 # summary on stderr; trials of two time limits in tables of their own),
-# plot must draw the figures (leaving out odd values with a warning) and
-# refuse bad input in one line, and a second run must find nothing left
+# plot must draw the figures and refuse bad input (a value no run writes
+# too) in one line, and a second run must find nothing left
 # to do. Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
@@ -167,14 +167,14 @@ cmp -s "$WORK/stdout.csv" "$WORK/dbs.csv" || fail "export --databases-csv /dev/s
 [ "$(cat "$WORK/export.err")" = "$WORK/r2.csv: 12 trials
 /dev/stdout: 2 databases" ] || fail "export --databases-csv /dev/stdout said: $(cat "$WORK/export.err")"
 
-# Suite names come from the results database: one like '../../escaped'
-# must not write outside the --ompl-log directory.
+# Suite names come from the results database: one no run writes, like
+# '../../escaped', refuses the file (a row no run writes, see
+# bench_refuses_nonsense_rows.sh) before any log is written.
 changedCopy "$WORK/r.sqlite" "$WORK/odd.sqlite" "UPDATE trials SET suite = '../../escaped' WHERE robots = 2"
 mkdir -p "$WORK/deep/a/b"
-"$BENCH" export --results "$WORK/odd.sqlite" --ompl-log "$WORK/deep/a/b/logs" > /dev/null || fail "export of odd suite names exited $?"
-outside=$(find "$WORK" -name '*escaped*' ! -path "$WORK/deep/a/b/logs/*")
-[ -z "$outside" ] || fail "export wrote outside its --ompl-log directory: $outside"
-[ "$(find "$WORK/deep/a/b/logs" -name '*.log' | wc -l)" -eq 2 ] || fail "odd suite names: $(ls "$WORK/deep/a/b/logs")"
+refusedInOneLine "$WORK/odd.sqlite: trials row id 1, column suite: '../../escaped' is not a suite earc-bench runs" \
+  "$BENCH" export --results "$WORK/odd.sqlite" --ompl-log "$WORK/deep/a/b/logs"
+[ -z "$(find "$WORK" -name '*escaped*')" ] && [ ! -e "$WORK/deep/a/b/logs" ] || fail "a refused export wrote logs"
 
 # Bad input: exit 2 and one line naming the file and the option; the
 # results database survives every refusal.
@@ -202,8 +202,10 @@ if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
   [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"
   leftNothingBeside "$WORK/r.sqlite" plot
-  # Odd values are left out with a warning: no traceback.
-  "$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF' || fail "could not make odd values"
+  # A value no run writes refuses the file in one line naming the row and
+  # the column, in earc-bench and in the script on its own: no traceback,
+  # no figure.
+  first=$("$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF') || fail "could not make odd values"
 import sqlite3, sys
 src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
 src.backup(dst)
@@ -213,14 +215,13 @@ dst.execute("UPDATE trials SET planning_time_s = 1e308 WHERE id = ?", (ids[1],))
 dst.execute("UPDATE trials SET robots = 0 WHERE id = ?", (ids[2],))
 dst.execute("UPDATE databases SET construction_time_s = 'slow'")
 dst.commit()
+print(ids[0])
 PYEOF
-  "$BENCH" plot --results "$WORK/odd-values.sqlite" -o "$WORK/fig2" > /dev/null 2> "$WORK/plot.err" ||
-    fail "plot of odd values exited $?: $(cat "$WORK/plot.err")"
-  grep -q Traceback "$WORK/plot.err" && fail "plot printed a traceback: $(cat "$WORK/plot.err")"
-  [ "$(wc -l < "$WORK/plot.err")" -eq 2 ] || fail "not one warning per table: $(cat "$WORK/plot.err")"
-  grep -qF "$WORK/odd-values.sqlite: trials: left out 3 of 12 rows with odd values" "$WORK/plot.err" ||
-    fail "no warning about the odd trials: $(cat "$WORK/plot.err")"
-  [ -s "$WORK/fig2/time_mobile.png" ] || fail "plot of odd values wrote no figures"
+  want="$WORK/odd-values.sqlite: trials row id $first, column planning_time_s: 'abc' is not a number of seconds (0 or more)"
+  refused "$want" plot --results "$WORK/odd-values.sqlite" -o "$WORK/fig2"
+  refusedInOneLine "plot_results.py: $want" "$PY" "$SRC/tools/plots/plot_results.py" \
+    --results "$WORK/odd-values.sqlite" -o "$WORK/fig2"
+  [ -e "$WORK/fig2" ] && fail "a refused plot created its output directory"
   touch "$WORK/a-file"
   refused "$WORK/a-file: -o: exists and is not a directory" plot --results "$WORK/r.sqlite" -o "$WORK/a-file"
   "$PY" -c 'import sqlite3,sys

@@ -32,19 +32,11 @@ c = sqlite3.connect("no-column.sqlite")
 sqlite3.connect("r.sqlite").backup(c)
 c.execute("ALTER TABLE trials DROP COLUMN makespan"); c.commit(); c.close()
 PYEOF
-# (A reader of a WAL database may leave an empty -wal and -shm beside it.)
-snapshot() { find . -mindepth 1 -printf '%p %s %T@\n' | grep -Ev -- '-(wal|shm) ' | sort; }
-snapshot > "$WORK/before"
+dirSnapshot > "$WORK/before"
 
 refused() {  # refused TEXT ARGS...: exit 2, one line on stderr containing TEXT, nothing changed
-  local want=$1
-  shift
-  "$BENCH" "$@" > "$WORK/out" 2> "$WORK/err"
-  local rc=$?
-  [ $rc -eq 2 ] || fail "earc-bench $* exited $rc, not 2: $(cat "$WORK/err")"
-  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "earc-bench $*: not one line: $(cat "$WORK/err")"
-  grep -qF -- "$want" "$WORK/err" || fail "earc-bench $*: the error does not say '$want': $(cat "$WORK/err")"
-  snapshot | cmp -s - "$WORK/before" || fail "earc-bench $* changed the directory: $(snapshot | diff "$WORK/before" -)"
+  refusedInOneLine "$1" "$BENCH" "${@:2}"
+  dirSnapshot | cmp -s - "$WORK/before" || fail "earc-bench ${*:2} changed the directory: $(dirSnapshot | diff "$WORK/before" -)"
 }
 
 for f in no-trials no-databases foreign text; do

@@ -8,6 +8,21 @@ trap 'rm -rf "$WORK"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 # Skipped (77) without /usr/bin/python3.
 needPython() { [ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }; }
+# refusedInOneLine WANT PROGRAM ARGS...: FAIL unless PROGRAM exits 2 with
+# one line on stderr that contains WANT (left in $WORK/err).
+refusedInOneLine() {
+  local want=$1
+  shift
+  "$@" > "$WORK/out" 2> "$WORK/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$* exited $rc, not 2: $(cat "$WORK/err")"
+  [ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "$*: not one line: $(cat "$WORK/err")"
+  grep -qF -- "$want" "$WORK/err" || fail "$*: the error does not say '$want': $(cat "$WORK/err")"
+}
+# The current directory's files, sizes and times, to compare before and
+# after a command that must change nothing (a reader of a WAL database may
+# leave an empty -wal and -shm beside it: those are left out).
+dirSnapshot() { find . -mindepth 1 -printf '%p %s %T@\n' | grep -Ev -- '-(wal|shm) ' | sort; }
 # FAIL unless every program named is built in $BUILD.
 needBuilt() {
   local p

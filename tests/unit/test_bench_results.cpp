@@ -291,6 +291,74 @@ TEST_CASE("databases are recorded with their construction time, entries and size
   CHECK_FALSE(all[0].problems.has_value());
 }
 
+TEST_CASE("a results row with a value no run writes refuses the file, naming the row and the column") {
+  TempPath file("earc-results-nonsense");
+  {
+    ResultsDb db(file.path);
+    TrialRecord solved = trial("arc", 0, true, 1.5);
+    solved.planning_time_s.reset();  // a solution need not report its time
+    db.addTrial(solved);
+    db.addTrial(trial("arc", 1, false, 60.5));  // a failed trial's time may pass its limit
+    DatabaseRecord d;
+    d.method = "earc";
+    d.suite = "mobile";
+    d.path = "/tmp/e.sqlite";
+    db.addDatabase(d);
+  }
+  { CHECK(ResultsDb(file.path, true).trials().size() == 2); }
+  struct Edit {
+    const char* sql;
+    const char* says;
+  };
+  const Edit edits[] = {
+      {"UPDATE trials SET robots = -3 WHERE id = 2", "trials row id 2, column robots: -3 is not a robot count from 2 to 128"},
+      {"UPDATE trials SET robots = 2.5", "trials row id 1, column robots: 2.5 is not a robot count from 2 to 128"},
+      {"UPDATE trials SET planning_time_s = 'fast' WHERE id = 2",
+       "trials row id 2, column planning_time_s: 'fast' is not a number of seconds (0 or more)"},
+      {"UPDATE trials SET wall_time_s = -1e999", "trials row id 1, column wall_time_s: -inf is not a number of seconds (0 or more)"},
+      {"UPDATE trials SET time_limit_s = 0", "trials row id 1, column time_limit_s: 0 is not a number of seconds above 0"},
+      {"UPDATE trials SET suite = 'moon'", "trials row id 1, column suite: 'moon' is not a suite earc-bench runs (mobile, "},
+      {"UPDATE trials SET method = x'00'", "trials row id 1, column method: a blob is not text"},
+      {"UPDATE trials SET seed = '007'", "trials row id 1, column seed: '007' is not a seed"},
+      {"UPDATE trials SET planner_seed = '18446744073709551616'", "trials row id 1, column planner_seed: '18446744073709551616' is not a seed"},
+      {"UPDATE trials SET failure = 'oops' WHERE id = 1",
+       "trials row id 1, column failure: 'oops' beside success 1: a solved trial has no failure"},
+      {"UPDATE trials SET failure = NULL WHERE id = 2",
+       "trials row id 2, column failure: NULL beside success 0: a failed trial says why it failed"},
+      {"UPDATE trials SET planning_time_s = 61 WHERE id = 1",
+       "trials row id 1, column planning_time_s: 61 s of a solved trial is beyond its time limit of 60 s"},
+      {"UPDATE trials SET exit_status = 256", "trials row id 1, column exit_status: 256 is not an exit status from 0 to 255"},
+      {"UPDATE trials SET finished_at = 'yesterday'",
+       "trials row id 1, column finished_at: 'yesterday' is not a UTC time like 2026-11-24T01:02:03Z"},
+      {"UPDATE trials SET jobs = 0", "trials row id 1, column jobs: 0 is not a number of jobs (1 or more)"},
+      {"UPDATE trials SET bench_version = x'01'", "trials row id 1, column bench_version: a blob is not text"},
+      {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
+      {"UPDATE databases SET robots = 1",
+       "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},
+      {"UPDATE databases SET size_bytes = -1", "databases row id 1, column size_bytes: -1 is not a count (0 or more)"},
+  };
+  for (const Edit& e : edits) {
+    CAPTURE(e.sql);
+    TempPath copy("earc-results-nonsense-copy");
+    std::filesystem::copy_file(file.path, copy.path);
+    {
+      exp::Connection c(copy.path, exp::OpenMode::ReadWrite);
+      c.exec(e.sql);
+    }
+    const std::string want = copy.path + ": " + e.says;
+    // Refused at open, by readers and writers alike.
+    for (bool read_only : {true, false}) {
+      CAPTURE(read_only);
+      try {
+        ResultsDb db(copy.path, read_only);
+        FAIL("opened");
+      } catch (const InputError& error) {
+        CHECK_MESSAGE(std::string(error.what()).rfind(want, 0) == 0, error.what());
+      }
+    }
+  }
+}
+
 TEST_CASE("quantiles interpolate between order statistics like numpy") {
   CHECK_FALSE(quantile({}, 0.5).has_value());
   CHECK(*quantile({3, 1, 2}, 0.5) == doctest::Approx(2));

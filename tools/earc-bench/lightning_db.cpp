@@ -103,7 +103,7 @@ void runLightningDb(const LightningDbOptions& o) {
 void setupLightningDb(CLI::App& app) {
   auto o = std::make_shared<LightningDbOptions>();
   auto* cmd = app.add_subcommand("lightning-db", "Grow a Lightning database from random problems of one size, timed");
-  cmd->add_option("--robots,-n", o->robots, "Robots per problem")->check(earc::cli::wholeNumberIn(2, 128))->capture_default_str();
+  cmd->add_option("--robots,-n", o->robots, "Robots per problem")->check(earc::cli::wholeNumberIn(2, bench::kMaxResultsRobots))->capture_default_str();
   cmd->add_option("--family", o->family, "mobile or arms")->check(CLI::IsMember({"mobile", "arms"}))->capture_default_str();
   cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
   cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");

@@ -33,8 +33,8 @@ void setupPlot(CLI::App& app) {
   cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
   cmd->callback([o] {
     if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
-    // The checks table and export make (a foreign file, a newer schema),
-    // with their messages, before Python runs.
+    // The checks table and export make (a foreign file, a newer schema, a
+    // row no run writes), with their messages, before Python runs.
     { const bench::ResultsDb check(o->results, true); }
     bench::requireOutputDirectory(o->output, "-o");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");

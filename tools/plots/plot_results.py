@@ -9,11 +9,13 @@ against robot count per method, the band spanning the quartiles, log scale)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
 that serves every robot count, like E-ARC's, is a horizontal line).
-Rows with values no run writes (a planning time that is not a number, or
-is negative or beyond its trial's time limit; a robot count below 1; ...)
-are left out with one warning line per table. Every error is one line
-naming the file: exit status 2 for a missing, foreign or newer results
-file and for an output path that is not a directory, 1 when drawing or
+A row with a value no run writes (a planning time that is not a number,
+or is negative or beyond its solved trial's time limit; a robot count
+outside 2..128; an unknown suite or method; ...) refuses the file, as
+earc-bench's reader does (src/bench/results_db.cpp, which `earc-bench
+plot` runs before this script). Every error is one line naming the file:
+exit status 2 for a missing, foreign or newer results file, a row no run
+writes and an output path that is not a directory, 1 when drawing or
 writing fails.
 """
 import argparse
@@ -36,8 +38,9 @@ except ImportError as e:
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
 SCHEMA_VERSION = 4  # kResultsSchemaVersion there
 # A solved trial's planning time may be this much over its limit (the
-# planners poll their deadline): kTimeLimitSlack in src/bench/runner.cpp.
+# planners poll their deadline): kSolvedTimeLimitSlack in results_db.hpp.
 TIME_LIMIT_SLACK = 1.01
+MAX_ROBOTS = 128  # kMaxResultsRobots there
 SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d"]
 METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
@@ -67,36 +70,55 @@ def is_int(v):
     return isinstance(v, int) and not isinstance(v, bool)
 
 
-# What each column read must hold, and what a row that does not is told.
-NAME = (lambda v: isinstance(v, str) and v != "", "is not a name")
-FLAG = (lambda v: is_int(v) and v in (0, 1), "is neither 0 nor 1")
-POSITIVE = (lambda v: is_number(v) and v > 0, "is not a positive number")
-SECONDS = (lambda v: v is None or (is_number(v) and v >= 0), "is not a non-negative number")
-TRIAL_COLUMNS = {"suite": NAME, "robots": (lambda v: is_int(v) and v >= 1, "is not a count of 1 or more"),
-                 "method": NAME, "success": FLAG, "planning_time_s": SECONDS, "time_limit_s": POSITIVE}
-DATABASE_COLUMNS = {"method": NAME, "suite": NAME,
-                    "robots": (lambda v: is_int(v) and v >= 0, "is not a count of 0 or more"),
+def is_seed(v):
+    return isinstance(v, str) and v.isascii() and v.isdigit() and str(int(v)) == v and int(v) < 2 ** 64
+
+
+def one_of(names, what):
+    return (lambda v: v in names, "is not %s (%s)" % (what, ", ".join(names)))
+
+
+# What each column read must hold and what a value that does not is told:
+# as earc-bench's reader (CheckedResultRow in src/bench/results_db.cpp)
+# checks the same columns.
+SECONDS = (lambda v: v is None or (is_number(v) and v >= 0), "is not a number of seconds (0 or more)")
+ROBOTS = "a robot count from 2 to %d" % MAX_ROBOTS
+TRIAL_COLUMNS = {"suite": one_of(SUITES, "a suite earc-bench runs"),
+                 "robots": (lambda v: is_int(v) and 2 <= v <= MAX_ROBOTS, "is not " + ROBOTS),
+                 "method": one_of(METHODS, "a method earc-bench runs"),
+                 "seed": (is_seed, "is not a seed (a whole number from 0 to 2^64-1 as decimal text)"),
+                 "time_limit_s": (lambda v: is_number(v) and v > 0, "is not a number of seconds above 0"),
+                 "success": (lambda v: is_int(v) and v in (0, 1), "is not 0 or 1"),
+                 "planning_time_s": SECONDS}
+DATABASE_COLUMNS = {"method": one_of(["earc", "lightning"], "a method with a database"),
+                    "suite": one_of(SUITES, "a suite earc-bench runs"),
+                    "robots": (lambda v: is_int(v) and (v == 0 or 2 <= v <= MAX_ROBOTS),
+                               "is not 0 (every robot count) or " + ROBOTS),
                     "construction_time_s": SECONDS}
 
 
-def row_problem(row, columns):
-    """Why a row cannot be plotted, or None."""
+def shown(v):
+    """A value as earc-bench's messages show it."""
+    if v is None:
+        return "NULL"
+    if isinstance(v, float):
+        return "%g" % v
+    if isinstance(v, bytes):
+        return "a blob"
+    return repr(v) if isinstance(v, str) else str(v)
+
+
+def check_row(path, table, row, columns):
+    """Refuses the file (BadInput) for a value no run writes."""
+    def bad(column, why):
+        raise BadInput("%s: %s row id %s, column %s: %s" % (path, table, row["id"], column, why))
     for column, (ok, says) in columns.items():
         if not ok(row[column]):
-            return "%s %r %s" % (column, row[column], says)
-    if "planning_time_s" in columns and row["success"] and row["planning_time_s"] is not None \
+            bad(column, "%s %s" % (shown(row[column]), says))
+    if table == "trials" and row["success"] and row["planning_time_s"] is not None \
             and row["planning_time_s"] > row["time_limit_s"] * TIME_LIMIT_SLACK:
-        return "planning_time_s %r of a solved trial is beyond its time limit %r" % (row["planning_time_s"],
-                                                                                  row["time_limit_s"])
-    return None
-
-
-def warn_skipped(path, table, skipped, total):
-    if skipped:
-        row, why = skipped[0]
-        more = "" if len(skipped) == 1 else " (and %d more)" % (len(skipped) - 1)
-        print("plot_results.py: warning: %s: %s: left out %d of %d rows with odd values: row id %s: %s%s"
-              % (path, table, len(skipped), total, row, why, more), file=sys.stderr)
+        bad("planning_time_s", "%s s of a solved trial is beyond its time limit of %s s"
+            % (shown(row["planning_time_s"]), shown(row["time_limit_s"])))
 
 
 def own_wal_header(path):
@@ -144,28 +166,22 @@ def load(path, seed, time_limit):
             raise BadInput("%s: results database without a schema version" % path)
         try:
             con.row_factory = sqlite3.Row
-            rows = con.execute("SELECT id, %s, seed FROM trials" % ", ".join(TRIAL_COLUMNS)).fetchall()
-            db_rows = con.execute("SELECT id, %s FROM databases" % ", ".join(DATABASE_COLUMNS)).fetchall()
+            rows = con.execute("SELECT id, %s FROM trials ORDER BY id" % ", ".join(TRIAL_COLUMNS)).fetchall()
+            db_rows = con.execute("SELECT id, %s FROM databases ORDER BY id"
+                                  % ", ".join(DATABASE_COLUMNS)).fetchall()
         except sqlite3.DatabaseError as e:
             raise BadInput("%s: cannot read the results: %s" % (path, e))
     finally:
         con.close()
-    trials, skipped = [], []
+    trials = []
     for r in rows:
-        why = row_problem(r, TRIAL_COLUMNS)
-        if why:
-            skipped.append((r["id"], why))
-        elif (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
+        check_row(path, "trials", r, TRIAL_COLUMNS)
+        if (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
             trials.append((r["suite"], r["robots"], r["method"], bool(r["success"]), r["planning_time_s"]))
-    warn_skipped(path, "trials", skipped, len(rows))
-    dbs, skipped = [], []
+    dbs = []
     for r in db_rows:
-        why = row_problem(r, DATABASE_COLUMNS)
-        if why:
-            skipped.append((r["id"], why))
-        else:
-            dbs.append(tuple(r[c] for c in DATABASE_COLUMNS))
-    warn_skipped(path, "databases", skipped, len(db_rows))
+        check_row(path, "databases", r, DATABASE_COLUMNS)
+        dbs.append(tuple(r[c] for c in DATABASE_COLUMNS))
     return trials, dbs
 
 

@@ -28,6 +28,24 @@
 //   databases(id, method, suite, robots, path, construction_time_s,
 //             entries, size_bytes, problems, seed, recorded_at)
 //     robots = 0 for a database that serves every robot count (E-ARC's).
+//
+// Every row is read back through one check of every column against what
+// addTrial and addDatabase write (a run, lightning-db): a value no run
+// writes, by a hand edit or another program, refuses the file like a
+// missing column does, in one line naming the file, the table, the row's
+// id and the column:
+//   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 128
+// What a run writes: suite and method names earc-bench has (bench/suites.hpp;
+// databases: method earc or lightning, robots 0 or a count); robot counts
+// 2 to kMaxResultsRobots; trial numbers, counts (makespan, sum_of_costs,
+// conflicts, db_hits, peak_memory_kb, entries, size_bytes, problems) and
+// times (seconds, finite) of 0 or more; a positive time limit; success 0
+// or 1, with a failure exactly when 0 and a planning time of at most
+// kSolvedTimeLimitSlack times the limit when 1; exit status 0 to 255;
+// signals 1 to 127; jobs 1 or more; seeds as decimal TEXT of a 64-bit
+// unsigned number, as std::to_string writes it (no sign, no leading zero);
+// times of day as utcNow() writes them; failure, versions and path as TEXT
+// (path not empty).
 #pragma once
 
 #include <cstdint>
@@ -42,6 +60,12 @@ namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
 inline constexpr int kResultsSchemaVersion = 4;
+// A solution may report a planning time this much over its time limit
+// (the planners poll their deadline) and still count as solved; later than
+// that it is "solved after the time limit", a failure.
+inline constexpr double kSolvedTimeLimitSlack = 1.01;
+// The most robots a run or lightning-db plans for (lightning-db --robots).
+inline constexpr int kMaxResultsRobots = 128;
 
 struct TrialRecord {
   std::string suite;
@@ -89,7 +113,9 @@ class ResultsDb {
   // anything is read or written, when it is not a results database of this
   // program (not SQLite, another application_id, a newer schema version:
   // the message names both versions) or is damaged (a table of its schema
-  // missing), as exp::checkFileIdentity checks the experience store.
+  // missing), as exp::checkFileIdentity checks the experience store, or
+  // when a row holds a value no run writes (see above): every row is read
+  // and checked at open, as trials() and databases() read them.
   explicit ResultsDb(const std::string& path, bool read_only = false);
   ~ResultsDb();
   ResultsDb(const ResultsDb&) = delete;

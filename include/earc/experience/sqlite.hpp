@@ -118,6 +118,12 @@ class Statement {
   double doubleAt(int col) const { return sqlite3_column_double(stmt_.get(), col); }
   std::string textAt(int col) const;
   std::span<const unsigned char> blobAt(int col) const;
+  // The column's name in the result (its name in the table, or the
+  // expression selected), for messages about a value in it.
+  std::string columnName(int col) const {
+    const char* name = sqlite3_column_name(stmt_.get(), col);
+    return name ? name : "";
+  }
 
  private:
   sqlite3* db_;
