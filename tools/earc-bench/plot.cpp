@@ -1,7 +1,9 @@
 // earc-bench plot: figures from a results database, drawn by
-// tools/plots/plot_results.py (matplotlib) run with /usr/bin/python3.
+// tools/plots/plot_results.py (matplotlib) run with /usr/bin/python3: per
+// suite, and per time limit where a suite ran under several, as table
+// makes a table per limit.
 //
-//   earc-bench plot --results FILE -o DIR [--python PATH] [--script PATH]
+//   earc-bench plot --results FILE -o DIR [--seed S] [--time-limit S] [--python PATH] [--script PATH]
 #include <filesystem>
 #include <iostream>
 
@@ -9,6 +11,7 @@
 #include "earc/bench/options.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace earc {
@@ -22,6 +25,8 @@ struct PlotOptions {
   std::string output;
   std::string python = "/usr/bin/python3";
   std::string script = std::string(EARC_SOURCE_DIR) + "/tools/plots/plot_results.py";
+  std::uint64_t seed = 0;
+  double time_limit = 0;
 };
 
 void setupPlot(CLI::App& app) {
@@ -31,7 +36,12 @@ void setupPlot(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "Directory for the figures")->check(earc::cli::kFileName)->required();
   cmd->add_option("--python", o->python, "Python with matplotlib and numpy")->capture_default_str();
   cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
-  cmd->callback([o] {
+  // As table and export take them (TrialFilter); the script selects the
+  // same trials.
+  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
+  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
+                    ->check(earc::cli::kFinitePositive);
+  cmd->callback([o, seed, limit] {
     if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
     // The checks table and export make (a foreign file, a newer schema, a
     // row no run writes), with their messages, before Python runs.
@@ -41,6 +51,10 @@ void setupPlot(CLI::App& app) {
     bench::requireExecutable(o->python, "--python");
     bench::ChildSpec spec;
     spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
+    if (seed->count()) spec.argv.insert(spec.argv.end(), {"--seed", std::to_string(o->seed)});
+    // Seventeen digits: the script's float is this very double, which it
+    // compares with the stored limits as table does.
+    if (limit->count()) spec.argv.insert(spec.argv.end(), {"--time-limit", formatNumber("%.17g", o->time_limit)});
     spec.wall_limit_s = kPlotWallLimitS;
     spec.inherit_output = true;
     bench::ChildOutcome out = bench::runChild(spec);

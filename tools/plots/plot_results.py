@@ -9,6 +9,11 @@ against robot count per method, the band spanning the quartiles, log scale)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
 that serves every robot count, like E-ARC's, is a horizontal line).
+Trials under different time limits are different experiments: a suite run
+under several gets a pair of figures per limit, time_<suite>-tl<limit>
+and success_<suite>-tl<limit> (as `earc-bench table` gives it a table per
+limit). --seed and --time-limit take only the trials of that run seed or
+time limit, as table's do.
 A row with a value no run writes (a planning time that is not a number,
 or is negative or beyond its solved trial's time limit; a robot count
 outside 2..128; an unknown suite or method; ...) refuses the file, as
@@ -19,6 +24,7 @@ writes and an output path that is not a directory, 1 when drawing or
 writing fails.
 """
 import argparse
+import collections
 import math
 import os
 import sqlite3
@@ -51,6 +57,10 @@ SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", 
                 "movingai-random": ((0, (5, 1)), "v"), "movingai-den520d": ((0, (1, 1, 3, 1)), "P")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
           "coupled": "tab:orange"}
+
+
+# One trial as the figures need it.
+Trial = collections.namedtuple("Trial", "suite time_limit robots method success planning_time")
 
 
 def ordered(values, order):
@@ -177,7 +187,8 @@ def load(path, seed, time_limit):
     for r in rows:
         check_row(path, "trials", r, TRIAL_COLUMNS)
         if (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
-            trials.append((r["suite"], r["robots"], r["method"], bool(r["success"]), r["planning_time_s"]))
+            trials.append(Trial(r["suite"], r["time_limit_s"], r["robots"], r["method"], bool(r["success"]),
+                                r["planning_time_s"]))
     dbs = []
     for r in db_rows:
         check_row(path, "databases", r, DATABASE_COLUMNS)
@@ -192,14 +203,31 @@ def save(fig, out, name):
     return name
 
 
-def plot_times(trials, suite, out):
-    rows = [t for t in trials if t[0] == suite]
+def experiments(trials):
+    """The figures' experiments: (name suffix, title, trials) per suite and
+    time limit, suites in their order and limits ascending. A suite run
+    under several limits gets "-tl<limit>" and ", time limit <limit> s",
+    as `earc-bench table` heads its tables and `export` names its logs."""
+    out = []
+    for suite in ordered({t.suite for t in trials}, SUITES):
+        limits = sorted({t.time_limit for t in trials if t.suite == suite})
+        for limit in limits:
+            rows = [t for t in trials if t.suite == suite and t.time_limit == limit]
+            if len(limits) == 1:
+                out.append((suite, suite, rows))
+            else:
+                out.append(("%s-tl%g" % (suite, limit), "%s, time limit %g s" % (suite, limit), rows))
+    return out
+
+
+def plot_times(rows, name, title, out):
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = False
-    for method in ordered({t[2] for t in rows}, METHODS):
+    for method in ordered({t.method for t in rows}, METHODS):
         xs, med, lo, hi = [], [], [], []
-        for n in sorted({t[1] for t in rows if t[2] == method}):
-            times = [t[4] for t in rows if t[2] == method and t[1] == n and t[3] and t[4] is not None]
+        for n in sorted({t.robots for t in rows if t.method == method}):
+            times = [t.planning_time for t in rows
+                     if t.method == method and t.robots == n and t.success and t.planning_time is not None]
             if not times:
                 continue
             q1, q2, q3 = np.percentile(times, [25, 50, 75])
@@ -212,30 +240,29 @@ def plot_times(trials, suite, out):
         drawn = True
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
-    counts = sorted({t[1] for t in rows})
+    counts = sorted({t.robots for t in rows})
     if counts:
         ax.set_xticks(counts)
         ax.set_xticklabels([str(n) for n in counts])
     ax.set_xlabel("robots")
     ax.set_ylabel("planning time of solved trials (s)")
-    ax.set_title("%s: median and quartiles" % suite)
+    ax.set_title("%s: median and quartiles" % title)
     ax.grid(True, which="both", alpha=0.3)
     if drawn:
         ax.legend()
-    return save(fig, out, "time_%s" % suite)
+    return save(fig, out, "time_%s" % name)
 
 
-def plot_success(trials, suite, out):
-    rows = [t for t in trials if t[0] == suite]
-    counts = sorted({t[1] for t in rows})
-    methods = ordered({t[2] for t in rows}, METHODS)
+def plot_success(rows, name, title, out):
+    counts = sorted({t.robots for t in rows})
+    methods = ordered({t.method for t in rows}, METHODS)
     fig, ax = plt.subplots(figsize=(6, 4))
     width = 0.8 / max(1, len(methods))
     for i, method in enumerate(methods):
         rates = []
         for n in counts:
-            cell = [t for t in rows if t[2] == method and t[1] == n]
-            rates.append(100.0 * sum(t[3] for t in cell) / len(cell) if cell else np.nan)
+            cell = [t for t in rows if t.method == method and t.robots == n]
+            rates.append(100.0 * sum(t.success for t in cell) / len(cell) if cell else np.nan)
         xs = np.arange(len(counts)) + (i - (len(methods) - 1) / 2) * width
         ax.bar(xs, rates, width, label=LABELS.get(method, method), color=COLORS.get(method))
         # A bar of height 0 is invisible: mark trials that all failed.
@@ -247,10 +274,10 @@ def plot_success(trials, suite, out):
     ax.set_ylim(0, 105)
     ax.set_xlabel("robots")
     ax.set_ylabel("solved (%)")
-    ax.set_title("%s: success rate" % suite)
+    ax.set_title("%s: success rate" % title)
     if methods:
         ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    return save(fig, out, "success_%s" % suite)
+    return save(fig, out, "success_%s" % name)
 
 
 def plot_databases(dbs, out):
@@ -307,9 +334,9 @@ def main():
         return 2
     written = []
     try:
-        for suite in ordered({t[0] for t in trials}, SUITES):
-            written.append(plot_times(trials, suite, a.output))
-            written.append(plot_success(trials, suite, a.output))
+        for name, title, rows in experiments(trials):
+            written.append(plot_times(rows, name, title, a.output))
+            written.append(plot_success(rows, name, title, a.output))
         written.append(plot_databases(dbs, a.output))
     except OSError as e:
         print("plot_results.py: %s: cannot write a figure: %s" % (e.filename or a.output, e.strerror or e),
