@@ -4,7 +4,8 @@
 # tables them: a suite run under two limits gets time_SUITE-tlLIMIT and
 # success_SUITE-tlLIMIT for each and no figure of both; --time-limit and
 # --seed take one limit's or one run's trials, as table's do (one limit
-# left: the plain names). Two small real runs (one ARC trial each, limits 5 s and 10 s,
+# left: the plain names); and the same trials give the same files, byte
+# for byte. Two small real runs (one ARC trial each, limits 5 s and 10 s,
 # seeds 3 and 4). Skipped (77) without /usr/bin/python3 with matplotlib.
 set -u
 BUILD=$1
@@ -35,5 +36,9 @@ for args in "--time-limit 5" "--seed 3"; do
   one=$(figures $args -o "$dir")
   [ "$one" = "databases.png databases.svg success_mobile.png success_mobile.svg time_mobile.png time_mobile.svg " ] ||
     fail "plot $args wrote: $one"
+done
+# The same trial (limit 5 s, seed 3) chosen two ways: the same files.
+for f in time_mobile.svg time_mobile.png success_mobile.svg; do
+  cmp -s "$WORK/--time-limit5/$f" "$WORK/--seed3/$f" || fail "plot --time-limit 5 and --seed 3 differ in $f"
 done
 echo "ok"

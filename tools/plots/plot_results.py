@@ -13,7 +13,9 @@ Trials under different time limits are different experiments: a suite run
 under several gets a pair of figures per limit, time_<suite>-tl<limit>
 and success_<suite>-tl<limit> (as `earc-bench table` gives it a table per
 limit). --seed and --time-limit take only the trials of that run seed or
-time limit, as table's do.
+time limit, as table's do. Nothing is drawn at random, and the SVGs carry
+no date and fixed ids: the same file gives the same figures, byte for
+byte.
 A row with a value no run writes (a planning time that is not a number,
 or is negative or beyond its solved trial's time limit; a robot count
 outside 2..128; an unknown suite or method; ...) refuses the file, as
@@ -35,6 +37,10 @@ try:
     import matplotlib
 
     matplotlib.use("Agg")
+    # SVG element ids are random unless salted, and an SVG carries the date
+    # it was drawn: neither, so that figures of the same results are the
+    # same files.
+    matplotlib.rcParams["svg.hashsalt"] = "earc-bench"
     import matplotlib.pyplot as plt
     import numpy as np
 except ImportError as e:
@@ -198,7 +204,10 @@ def load(path, seed, time_limit):
 
 def save(fig, out, name):
     for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=150, bbox_inches="tight")
+        # No date in the SVG (its metadata), so that it is the same file
+        # every time.
+        metadata = {"Date": None} if ext == "svg" else None
+        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=150, bbox_inches="tight", metadata=metadata)
     plt.close(fig)
     return name
 
