@@ -100,7 +100,7 @@ std::vector<double> numbers(const json& v, const std::string& file, const std::s
   return out;
 }
 
-std::vector<Experience> readJsonl(const std::string& path) {
+std::vector<Experience> readJsonl(const std::string& path, Progress* progress) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open for reading");
   std::string line;
@@ -128,12 +128,14 @@ std::vector<Experience> readJsonl(const std::string& path) {
   }
   if (header.contains("rows") && !(header["rows"].is_number_integer() && header["rows"].get<std::int64_t>() >= 0))
     throw InputError(path, "line 1", "rows must be a count of rows, not " + header["rows"].dump());
+  if (progress && header.contains("rows")) progress->addToTotal(header["rows"].get<std::size_t>());
   std::vector<Experience> rows;
   BadRows bad{path, {}, {}, {}, 0};
   std::size_t number = 1;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
+    if (progress) progress->tick();
     const std::string where = "line " + std::to_string(number);
     try {
       rows.push_back(experienceFromJson(parseJsonText(line, path + ": " + where), path, where));
@@ -152,7 +154,7 @@ std::vector<Experience> readJsonl(const std::string& path) {
   return rows;
 }
 
-std::vector<Experience> readSqlite(const std::string& path) {
+std::vector<Experience> readSqlite(const std::string& path, Progress* progress) {
   try {
     Connection db(path, OpenMode::Hostile);
     // Foreign, newer or without its tables: refused before reading rows.
@@ -162,14 +164,24 @@ std::vector<Experience> readSqlite(const std::string& path) {
     db.requireQuickCheck();
     std::vector<Experience> rows;
     BadRows bad{path, {}, {}, {}, 0};
+    // One read transaction: the count and the rows are one snapshot.
+    db.exec("BEGIN");
+    if (progress) {
+      Statement count = db.prepare("SELECT count(*) FROM experiences");
+      count.step();
+      progress->addToTotal(static_cast<std::size_t>(count.int64At(0)));
+    }
     Statement select = db.prepare(selectExperiencesSql(version) + " ORDER BY id");
     while (select.step()) {
+      if (progress) progress->tick();
       try {
         rows.push_back(readExperience(select));
       } catch (const CorruptRowError& e) {
         bad.add("row " + std::to_string(e.row()), e.reason());
       }
     }
+    select.reset();
+    db.exec("COMMIT");
     bad.throwIfAny();
     return rows;
   } catch (const StoreError& e) {
@@ -254,7 +266,7 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
   count.step();
   const std::int64_t rows = count.int64At(0);
   count.reset();
-  if (progress) progress->setTotal(static_cast<std::size_t>(rows));
+  if (progress) progress->addToTotal(static_cast<std::size_t>(rows));
   chunk += json{{"format", kExportFormat}, {"schema_version", std::min(store.schemaVersion(), kExperienceRowsSchemaVersion)},
                 {"rows", rows}}.dump() + "\n";
   Statement select = db.prepare(selectExperiencesSql(store.schemaVersion()) + " ORDER BY id");
@@ -275,15 +287,15 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
   return written;
 }
 
-std::vector<Experience> readImportSource(const std::string& path) {
+std::vector<Experience> readImportSource(const std::string& path, Progress* progress) {
   requireDatabaseFile(path);
-  return looksLikeSqlite(path) ? readSqlite(path) : readJsonl(path);
+  return looksLikeSqlite(path) ? readSqlite(path, progress) : readJsonl(path, progress);
 }
 
 std::vector<Experience> readImportSources(const std::vector<std::string>& inputs, const ImportSettings& settings) {
   std::vector<Experience> all;
   for (const std::string& input : inputs) {
-    std::vector<Experience> rows = readImportSource(input);
+    std::vector<Experience> rows = readImportSource(input, settings.progress);
     all.insert(all.end(), std::make_move_iterator(rows.begin()), std::make_move_iterator(rows.end()));
   }
   for (Experience& e : all) {

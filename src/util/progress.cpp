@@ -22,9 +22,9 @@ void Progress::setStatus(const std::string& status) {
   status_ = status;
 }
 
-void Progress::setTotal(std::size_t total) {
+void Progress::addToTotal(std::size_t more) {
   std::lock_guard lock(mutex_);
-  total_ = total;
+  total_ += more;
 }
 
 void Progress::finish() {

@@ -29,9 +29,12 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
   earc::exp::ImportSettings settings;
   settings.near_duplicate_eps = opt.dedupe;
   settings.mark_imported = opt.mark_imported;
+  earc::Progress progress("import", 0, !opt.quiet);
+  settings.progress = &progress;
   // Every input is read and checked before the target is opened, which
   // creates it: a refused import leaves no empty database behind.
   const std::vector<earc::exp::Experience> rows = earc::exp::readImportSources(opt.inputs, settings);
+  progress.finish();
   const auto report = earc::exp::withInputErrors(opt.db, [&] {
     earc::exp::StoreOptions options;
     options.new_session = false;

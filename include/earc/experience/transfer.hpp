@@ -35,8 +35,9 @@ Experience experienceFromJson(const nlohmann::json& row, const std::string& file
 
 // Every row of an import source (.jsonl export or earc SQLite database,
 // told apart by content), validated. Throws InputError naming the file and
-// the bad rows (line numbers for exports, row ids for databases).
-std::vector<Experience> readImportSource(const std::string& path);
+// the bad rows (line numbers for exports, row ids for databases). Counts
+// rows on `progress` when given.
+std::vector<Experience> readImportSource(const std::string& path, Progress* progress = nullptr);
 
 struct ImportSettings {
   double near_duplicate_eps = -1.0;  // < 0: store every row
@@ -45,6 +46,7 @@ struct ImportSettings {
   // import gives the same rows); into a file with rows, and always when
   // false (curate --merge), they are stamped with this session.
   bool keep_sessions = true;
+  Progress* progress = nullptr;  // counts the rows read, when given
 };
 
 struct ImportReport {

@@ -15,7 +15,7 @@ class Progress {
   ~Progress();
   void tick(std::size_t n = 1);
   void setStatus(const std::string& status);  // short text shown after the bar
-  void setTotal(std::size_t total);           // when it is known only once the job has begun
+  void addToTotal(std::size_t more);          // what is known only once the job has begun
   void finish();
 
  private:
