@@ -15,7 +15,6 @@
 #include <regex>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_set>
 #include <utility>
 
 #include "earc/io/json_io.hpp"
@@ -27,39 +26,35 @@ namespace {
 
 using nlohmann::json;
 
-// A first, SAX pass over the text that follows the parser's events to know
-// the JSON path of the value being read, so that a duplicate key or a
-// syntax error can be located by path as well as by line and column. It
-// builds nothing: the document is parsed afterwards without a callback.
-// (nlohmann's DOM parser with a callback scans the whole enclosing array at
-// the end of every object in it: 200,000 obstacles took 40 s to read.)
-class PathTracker {
+// Builds the document from the parser's SAX events, in one pass, and
+// follows them to know the JSON path of the value being read, so that a
+// duplicate key (which json::parse would silently drop) or a syntax error
+// can be located by path as well as by line and column. (nlohmann's DOM
+// parser with a callback scans the whole enclosing array at the end of
+// every object in it: 200,000 obstacles took 40 s to read; a separate
+// tracking pass before json::parse lexed every number twice.)
+class CheckedDomBuilder {
  public:
-  explicit PathTracker(const std::string& file) : file_(file) {}
+  explicit CheckedDomBuilder(const std::string& file) : file_(file) {}
 
-  bool null() { return value(); }
-  bool boolean(bool) { return value(); }
-  bool number_integer(json::number_integer_t) { return value(); }
-  bool number_unsigned(json::number_unsigned_t) { return value(); }
-  bool number_float(json::number_float_t, const json::string_t&) { return value(); }
-  bool string(json::string_t&) { return value(); }
-  bool binary(json::binary_t&) { return value(); }
-  bool start_object(std::size_t) {
-    stack_.emplace_back(false);
-    return true;
-  }
-  bool start_array(std::size_t) {
-    stack_.emplace_back(true);
-    return true;
-  }
+  bool null() { return value(nullptr); }
+  bool boolean(bool v) { return value(v); }
+  bool number_integer(json::number_integer_t v) { return value(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(v); }
+  bool number_float(json::number_float_t v, const json::string_t&) { return value(v); }
+  bool string(json::string_t& v) { return value(std::move(v)); }
+  bool binary(json::binary_t& v) { return value(json::binary(std::move(v))); }
+  bool start_object(std::size_t) { return open(json::object(), false); }
+  bool start_array(std::size_t) { return open(json::array(), true); }
   bool key(json::string_t& k) {
     Frame& top = stack_.back();
     top.key = k;
-    if (!top.keys.insert(top.key).second) throw InputError(file_, path(), "duplicate key \"" + top.key + "\"");
+    if (top.node->contains(k)) throw InputError(file_, path(), "duplicate key \"" + top.key + "\"");
+    top.has_key = true;
     return true;
   }
-  bool end_object() { return end(); }
-  bool end_array() { return end(); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
   bool parse_error(std::size_t, const std::string&, const json::exception& e) {
     error_ = e.what();
     return false;
@@ -70,30 +65,57 @@ class PathTracker {
     std::string p = "$";
     for (const Frame& f : stack_) {
       if (f.array) p = io::element(p, f.index);
-      else if (!f.key.empty() || !f.keys.empty()) p = io::member(p, f.key.c_str());
+      else if (f.has_key) p = io::member(p, f.key.c_str());
     }
     return p;
   }
   // The parser's message, when it stopped at an error.
   const std::string& error() const { return error_; }
+  json& document() { return root_; }
 
  private:
   struct Frame {
-    explicit Frame(bool is_array) : array(is_array) {}
+    json* node = nullptr;
     bool array = false;
-    std::size_t index = 0;                 // arrays: the element being read
-    std::string key;                       // objects: the member being read
-    std::unordered_set<std::string> keys;  // objects: keys seen so far
+    std::size_t index = 0;  // arrays: the element being read
+    std::string key;        // objects: the member being read
+    bool has_key = false;
   };
-  bool value() {
+  // Where the next value goes: the root, the end of an array, an object's
+  // member under the last key.
+  json* place(json&& v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Frame& top = stack_.back();
+    if (top.array) {
+      top.node->push_back(std::move(v));
+      return &top.node->back();
+    }
+    json& slot = (*top.node)[top.key];
+    slot = std::move(v);
+    return &slot;
+  }
+  bool value(json&& v) {
+    place(std::move(v));
+    return advance();
+  }
+  bool open(json&& container, bool array) {
+    json* node = place(std::move(container));
+    stack_.push_back(Frame{node, array, 0, {}, false});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return advance();
+  }
+  bool advance() {
     if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
     return true;
   }
-  bool end() {
-    stack_.pop_back();
-    return value();
-  }
   const std::string& file_;
+  json root_;
   std::vector<Frame> stack_;
   std::string error_;
 };
@@ -122,7 +144,7 @@ json parseJsonText(const std::string& text, const std::string& file) {
   // and the independent checker refuses it, so refuse it too.
   if (text.starts_with("\xEF\xBB\xBF"))
     throw InputError(file, "line 1, column 1", "malformed JSON: starts with a UTF-8 byte order mark");
-  PathTracker tracker(file);
+  CheckedDomBuilder tracker(file);
   if (!json::sax_parse(text, &tracker)) {
     std::string where, reason;
     splitParseError(tracker.error(), where, reason);
@@ -134,7 +156,7 @@ json parseJsonText(const std::string& text, const std::string& file) {
       reason += " (JSON has no NaN or Infinity; numbers must be finite)";
     throw InputError(file, where, "malformed JSON: " + reason);
   }
-  return json::parse(text);
+  return std::move(tracker.document());
 }
 
 std::string readTextFile(const std::string& path) {
