@@ -523,6 +523,18 @@ TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("the checked JSON reader builds the same document as nlohmann's parser") {
+  const std::string text = R"({"a": [1, -2, 18446744073709551615, 2.5e-3, true, false, null, "s\u00e9\n"],
+    "": {}, "e": [], "n": [[[], [{}]], [{"x": [{"y": {"z": [0, [1, [2]]]}}]}]], "k": {"b": 1, "a": {"c": [7]}}})";
+  const json built = earc::parseJsonText(text, "in.json");
+  CHECK(built == json::parse(text));
+  CHECK(built.dump() == json::parse(text).dump());
+  CHECK(earc::parseJsonText("42", "in.json") == json(42));
+  CHECK(earc::parseJsonText("[]", "in.json") == json::array());
+  // A duplicate deep inside is named by its path.
+  CHECK(has(parseError(R"({"n": [[], [{"x": 1, "y": {"q": 1, "q": 2}}]]})"), "$.n[1][0].y.q: duplicate key \"q\""));
+}
+
 TEST_CASE("a file written in pieces appears whole at commit, and not at all without it") {
   const std::string dir = tempDir();
   const std::string path = dir + "/rows.jsonl";
