@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include "earc/gen/random.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::gen {
 
@@ -31,13 +33,27 @@ bool terrainBlocked(char c, bool& known) {
   }
 }
 
+// A byte of the file as a message shows it: 'x' when it is printable
+// ASCII, else its value, "byte 0x00". Never the byte itself: a NUL ends
+// the message (what() is a C string) and a control character splits it or
+// drives the terminal; '?', how printableText shows them, is a terrain
+// character that is unknown too.
+std::string mapByteText(char c) {
+  const auto b = static_cast<unsigned char>(c);
+  if (b >= 0x20 && b < 0x7F) return "'" + std::string(1, c) + "'";
+  char hex[16];
+  std::snprintf(hex, sizeof hex, "byte 0x%02X", b);
+  return hex;
+}
+
 // "height 32" -> 32; throws for anything else.
 int headerNumber(const std::string& line, const std::string& key, const std::string& file, int line_no) {
   std::istringstream in(line);
   std::string k, extra;
   long long v = 0;
   if (!(in >> k >> v) || k != key || (in >> extra))
-    throw InputError(file, "line " + std::to_string(line_no), "expected '" + key + " <number>', got '" + line + "'");
+    throw InputError(file, "line " + std::to_string(line_no),
+                     "expected '" + key + " <number>', got '" + printableText(line, 80) + "'");
   if (v < 1 || v > kMaxMapSide)
     throw InputError(file, "line " + std::to_string(line_no),
                      key + " must be between 1 and " + std::to_string(kMaxMapSide) + ", got " + std::to_string(v));
@@ -102,8 +118,8 @@ GridMap parseMovingAiMap(const std::string& text, const std::string& file) {
       bool known = false;
       const bool b = terrainBlocked(line[static_cast<std::size_t>(col)], known);
       if (!known)
-        throw InputError(file, at(), "column " + std::to_string(col + 1) + ": unknown terrain character '" +
-                                         std::string(1, line[static_cast<std::size_t>(col)]) + "'");
+        throw InputError(file, at(), "column " + std::to_string(col + 1) + ": unknown terrain character " +
+                                         mapByteText(line[static_cast<std::size_t>(col)]));
       map.blocked[static_cast<std::size_t>(row) * static_cast<std::size_t>(map.width) + static_cast<std::size_t>(col)] = b;
     }
   }

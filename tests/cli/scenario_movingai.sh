@@ -26,6 +26,13 @@ printf 'type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n' > "$WORK/bad.map"
 "$GEN" movingai "$WORK/bad.map" --robots 1 -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
 [ $? -eq 2 ] || fail "a malformed map did not exit 2"
 grep -q "bad.map: line 6: column 2: unknown terrain character 'x'" "$WORK/err" || fail "unhelpful error: $(cat "$WORK/err")"
+# A NUL byte (or another control byte) is named by line, column and value,
+# and the message goes on past it: a NUL in the text cut it short.
+printf 'type octile\nheight 2\nwidth 3\nmap\n...\n.\0.\n' > "$WORK/nul.map"
+"$GEN" movingai "$WORK/nul.map" --robots 1 -o "$WORK/x.json" > /dev/null 2> "$WORK/err"
+[ $? -eq 2 ] || fail "a map with a NUL did not exit 2"
+grep -qxF "earc-scenario: error: $WORK/nul.map: line 6: column 2: unknown terrain character byte 0x00" "$WORK/err" \
+  || fail "a NUL in a map: $(cat -v "$WORK/err")"
 "$GEN" movingai "$WORK/missing.map" --robots 1 -o "$WORK/x.json" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a missing map did not exit 2"
 # Robots that do not fit, and a radius for boxes, are bad input too.

@@ -126,6 +126,27 @@ TEST_CASE("malformed map files name the line and the reason") {
   CHECK(whereOfParseError("type octile\nheight 0\nwidth 2\nmap\n") == "line 2");
 }
 
+TEST_CASE("a NUL or other unprintable byte in a map is named by line, column and value, in a whole message") {
+  // what() as the tools print it: a C string, up to the first NUL.
+  auto message = [](const std::string& text) -> std::string {
+    try {
+      parseMovingAiMap(text, "bad.map");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    FAIL("no InputError");
+    return {};
+  };
+  const std::string nul(1, '\0');
+  CHECK(message(mapText(3, {"...", "." + nul + "."})) == "bad.map: line 6: column 2: unknown terrain character byte 0x00");
+  CHECK(message(mapText(3, {"..\x1b", "..."})) == "bad.map: line 5: column 3: unknown terrain character byte 0x1B");
+  CHECK(message(mapText(3, {"\xff..", "..."})) == "bad.map: line 5: column 1: unknown terrain character byte 0xFF");
+  CHECK(message(mapText(3, {"...", ".?."})) == "bad.map: line 6: column 2: unknown terrain character '?'");
+  // A header line is quoted printably (printableText: '?' for the NUL).
+  CHECK(message("type octile\nheight 2" + nul + "x\nwidth 3\nmap\n") ==
+        "bad.map: line 2: expected 'height <number>', got 'height 2?x'");
+}
+
 TEST_CASE("reading a missing map file is an InputError naming the file") {
   CHECK_THROWS_AS(readMovingAiMap(kMapDir + "no-such.map"), InputError);
 }
