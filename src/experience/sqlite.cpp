@@ -207,15 +207,32 @@ std::span<const unsigned char> Statement::blobAt(int col) const {
 
 namespace {
 
-// Whether the first 100 bytes of the file at path are an SQLite header in
+// Whether a file's header (none: short, unreadable or not SQLite) is in
 // WAL mode (file format bytes 18 and 19 are 2) with this application_id
-// (big-endian at byte 68). Any doubt, including a short or unreadable
-// file, is false.
-bool ownWalHeader(const std::string& path, std::int64_t application_id) {
+// (big-endian at byte 68). Any doubt is false.
+bool ownWalHeader(const std::optional<SqliteHeader>& h, std::int64_t application_id) {
   if (application_id == 0) return false;
-  const auto h = sqliteHeader(path);
   if (!h || (*h)[18] != 2 || (*h)[19] != 2) return false;
   return static_cast<std::int64_t>(be32(*h, 68)) == application_id;
+}
+
+// SQLite writes 1 (rollback journal) or 2 (WAL) in the header's file
+// format bytes, 18 (write version) and 19 (read version); earc's own files
+// have 2. Any other value is damage (or a format no SQLite writes), and
+// SQLite itself would find it late: a write version above 2 opens the
+// file read-only, and only the first write fails ("attempt to write a
+// readonly database", after a plan or a build's work); a read version
+// above 2 reads as "not a database". Refused before SQLite opens the file,
+// for every command alike.
+void requireKnownFileFormat(const std::optional<SqliteHeader>& h, const std::string& path) {
+  if (!h) return;  // not SQLite, or too short: SQLite says so itself
+  for (const auto& [at, name] : {std::pair{18, "write"}, std::pair{19, "read"}}) {
+    const int v = (*h)[static_cast<std::size_t>(at)];
+    if (v != 1 && v != 2)
+      throw DamagedDatabaseError(path + ": damaged database file (SQLite header byte " + std::to_string(at) +
+                                 ", the file format " + name + " version, is " + std::to_string(v) +
+                                 "; SQLite writes 1 or 2 there, earc 2); restore a copy or rebuild it");
+  }
 }
 
 }  // namespace
@@ -231,9 +248,11 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
       throw StoreError(path + ": " + std::string(kNotARegularFile));
   }
+  const std::optional<SqliteHeader> header = sqliteHeader(path);
+  requireKnownFileFormat(header, path);
   const RealFile real = realFile(path);
   const std::filesystem::path& dir = real.dir;
-  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(path, settings.own_application_id);
+  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(header, settings.own_application_id);
   // Writing needs the file and its directory (for -wal and -shm): said
   // before any work, not as a failed PRAGMA or a failed commit after it.
   if (mode == OpenMode::ReadWrite) {

@@ -98,6 +98,32 @@ run "newer target" "$WORK/newer-target.db" "$DB" import --db "$WORK/newer-target
 refused "import into a newer file" "$WORK/newer-target.db" "schema version 99 is newer"
 [ "$(md5sum < "$WORK/newer-target.db")" = "$before" ] || fail "import modified a newer file"
 
+# writers_refuse CASE FILE PATTERN: build into FILE, import into it, curate
+# it in place and into a copy each refuse it (exit 2, one line naming FILE
+# and matching PATTERN); FILE unchanged, no copy made.
+writers_refuse() {
+  local name=$1 file=$2 pattern=$3 before
+  before=$(md5sum < "$file")
+  rm -f "$WORK/copy.db"*
+  run "$name" "$file" "$DB" build --db "$file" --count 2 --threads 1 -q; refused "$name: build" "$file" "$pattern"
+  run "$name" "$file" "$DB" import --db "$file" "$WORK/good.db"; refused "$name: import into it" "$file" "$pattern"
+  run "$name" "$file" "$DB" curate --db "$file"; refused "$name: curate" "$file" "$pattern"
+  run "$name" "$file" "$DB" curate --db "$file" -o "$WORK/copy.db"; refused "$name: curate -o" "$file" "$pattern"
+  [ -e "$WORK/copy.db" ] && fail "$name: curate -o made a copy"
+  [ "$(md5sum < "$file")" = "$before" ] || fail "$name: the file was modified"
+  rm -f "$file-wal" "$file-shm"
+}
+
+# --- A file format byte SQLite never writes in the header (18, the write
+# version: 233): SQLite opened such a file read-only, and a plan or a
+# build failed only at its first write, after its work. Every command
+# refuses it at open, naming the byte and its value.
+cp "$WORK/good.db" "$WORK/format.db"
+printf '\351' | dd of="$WORK/format.db" bs=1 seek=18 conv=notrunc 2> /dev/null
+pattern="damaged database file \(SQLite header byte 18, the file format write version, is 233; SQLite writes 1 or 2 there, earc 2\)"
+every_command "header byte 18" "$WORK/format.db" "$pattern"
+writers_refuse "header byte 18" "$WORK/format.db" "$pattern"
+
 # --- A column of the schema dropped (an edited file): one line naming it,
 # no SQL text; verify lists it as a problem (exit 1).
 cp "$WORK/good.db" "$WORK/no-cost.db"

@@ -242,6 +242,36 @@ TEST_CASE("quick_check runs unmapped with a small cache and gives the connection
   CHECK(c.pragmaInt("cache_size") == -kPageCacheKiB);
 }
 
+TEST_CASE("a header file format byte SQLite never writes is refused at every open, naming the byte and its value") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  makeDatabase(path, 6);
+  {
+    Connection c(path, OpenMode::ReadWrite);
+    c.exec("PRAGMA journal_mode = WAL");  // as earc keeps its files: 2 in bytes 18 and 19
+  }
+  const std::vector<unsigned char> sound = readBytes(path);
+  REQUIRE(sound[18] == 2);
+  REQUIRE(sound[19] == 2);
+  // 233 in the write version made SQLite open the file read-only and fail
+  // only at the first write, after a plan's or a build's work.
+  for (const auto& [at, value] : {std::pair<std::size_t, int>{18, 233}, std::pair<std::size_t, int>{19, 3}}) {
+    CAPTURE(at);
+    std::vector<unsigned char> bytes = sound;
+    bytes[at] = static_cast<unsigned char>(value);
+    writeBytes(path, bytes);
+    const std::string expected = path + ": damaged database file (SQLite header byte " + std::to_string(at) +
+                                 ", the file format " + (at == 18 ? "write" : "read") + " version, is " +
+                                 std::to_string(value) + "; SQLite writes 1 or 2 there, earc 2); restore a copy or rebuild it";
+    for (OpenMode mode : {OpenMode::ReadOnly, OpenMode::ReadWrite, OpenMode::Hostile})
+      CHECK_THROWS_WITH_AS([&] { Connection c(path, mode); }(), expected.c_str(), DamagedDatabaseError);
+    for (bool read_only : {true, false}) CHECK(openError<DamagedDatabaseError>(path, read_only) == expected);
+    CHECK_THROWS_WITH_AS(verifyDatabase(path), doctest::Contains("SQLite header byte"), InputError);
+    CHECK_THROWS_WITH_AS(readImportSource(path), doctest::Contains("SQLite header byte"), InputError);
+    CHECK(readBytes(path) == bytes);
+  }
+}
+
 TEST_CASE("a truncated database is refused as damaged by the store, verify and import, and left as it was") {
   ScratchDirectory dir("hostile");
   const std::string good = dir.file("good.db");

@@ -179,7 +179,9 @@ inline constexpr const char* kNotARegularFile = "not a regular file (a device, F
 
 class Connection {
  public:
-  // Opens and configures: extended result codes, SQLITE_DBCONFIG_DEFENSIVE,
+  // Refuses a file whose SQLite header has a file format byte (18, 19)
+  // other than 1 or 2 (DamagedDatabaseError) before SQLite opens it. Then
+  // opens and configures: extended result codes, SQLITE_DBCONFIG_DEFENSIVE,
   // trusted_schema=OFF, foreign_keys=ON, busy_timeout; Hostile adds
   // cell_size_check=ON, mmap_size=0 and a length limit. Journal mode is
   // left to enableWal(), which the store calls once it has checked that the
