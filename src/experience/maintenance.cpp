@@ -270,16 +270,9 @@ VerifyReport verifyDatabase(const std::string& path) {
                       std::to_string(currentSchemaVersion()) + "); migrated on the next read-write open");
   try {
     Statement integrity = db->prepare("PRAGMA integrity_check");
-    while (integrity.step()) {
-      // One result row may hold several lines ("*** in database main ***\n...").
-      std::string text = integrity.textAt(0);
-      for (std::size_t at = 0; at < text.size();) {
-        std::size_t end = std::min(text.find('\n', at), text.size());
-        const std::string line = text.substr(at, end - at);
-        if (line != "ok" && line != "*** in database main ***") r.problems.push_back("integrity_check: " + line);
-        at = end + 1;
-      }
-    }
+    while (integrity.step())
+      for (const std::string& line : checkProblemLines(integrity.textAt(0)))
+        r.problems.push_back("integrity_check: " + line);
   } catch (const StoreError& e) {
     r.problems.push_back(e.what());
   }
@@ -346,7 +339,12 @@ std::string curateDescription(const CurateSettings& s, const std::string& copy_o
 CurateReport curateFile(const std::string& target, const CurateSettings& settings, const std::string& copy_of = {}) {
   CurateReport r;
   r.curated_path = target;
-  ExperienceStore store(target, wholeFileStoreOptions(false));  // curation is not a planning session
+  // Curation is not a planning session. In place, the file is checked
+  // whole, indexes too, before any step writes to it; a -o copy was made
+  // just now from a source checked so (copyDatabase).
+  StoreOptions options = wholeFileStoreOptions(false);
+  options.full_check = copy_of.empty();
+  ExperienceStore store(target, options);
   store.describeHistory("curate", curateDescription(settings, copy_of));
   Connection& db = store.connection();
   // Rows deleted by a step, counted on the history line in its transaction.
@@ -469,7 +467,7 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   const std::string tmp = curateTemporary(out, std::to_string(::getpid()));
   removeDatabaseFiles(tmp);
   try {
-    copyDatabase(path, tmp);
+    copyDatabase(path, tmp, /*full_check=*/true);  // VACUUM INTO copies a damaged index as it is
     CurateReport r = curateFile(tmp, settings, path);
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, out.c_str(), RENAME_NOREPLACE) != 0) {
       const int err = errno;
@@ -486,9 +484,11 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   }
 }
 
-void copyDatabase(const std::string& from, const std::string& to) {
+void copyDatabase(const std::string& from, const std::string& to, bool full_check) {
   if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
-  ExperienceStore source(from, wholeFileStoreOptions(true));  // identity and version checked
+  StoreOptions options = wholeFileStoreOptions(true);
+  options.full_check = full_check;
+  ExperienceStore source(from, options);  // identity and version checked
   // VACUUM INTO only reads the source, but query_only (how a read-only
   // store opens its own files) refuses it as a write.
   source.connection().exec("PRAGMA query_only = OFF");

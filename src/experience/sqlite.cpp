@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -314,7 +315,22 @@ void Connection::exec(std::string_view sql) {
   }
 }
 
-void Connection::requireQuickCheck() {
+std::vector<std::string> checkProblemLines(const std::string& row) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < row.size();) {
+    const std::size_t end = std::min(row.find('\n', at), row.size());
+    std::string line = row.substr(at, end - at);
+    at = end + 1;
+    if (line != "ok" && line != "*** in database main ***") lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+void Connection::requireQuickCheck() { requireCheck("quick_check"); }
+
+void Connection::requireIntegrityCheck() { requireCheck("integrity_check"); }
+
+void Connection::requireCheck(const char* pragma) {
   const std::int64_t mmap = pragmaInt("mmap_size"), cache = pragmaInt("cache_size");
   exec("PRAGMA mmap_size = 0");
   exec("PRAGMA cache_size = -" + std::to_string(kQuickCheckCacheKiB));
@@ -329,16 +345,14 @@ void Connection::requireQuickCheck() {
       }
     }
   } restore{*this, mmap, cache};
-  Statement check = prepare("PRAGMA quick_check");
+  Statement check = prepare("PRAGMA " + std::string(pragma));
   std::string first;
   std::size_t problems = 0;
-  while (check.step()) {
-    std::string line = check.textAt(0);
-    if (line == "ok") continue;
-    if (problems++ == 0) first = oneLine(std::move(line));
-  }
+  while (check.step())
+    for (std::string& line : checkProblemLines(check.textAt(0)))
+      if (problems++ == 0) first = oneLine(std::move(line));
   if (problems > 0)
-    throw DamagedDatabaseError(path_ + ": damaged database file (quick_check: " + first +
+    throw DamagedDatabaseError(path_ + ": damaged database file (" + pragma + ": " + first +
                                (problems > 1 ? "; " + std::to_string(problems - 1) + " more" : std::string()) +
                                "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
 }

@@ -73,10 +73,14 @@ void ExperienceStore::openLocked() {
   // problem, instead of failing some later query mid-plan. A planner may
   // have it checked in the background instead, when opening needs no write
   // (our WAL file at the current version): then every write waits for it.
-  const bool background = options_.check_in_background && version_ == currentSchemaVersion() &&
+  // An offline writer checks index contents too (full_check).
+  const bool background = options_.check_in_background && !options_.full_check &&
+                          version_ == currentSchemaVersion() &&
                           conn_->retryWhileBusy([&] { return conn_->pragmaText("journal_mode"); }) == "wal";
   if (background)
     startCheckLocked();
+  else if (options_.full_check)
+    conn_->retryWhileBusy([&] { conn_->requireIntegrityCheck(); });
   else
     conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
   if (options_.read_only) {

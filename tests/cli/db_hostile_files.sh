@@ -124,6 +124,37 @@ pattern="damaged database file \(SQLite header byte 18, the file format write ve
 every_command "header byte 18" "$WORK/format.db" "$pattern"
 writers_refuse "header byte 18" "$WORK/format.db" "$pattern"
 
+# --- An index entry that no longer matches its row (one bit flipped in an
+# index leaf page): quick_check, which every open runs, passes it; verify's
+# integrity_check names it. build, import and curate would write into the
+# damaged file and add to the damage (curate -o would copy it): they run
+# integrity_check first and refuse the file.
+cp "$WORK/good.db" "$WORK/stale.db"
+"$PY" - "$WORK/stale.db" <<'EOF' || fail "making a stale index entry"
+import sqlite3, sys
+path = sys.argv[1]
+c = sqlite3.connect(path)
+key = c.execute("select key from experiences where id = 3").fetchone()[0]
+page = c.execute("pragma page_size").fetchone()[0]
+c.close()
+b = bytearray(open(path, "rb").read())
+at = b.find(key)
+while at >= 0 and b[at // page * page] != 0x0a:  # the copy in an index leaf page
+    at = b.find(key, at + 1)
+assert at >= 0, "row 3's key is in no index leaf page"
+b[at + len(key) - 1] ^= 1
+open(path, "wb").write(b)
+c = sqlite3.connect(path)
+assert c.execute("pragma quick_check").fetchall() == [("ok",)], "quick_check sees the damage"
+assert c.execute("pragma integrity_check").fetchall() == [("row 3 missing from index experiences_keys",)]
+c.close()
+EOF
+writers_refuse "stale index entry" "$WORK/stale.db" \
+  "damaged database file \(integrity_check: row 3 missing from index experiences_keys\); restore a copy"
+run "stale index entry" x "$DB" verify --db "$WORK/stale.db"
+[ $code -eq 1 ] && grep -q "^FAIL: integrity_check: row 3 missing from index experiences_keys$" "$WORK/out" \
+  || fail "stale index entry: verify exit $code: $(cat "$WORK/out" "$WORK/err")"
+
 # --- A column of the schema dropped (an edited file): one line naming it,
 # no SQL text; verify lists it as a problem (exit 1).
 cp "$WORK/good.db" "$WORK/no-cost.db"

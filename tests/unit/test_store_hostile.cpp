@@ -4,6 +4,7 @@
 // in the tools, exit 2), never crash or throw anything else.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -240,6 +241,73 @@ TEST_CASE("quick_check runs unmapped with a small cache and gives the connection
   CHECK_THROWS_AS(c.requireQuickCheck(), DamagedDatabaseError);
   CHECK(c.pragmaInt("mmap_size") == kMmapBytes);
   CHECK(c.pragmaInt("cache_size") == -kPageCacheKiB);
+}
+
+namespace {
+
+// Flips one bit of row `id`'s key where the covering index experiences_keys
+// holds it (an index leaf page), not where the table does: the index entry
+// no longer matches its row while every page stays well formed, the damage
+// a hostile-input probe made with single flipped bytes. Returns the bytes
+// written.
+std::vector<unsigned char> staleIndexEntry(const std::string& path, std::int64_t id) {
+  std::vector<unsigned char> key;
+  {
+    Connection c(path, OpenMode::ReadOnly);
+    Statement s = c.prepare("SELECT key FROM experiences WHERE id = ?1");
+    s.bind(1, id);
+    REQUIRE(s.step());
+    const auto blob = s.blobAt(0);
+    key.assign(blob.begin(), blob.end());
+  }
+  REQUIRE_FALSE(key.empty());
+  std::vector<unsigned char> bytes = readBytes(path);
+  const auto page = static_cast<std::size_t>(pageSize(path));
+  for (auto it = bytes.begin(); (it = std::search(it, bytes.end(), key.begin(), key.end())) != bytes.end(); ++it) {
+    const auto at = static_cast<std::size_t>(it - bytes.begin());
+    if (bytes[at / page * page] != 0x0a) continue;  // not an index leaf page
+    bytes[at + key.size() - 1] ^= 0x01;  // the last double's exponent: a finite key still
+    writeBytes(path, bytes);
+    return bytes;
+  }
+  FAIL("row " << id << "'s key is in no index leaf page");
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("an index entry that no longer matches its row passes quick_check; build, import and curate refuse it") {
+  ScratchDirectory dir("hostile");
+  const std::string path = dir.file("e.db");
+  makeDatabase(path, 5);
+  const std::vector<unsigned char> bytes = staleIndexEntry(path, 3);
+  const std::string expected = path + ": damaged database file (integrity_check: row 3 missing from index experiences_keys";
+  {
+    Connection c(path, OpenMode::ReadOnly);
+    CHECK_NOTHROW(c.requireQuickCheck());  // what a planner's open runs
+    CHECK_THROWS_WITH_AS(c.requireIntegrityCheck(), doctest::Contains(expected.c_str()), DamagedDatabaseError);
+  }
+  // The store of earc-db build and import (full_check), refused before
+  // anything is written: no WAL switch, no migration, no history line.
+  StoreOptions writer;
+  writer.new_session = false;
+  writer.full_check = true;
+  try {
+    ExperienceStore store(path, writer);
+    FAIL("a full check passed a stale index entry");
+  } catch (const DamagedDatabaseError& e) {
+    const std::string msg = e.what();
+    CHECK(msg.rfind(expected, 0) == 0);
+    CHECK(msg.find('\n') == std::string::npos);
+  }
+  // curate in place, and curate -o, which would copy the index as it is.
+  CHECK_THROWS_WITH_AS(curateDatabase(path, {}), doctest::Contains(expected.c_str()), DamagedDatabaseError);
+  CurateSettings copy;
+  copy.output = dir.file("copy.db");
+  CHECK_THROWS_WITH_AS(curateDatabase(path, copy), doctest::Contains(expected.c_str()), DamagedDatabaseError);
+  CHECK_FALSE(std::filesystem::exists(copy.output));
+  CHECK(readBytes(path) == bytes);
+  CHECK_FALSE(std::filesystem::exists(path + "-wal"));
 }
 
 TEST_CASE("a header file format byte SQLite never writes is refused at every open, naming the byte and its value") {

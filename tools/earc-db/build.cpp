@@ -165,6 +165,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   const auto report = earc::exp::withInputErrors(opt.db, [&] {
     earc::exp::StoreOptions options;
     options.new_session = false;  // building is not a planning session
+    options.full_check = true;    // never build onto a damaged file (indexes too)
     earc::exp::ExperienceStore store(opt.db, options);
     earc::Progress progress("build", static_cast<std::size_t>(count), !opt.quiet);
     return earc::exp::buildDatabase(store, s, &progress);

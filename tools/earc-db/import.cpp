@@ -38,6 +38,7 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
   const auto report = earc::exp::withInputErrors(opt.db, [&] {
     earc::exp::StoreOptions options;
     options.new_session = false;
+    options.full_check = true;  // never import into a damaged file (indexes too)
     earc::exp::ExperienceStore store(opt.db, options);
     std::ostringstream from;
     from << "from";

@@ -105,12 +105,16 @@ struct CurateReport {
 // unused entries, then those made by the builds named, then (compact)
 // rewrites path blobs of an older format in the current one, which gives
 // back exactly the same paths; each step one write transaction. A damaged
-// blob is left as it is.
+// blob is left as it is; a file that fails integrity_check (the one
+// curated in place, or the source of a copy) is refused before anything
+// is written (DamagedDatabaseError).
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
 
 // A consistent copy of a live database (VACUUM INTO; never cp): readers and
-// writers may keep using the source. `to` must not exist.
-void copyDatabase(const std::string& from, const std::string& to);
+// writers may keep using the source. `to` must not exist. full_check: the
+// source must pass integrity_check, not only quick_check (VACUUM INTO
+// copies an index's pages as they are, damage included).
+void copyDatabase(const std::string& from, const std::string& to, bool full_check = false);
 
 // Runs f(); a database file that cannot be used (missing, foreign, newer,
 // damaged) becomes an InputError naming it: one line and exit status 2 in

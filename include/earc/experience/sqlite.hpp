@@ -19,6 +19,7 @@
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace earc::exp {
 
@@ -36,8 +37,9 @@ class ForeignDatabaseError : public StoreError {
 };
 
 // The file is damaged: SQLite found it malformed (a truncated file, flipped
-// bytes, a torn page), or quick_check failed. what() names the file and
-// says what to do.
+// bytes, a torn page), quick_check or integrity_check failed, or its
+// header's file format bytes hold a value SQLite never writes. what()
+// names the file and says what to do.
 class DamagedDatabaseError : public StoreError {
  public:
   using StoreError::StoreError;
@@ -82,6 +84,11 @@ class CorruptRowError : public StoreError {
   std::int64_t row_;
   std::string reason_;
 };
+
+// The problems in one result row of PRAGMA quick_check or integrity_check,
+// a line each: SQLite reports page-level damage as several lines in one
+// row after "*** in database main ***", and a sound file as "ok" (none).
+std::vector<std::string> checkProblemLines(const std::string& row);
 
 // A StoreError's message without its leading "FILE: " (path as given, or
 // as SQLite names it, absolute), for errors that name the file themselves.
@@ -206,6 +213,15 @@ class Connection {
   // 2-robot plan's peak resident size).
   void requireQuickCheck();
 
+  // PRAGMA integrity_check: quick_check's checks and also that every index
+  // holds exactly its table's rows. A flipped byte in an index page passes
+  // quick_check ("row 3 missing from index experiences_keys"), and a
+  // write into such a file compounds the damage. Same error, same memory
+  // limits; slower (measured in the README, *Hostile files*), so for the
+  // offline writers (earc-db build, import, curate: StoreOptions::
+  // full_check), never for a planner's open.
+  void requireIntegrityCheck();
+
   // journal_mode=WAL (checked: a file system without WAL support is an
   // error), journal_size_limit, synchronous=FULL.
   void enableWal();
@@ -247,6 +263,8 @@ class Connection {
   template <class Body>
   auto transaction(const char* begin, Body&& body) -> decltype(body());
   void rollbackQuietly();
+  // requireQuickCheck and requireIntegrityCheck: PRAGMA `pragma`.
+  void requireCheck(const char* pragma);
   void backoff(int attempt) const;
   [[noreturn]] void throwBusy(int attempts) const;
 

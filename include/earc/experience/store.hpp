@@ -58,6 +58,12 @@ struct StoreOptions {
   // damaged file is still never written to. awaitCheck() asks for the
   // verdict (and counts the session).
   bool check_in_background = false;
+  // Run PRAGMA integrity_check at open instead of quick_check: index
+  // contents too (Connection::requireIntegrityCheck). For the offline
+  // commands that write into an existing file (earc-db build, import,
+  // curate), which must not add to a damaged one; ignores
+  // check_in_background.
+  bool full_check = false;
   ConnectionSettings connection;
 };
 
