@@ -206,8 +206,8 @@ class Connection {
 
   // PRAGMA quick_check (page structure, record formats, NOT NULL and
   // CHECK constraints; not index contents): throws DamagedDatabaseError
-  // naming the file and the first problem. O(file size), about 20 ms for
-  // a 56 MB file in the page cache. The check reads every page once, so it
+  // naming the file and the first problem. O(file size), about 0.1 s for
+  // a 95 MB file (50,000 entries) in the page cache. The check reads every page once, so it
   // runs unmapped and with a small page cache: otherwise the whole file
   // stays in the process's memory (a 48 MB database added 45 MB to a
   // 2-robot plan's peak resident size).
