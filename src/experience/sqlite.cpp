@@ -7,10 +7,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <memory>
 #include <optional>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "earc/util/format.hpp"
 
@@ -28,13 +29,46 @@ std::string fileOf(sqlite3* db) {
   return f && *f ? f : "<memory>";
 }
 
+// The first `bytes` bytes of a file, read through SQLite's own file layer;
+// nothing for a short or unreadable file. Never through a descriptor of
+// our own: closing any descriptor of a file drops every POSIX lock this
+// process holds on it (fcntl semantics), SQLite's included. A plan's
+// background quick_check opened a second connection and read the header
+// so, and from then on its main connection held no lock: another process
+// closing the database took itself for the last user, checkpointed and
+// deleted the WAL under it, and rows were lost and the file damaged. The
+// unix VFS keeps such a descriptor open until the file's last lock in the
+// process is released.
+std::optional<std::vector<unsigned char>> readThroughSqlite(const std::string& path, int bytes) {
+  sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
+  if (!vfs) return std::nullopt;
+  // A main-database name as SQLite makes them (double NUL-terminated, so
+  // the VFS may look for URI parameters after it).
+  const std::unique_ptr<const char, decltype(&sqlite3_free_filename)> name(
+      sqlite3_create_filename(path.c_str(), "", "", 0, nullptr), &sqlite3_free_filename);
+  // sqlite3_file's state, as large as the VFS asks, suitably aligned.
+  std::vector<std::max_align_t> state((static_cast<std::size_t>(vfs->szOsFile) + sizeof(std::max_align_t) - 1) /
+                                      sizeof(std::max_align_t));
+  auto* file = reinterpret_cast<sqlite3_file*>(state.data());
+  int flags = 0;
+  const int opened = vfs->xOpen(vfs, name.get(), file, SQLITE_OPEN_READONLY | SQLITE_OPEN_MAIN_DB, &flags);
+  std::optional<std::vector<unsigned char>> out;
+  if (opened == SQLITE_OK) {
+    std::vector<unsigned char> data(static_cast<std::size_t>(bytes));
+    if (file->pMethods->xRead(file, data.data(), bytes, 0) == SQLITE_OK) out = std::move(data);
+  }
+  if (file->pMethods) file->pMethods->xClose(file);
+  return out;
+}
+
 // The 100-byte header of an SQLite file, read before SQLite opens it;
 // nothing for a short or unreadable file or one without SQLite's magic.
 using SqliteHeader = std::array<unsigned char, 100>;
 std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  const auto bytes = readThroughSqlite(path, 100);
+  if (!bytes) return std::nullopt;
   SqliteHeader h{};
-  if (!in.read(reinterpret_cast<char*>(h.data()), h.size())) return std::nullopt;
+  std::copy(bytes->begin(), bytes->end(), h.begin());
   static constexpr char kMagic[] = "SQLite format 3";  // and its NUL: 16 bytes
   if (std::memcmp(h.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
   return h;
@@ -115,6 +149,8 @@ std::optional<std::string> truncation(const std::string& file) {
 }
 
 }  // namespace
+
+bool startsLikeSqlite(const std::string& path) { return sqliteHeader(path).has_value(); }
 
 std::string withoutFile(const std::string& message, const std::string& path) {
   std::error_code ec;

@@ -18,14 +18,6 @@ using nlohmann::json;
 // Bad rows listed in one import error before "... and N more".
 constexpr std::size_t kListedBadRows = 10;
 
-bool looksLikeSqlite(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open for reading");
-  char head[16] = {};
-  in.read(head, sizeof head);
-  return in.gcount() == 16 && std::string(head, 16) == std::string("SQLite format 3\0", 16);
-}
-
 json pathsToJson(const std::vector<Path>& paths) {
   json out = json::array();
   for (const Path& p : paths) {
@@ -289,7 +281,7 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
 
 std::vector<Experience> readImportSource(const std::string& path, Progress* progress) {
   requireDatabaseFile(path);
-  return looksLikeSqlite(path) ? readSqlite(path, progress) : readJsonl(path, progress);
+  return startsLikeSqlite(path) ? readSqlite(path, progress) : readJsonl(path, progress);
 }
 
 std::vector<Experience> readImportSources(const std::vector<std::string>& inputs, const ImportSettings& settings) {

@@ -3,6 +3,7 @@
 // rows, no unhandled SQLITE_BUSY, integrity intact.
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/scratch.hpp"
+#include "earc/experience/sqlite.hpp"
 #include "earc/experience/store.hpp"
 
 using namespace earc;
@@ -49,7 +51,44 @@ constexpr int kRowsPerChild = 300;
   _exit(status);
 }
 
+// Whether this process holds a POSIX lock on some byte of `path`, asked
+// from a forked child (F_GETLK does not see the asker's own locks).
+bool lockHeldOn(const std::string& path) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    struct flock probe {};
+    probe.l_type = F_WRLCK;
+    probe.l_whence = SEEK_SET;
+    const bool locked = fd >= 0 && ::fcntl(fd, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK;
+    _exit(locked ? 0 : 1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
 }  // namespace
+
+// Closing any descriptor of a file drops every POSIX lock the process holds
+// on it. A plan's background quick_check opened a second connection, whose
+// header read did that: its main connection then held no lock, another
+// process closing the file took itself for the last user and deleted the
+// WAL under it, and two plans sharing a database damaged it.
+TEST_CASE("a second connection to a file in one process leaves the first one's lock in place") {
+  ScratchDirectory dir("locks");
+  const std::string path = dir.file("e.db");
+  ExperienceStore store(path);
+  REQUIRE(lockHeldOn(path));  // a WAL connection keeps a shared lock while open
+  { Connection other(path, OpenMode::ReadOnly); }
+  CHECK(lockHeldOn(path));
+  { Connection other(path, OpenMode::Hostile); }
+  CHECK(lockHeldOn(path));
+  CHECK(startsLikeSqlite(path));
+  CHECK(lockHeldOn(path));
+  store.awaitCheck();  // the background quick_check's own connection
+  CHECK(lockHeldOn(path));
+}
 
 TEST_CASE("two processes inserting into one new file at once lose no row and duplicate none") {
   ScratchDirectory dir("concurrency");

@@ -90,6 +90,10 @@ class CorruptRowError : public StoreError {
 // row after "*** in database main ***", and a sound file as "ok" (none).
 std::vector<std::string> checkProblemLines(const std::string& row);
 
+// Whether the file begins with SQLite's header, read through SQLite's file
+// layer so that this process's locks on the file stay (see sqlite.cpp).
+bool startsLikeSqlite(const std::string& path);
+
 // A StoreError's message without its leading "FILE: " (path as given, or
 // as SQLite names it, absolute), for errors that name the file themselves.
 std::string withoutFile(const std::string& message, const std::string& path);

@@ -1,0 +1,39 @@
+#!/bin/bash
+# One experience file, several E-ARC plans at once: a long plan learning
+# while short plans open, learn and close the same file beside it. Every
+# plan exits 0, the file passes `earc-db verify` (integrity_check and every
+# row), and every row id a plan reported learned is in the file. (Each
+# plan's background quick_check used to read the file's header through a
+# descriptor of its own, whose close dropped the plan's SQLite locks: a
+# short plan closing then took itself for the last user and deleted the
+# WAL under the long one, which found the file damaged.)
+set -u
+BUILD=$1
+. "$(dirname "$0")/common.bash"
+needBuilt earc-plan earc-db earc-scenario
+command -v jq > /dev/null || { echo "skipped: no jq"; exit 77; }
+"$BUILD/earc-scenario" generate -n 40 --workspace 8 --seed 1 -o "$WORK/long.json" > /dev/null || fail "generate long"
+"$BUILD/earc-scenario" generate -n 24 --workspace 8 --obstacles 4 --seed 2 -o "$WORK/short.json" > /dev/null ||
+  fail "generate short"
+"$BUILD/earc-db" build --db "$WORK/s.db" --kind mobile --seed 1 -q || fail "build"
+
+"$BUILD/earc-plan" plan "$WORK/long.json" -o "$WORK/long.sol.json" --method earc --db "$WORK/s.db" \
+  --time-limit 60 -q 2> "$WORK/long.err" &
+long=$!
+sleep 1
+for i in 1 2 3 4; do
+  "$BUILD/earc-plan" plan "$WORK/short.json" -o "$WORK/short$i.sol.json" --method earc --db "$WORK/s.db" \
+    --seed $i -q 2> "$WORK/short$i.err" || fail "short plan $i exited $?: $(head -c 300 "$WORK/short$i.err")"
+done
+wait $long || fail "the long plan exited $?: $(head -c 300 "$WORK/long.err")"
+"$BUILD/earc-db" verify --db "$WORK/s.db" > "$WORK/verify.out" 2>&1 || fail "verify: $(tail -c 400 "$WORK/verify.out")"
+learned=0
+for sol in "$WORK"/long.sol.json "$WORK"/short?.sol.json; do
+  for id in $(jq -r '.stats.db_learned_ids[]?' "$sol"); do
+    n=$(sqlite3 "file:$WORK/s.db?mode=ro" "SELECT count(*) FROM experiences WHERE id = $id" 2>&1)
+    [ "$n" = 1 ] || fail "row $id, learned by $(basename "$sol"), is not in the file ($n)"
+    learned=$((learned + 1))
+  done
+done
+[ $learned -ge 1 ] || fail "no plan learned anything: the test proves nothing"
+echo "ok: 5 plans shared the file, $learned learned rows all there"
