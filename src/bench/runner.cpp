@@ -28,6 +28,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/planning/database_solver.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
 #include "earc/util/version.hpp"
@@ -364,15 +365,11 @@ class Runner {
     t.sum_of_costs = num("sum_of_costs");
     t.conflicts = num("conflicts");
     t.planner_version = plannerVersion(doc);
-    if (database_method) t.db_hits = num("db_hits");
-    // E-ARC counts database hits per solver: retrieved as is, or repaired.
-    if (database_method && !t.db_hits && st.contains("subproblems_by_solver") && st["subproblems_by_solver"].is_object()) {
-      const auto& by = st["subproblems_by_solver"];
-      std::int64_t hits = 0;
-      for (const char* k : {"database", "repair"})
-        if (by.contains(k) && by[k].is_number()) hits += by[k].get<std::int64_t>();
-      t.db_hits = hits;
-    }
+    // E-ARC's database answers, retrieved as they are or repaired, as its
+    // summary line and db_hit_rate count them (its db_hits stat counts the
+    // former only); Lightning's: 1 when it recalled the whole problem.
+    if (database_method)
+      t.db_hits = st.contains("subproblems_by_solver") ? databaseAnswers(st).answered() : num("db_hits");
     if (!solved && st.contains("failure")) {
       const auto& f = st["failure"];
       if (f.is_array()) {

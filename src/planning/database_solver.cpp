@@ -463,10 +463,16 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
 
 DatabaseAnswers databaseAnswers(const nlohmann::json& stats) {
   DatabaseAnswers a;
-  const nlohmann::json by = stats.value("subproblems_by_solver", nlohmann::json::object());
-  for (const auto& [name, count] : by.items()) a.solved += count.get<std::int64_t>();
-  a.retrieved = by.value("database", std::int64_t{0});
-  a.repaired = by.value("repair", std::int64_t{0});
+  // Read from another program's output too (earc-bench): what is not a
+  // count counts nothing.
+  const auto found = stats.find("subproblems_by_solver");
+  if (found == stats.end() || !found->is_object()) return a;
+  for (const auto& [name, count] : found->items()) {
+    const std::int64_t n = count.is_number_integer() ? count.get<std::int64_t>() : 0;
+    a.solved += n;
+    if (name == "database") a.retrieved = n;
+    if (name == "repair") a.repaired = n;
+  }
   return a;
 }
 

@@ -43,4 +43,24 @@ rows = sqlite3.connect("file:%s?mode=ro" % sys.argv[2], uri=True).execute(
     "SELECT suite, construction_time_s, entries FROM databases").fetchall()
 assert rows == [("mobile", None, built)], (rows, built)
 PYEOF
+# The hit count is the database's answers, retrieved or repaired (what
+# the table's hit rate and the plan's summary line count), not db_hits
+# alone: a stand-in planner reports 2 retrieved and 1 repaired.
+cat > "$WORK/hits-plan" <<FAKE
+#!/bin/bash
+"$BUILD/earc-plan" "\$@" || exit \$?
+[ "\$1" = plan ] || exit 0
+while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
+exec "$PY" -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+d["stats"].update(db_hits=2, db_repairs=1, subproblems_by_solver={"database": 2, "repair": 1, "decoupled": 4})
+json.dump(d, open(sys.argv[1], "w"))' "\$out"
+FAKE
+chmod +x "$WORK/hits-plan"
+"$BENCH" run --suites mobile --robots 2 --methods earc --trials 1 --time-limit 10 --seed 9 --plan-program "$WORK/hits-plan" \
+  --db-mobile "$WORK/r.sqlite.work/earc-mobile.sqlite" --results "$WORK/hits.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
+  fail "run with the stand-in planner exited $?"
+got=$("$PY" -c 'import sqlite3, sys
+print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute("SELECT db_hits FROM trials").fetchone()[0])' "$WORK/hits.sqlite")
+[ "$got" = 3 ] || fail "db_hits recorded $got for 2 retrieved and 1 repaired answers"
 echo "ok: E-ARC databases built and used"
