@@ -83,6 +83,10 @@ bool conflicting(const CollisionWorld& world, const std::vector<const RobotModel
   return checker.stateValid(q.starts) && checker.stateValid(q.goals) && !checker.motionValid(q.starts, q.goals);
 }
 
+// The bounding radius of the default mobile footprint (a 0.6 x 0.4 box),
+// for which QuerySampling's distances were chosen.
+constexpr double kTunedBoundingRadius = 0.3606;
+
 // Mobile: a workspace just around the query, no obstacles.
 std::optional<Problem> mobileProblem(const BuildSettings& s, const RobotSpec& robot, int n, std::mt19937_64& rng) {
   Problem p;
@@ -91,8 +95,19 @@ std::optional<Problem> mobileProblem(const BuildSettings& s, const RobotSpec& ro
   p.models = makeRobotModels(p.scenario);
   const auto robots = raw(p.models);
   const double pad = p.models.front()->boundingRadius() + s.region_margin;
+  // The start and goal distances were chosen for the default footprint
+  // (the 0.6 x 0.4 box); a larger robot meets others farther from the
+  // conflict point, and at those distances its starts would overlap: a
+  // 0.8-radius disc found a conflicting query in 2% of problems. Scaled
+  // with the footprint's bounding radius.
+  QuerySampling sampling = s.sampling;
+  // At most 8 times: paths then run to hundreds of steps at the default
+  // resolution, and a footprint beyond it finds no query, as before.
+  const double scale = std::clamp(p.models.front()->boundingRadius() / kTunedBoundingRadius, 1.0, 8.0);
+  sampling.min_start_distance *= scale;
+  sampling.max_start_distance *= scale;
   for (int attempt = 0; attempt < kQueryAttempts; ++attempt) {
-    Query q = sampleMobileQuery(n, rng, s.sampling);
+    Query q = sampleMobileQuery(n, rng, sampling);
     geo::Aabb box;
     for (const auto* v : {&q.starts, &q.goals})
       for (const auto& c : *v) box.expand({{c[0], c[1]}, {c[0], c[1]}});

@@ -107,3 +107,30 @@ TEST_CASE("built arm experiences are valid solutions for their base transform cl
   }
   CHECK(checked == r.inserted);
 }
+
+TEST_CASE("the builder finds conflicting queries for robots larger than the default footprint") {
+  // Start and goal distances made for the 0.6 x 0.4 box put 0.8-radius
+  // discs on top of each other: 77 entries of 5,000 problems.
+  ScratchDirectory dir("builder-large");
+  ExperienceStore store(dir.file("large.db"));
+  BuildSettings s;
+  s.count = 40;
+  s.seed = 2;
+  RobotSpec disc;
+  disc.kind = RobotKind::Mobile;
+  disc.shape = MobileShape::Disc;
+  disc.radius = 0.8;
+  s.mobile_robots = {disc};
+  const BuildReport r = buildDatabase(store, s);
+  CHECK(r.problems == 40);
+  CHECK(r.no_query <= 12);
+  CHECK(r.inserted >= 20);
+  for (const Experience& e : allRows(store)) {
+    CAPTURE(e.id);
+    geo::Aabb box;
+    for (const Path& p : e.paths)
+      for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
+    auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), disc), box.inflated(2.0));
+    CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+  }
+}
