@@ -39,6 +39,16 @@ ValidationReport validateStored(const Experience& e, std::vector<RobotSpec> robo
   return validateSolution(sc, sol);
 }
 
+// A stored mobile experience, every robot `robot`, checked as a solution in
+// a workspace `margin` around its paths.
+void checkStoredMobileValid(const Experience& e, const RobotSpec& robot, double margin) {
+  geo::Aabb box;
+  for (const Path& p : e.paths)
+    for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
+  auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), robot), box.inflated(margin));
+  CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+}
+
 std::vector<RobotSpec> generatedArms() {
   gen::ArmSettings a;
   a.robots = 4;
@@ -62,16 +72,12 @@ TEST_CASE("built mobile experiences are valid solutions of conflicting subproble
   CHECK(r.problems == 12);
   CHECK(r.inserted == r.solved - r.duplicates);
   CHECK(r.inserted >= 10);
+  RobotSpec robot;
+  robot.shape = MobileShape::Box;
+  robot.box_size = gen::MobileFootprint{}.box_size;
   for (const Experience& e : allRows(store)) {
     CAPTURE(e.id);
-    geo::Aabb box;
-    for (const Path& p : e.paths)
-      for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
-    RobotSpec robot;
-    robot.shape = MobileShape::Box;
-    robot.box_size = gen::MobileFootprint{}.box_size;
-    auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), robot), box.inflated(1.0));
-    CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+    checkStoredMobileValid(e, robot, 1.0);
     CHECK(e.source == Source::Build);
     CHECK(e.solve_time_s > 0);
     // A conflict: the straight motion was not already valid, so the paths
@@ -127,10 +133,6 @@ TEST_CASE("the builder finds conflicting queries for robots larger than the defa
   CHECK(r.inserted >= 20);
   for (const Experience& e : allRows(store)) {
     CAPTURE(e.id);
-    geo::Aabb box;
-    for (const Path& p : e.paths)
-      for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
-    auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), disc), box.inflated(2.0));
-    CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+    checkStoredMobileValid(e, disc, 2.0);
   }
 }
