@@ -302,8 +302,6 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
   for (Experience& e : rows) {
     if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
     if (e.created_at == 0) e.created_at = now;
-    // A row kept as given may name a session later than this file's
-    // count; curate --drop-unused then counts it as recent, never as old.
     if (stamp == SessionStamp::ThisSession) e.created_session = session_;
   }
   auto within = [eps](const ClassIndex* index, const Experience& e) {
@@ -339,6 +337,13 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       result.push_back(id);
       ++stored;
     }
+    // Rows kept with their sessions (an import restoring an export into an
+    // empty file): the file has seen at least the latest of them, so that
+    // curate --older-than-sessions judges the copy as it judged the original.
+    if (stamp == SessionStamp::AsGiven)
+      conn_->exec(
+          "UPDATE store_meta SET value = max(value, (SELECT coalesce(max(created_session), 0) FROM experiences)) "
+          "WHERE name = 'sessions'");
     if (!history_described_) history_.describe("learn", "planning session " + std::to_string(session_));
     history_.record(*conn_, version_, stored, 0);
     return result;

@@ -127,6 +127,10 @@ TEST_CASE("export then import gives the same rows, every double bit for bit") {
   CHECK(r.inserted == 61);
   CHECK(contents(b) == contents(a));
   CHECK(contents(b).back()["created_session"].get<std::int64_t>() > 0);
+  // The copy has seen as many sessions as its latest row's: curate
+  // --older-than-sessions judges both files alike.
+  CHECK(ExperienceStore(b, wholeFileStoreOptions(true)).session() ==
+        ExperienceStore(a, wholeFileStoreOptions(true)).session());
   // Into a file with rows of its own, the rows are new there: this session.
   std::int64_t session = 0;
   {
