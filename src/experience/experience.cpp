@@ -66,16 +66,6 @@ const SignedRobots& readSignature(const std::string& signature, const std::vecto
   return last;
 }
 
-std::vector<std::string_view> signatureParts(const std::string& signature) {
-  std::vector<std::string_view> parts;
-  for (std::size_t at = 0;;) {
-    const std::size_t end = signature.find('|', at);
-    parts.push_back(std::string_view(signature).substr(at, end - at));
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  return parts;
-}
 
 // How far past a joint limit a stored joint may lie: the checker's 1e-6
 // (RobotModel::withinLimits), and the signature's limits are rounded to 6
@@ -98,6 +88,17 @@ bool wellFormedBaseClass(const std::string& s) {
 }
 
 }  // namespace
+
+std::vector<std::string_view> signatureParts(const std::string& signature) {
+  std::vector<std::string_view> parts;
+  for (std::size_t at = 0;;) {
+    const std::size_t end = signature.find('|', at);
+    parts.push_back(std::string_view(signature).substr(at, end - at));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return parts;
+}
 
 const char* sourceName(Source s) {
   switch (s) {

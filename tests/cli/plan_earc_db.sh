@@ -2,6 +2,7 @@
 # earc-plan plan --method earc --db FILE and the file:
 # - learning (the default) counts the session and writes what it learned;
 # - the summary line says what the database answered and learned;
+# - a database for other robots is a warning line (E-ARC then plans as ARC);
 # - --db-k and --db-repair-max reach the database solver, and
 #   --db-max-stretch refuses answers longer than its bound;
 # - --no-learn leaves the file exactly as it was (no session count, no usage
@@ -26,8 +27,17 @@ stat_of() { "$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["stats
 "$DB" build --db "$F" --scenario "$SCEN" --count 40 --seed 3 --threads 1 -q || fail "build"
 sessions=$(q "$F" "select value from store_meta where name = 'sessions'")
 
+# A database for other robots: one warning line, and the plan goes on.
+"$DB" build --db "$WORK/boxes.db" --size 0.9x0.5 --count 20 --seed 3 --threads 1 -q || fail "build boxes"
+"$PLAN" plan "$SCEN" -o "$WORK/w.json" --method earc --db "$WORK/boxes.db" --no-learn -q 2> "$WORK/w.err" ||
+  fail "plan with a database for other robots: exit $?"
+grep -q "^earc-plan: warning: $WORK/boxes.db holds [0-9]* experiences, none for these robots (mobile:disc" \
+  "$WORK/w.err" || fail "no warning for a database of other robots: $(cat "$WORK/w.err")"
+[ "$(wc -l < "$WORK/w.err")" -eq 1 ] || fail "more than the warning: $(cat "$WORK/w.err")"
+
 # Learning: one more session, the counters of what was retrieved.
-"$PLAN" plan "$SCEN" -o "$WORK/a.json" --method earc --db "$F" --seed 1 -q || fail "plan: exit $?"
+"$PLAN" plan "$SCEN" -o "$WORK/a.json" --method earc --db "$F" --seed 1 -q 2> "$WORK/a.err" || fail "plan: exit $?"
+[ -s "$WORK/a.err" ] && fail "a plan with a database for its robots said: $(cat "$WORK/a.err")"
 [ "$(stat_of "$WORK/a.json" db_queries)" -gt 0 ] || fail "the plan never asked the database"
 [ "$(q "$F" "select value from store_meta where name = 'sessions'")" -eq $((sessions + 1)) ] ||
   fail "a learning plan did not count its session"

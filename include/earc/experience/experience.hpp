@@ -61,6 +61,9 @@ inline constexpr std::size_t kMaxMadeBy = 100;
 // Sum over robots of the path length in steps (states - 1).
 double pathCost(const std::vector<Path>& paths);
 
+// The robots' geometry signatures a class's '|'-joined signature names.
+std::vector<std::string_view> signatureParts(const std::string& signature);
+
 // What is wrong with a class's signature for these paths, or nothing: it
 // must name robot_count robots ('|'-joined), each by a geometry signature
 // earc writes (robotFromSignature), of the class's kind and with its path's
