@@ -223,7 +223,7 @@ class Comparer {
         progress.setStatus(jobs_[i].name);
         ComparePair p = runPair(jobs_[i], r, (i + static_cast<std::size_t>(r)) % 2 == 1);
         if (interruptFlag().load()) break;
-        if (out.pairs.empty()) stopIfRefused(p, jobs_[i]);
+        if (out.pairs.empty()) stopIfRefused(p);
         out.pairs.push_back(std::move(p));
         progress.tick();
       }
@@ -243,16 +243,16 @@ class Comparer {
 
  private:
   // A side that refuses the first plan's input for a reason that is not
-  // the scenario's (exit status 2 and a message that does not name the
-  // scenario file: an option it does not know, a database too new for
-  // it) would refuse every plan alike, and so would one that exits 0
+  // the scenario's (refusedItsCommand: exit status 2 and a message that
+  // does not name the scenario file: an option it does not know, a
+  // database too new for it) would refuse every plan alike, and so would one that exits 0
   // without a solution (not an earc-plan at all): say so at once rather
   // than run the whole comparison for a table of failures. A scenario it cannot
   // read is that pair's failure, as any other.
-  void stopIfRefused(const ComparePair& first, const Job& job) const {
+  void stopIfRefused(const ComparePair& first) const {
     for (const auto& [plan, program, option] : {std::tuple{&first.old_plan, &o_.old_program, "--old"},
                                                 std::tuple{&first.new_plan, &new_, "--new"}})
-      if (plan->refused && plan->failure.find(job.scenario_file) == std::string::npos)
+      if (plan->refused)
         throw InputError(*program, option, "refused the first plan (" + first.scenario + "), so would every plan: " +
                                                plan->failure);
       else if (plan->silent)
@@ -262,9 +262,7 @@ class Comparer {
   }
 
   static std::string describe(const std::string& program, const std::vector<std::string>& args) {
-    std::string s = program;
-    for (const std::string& a : args) s += " " + a;
-    return s;
+    return args.empty() ? program : program + " " + plannerArgsText(args);
   }
 
   const std::string& methodOf(const std::string& side) const { return side == "old" ? old_method_ : new_method_; }
@@ -304,7 +302,7 @@ class Comparer {
     spec.memory_limit_mb = o_.memory_limit_mb;
     const ChildOutcome run = runChild(spec, &interruptFlag());
     p.failure = childFailure(run, spec, err);
-    p.refused = run.started && !run.cancelled && !run.killed_at_limit && !run.signal && run.exit_code == 2;
+    p.refused = refusedItsCommand(run, p.failure, job.scenario_file);
     if (!p.failure.empty()) return p;
     nlohmann::json doc;
     if (auto why = readPlanSolution(run, solution, err, doc)) {
@@ -466,6 +464,8 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
       if (o.db.empty()) throw InputError("", "--db", "method " + *method + " needs a database to start from");
       if (!fs::is_regular_file(o.db)) throw InputError(o.db, "--db", "no such file");
     }
+  requirePlannerArgs(o.old_args, "--old-arg");
+  requirePlannerArgs(o.new_args, "--new-arg");
   if (!o.picture.empty()) render::requireImageOutput(o.picture, "--picture");
   requireSeparateOutputs(o.db, "--db", {{o.csv, "--csv"}, {o.picture, "--picture"}});
   std::vector<Job> jobs;

@@ -3,11 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <string_view>
 
 #include "earc/bench/suites.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/util/format.hpp"
 
 namespace fs = std::filesystem;
 
@@ -62,6 +65,78 @@ void requireSeparateOutputs(const std::string& input, const std::string& input_o
       if (!outputs[j].first.empty() && sameFile(path, outputs[j].first))
         throw InputError(path, option, "is the same file as " + outputs[j].second + " " + outputs[j].first);
   }
+}
+
+namespace {
+
+// An argument as a message quotes it: on one line, cut short.
+std::string quotedArg(const std::string& arg) { return "'" + printableText(arg, 80) + "'"; }
+
+// What earc-bench gives `earc-plan plan` itself (compare's and run's plan
+// commands), by option name: a second one would be refused, or would
+// stand in for the benchmark's own.
+bool setByBench(const std::string& arg) {
+  if (arg.rfind("--", 0) == 0) {
+    const std::string name = arg.substr(0, arg.find('='));
+    for (const char* own : {"--output", "--method", "--time-limit", "--seed", "--db", "--no-learn", "--quiet"})
+      if (name == own) return true;
+    return false;
+  }
+  // -o FILE, -oFILE, -q (and -q clustered with others: -qv).
+  return arg.size() >= 2 && arg[0] == '-' && (arg[1] == 'o' || arg[1] == 'q');
+}
+
+// An option that makes earc-plan print something and exit without planning.
+bool stopsThePlan(const std::string& arg) {
+  const std::string name = arg.substr(0, arg.find('='));
+  return name == "--help" || name == "--version" || (arg.size() >= 2 && arg[0] == '-' && arg[1] == 'h');
+}
+
+}  // namespace
+
+std::optional<std::string> plannerArgsProblem(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.empty()) return std::string("an empty argument");
+    if (printableText(a, a.size()) != a)
+      return quotedArg(a) + " has a control character or a byte that is not UTF-8 text";
+    if (a == "--") return "'--' ends earc-plan's options: what follows it would be taken for a scenario";
+    if (stopsThePlan(a)) return quotedArg(a) + " would stop every plan before it planned";
+    if (setByBench(a))
+      return quotedArg(a) + " sets what earc-bench gives earc-plan itself (the scenario, -o, --method, --time-limit, "
+                            "--seed, --db, --no-learn, -q)";
+    // A word that is no option: an option's value when it follows one
+    // written without '=' (--window 4), else a second scenario.
+    const bool option = a.size() > 1 && a[0] == '-';
+    const bool after_option = i > 0 && args[i - 1].size() > 1 && args[i - 1][0] == '-' &&
+                              args[i - 1].find('=') == std::string::npos;
+    if (!option && !after_option)
+      return quotedArg(a) + " is not an option (nor the value of one): the scenario is earc-bench's to give";
+  }
+  return std::nullopt;
+}
+
+void requirePlannerArgs(const std::vector<std::string>& args, const std::string& option) {
+  if (const auto why = plannerArgsProblem(args)) throw InputError("", option, *why);
+}
+
+std::string plannerArgsText(const std::vector<std::string>& args) {
+  std::string out;
+  for (const std::string& a : args) {
+    if (!out.empty()) out += ' ';
+    const bool safe = !a.empty() && std::all_of(a.begin(), a.end(), [](unsigned char c) {
+      return std::isalnum(c) || std::string_view("@%+=:,./-_").find(static_cast<char>(c)) != std::string_view::npos;
+    });
+    if (safe) {
+      out += a;
+      continue;
+    }
+    // shlex.quote: in single quotes, each ' as '"'"'.
+    out += '\'';
+    for (char c : a) out += c == '\'' ? std::string("'\"'\"'") : std::string(1, c);
+    out += '\'';
+  }
+  return out;
 }
 
 }  // namespace earc::bench

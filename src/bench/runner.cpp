@@ -582,6 +582,11 @@ std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::
   return std::nullopt;
 }
 
+bool refusedItsCommand(const ChildOutcome& run, const std::string& failure, const std::string& scenario_file) {
+  return run.started && !run.cancelled && !run.killed_at_limit && !run.signal && run.exit_code == 2 &&
+         failure.find(scenario_file) == std::string::npos;
+}
+
 std::string plannerVersion(const nlohmann::json& solution) {
   const auto stats = solution.find("stats");
   if (stats == solution.end() || !stats->is_object()) return "";

@@ -12,8 +12,8 @@
 # (--old-method/--new-method), only the one that plans with a database
 # getting a copy; --old-arg/--new-arg take one argument each, so scenario
 # files after them stay scenarios; a CSV on stdout is not mixed with the
-# report; bad options end in one line and exit status 2 before any plan
-# runs.
+# report; bad options (an argument compare gives the plan command itself)
+# end in one line and exit status 2 before any plan runs.
 # Skipped (77) without /usr/bin/python3 or earc-db. (Label bench: plans run
 # under an address-space limit, which AddressSanitizer cannot live with.)
 set -u
@@ -215,4 +215,8 @@ refused "--robots: suite mobile has no 5-robot trials" --old "$PLAN" --suite mob
 echo '{"format": "earc.scenario.v1", "robots": [' > "$WORK/broken.json"
 refused "$WORK/broken.json" --old "$PLAN" "$WORK/broken.json"
 refused "--picture" --old "$PLAN" --picture "$WORK/fig.jpg"
+# Arguments compare gives the plan command itself, or a second scenario,
+# as run's --method-arg refuses them (plannerArgsProblem).
+refused "--new-arg: '--seed=3' sets what earc-bench gives earc-plan itself" --old "$PLAN" --new-arg=--seed=3
+refused "--old-arg: 'x.json' is not an option (nor the value of one)" --old "$PLAN" --old-arg x.json
 echo "ok"

@@ -485,6 +485,43 @@ TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {
   CHECK(row.find("\"exit 2: bad \"\"input\"\", really\"") != std::string::npos);
 }
 
+TEST_CASE("planner arguments that earc-bench sets itself, or that would stop or confuse every plan, are refused") {
+  using Args = std::vector<std::string>;
+  for (const Args& ok : {Args{}, Args{"--db-k=5"}, Args{"--window", "4"}, Args{"--db-max-stretch=4", "--shadow-decoupled"},
+                         Args{"--dbx"}, Args{"--db-k", "-1"}})
+    CHECK_FALSE(plannerArgsProblem(ok).has_value());
+  const std::pair<Args, const char*> refused[] = {
+      {{"--seed=3"}, "'--seed=3' sets what earc-bench gives earc-plan itself (the scenario, -o, --method,"},
+      {{"--time-limit", "5"}, "'--time-limit' sets what earc-bench gives earc-plan itself"},
+      {{"--db=x.sqlite"}, "'--db=x.sqlite' sets what"},
+      {{"--output=x"}, "'--output=x' sets what"},
+      {{"-ox.json"}, "'-ox.json' sets what"},
+      {{"--method=arc"}, "'--method=arc' sets what"},
+      {{"--no-learn"}, "'--no-learn' sets what"},
+      {{"--quiet"}, "'--quiet' sets what"},
+      {{"-q"}, "'-q' sets what"},
+      {{"--help"}, "'--help' would stop every plan before it planned"},
+      {{"-h"}, "'-h' would stop every plan"},
+      {{"--version"}, "'--version' would stop every plan"},
+      {{"--"}, "'--' ends earc-plan's options"},
+      {{"s.json"}, "'s.json' is not an option (nor the value of one): the scenario is earc-bench's to give"},
+      {{"--window=4", "s.json"}, "'s.json' is not an option"},
+      {{""}, "an empty argument"},
+      {{"--x=a\nb"}, "'--x=a?b' has a control character or a byte that is not UTF-8 text"},
+      {{"--x=\xff"}, "'--x=?' has a control character or a byte that is not UTF-8 text"},
+  };
+  for (const auto& [args, says] : refused) {
+    CAPTURE(args.front());
+    const auto why = plannerArgsProblem(args);
+    REQUIRE(why.has_value());
+    CHECK_MESSAGE(why->rfind(says, 0) == 0, *why);
+  }
+  CHECK_THROWS_WITH_AS(requirePlannerArgs({"--seed=3"}, "--new-arg"),
+                       doctest::Contains("--new-arg: '--seed=3' sets what earc-bench gives"), InputError);
+  CHECK(plannerArgsText({}).empty());
+  CHECK(plannerArgsText({"--db-k=5", "--window", "4", "@%+=:,./-_"}) == "--db-k=5 --window 4 @%+=:,./-_");
+}
+
 TEST_CASE("OMPL benchmark logs follow Benchmark::saveResultsToStream's layout") {
   TempPath dir("earc-ompl-logs");
   std::vector<TrialRecord> t = {trial("arc", 0, true, 2), trial("earc", 0, true, 1), trial("arc", 1, false, 60),

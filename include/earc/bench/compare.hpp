@@ -18,7 +18,7 @@ namespace earc::bench {
 struct CompareOptions {
   std::string old_program;                    // an earc-plan
   std::string new_program;                    // empty: earc-plan next to earc-bench
-  std::vector<std::string> old_args, new_args;  // appended to each side's `plan` command
+  std::vector<std::string> old_args, new_args;  // appended to each side's `plan` command (plannerArgsProblem)
   // Scenario files; empty: `trials` scenarios of (suite, robots) generated
   // from `seed` exactly as `earc-bench run` makes them.
   std::vector<std::string> scenarios;
@@ -47,7 +47,7 @@ struct ComparePlan {
   std::string failure;            // why not solved ("" when solved)
   bool invalid = false;           // solved, but the validator refused it
   std::string version;            // the build that planned it (plannerVersion), "" unknown
-  bool refused = false;           // exit status 2: the program refused its input or options
+  bool refused = false;           // refusedItsCommand: refused its options or database, not the scenario
   bool silent = false;            // exit status 0 without a readable solution: not an earc-plan
 };
 
@@ -95,7 +95,8 @@ struct CompareSummary {
 // Runs the comparison; a progress line on a terminal, the summary (and with
 // verbose a line per scenario) on `log`. Bad options (a program that
 // cannot run, a database missing for earc, a scenario file that is not
-// one) throw InputError before any plan runs.
+// one, an argument plannerArgsProblem refuses) throw InputError before
+// any plan runs.
 CompareSummary runCompare(const CompareOptions& options, std::ostream& log);
 
 }  // namespace earc::bench

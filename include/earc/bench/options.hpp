@@ -5,6 +5,7 @@
 #pragma once
 
 #include <exception>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,5 +33,23 @@ std::string reasonAbout(const std::exception& e, const std::string& path);
 // output. outputs: (path, option); empty paths are not outputs.
 void requireSeparateOutputs(const std::string& input, const std::string& input_option,
                             const std::vector<std::pair<std::string, std::string>>& outputs);
+
+// Arguments added to every `earc-plan plan` command (compare's
+// --old-arg/--new-arg, run's --method-arg): why they cannot be given, or
+// nothing. Refused: an argument that sets what earc-bench gives earc-plan
+// itself (the scenario, -o, --method, --time-limit, --seed, --db,
+// --no-learn, -q) or that would stop every plan (--help, --version, --);
+// an empty one; one with a control character or that is not UTF-8 (a
+// results file records it, a table shows it on one line). Whether
+// earc-plan takes the rest is for earc-plan to say: compare and run stop
+// at the first plan it refuses (refusedItsCommand in runner.hpp).
+std::optional<std::string> plannerArgsProblem(const std::vector<std::string>& args);
+// The same, thrown as InputError naming `option`.
+void requirePlannerArgs(const std::vector<std::string>& args, const std::string& option);
+
+// The arguments as a shell would take them, each quoted as Python's
+// shlex.quote quotes it (plot_results.py labels with shlex.join):
+// "--db-k=5 --window 4", "'--x=a b'"; "" for none.
+std::string plannerArgsText(const std::vector<std::string>& args);
 
 }  // namespace earc::bench

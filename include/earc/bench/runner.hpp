@@ -74,6 +74,14 @@ struct ChildOutcome;
 std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::string& solution,
                                             const std::string& err_path, nlohmann::json& doc);
 
+// Whether a plan child refused the command it was given rather than its
+// scenario: exit status 2 (earc-plan's bad input: an option it does not
+// know or a value it refuses, a database too new for it) with a failure
+// (childFailure's line) that does not name the scenario file. Every plan
+// given the same options would be refused alike, so compare stops at its
+// first plan.
+bool refusedItsCommand(const ChildOutcome& run, const std::string& failure, const std::string& scenario_file);
+
 // The build that wrote a solution (its stats' earc_version), "" when it
 // does not say.
 std::string plannerVersion(const nlohmann::json& solution);
