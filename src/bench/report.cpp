@@ -15,6 +15,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "earc/bench/options.hpp"
 #include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/format.hpp"
@@ -112,6 +113,33 @@ std::string fileNamePart(const std::string& name) {
   char hash[24];
   std::snprintf(hash, sizeof hash, "-%08llx", static_cast<unsigned long long>(fnv1a64(name) & 0xffffffffULL));
   return safe + hash;
+}
+
+// What tables and OMPL logs call each method of the trials: its name,
+// followed by the planner arguments its trials ran with (run
+// --method-arg) where there are any: "earc --db-k=5". A results file
+// holds one set per method (ResultsDb); trials given otherwise that mix
+// several are named "earc (several sets of planner arguments)" rather
+// than after one of them.
+std::map<std::string, std::string> methodLabels(const std::vector<TrialRecord>& trials) {
+  std::map<std::string, const std::vector<std::string>*> args;
+  std::map<std::string, std::string> labels;
+  for (const TrialRecord& t : trials) {
+    const auto [it, inserted] = args.emplace(t.method, &t.planner_args);
+    if (inserted)
+      labels[t.method] = t.planner_args.empty() ? t.method : t.method + " " + plannerArgsText(t.planner_args);
+    else if (*it->second != t.planner_args)
+      labels[t.method] = t.method + " (several sets of planner arguments)";
+  }
+  return labels;
+}
+
+// Text in a markdown table's cell: a '|' (an argument may hold one)
+// would end the cell.
+std::string markdownCell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
 }
 
 // OMPL's PlannerStatus for a trial: what ompl_benchmark_statistics.py
@@ -362,6 +390,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
             [](const std::string& a, const std::string& b) { return methodRank(a) < methodRank(b) || (methodRank(a) == methodRank(b) && a < b); });
   const bool both = std::find(methods.begin(), methods.end(), "earc") != methods.end() &&
                     std::find(methods.begin(), methods.end(), "arc") != methods.end();
+  const auto labels = methodLabels(trials);
   std::string heading;
   std::set<std::tuple<std::string, double, int>> rows;
   for (const CellSummary& c : cells) {
@@ -369,7 +398,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
     if (tableHeading(cells, c) != heading) {
       heading = tableHeading(cells, c);
       out << (out.tellp() > 0 ? "\n" : "") << "### " << heading << "\n\n| robots |";
-      for (const auto& m : methods) out << " " << m << " |";
+      for (const auto& m : methods) out << " " << markdownCell(labels.at(m)) << " |";
       if (both) out << " E-ARC / ARC medians [95%] | E-ARC / ARC paired [95%] | E-ARC hit rate |";
       out << "\n|---:|";
       for (std::size_t i = 0; i < methods.size(); ++i) out << "---|";
@@ -410,6 +439,7 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases) {
   std::ostringstream out;
   const auto cells = summarize(trials);
+  const auto labels = methodLabels(trials);
   std::string heading;
   for (const CellSummary& c : cells) {
     if (tableHeading(cells, c) != heading) {
@@ -418,7 +448,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
           << "| robots | method | solved | median time (s) | IQR (s) |\n"
           << "|---:|:---|---:|---:|:---|\n";
     }
-    out << "| " << c.robots << " | " << c.method << " | " << c.solved << "/" << c.trials << " ("
+    out << "| " << c.robots << " | " << markdownCell(labels.at(c.method)) << " | " << c.solved << "/" << c.trials << " ("
         << formatNumber("%.0f", 100.0 * c.solved / std::max(1, c.trials)) << "%) | "
         << (c.median_s ? secs(*c.median_s) : "-") << " | "
         << (c.q1_s ? secs(*c.q1_s) + " - " + secs(*c.q3_s) : "-") << " |\n";
@@ -461,7 +491,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at,jobs,planner_version,bench_version\n";
+         "finished_at,jobs,planner_version,bench_version,planner_args\n";
   for (const auto& t : trials) {
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
@@ -469,7 +499,8 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(std::optional<double>(t.wall_time_s)) << ',' << opt(t.makespan) << ',' << opt(t.sum_of_costs) << ','
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
         << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
-        << ',' << csvField(t.planner_version) << ',' << csvField(t.bench_version) << "\n";
+        << ',' << csvField(t.planner_version) << ',' << csvField(t.bench_version) << ','
+        << csvField(plannerArgsText(t.planner_args)) << "\n";
   }
 }
 
@@ -523,6 +554,7 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
       "conflicts INTEGER", "database hits INTEGER", "makespan INTEGER", "memory REAL",   "solved BOOLEAN",
       "status ENUM",       "sum of costs INTEGER",  "time REAL",        "trial INTEGER", "wall time REAL"};
   std::vector<std::string> files;
+  const auto labels = methodLabels(trials);
   for (const auto& [key, experiment] : omplExperiments(trials)) {
     const auto& [rank, suite, robots, limit] = key;
     const auto& [name, runs] = experiment;
@@ -567,7 +599,7 @@ std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, c
       o << '|' << ompl::base::PlannerStatus(static_cast<ompl::base::PlannerStatus::StatusType>(i)).asString();
     o << "\n" << methods.size() << " planners\n";
     for (const std::string& m : methods) {
-      o << oneLine(m) << "\n0 common properties\n" << props.size() << " properties for each run\n";
+      o << oneLine(labels.at(m)) << "\n0 common properties\n" << props.size() << " properties for each run\n";
       for (const auto& p : props) o << p << "\n";
       auto list = by_method[m];
       std::sort(list.begin(), list.end(), [](const TrialRecord* a, const TrialRecord* b) { return a->trial < b->trial; });

@@ -6,7 +6,11 @@
 #include <ctime>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <string_view>
+#include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "earc/bench/options.hpp"
 #include "earc/bench/suites.hpp"
@@ -71,10 +75,14 @@ CREATE TABLE databases (
 // 4: which earc-bench ran and timed it: how trials are run changes their
 //    timings too (see d3acb53 in the README), and --plan-program plans
 //    with another build than the one timing.
+// 5: what the planner was told beyond the benchmark's own options (run
+//    --method-arg): E-ARC with --db-k=5 is another experiment than E-ARC.
+//    Every trial before it ran with none: NULL, as none is written.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
     "ALTER TABLE trials ADD COLUMN bench_version TEXT",
+    "ALTER TABLE trials ADD COLUMN planner_args TEXT",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -189,6 +197,20 @@ class CheckedResultRow {
       bad(c, value(c) + " is not a seed (a whole number from 0 to 2^64-1 as decimal text)");
     return v;
   }
+  // NULL (none), or a JSON array of the arguments, as addTrial writes
+  // them: at least one, each a string plannerArgsProblem accepts.
+  std::vector<std::string> plannerArgs(int c) const {
+    if (isNull(c)) return {};
+    const std::string t = text(c);
+    std::vector<std::string> args;
+    const nlohmann::json j = nlohmann::json::parse(t, nullptr, /*allow_exceptions=*/false);
+    const bool strings = j.is_array() && !j.empty() &&
+                         std::all_of(j.begin(), j.end(), [](const nlohmann::json& a) { return a.is_string(); });
+    if (!strings) bad(c, value(c) + " is not a JSON array of planner arguments (strings)");
+    for (const auto& a : j) args.push_back(a.get<std::string>());
+    if (const auto why = plannerArgsProblem(args)) bad(c, value(c) + " is not what a run gives a planner: " + *why);
+    return args;
+  }
   std::string utcTime(int c) const {
     if (s_.columnType(c) != SQLITE_TEXT || !isUtcTimeText(s_.textAt(c)))
       bad(c, value(c) + " is not a UTC time like 2026-11-24T01:02:03Z");
@@ -247,6 +269,7 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
     t.jobs = static_cast<int>(*v);
   t.planner_version = r.optText(22);
   t.bench_version = r.optText(23);
+  t.planner_args = r.plannerArgs(24);
   return t;
 }
 
@@ -278,10 +301,14 @@ DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs, planner_version, bench_version) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7,"
-    " ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''), NULLIF(?15, ''),"
-    " NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''), NULLIF(?22, ''),"
-    " NULLIF(?23, '')) ON CONFLICT DO NOTHING";
+    " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args) VALUES (?1, ?2, ?3,"
+    " ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''),"
+    " NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''),"
+    " NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, '')) ON CONFLICT DO NOTHING";
+// A trial of the method run with other planner arguments (NULLIF as the
+// insert writes them): the trial would make the file mix two settings.
+constexpr const char* kOtherPlannerArgs =
+    "SELECT id, planner_args FROM trials WHERE method = ?1 AND planner_args IS NOT NULLIF(?2, '') LIMIT 1";
 constexpr const char* kInsertDatabase =
     "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
     " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
@@ -296,10 +323,11 @@ constexpr const char* kFinishedTrials =
 // migrating them (table, export, plot): NULL for the columns it lacks.
 // The row's id first, for CheckedResultRow.
 constexpr const char* kSelectTrials[] = {
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args FROM trials ORDER BY id",
 };
 static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
@@ -311,7 +339,7 @@ constexpr const char* kHasDatabase =
 // Those a file of any version must run; the inserts only the current
 // version can (older files are read-only: they were opened so).
 constexpr const char* kReadStatements[] = {kFinishedTrials, kSelectDatabases, kHasDatabase};
-constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase};
+constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase, kOtherPlannerArgs};
 
 struct ResultsDb::Impl {
   std::string path;
@@ -393,7 +421,19 @@ const std::string& ResultsDb::path() const { return impl_->path; }
 
 bool ResultsDb::addTrial(const TrialRecord& t) {
   Connection& c = impl_->conn;
+  const std::string args = t.planner_args.empty() ? std::string() : nlohmann::json(t.planner_args).dump();
   return c.write([&] {
+    // Under the write lock: another run into the same file may have added
+    // the method's first trials since this one checked (runner.cpp).
+    Statement other = impl_->prepare(kOtherPlannerArgs);
+    other.bind(1, t.method).bind(2, std::string_view(args));
+    if (other.step())
+      throw InputError(impl_->path, "", "its " + t.method + " trials ran with " +
+                                            (other.columnType(1) == SQLITE_NULL ? "no planner arguments"
+                                                                                : other.textAt(1)) +
+                                            " (row id " + std::to_string(other.int64At(0)) + "); a trial run with " +
+                                            (args.empty() ? "none" : args) +
+                                            " is not added: a results file holds one set per method");
     Statement s = impl_->prepare(kInsertTrial);
     s.bind(1, t.suite).bind(2, t.robots).bind(3, t.method).bind(4, t.trial);
     s.bind(5, std::to_string(t.seed)).bind(6, t.time_limit_s);
@@ -413,6 +453,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     bindOpt(s, 21, t.jobs);
     s.bind(22, std::string_view(t.planner_version));
     s.bind(23, std::string_view(t.bench_version));
+    s.bind(24, std::string_view(args));
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -445,7 +486,20 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 std::vector<TrialRecord> ResultsDb::trials() const {
   Statement s = impl_->prepare(kSelectTrials[impl_->version - 1]);
   std::vector<TrialRecord> out;
-  while (s.step()) out.push_back(readTrialRow(CheckedResultRow(s, impl_->path, "trials")));
+  // Per method, its first row (index in out, id): every other row of it
+  // ran with the same arguments.
+  std::map<std::string, std::pair<std::size_t, std::int64_t>> first_of_method;
+  while (s.step()) {
+    const CheckedResultRow row(s, impl_->path, "trials");
+    out.push_back(readTrialRow(row));
+    const TrialRecord& t = out.back();
+    const auto [first, inserted] = first_of_method.emplace(t.method, std::pair{out.size() - 1, s.int64At(0)});
+    const std::vector<std::string>& before = out[first->second.first].planner_args;
+    if (inserted || before == t.planner_args) continue;
+    row.bad(24, row.value(24) + " beside " + (before.empty() ? "NULL" : "'" + nlohmann::json(before).dump() + "'") +
+                    " of method " + t.method + " in row id " + std::to_string(first->second.second) +
+                    ": a results file holds one set of planner arguments per method");
+  }
   return out;
 }
 
@@ -454,6 +508,13 @@ std::vector<DatabaseRecord> ResultsDb::databases() const {
   std::vector<DatabaseRecord> out;
   while (s.step()) out.push_back(readDatabaseRow(CheckedResultRow(s, impl_->path, "databases")));
   return out;
+}
+
+std::optional<std::vector<std::string>> ResultsDb::plannerArgs(const std::string& method) const {
+  // Every row was checked at open: the method's first tells for all.
+  for (const TrialRecord& t : trials())
+    if (t.method == method) return t.planner_args;
+  return std::nullopt;
 }
 
 bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) const {

@@ -76,6 +76,7 @@ std::vector<std::string> lines(const std::string& path) {
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 5) c.exec("ALTER TABLE trials DROP COLUMN planner_args");
   if (version < 4) c.exec("ALTER TABLE trials DROP COLUMN bench_version");
   if (version < 3) c.exec("ALTER TABLE trials DROP COLUMN planner_version");
   if (version < 2) c.exec("ALTER TABLE trials DROP COLUMN jobs");
@@ -209,7 +210,7 @@ TEST_CASE("a results database records which build planned each trial, and reads 
   std::ostringstream csv;
   writeCsv(all, csv);
   CHECK(csv.str().find(",jobs,planner_version,") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,,\n") != std::string::npos);
 }
 
 TEST_CASE("a results database records which earc-bench ran each trial, and reads and migrates version 3 files") {
@@ -225,8 +226,79 @@ TEST_CASE("a results database records which earc-bench ran each trial, and reads
   CHECK(trialsNotes(all).find("\nPlanned by earc 0.1.0+ccccccc.\nTimed by 2 builds: ") != std::string::npos);
   std::ostringstream csv;
   writeCsv(all, csv);
-  CHECK(csv.str().find(",jobs,planner_version,bench_version\n") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty\n") != std::string::npos);
+  CHECK(csv.str().find(",jobs,planner_version,bench_version,planner_args\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty,\n") != std::string::npos);
+}
+
+TEST_CASE("a results database records each trial's planner arguments, and reads and migrates version 4 files") {
+  TempPath file("earc-results-planner-args");
+  const std::vector<std::string> k5 = {"--db-k=5", "--window", "4"};
+  {
+    ResultsDb db(file.path);
+    TrialRecord t = trial("earc", 0, true, 1.0);
+    t.planner_args = k5;
+    CHECK(db.addTrial(t));
+    CHECK(db.addTrial(trial("arc", 0, true, 1.5)));
+    CHECK(db.plannerArgs("earc") == k5);
+    CHECK(db.plannerArgs("arc") == std::vector<std::string>{});
+    CHECK_FALSE(db.plannerArgs("lightning").has_value());
+  }
+  {
+    // As stored: a JSON array; NULL for none.
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    exp::Statement s = c.prepare("SELECT method, planner_args FROM trials ORDER BY id");
+    REQUIRE(s.step());
+    CHECK(s.textAt(1) == R"(["--db-k=5","--window","4"])");
+    REQUIRE(s.step());
+    CHECK(s.columnType(1) == SQLITE_NULL);
+  }
+  // A version 4 file, as an earlier earc-bench left it: read as it is,
+  // every trial without arguments (none could be given then).
+  makeOlder(file.path, 4);
+  {
+    ResultsDb db(file.path, true);
+    for (const TrialRecord& t : db.trials()) CHECK(t.planner_args.empty());
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    CHECK(c.pragmaInt("user_version") == 4);
+  }
+  {
+    // Opened for writing: migrated, the old rows kept (with none).
+    ResultsDb db(file.path);
+    TrialRecord t = trial("prioritized", 0, true, 2.0);
+    t.planner_args = {"--window=8"};
+    CHECK(db.addTrial(t));
+  }
+  exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+  CHECK(c.pragmaInt("user_version") == kResultsSchemaVersion);
+  ResultsDb db(file.path, true);
+  const auto all = db.trials();
+  REQUIRE(all.size() == 3);
+  CHECK(all[0].planner_args.empty());
+  CHECK(all[1].planner_args.empty());
+  CHECK(all[2].planner_args == std::vector<std::string>{"--window=8"});
+}
+
+TEST_CASE("a results file keeps one set of planner arguments per method: a trial run with another is not added") {
+  TempPath file("earc-results-args-per-method");
+  ResultsDb db(file.path);
+  TrialRecord with = trial("earc", 0, true, 1.0);
+  with.planner_args = {"--db-k=5"};
+  CHECK(db.addTrial(with));
+  TrialRecord other = trial("earc", 1, true, 1.0);
+  other.planner_args = {"--db-k=3"};
+  TrialRecord none = trial("earc", 2, true, 1.0);
+  CHECK_THROWS_WITH_AS(db.addTrial(other),
+                       (file.path + ": its earc trials ran with [\"--db-k=5\"] (row id 1); a trial run with "
+                                    "[\"--db-k=3\"] is not added: a results file holds one set per method")
+                           .c_str(),
+                       InputError);
+  CHECK_THROWS_AS(db.addTrial(none), InputError);
+  // Another method has its own; the same arguments go on.
+  CHECK(db.addTrial(trial("arc", 0, true, 1.0)));
+  TrialRecord same = trial("earc", 1, true, 1.0);
+  same.planner_args = {"--db-k=5"};
+  CHECK(db.addTrial(same));
+  CHECK(db.trials().size() == 3);
 }
 
 TEST_CASE("a results database records a trial once per key and reports it as finished") {
@@ -266,7 +338,8 @@ TEST_CASE("a results database without a table of its schema is refused as damage
       c.exec(std::string("DROP TABLE ") + table);
     }
     const std::string want =
-        file.path + ": damaged database file (table " + table + " is missing; schema version 4 has it)";
+        file.path + ": damaged database file (table " + table + " is missing; schema version " +
+        std::to_string(kResultsSchemaVersion) + " has it)";
     for (bool read_only : {true, false}) CHECK_THROWS_WITH_AS(ResultsDb(file.path, read_only), want.c_str(), InputError);
   }
 }
@@ -332,6 +405,17 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
        "trials row id 1, column finished_at: 'yesterday' is not a UTC time like 2026-11-24T01:02:03Z"},
       {"UPDATE trials SET jobs = 0", "trials row id 1, column jobs: 0 is not a number of jobs (1 or more)"},
       {"UPDATE trials SET bench_version = x'01'", "trials row id 1, column bench_version: a blob is not text"},
+      {"UPDATE trials SET planner_args = '--window=4'",
+       "trials row id 1, column planner_args: '--window=4' is not a JSON array of planner arguments (strings)"},
+      {"UPDATE trials SET planner_args = '[]'",
+       "trials row id 1, column planner_args: '[]' is not a JSON array of planner arguments (strings)"},
+      {"UPDATE trials SET planner_args = '[\"--seed=3\"]'",
+       "trials row id 1, column planner_args: '[\"--seed=3\"]' is not what a run gives a planner: '--seed=3' sets "
+       "what earc-bench gives earc-plan itself"},
+      // Both rows are arc's: two sets of arguments for one method.
+      {"UPDATE trials SET planner_args = '[\"--window=4\"]' WHERE id = 2",
+       "trials row id 2, column planner_args: '[\"--window=4\"]' beside NULL of method arc in row id 1: a results "
+       "file holds one set of planner arguments per method"},
       {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
       {"UPDATE databases SET robots = 1",
        "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},
@@ -483,6 +567,43 @@ TEST_CASE("CSV has one quoted-as-needed row per trial under a header") {
   CHECK_FALSE(std::getline(in, extra));
   CHECK(header.rfind("suite,robots,method,trial,seed,", 0) == 0);
   CHECK(row.find("\"exit 2: bad \"\"input\"\", really\"") != std::string::npos);
+}
+
+TEST_CASE("a method run with planner arguments is named with them in the tables, the CSV and the OMPL logs") {
+  std::vector<TrialRecord> t = {trial("earc", 0, true, 1), trial("earc", 1, true, 2), trial("arc", 0, true, 3),
+                                trial("arc", 1, true, 4)};
+  for (int i : {0, 1}) t[i].planner_args = {"--db-k=5", "--window", "4"};
+  const std::string table = markdownTable(t, {});
+  CHECK(table.find("\n| 4 | earc --db-k=5 --window 4 | 2/2 (100%) |") != std::string::npos);
+  CHECK(table.find("\n| 4 | arc | 2/2 (100%) |") != std::string::npos);  // none: the plain name
+  CHECK(markdownWideTable(t).find("\n| robots | earc --db-k=5 --window 4 | arc |") != std::string::npos);
+  std::ostringstream csv;
+  writeCsv(t, csv);
+  const auto csv_lines = [&] {
+    std::vector<std::string> out;
+    std::istringstream in(csv.str());
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+  }();
+  REQUIRE(csv_lines.size() == 5);
+  CHECK(csv_lines[0].substr(csv_lines[0].size() - 13) == ",planner_args");
+  CHECK(csv_lines[1].substr(csv_lines[1].size() - 20) == ",--db-k=5 --window 4");
+  CHECK(csv_lines[1].rfind("mobile,4,earc,0,", 0) == 0);  // the method column stays the method
+  CHECK(csv_lines[3].back() == ',');
+  TempPath dir("earc-ompl-logs-args");
+  writeOmplLogs(t, dir.path);
+  const auto log = lines(dir.path + "/mobile-4.log");
+  CHECK(std::count(log.begin(), log.end(), "earc --db-k=5 --window 4") == 1);
+  CHECK(std::count(log.begin(), log.end(), "arc") == 1);
+
+  // Quoted as a shell (and shlex.join) would take them; a '|' kept from
+  // ending the markdown cell.
+  t[0].planner_args = t[1].planner_args = {"--x=a|b c", "--y=it's"};
+  CHECK(plannerArgsText(t[0].planner_args) == R"('--x=a|b c' '--y=it'"'"'s')");
+  CHECK(markdownTable(t, {}).find(R"(| 4 | earc '--x=a\|b c' '--y=it'"'"'s' |)") != std::string::npos);
+  // Trials that mix sets (a results file never does) are not named after one.
+  t[1].planner_args.clear();
+  CHECK(markdownTable(t, {}).find("| 4 | earc (several sets of planner arguments) |") != std::string::npos);
 }
 
 TEST_CASE("planner arguments that earc-bench sets itself, or that would stop or confuse every plan, are refused") {

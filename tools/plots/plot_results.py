@@ -13,7 +13,9 @@ Trials under different time limits are different experiments: a suite run
 under several gets a pair of figures per limit, time_<suite>-tl<limit>
 and success_<suite>-tl<limit> (as `earc-bench table` gives it a table per
 limit). --seed and --time-limit take only the trials of that run seed or
-time limit, as table's do. Nothing is drawn at random, and the SVGs carry
+time limit, as table's do. A method whose trials ran with planner
+arguments (earc-bench run --method-arg) is named with them, "E-ARC
+--db-k=5", as table names it. Nothing is drawn at random, and the SVGs carry
 no date and fixed ids: the same file gives the same figures, byte for
 byte.
 A row with a value no run writes (a planning time that is not a number,
@@ -27,8 +29,10 @@ writing fails.
 """
 import argparse
 import collections
+import json
 import math
 import os
+import shlex
 import sqlite3
 import sys
 import urllib.parse
@@ -48,7 +52,7 @@ except ImportError as e:
     sys.exit(1)
 
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
-SCHEMA_VERSION = 4  # kResultsSchemaVersion there
+SCHEMA_VERSION = 5  # kResultsSchemaVersion there
 # A solved trial's planning time may be this much over its limit (the
 # planners poll their deadline): kSolvedTimeLimitSlack in results_db.hpp.
 TIME_LIMIT_SLACK = 1.01
@@ -65,8 +69,9 @@ COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prior
           "coupled": "tab:orange"}
 
 
-# One trial as the figures need it.
-Trial = collections.namedtuple("Trial", "suite time_limit robots method success planning_time")
+# One trial as the figures need it; args: the planner arguments it ran
+# with (earc-bench run --method-arg), a tuple, () for none.
+Trial = collections.namedtuple("Trial", "suite time_limit robots method success planning_time args")
 
 
 def ordered(values, order):
@@ -122,6 +127,31 @@ def shown(v):
     if isinstance(v, bytes):
         return "a blob"
     return repr(v) if isinstance(v, str) else str(v)
+
+
+def planner_args(v):
+    """The planner_args column as a tuple, or None when it holds what no
+    run writes: NULL (none) or a JSON array of at least one non-empty
+    string (earc-bench checks more: CheckedResultRow::plannerArgs)."""
+    if v is None:
+        return ()
+    try:
+        args = json.loads(v) if isinstance(v, str) else None
+    except ValueError:
+        return None
+    if not isinstance(args, list) or not args or not all(isinstance(a, str) and a for a in args):
+        return None
+    return tuple(args)
+
+
+def label(method, rows):
+    """A method as the legend names it: with the planner arguments its
+    trials ran with, as `earc-bench table` names it ("E-ARC --db-k=5")."""
+    args = {t.args for t in rows if t.method == method}
+    name = LABELS.get(method, method)
+    if len(args) != 1 or not next(iter(args)):
+        return name
+    return "%s %s" % (name, shlex.join(next(iter(args))))
 
 
 def check_row(path, table, row, columns):
@@ -182,7 +212,10 @@ def load(path, seed, time_limit):
             raise BadInput("%s: results database without a schema version" % path)
         try:
             con.row_factory = sqlite3.Row
-            rows = con.execute("SELECT id, %s FROM trials ORDER BY id" % ", ".join(TRIAL_COLUMNS)).fetchall()
+            # Schema 5 added planner_args; older files ran with none.
+            args_column = "planner_args" if version >= 5 else "NULL AS planner_args"
+            rows = con.execute("SELECT id, %s, %s FROM trials ORDER BY id"
+                               % (", ".join(TRIAL_COLUMNS), args_column)).fetchall()
             db_rows = con.execute("SELECT id, %s FROM databases ORDER BY id"
                                   % ", ".join(DATABASE_COLUMNS)).fetchall()
         except sqlite3.DatabaseError as e:
@@ -190,11 +223,21 @@ def load(path, seed, time_limit):
     finally:
         con.close()
     trials = []
+    first_of_method = {}  # method: (row id, its planner arguments)
     for r in rows:
         check_row(path, "trials", r, TRIAL_COLUMNS)
+        args = planner_args(r["planner_args"])
+        if args is None:
+            raise BadInput("%s: trials row id %s, column planner_args: %s is not a JSON array of planner arguments "
+                           "(strings)" % (path, r["id"], shown(r["planner_args"])))
+        first = first_of_method.setdefault(r["method"], (r["id"], args, r["planner_args"]))
+        if first[1] != args:
+            raise BadInput("%s: trials row id %s, column planner_args: %s beside %s of method %s in row id %s: a "
+                           "results file holds one set of planner arguments per method"
+                           % (path, r["id"], shown(r["planner_args"]), shown(first[2]), r["method"], first[0]))
         if (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
             trials.append(Trial(r["suite"], r["time_limit_s"], r["robots"], r["method"], bool(r["success"]),
-                                r["planning_time_s"]))
+                                r["planning_time_s"], args))
     dbs = []
     for r in db_rows:
         check_row(path, "databases", r, DATABASE_COLUMNS)
@@ -244,7 +287,7 @@ def plot_times(rows, name, title, out):
         if not xs:
             continue
         color = COLORS.get(method)
-        ax.plot(xs, med, marker="o", label=LABELS.get(method, method), color=color)
+        ax.plot(xs, med, marker="o", label=label(method, rows), color=color)
         ax.fill_between(xs, lo, hi, alpha=0.2, color=color)
         drawn = True
     ax.set_xscale("log", base=2)
@@ -273,7 +316,7 @@ def plot_success(rows, name, title, out):
             cell = [t for t in rows if t.method == method and t.robots == n]
             rates.append(100.0 * sum(t.success for t in cell) / len(cell) if cell else np.nan)
         xs = np.arange(len(counts)) + (i - (len(methods) - 1) / 2) * width
-        ax.bar(xs, rates, width, label=LABELS.get(method, method), color=COLORS.get(method))
+        ax.bar(xs, rates, width, label=label(method, rows), color=COLORS.get(method))
         # A bar of height 0 is invisible: mark trials that all failed.
         for x, rate in zip(xs, rates):
             if rate == 0:

@@ -95,7 +95,8 @@ std::string benchNote(const std::vector<TrialRecord>& trials);
 std::string trialsNotes(const std::vector<TrialRecord>& trials);
 
 // Markdown: per suite a table of success rate and median planning time
-// (IQR) per robot count and method, the E-ARC/ARC paired ratio, then the
+// (IQR) per robot count and method (named with the planner arguments its
+// trials ran with, where they ran with any: "earc --db-k=5"), the E-ARC/ARC paired ratio, then the
 // databases, then trialsNotes. A suite run under several time limits has
 // a table per limit, headed "SUITE, time limit S s", and its ratios are
 // paired within one limit (markdownWideTable too).
@@ -103,17 +104,19 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 
 // The same results laid out like the paper's figures: one table per suite,
 // a row per robot count, a column per method ("solved/trials median s";
-// "-" where the method was not run), then E-ARC's time over ARC's on the
+// "-" where the method was not run; headed as markdownTable names them), then E-ARC's time over ARC's on the
 // same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
 // (subproblems solved from the database, directly or repaired, over
 // conflicts); then trialsNotes.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
-// One row per trial, RFC 4180 quoting, a header line first.
+// One row per trial, RFC 4180 quoting, a header line first; the last
+// column, planner_args, as plannerArgsText writes them ("" for none).
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
 void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
 
-// One log per (suite, robots, time limit) experiment, planners = methods,
+// One log per (suite, robots, time limit) experiment, planners = methods
+// (named as markdownTable names them),
 // into dir (created), named SUITE-ROBOTS.log (SUITE-ROBOTS-tlLIMIT.log
 // where a cell has several limits). A suite name with characters outside
 // [A-Za-z0-9._-] or a leading '.' is made safe (those become '_', plus a

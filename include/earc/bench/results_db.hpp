@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 4, WAL) that trials are appended to as they finish, each in
+// user_version 5, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -22,6 +22,12 @@
 //   Version 4 adds trials.bench_version: the earc-bench build that ran and
 //     timed the trial (its --version), which need not be the planner's
 //     (--plan-program); NULL for trials recorded before it.
+//   Version 5 adds trials.planner_args: the arguments the run added to the
+//     trial's `earc-plan plan` (--method-arg), as a JSON array of strings;
+//     NULL for none, as for every trial recorded before it. All trials of
+//     one method in a file have the same (see ResultsDb): the file is one
+//     experiment per method, so that table, export and plot, which group
+//     by method, never pool two settings in one cell.
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -45,7 +51,11 @@
 // signals 1 to 127; jobs 1 or more; seeds as decimal TEXT of a 64-bit
 // unsigned number, as std::to_string writes it (no sign, no leading zero);
 // times of day as utcNow() writes them; failure, versions and path as TEXT
-// (path not empty).
+// (path not empty); planner_args NULL or a JSON array of at least one
+// string that plannerArgsProblem (bench/options.hpp) accepts, the same
+// (or NULL) in every row of a method:
+//   r.sqlite: trials row id 7, column planner_args: '["--db-k=5"]' beside
+//   no planner arguments for method earc in row id 1: ...
 #pragma once
 
 #include <cstdint>
@@ -59,7 +69,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 4;
+inline constexpr int kResultsSchemaVersion = 5;
 // A solution may report a planning time this much over its time limit
 // (the planners poll their deadline) and still count as solved; later than
 // that it is "solved after the time limit", a failure.
@@ -88,6 +98,9 @@ struct TrialRecord {
   std::optional<int> jobs;         // trials the run had at once; unknown before schema 2
   std::string planner_version;     // the solution's earc_version; "" unknown (before schema 3)
   std::string bench_version;       // the earc-bench that ran it; "" unknown (before schema 4)
+  // Added to its `earc-plan plan` command (run --method-arg); empty: none
+  // (and every trial before schema 5).
+  std::vector<std::string> planner_args;
 };
 
 struct DatabaseRecord {
@@ -114,8 +127,9 @@ class ResultsDb {
   // program (not SQLite, another application_id, a newer schema version:
   // the message names both versions) or is damaged (a table of its schema
   // missing), as exp::checkFileIdentity checks the experience store, or
-  // when a row holds a value no run writes (see above): every row is read
-  // and checked at open, as trials() and databases() read them.
+  // when a row holds a value no run writes (see above; two rows of one
+  // method with different planner_args too): every row is read and
+  // checked at open, as trials() and databases() read them.
   explicit ResultsDb(const std::string& path, bool read_only = false);
   ~ResultsDb();
   ResultsDb(const ResultsDb&) = delete;
@@ -128,6 +142,9 @@ class ResultsDb {
   void addDatabase(const DatabaseRecord& d);
 
   std::set<TrialKey> finishedTrials(std::uint64_t seed, double time_limit_s) const;
+  // The planner arguments the file's trials of `method` ran with; nothing
+  // when it has none of them.
+  std::optional<std::vector<std::string>> plannerArgs(const std::string& method) const;
   std::vector<TrialRecord> trials() const;
   std::vector<DatabaseRecord> databases() const;
   bool hasDatabase(const std::string& method, const std::string& path) const;
