@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -118,6 +119,7 @@ class Runner {
     const std::string here = executableDir();
     plan_ = o.plan_program.empty() ? here + "/earc-plan" : o.plan_program;
     bench_ = o.bench_program.empty() ? here + "/earc-bench" : o.bench_program;
+    requireSamePlannerArgs();
     for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
   }
 
@@ -135,7 +137,7 @@ class Runner {
     if (interruptFlag().load()) return finishInterrupted();
     Progress progress("bench", cells.size());
     std::atomic<std::size_t> next{0};
-    auto worker = [&] {
+    auto work = [&] {
       for (;;) {
         if (interruptFlag().load()) return;
         const std::size_t i = next.fetch_add(1);
@@ -162,11 +164,28 @@ class Runner {
         progress.tick();
       }
     };
+    // The first error of any worker (a trial refused for its
+    // --method-arg, a results file that cannot be written) stops the
+    // others as an interrupt does: running trials are killed and not
+    // recorded. It is thrown once they have all stopped.
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    auto worker = [&] {
+      try {
+        work();
+      } catch (...) {
+        std::lock_guard lock(error_mutex);
+        if (!error) error = std::current_exception();
+        interruptFlag().store(true);
+        finished_cv_.notify_all();  // cutOff's waiters look at the flag
+      }
+    };
     std::vector<std::thread> threads;
     for (int j = 1; j < std::max(1, o_.jobs); ++j) threads.emplace_back(worker);
     worker();
     for (auto& t : threads) t.join();
     progress.finish();
+    if (error) std::rethrow_exception(error);
     if (interruptFlag().load()) return finishInterrupted();
     log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
     if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
@@ -177,6 +196,35 @@ class Runner {
   }
 
  private:
+  const std::vector<std::string>& argsOf(const std::string& method) const {
+    static const std::vector<std::string> none;
+    const auto it = o_.method_args.find(method);
+    return it == o_.method_args.end() ? none : it->second;
+  }
+
+  // " with ARGS" / " with no planner arguments", for messages.
+  static std::string withArgs(const std::vector<std::string>& args) {
+    return args.empty() ? " with no planner arguments" : " with " + plannerArgsText(args);
+  }
+
+  // A results file holds one experiment per method: table, export and
+  // plot group trials by method, so trials of one method run with other
+  // planner arguments would be pooled into one cell, and a resumed run
+  // would skip trials that ran with the old ones. Refused before
+  // anything runs; to measure one setting against another, a results
+  // file each, or earc-bench compare.
+  void requireSamePlannerArgs() const {
+    for (const std::string& m : o_.methods) {
+      const auto recorded = db_.plannerArgs(m);
+      if (!recorded || *recorded == argsOf(m)) continue;
+      throw InputError(o_.results, "--method-arg",
+                       "its " + m + " trials ran" + withArgs(*recorded) + "; this run gives " + m + " " +
+                           (argsOf(m).empty() ? "none" : plannerArgsText(argsOf(m))) +
+                           ": a results file holds one set of planner arguments per method (give another "
+                           "--results, or measure one against the other with earc-bench compare)");
+    }
+  }
+
   RunSummary finishInterrupted() {
     summary_.interrupted = true;
     log_ << "interrupted: " << summary_.run << " trials recorded in " << o_.results
@@ -346,6 +394,7 @@ class Runner {
       a.push_back(c.method == "earc" ? earcDb(c.suite->family) : lightningDb(*c.suite, c.robots));
       if (!o_.learn) a.push_back("--no-learn");
     }
+    for (const std::string& arg : argsOf(c.method)) a.push_back(arg);
     return a;
   }
 
@@ -398,6 +447,7 @@ class Runner {
     t.time_limit_s = o_.time_limit_s;
     t.jobs = o_.jobs;
     t.bench_version = earc::version();
+    t.planner_args = argsOf(c.method);
     const TrialSeeds seeds = trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;
@@ -425,6 +475,14 @@ class Runner {
     t.exit_status = run.exit_code;
     t.term_signal = run.signal;
     t.failure = childFailure(run, spec, err);
+    // Refused for its --method-arg (or anything else that is not this
+    // scenario's): every trial of the method would be, and recorded they
+    // would be skipped when the run is resumed with the options mended.
+    if (!t.planner_args.empty() && refusedItsCommand(run, t.failure, scenario))
+      throw InputError(plan_, "--method-arg " + c.method,
+                       "refused " + c.method + "'s trial " + c.suite->name + "-" + std::to_string(c.robots) + "-t" +
+                           std::to_string(c.trial) + " run" + withArgs(t.planner_args) + ", so would every " +
+                           c.method + " trial (not recorded): " + t.failure);
     if (t.failure.empty()) {
       nlohmann::json doc;
       if (auto why = readPlanSolution(run, solution, err, doc))
@@ -651,6 +709,13 @@ EarcDbEntries validateOptions(const RunOptions& o) {
     if (std::none_of(suites.begin(), suites.end(),
                      [n](const Suite* s) { return std::count(s->robots.begin(), s->robots.end(), n) > 0; }))
       throw InputError("", "--robots", "no suite of this run has " + std::to_string(n) + " robots (" + counts + ")");
+  for (const auto& [method, args] : o.method_args) {
+    if (std::find(allMethods().begin(), allMethods().end(), method) == allMethods().end())
+      throw InputError("", "--method-arg", "unknown method '" + method + "' (earc, arc, lightning, prioritized, coupled)");
+    if (std::find(o.methods.begin(), o.methods.end(), method) == o.methods.end())
+      throw InputError("", "--method-arg", "method " + method + " is not one of this run's methods (--methods)");
+    requirePlannerArgs(args, "--method-arg " + method);
+  }
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
   EarcDbEntries existing;

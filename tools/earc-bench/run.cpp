@@ -4,16 +4,19 @@
 //     [--methods earc,arc,lightning,prioritized,coupled] [--trials N]
 //     [--time-limit S] [--seed S] [--results FILE.sqlite] [--db-mobile FILE]
 //     [--db-arms FILE] [--lightning-dir DIR] [--jobs N] [--full]
+//     [--method-arg METHOD=ARG]...
 //
 // Exit status 0 when the run finished (failed trials are results, not
 // errors), 1 when some solution was INVALID, 2 for bad options, 130 when
 // interrupted (run the same command again to resume).
 #include <iostream>
+#include <map>
 
 #include "earc/bench/options.hpp"
 #include "earc/bench/runner.hpp"
 #include "earc/bench/suites.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 
 namespace earc {
@@ -25,6 +28,7 @@ constexpr int kFullTrials = 20;
 struct RunCli {
   bench::RunOptions run;
   std::string suites, robots, methods;
+  std::vector<std::string> method_args;  // METHOD=ARG
   bool full = false;
 };
 
@@ -39,6 +43,20 @@ std::vector<int> parseCounts(const std::string& list) {
     } catch (const std::exception&) {
       throw InputError("", "--robots", "'" + item + "' is not a robot count (2 or more)");
     }
+  }
+  return out;
+}
+
+// --method-arg METHOD=ARG, in the order given, by method; METHOD is
+// checked with the other options (runBenchmark), ARG by
+// plannerArgsProblem there.
+std::map<std::string, std::vector<std::string>> parseMethodArgs(const std::vector<std::string>& given) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const std::string& item : given) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("", "--method-arg", "'" + printableText(item, 80) + "' is not METHOD=ARG (earc=--db-k=5)");
+    out[item.substr(0, eq)].push_back(item.substr(eq + 1));
   }
   return out;
 }
@@ -91,6 +109,9 @@ void setupRun(CLI::App& app) {
                   "Seconds a trial's process may run past its time limit before SIGKILL (default 15 + 25% of it)")
       ->check(earc::cli::kFiniteNonNegative);
   cmd->add_option("--plan-program", r.plan_program, "The earc-plan to run (default: the one next to earc-bench)");
+  cmd->add_option("--method-arg", o->method_args,
+                  "METHOD=ARG: one argument added to every earc-plan plan of METHOD and recorded with its trials "
+                  "(repeatable: earc=--db-k=5 arc=--window=4; an option and its value as two: earc=--window earc=4)");
   cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
                 "(with --suites: those suites instead)");
   cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
@@ -111,6 +132,7 @@ void setupRun(CLI::App& app) {
     if (suites->count()) r.suites = bench::splitOptionList(o->suites, "--suites");
     if (robots->count()) r.robots = parseCounts(o->robots);
     if (methods->count()) r.methods = bench::splitOptionList(o->methods, "--methods");
+    r.method_args = parseMethodArgs(o->method_args);
     if (r.suites.empty()) throw InputError("", "--suites", "no suite given");
     if (r.methods.empty()) throw InputError("", "--methods", "no method given");
     bench::RunSummary s = bench::runBenchmark(r, std::cout);

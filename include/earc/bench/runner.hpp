@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ struct RunOptions {
   bool cutoff = false;
   std::optional<double> wall_margin_s;   // unset: wallMargin(time_limit_s)
   std::string plan_program;              // empty: earc-plan next to this program
+  // Arguments added to every `earc-plan plan` of a method (--method-arg
+  // METHOD=ARG), after earc-bench's own; recorded with each trial. A
+  // results file holds one set per method: a run whose set for one of its
+  // methods differs from that method's trials in the file is refused.
+  std::map<std::string, std::vector<std::string>> method_args;
   std::string bench_program;             // empty: this program
 };
 
@@ -79,7 +85,7 @@ std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::
 // know or a value it refuses, a database too new for it) with a failure
 // (childFailure's line) that does not name the scenario file. Every plan
 // given the same options would be refused alike, so compare stops at its
-// first plan.
+// first plan and run at a trial of a method given --method-arg.
 bool refusedItsCommand(const ChildOutcome& run, const std::string& failure, const std::string& scenario_file);
 
 // The build that wrote a solution (its stats' earc_version), "" when it
@@ -103,10 +109,16 @@ struct RunSummary {
 // Runs what is missing; progress on a terminal, `log` gets per-trial lines
 // (verbose) and the table of this run's cells at the end. Bad options
 // (a robot count no suite of the run has, a --plan-program that cannot
-// run, an E-ARC database that was given but cannot be read) throw
-// InputError before anything is run or recorded: they are not trial
-// failures. Single numbers (positive, finite) are the caller's to check:
-// earc-bench run checks them as it parses its options.
+// run, an E-ARC database that was given but cannot be read, a
+// --method-arg for a method not run or that plannerArgsProblem refuses,
+// or that differs from the one the results file's trials of that method
+// ran with) throw InputError before anything is run or recorded: they are
+// not trial failures. So does, once the run has begun, a trial of a
+// method given --method-arg that the planner refused (refusedItsCommand):
+// the run stops as an interrupt stops it, that trial is not recorded, and
+// the error names the method, its arguments and what the planner said.
+// Single numbers (positive, finite) are the caller's to check: earc-bench
+// run checks them as it parses its options.
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log);
 
 }  // namespace earc::bench
