@@ -260,6 +260,16 @@ void writeAll(int fd, std::string_view bytes, const std::string& path) {
 }
 
 AtomicFile::AtomicFile(const std::string& given) : given_(given) {
+  // Standard output and error are written where they already point, at
+  // their own offset: through the link to a regular file they would
+  // replace it (`earc-bench export --csv /dev/stdout >> log` lost the log).
+  for (const auto& [name, fd] : {std::pair{"/dev/stdout", STDOUT_FILENO}, std::pair{"/dev/stderr", STDERR_FILENO}})
+    if (given == name) {
+      special_ = true;
+      fd_ = ::dup(fd);
+      if (fd_ < 0) throw InputError(given, "", std::string("cannot write: ") + std::strerror(errno));
+      return;
+    }
   const OutputTarget target = outputTarget({"", given});
   path_ = target.path;
   special_ = target.special;

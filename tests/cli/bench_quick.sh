@@ -159,6 +159,13 @@ PYEOF
   fail "export --csv /dev/stdout exited $?"
 cmp -s "$WORK/stdout.csv" "$WORK/r.csv" || fail "export --csv /dev/stdout > FILE: $(head -2 "$WORK/stdout.csv")"
 grep -qx "/dev/stdout: 12 trials" "$WORK/export.err" || fail "export --csv /dev/stdout said: $(cat "$WORK/export.err")"
+# Appended to a log: the log's earlier lines stay (through the link to the
+# file, the export used to replace it).
+echo "earlier line" > "$WORK/log.txt"
+"$BENCH" export --results "$WORK/r.sqlite" --csv /dev/stdout >> "$WORK/log.txt" 2> /dev/null ||
+  fail "export --csv /dev/stdout >> log exited $?"
+{ echo "earlier line"; cat "$WORK/r.csv"; } | cmp -s - "$WORK/log.txt" ||
+  fail "export --csv /dev/stdout >> log: $(head -n 2 "$WORK/log.txt")"
 "$BENCH" export --results "$WORK/r.sqlite" --databases-csv /dev/stdout --csv "$WORK/r2.csv" 2> "$WORK/export.err" |
   cat > "$WORK/stdout.csv"
 rc=${PIPESTATUS[0]}
