@@ -278,8 +278,14 @@ bool ArcRun::resolve(const Conflict& c) {
   // Levels beyond max_expansions re-solve the last level's subproblem (the
   // whole problem, unless the paths are very long) with ever larger
   // budgets, until the deadline: giving up with time left helps no one.
-  for (int level = 0;;) {
+  for (int level = 0, tried = 0;;) {
     if (deadline_.expired()) return false;
+    // Every window tried counts, also when the plan then fails: the
+    // stats say how far it went.
+    if (level > tried) {
+      ++expansions_;
+      tried = level;
+    }
     Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.max_expansions), models_, paths_, world_,
                                       settings_);
     report(&PlanProgress::subproblem_robots, static_cast<int>(sub.robots.size()));
@@ -330,7 +336,6 @@ bool ArcRun::resolve(const Conflict& c) {
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
-      expansions_ += level;
       splice(paths_, sub, *out.solution);
       spans_.push_back({sub.robots, sub.t_start, sub.t_start + out.solution->length() - 1});
       last_t_start_ = sub.t_start;

@@ -395,6 +395,8 @@ TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the 
   CHECK(r.failures.count(FailureCause::SubproblemUnsolved) == 1);
   CHECK(r.stats["planning_time_s"].get<double>() >= 4.9);
   CHECK(r.stats["subproblems"].get<int>() > settings.max_expansions + 1);  // retried beyond the last level
+  // Every window after the first was an expansion, though none solved.
+  CHECK(r.stats["window_expansions"].get<int>() == r.stats["subproblems"].get<int>() - 1);
 }
 
 TEST_CASE("A solver answering with the wrong number of paths is a named error, not a corrupted plan") {
