@@ -190,6 +190,23 @@ bool CollisionWorld::motionValid(const RobotModel& robot, const double* a, const
   return valid;
 }
 
+std::optional<bool> CollisionWorld::motionValid(const RobotModel& robot, const double* a, const double* b,
+                                                DeadlinePoll& poll) const {
+  const auto work = static_cast<std::size_t>(robot.dim());
+  bool valid = true;
+  bool out_of_time = false;
+  forEachInstant(robot, a, b, [&](const double* q) {
+    if (poll.expired(work)) {
+      out_of_time = true;
+      return false;
+    }
+    valid = stateValid(robot, q);
+    return valid;
+  });
+  if (out_of_time) return std::nullopt;
+  return valid;
+}
+
 int CollisionWorld::countInvalidInstants(const RobotModel& robot, const double* a, const double* b) const {
   int invalid = 0;
   forEachInstant(robot, a, b, [&](const double* q) {

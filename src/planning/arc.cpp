@@ -363,7 +363,7 @@ PlanResult ArcRun::run() {
   PlanResult result;
   result.solution.scenario = scenario_.name;
   roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap_samples, settings_.roadmap_neighbors,
-                                           splitSeed(settings_.seed, 1));
+                                           splitSeed(settings_.seed, 1), deadline_);
   for (std::size_t r = 0; r < models_.size(); ++r) {
     auto p = individualPath(world_, *roadmaps_, *models_[r], static_cast<int>(r), deadline_,
                             splitSeed(settings_.seed, 100 + r));

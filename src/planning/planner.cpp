@@ -59,7 +59,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   const std::vector<const RobotModel*>& models = robots.raw;
   Deadline deadline(settings.time_limit_s);
   RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
-                      splitSeed(settings.seed, 1));
+                      splitSeed(settings.seed, 1), deadline);
   // The whole problem as one subproblem: every robot, its real start and
   // goal, the whole space; individual path lengths set the horizon.
   Subproblem sub;

@@ -16,9 +16,10 @@ constexpr int kMaxTriesPerSample = 60;
 
 }  // namespace
 
-Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed)
+Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed,
+                 const Deadline& deadline)
     : world_(world), model_(model), dim_(model.dim()), neighbors_(neighbors), rng_(seed),
-      index_(model.isMobile() ? 4 : model.dim()) {
+      index_(model.isMobile() ? 4 : model.dim()), poll_(deadline, kWorkPerClockRead) {
   model_.samplingBounds(world_.workspace(), lo_, hi_);
 }
 
@@ -42,7 +43,11 @@ void Roadmap::grow(int samples) {
   std::vector<double> e(static_cast<std::size_t>(index_.dim()));
   long tries = static_cast<long>(samples) * kMaxTriesPerSample;
   int added = 0;
+  // A try places the robot's bodies and checks them, a connection searches
+  // the index in dim_ coordinates: both about dim_ units of work.
+  const auto work = static_cast<std::size_t>(dim_);
   while (added < samples && tries-- > 0) {
+    if (poll_.expired(work)) break;
     for (int j = 0; j < dim_; ++j) q[static_cast<std::size_t>(j)] = uniform(rng_, lo_[static_cast<std::size_t>(j)], hi_[static_cast<std::size_t>(j)]);
     if (!world_.stateValid(model_, q.data())) continue;
     configs_.insert(configs_.end(), q.begin(), q.end());
@@ -60,7 +65,7 @@ void Roadmap::grow(int samples) {
   // A vertex has its k nearest and about as many again that have it among
   // theirs: room for 2k edges spares each list its regrowths.
   for (int v = first; v < size(); ++v) adjacency_[static_cast<std::size_t>(v)].reserve(2 * static_cast<std::size_t>(neighbors_));
-  for (int v = first; v < size(); ++v) connect(v, near, scratch);
+  for (int v = first; v < size() && !poll_.expired(work); ++v) connect(v, near, scratch);
 }
 
 void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>& scratch) {
@@ -89,7 +94,9 @@ bool Roadmap::edgeValid(int id) {
   if (state == 0) {
     auto [a, b] = edge_ends_[static_cast<std::size_t>(id)];
     ++edge_checks_;
-    state = world_.motionValid(model_, config(a), config(b)) ? 1 : -1;
+    const std::optional<bool> valid = world_.motionValid(model_, config(a), config(b), poll_);
+    if (!valid) return false;  // out of time: unknown
+    state = *valid ? 1 : -1;
   }
   return state > 0;
 }
@@ -155,7 +162,9 @@ bool QueryGraph::edgeValid(int key) {
   auto& state = extra_edge_state_[idx];
   if (state == 0) {
     auto [a, b] = extra_edge_ends_[idx];
-    state = roadmap_.world().motionValid(model(), config(a), config(b)) ? 1 : -1;
+    const std::optional<bool> valid = roadmap_.world().motionValid(model(), config(a), config(b), roadmap_.poll());
+    if (!valid) return false;  // out of time: unknown
+    state = *valid ? 1 : -1;
   }
   return state > 0;
 }
@@ -166,7 +175,9 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
   // Edges found invalid, by this search or earlier ones on the roadmap, are
   // left out; the search repeats until its path has no invalid edge.
   for (;;) {
-    if (deadline.expired()) return std::nullopt;
+    // An edge left unchecked when the roadmap's deadline passed reads as
+    // invalid without being marked so: the same path would come back.
+    if (deadline.expired() || graph.roadmap().poll().seenExpired()) return std::nullopt;
     std::vector<double> g(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
     std::vector<int> parent(static_cast<std::size_t>(n), -1), parent_edge(static_cast<std::size_t>(n), 0);
     std::vector<char> closed(static_cast<std::size_t>(n), 0);

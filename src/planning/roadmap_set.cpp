@@ -12,8 +12,9 @@ constexpr int kArmRoadmapSamples = 1000;
 }  // namespace
 
 RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples,
-                       int neighbors, std::uint64_t seed)
-    : world_(world), models_(std::move(models)), samples_(samples), neighbors_(neighbors), seed_(seed) {
+                       int neighbors, std::uint64_t seed, const Deadline& deadline)
+    : world_(world), models_(std::move(models)), samples_(samples), neighbors_(neighbors), seed_(seed),
+      deadline_(deadline) {
   // Robots for which the same configurations are valid share a roadmap:
   // mobile robots by geometry alone; arms by geometry when nothing lies
   // within their reach (the disc of their reach about the base is inside
@@ -61,7 +62,7 @@ Roadmap& RoadmapSet::forRobot(int robot) {
   if (!rm) {
     Stopwatch sw;
     rm = std::make_unique<Roadmap>(world_, *models_[static_cast<std::size_t>(robot)], neighbors_,
-                                   splitSeed(seed_, static_cast<std::uint64_t>(slot)));
+                                   splitSeed(seed_, static_cast<std::uint64_t>(slot)), deadline_);
     rm->grow(initialSamples(robot));
     build_seconds_ += sw.seconds();
   }

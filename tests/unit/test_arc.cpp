@@ -548,6 +548,35 @@ TEST_CASE("A space-time search among crossing robots returns paths clear of them
   CHECK(delayed > 10);  // the crossings got in the way, and the search went around or waited
 }
 
+TEST_CASE("A roadmap whose deadline has passed grows no further and checks no edge") {
+  Scenario s = openScenario(6);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  const double start[3] = {1, 1, 0}, goal[3] = {2, 1, 0};
+  // In time: the query's start and goal, joined directly, make a path.
+  Roadmap rm(world, *m.raw[0], 10, 3, Deadline(1e6));
+  QueryGraph in_time(rm, *m.raw[0]);
+  const int s0 = in_time.addVertex(start, 10), g0 = in_time.addVertex(goal, 10);
+  CHECK(shortestPath(in_time, s0, g0, Deadline()).has_value());
+  // Late: no vertex, and the same edge reads as invalid without being
+  // marked so (it was never checked), and the search gives up even with
+  // time of its own left.
+  Roadmap late(world, *m.raw[0], 10, 3, Deadline(-1.0));
+  late.grow(300);
+  CHECK(late.size() == 0);
+  QueryGraph graph(late, *m.raw[0]);
+  const int s1 = graph.addVertex(start, 10), g1 = graph.addVertex(goal, 10);
+  int key = 0;
+  graph.forEachEdge(s1, [&](int to, int, int k) {
+    if (to == g1) key = k;
+  });
+  REQUIRE(key < 0);  // a query edge
+  CHECK_FALSE(graph.edgeValid(key));
+  CHECK_FALSE(graph.knownInvalid(key));
+  CHECK_FALSE(shortestPath(graph, s1, g1, Deadline()).has_value());
+}
+
 TEST_CASE("A roadmap joins each vertex to its nearest once: one edge per pair, listed at both ends") {
   Scenario s = openScenario(6);
   s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};

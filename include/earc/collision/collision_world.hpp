@@ -10,16 +10,26 @@
 // thread-safe.
 #pragma once
 
+#include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "earc/geometry/shapes.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/scene/scenario.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc {
 
 struct PlacedBodies;
+
+// Checks that poll a deadline read the clock once per this many units of
+// work, a unit being one coordinate of a robot placed (an arm's link, a
+// mobile robot's 3): every few hundred instants of a small robot, every
+// instant of an arm of thousands of links, where one instant's
+// self-collision check alone takes milliseconds.
+inline constexpr std::size_t kWorkPerClockRead = 4096;
 
 class CollisionWorld {
  public:
@@ -62,6 +72,10 @@ class CollisionWorld {
   // exactly the instants (steps and midpoints) at which a time-stamped
   // solution of that motion is validated. Thread-safe.
   bool motionValid(const RobotModel& robot, const double* a, const double* b) const;
+  // The same, or nothing when `poll`'s deadline expires before the answer
+  // is known (each instant counts the robot's dim() units of work).
+  std::optional<bool> motionValid(const RobotModel& robot, const double* a, const double* b,
+                                  DeadlinePoll& poll) const;
 
   // Number of invalid instants along a -> b, sampled as in motionValid.
   int countInvalidInstants(const RobotModel& robot, const double* a, const double* b) const;

@@ -28,10 +28,17 @@ class Roadmap {
     int id;     // index into the validity cache
   };
 
-  Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed);
+  // `deadline` is the plan's: once it has expired, growing stops early and
+  // edges are no longer checked (see grow and edgeValid). It must not be a
+  // solver's shorter budget, which would leave the roadmap short for the
+  // rest of the plan.
+  Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed,
+          const Deadline& deadline = Deadline());
 
   // Adds `samples` valid configurations (rejection-sampled) and connects
-  // each to its k nearest vertices. Edges are not checked here.
+  // each to its k nearest vertices. Edges are not checked here. Stops
+  // early, leaving fewer vertices or some unconnected, once the deadline
+  // has expired: on an arm of thousands of links this takes many seconds.
   void grow(int samples);
 
   int size() const { return static_cast<int>(configs_.size() / static_cast<std::size_t>(dim_)); }
@@ -39,6 +46,7 @@ class Roadmap {
   const std::vector<Edge>& edges(int v) const { return adjacency_[static_cast<std::size_t>(v)]; }
 
   // Whether the edge's motion is valid against the world (checked once).
+  // False, and left unknown, when the deadline expires during the check.
   bool edgeValid(int id);
   bool knownInvalid(int id) const { return edge_state_[static_cast<std::size_t>(id)] < 0; }
   std::size_t edgeChecks() const { return edge_checks_; }
@@ -48,6 +56,8 @@ class Roadmap {
 
   const RobotModel& model() const { return model_; }
   const CollisionWorld& world() const { return world_; }
+  // The deadline as this roadmap's checks poll it (see grow and edgeValid).
+  DeadlinePoll& poll() { return poll_; }
 
  private:
   void embed(const double* q, double* out) const;
@@ -65,6 +75,7 @@ class Roadmap {
   std::vector<std::int8_t> edge_state_;  // 0 unknown, 1 valid, -1 invalid
   PointIndex index_;
   std::size_t edge_checks_ = 0;
+  DeadlinePoll poll_;  // one count of work for all of the roadmap's checks
 };
 
 // A roadmap plus a few query vertices (a start, a goal), optionally
@@ -101,7 +112,8 @@ class QueryGraph {
     }
   }
 
-  // Validity of an edge given by its key (roadmap ids >= 0, query edges < 0).
+  // Validity of an edge given by its key (roadmap ids >= 0, query edges < 0);
+  // false, left unknown, once the roadmap's deadline has expired.
   bool edgeValid(int key);
   // True when an earlier check, by this query or any query on the same
   // roadmap, found the edge invalid (no check is made here).

@@ -20,11 +20,13 @@ namespace earc {
 
 // One roadmap per distinct robot body in the environment: mobile robots
 // with equal geometry signatures share one; an arm has its own (its base
-// fixes where its body can be). Built on first use.
+// fixes where its body can be). Built on first use. `deadline` is the
+// plan's (see Roadmap): past it, roadmaps come out short and their edges
+// unchecked, as nothing is planned on them any more.
 class RoadmapSet {
  public:
   RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples, int neighbors,
-             std::uint64_t seed);
+             std::uint64_t seed, const Deadline& deadline = Deadline());
   Roadmap& forRobot(int robot);
   int initialSamples(int robot) const;
   std::size_t edgeChecks() const;
@@ -43,6 +45,7 @@ class RoadmapSet {
   std::vector<int> slot_;  // robot -> roadmap index
   std::vector<std::unique_ptr<Roadmap>> roadmaps_;
   double build_seconds_ = 0.0;
+  Deadline deadline_;
 };
 
 // Another robot's motion seen as an obstacle: its configuration at local

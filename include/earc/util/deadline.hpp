@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <limits>
 
 namespace earc {
@@ -39,6 +40,35 @@ class Deadline {
 
  private:
   Clock::time_point end_;
+};
+
+// A deadline read where the work is: at the first call, then once per
+// `work_per_read` units of work (bodies placed, say), so that a loop of
+// cheap steps pays next to nothing for it while one of costly steps (an
+// arm of thousands of links) notices the deadline within a step or two.
+// Once expired it stays so.
+class DeadlinePoll {
+ public:
+  DeadlinePoll(const Deadline& deadline, std::size_t work_per_read)
+      : deadline_(deadline), per_read_(work_per_read), owed_(work_per_read) {}
+  // Counts `work` more units done; whether the deadline has expired (as
+  // of the last read of the clock).
+  bool expired(std::size_t work) {
+    if (expired_) return true;
+    owed_ += work;
+    if (owed_ < per_read_) return false;
+    owed_ = 0;
+    expired_ = deadline_.expired();
+    return expired_;
+  }
+  // Whether an earlier call found the deadline expired (no clock read).
+  bool seenExpired() const { return expired_; }
+
+ private:
+  Deadline deadline_;
+  std::size_t per_read_;
+  std::size_t owed_;
+  bool expired_ = false;
 };
 
 class Stopwatch {
