@@ -20,10 +20,15 @@ namespace {
 // few box tests instead of one interpolation and test per instant.
 class MotionGuard {
  public:
-  MotionGuard(const RobotModel& model, const std::vector<MovingObstacle>& obstacles, std::size_t last_instant)
-      : model_(model), obstacles_(obstacles), last_(last_instant) {
+  // With a poll, the robot is not free anywhere once its deadline has
+  // expired: every check of it against an obstacle's bodies counts their
+  // dimensions as work (an arm of thousands of links takes milliseconds).
+  MotionGuard(const RobotModel& model, const std::vector<MovingObstacle>& obstacles, std::size_t last_instant,
+              DeadlinePoll* poll = nullptr)
+      : model_(model), obstacles_(obstacles), last_(last_instant), poll_(poll) {
     for (const auto& o : obstacles_) {
       Track tr;
+      tr.work = static_cast<std::size_t>(model_.dim() + o.model->dim());
       tr.centers.reserve(last_ + 1);
       // Centres at whole steps come from the path's states (past its end,
       // the last); a midpoint's is halfway between its neighbours' (see
@@ -140,6 +145,7 @@ class MotionGuard {
     std::vector<geo::Vec2> centers;  // bounding centre per instant 0..last
     std::vector<geo::Aabb> chunks;   // box of the centres of each chunk of instants
     std::vector<PlacedBodies> placed;  // bodies per instant, placed when first needed
+    std::size_t work = 0;              // of a check of the robot's bodies against these
   };
 
   // The robot, centred at c with bodies own(), is free of obstacle i at
@@ -169,12 +175,14 @@ class MotionGuard {
     const geo::Aabb disc{{c.x - r, c.y - r}, {c.x + r, c.y + r}};
     if (std::none_of(theirs->bounds.begin(), theirs->bounds.end(), [&](const geo::Aabb& b) { return b.overlaps(disc); }))
       return true;
+    if (poll_ && poll_->expired(tr.work)) return false;
     return !bodiesTouch(own(), *theirs);
   }
 
   const RobotModel& model_;
   const std::vector<MovingObstacle>& obstacles_;
   std::size_t last_;
+  DeadlinePoll* poll_;
   std::vector<Track> tracks_;
   PlacedBodies scratch_;  // an obstacle past the last tabulated instant
   std::vector<double> scratch_q_;
@@ -215,7 +223,8 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions) {
   const RobotModel& model = graph.model();
   const int dim = model.dim();
-  MotionGuard guard(model, obstacles, 2 * std::max(horizon, hold_until) + 2);
+  DeadlinePoll poll(deadline, kWorkPerClockRead);
+  MotionGuard guard(model, obstacles, 2 * std::max(horizon, hold_until) + 2, &poll);
   if (!guard.free(graph.config(start), 0)) return std::nullopt;
   // Unreachable in the region even with time ignored: say so now rather than
   // after enumerating every (vertex, time) pair up to the horizon.
@@ -274,6 +283,9 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     }
     if (++expansions > max_expansions) break;
     if ((expansions & 255) == 0 && deadline.expired()) break;
+    // Polled where the work is (see MotionGuard and Roadmap::edgeValid):
+    // an expansion on arms of thousands of links can take a second.
+    if (poll.seenExpired() || graph.roadmap().poll().seenExpired()) break;
     if (it.tau >= horizon) continue;
     auto push = [&](int u, std::size_t tau) {
       if (parent.try_emplace(nodeKey(u, tau), key).second) open.push({priority(u, tau), tau, u});
