@@ -163,7 +163,7 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
   // scratch: ARC at its first decoupled attempt, E-ARC only when the
   // database does not answer. Building an arm's roadmap was about 3 ms
   // of a 16-arm plan (a roadmap per arm with obstacles in reach).
-  CompositeChecker checker(world, {&model});
+  CompositeChecker checker(world, {&model}, deadline);
   if (checker.motionValid({spec.start}, {spec.goal})) return timeStamp(model, {spec.start, spec.goal});
   Roadmap& rm = roadmaps.forRobot(robot);
   for (int attempt = 0; attempt <= kRoadmapGrowths; ++attempt) {

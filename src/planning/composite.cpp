@@ -23,8 +23,6 @@ namespace {
 // x instead of testing all n(n-1)/2 of them: the coupled method on a whole
 // scenario of thousands of robots spent minutes here.
 constexpr std::size_t kSweepAbove = 8;
-// The clock is read once per this many instants of a motion.
-constexpr int kInstantsPerClockRead = 8;
 
 struct Extent {
   double lo, hi;
@@ -32,7 +30,29 @@ struct Extent {
 };
 }  // namespace
 
+bool CompositeChecker::outOfTime() const {
+  if (!deadline_) return false;
+  if (expired_.load(std::memory_order_relaxed)) return true;
+  if (!deadline_->expired()) return false;
+  expired_.store(true, std::memory_order_relaxed);
+  return true;
+}
+
+bool CompositeChecker::outOfTimeAfter(std::size_t work) const {
+  if (!deadline_) return false;
+  if (expired_.load(std::memory_order_relaxed)) return true;
+  thread_local std::size_t owed = 0;  // shared by every checker on the thread: only the pace of reads
+  owed += work;
+  if (owed < kWorkPerClockRead) return false;
+  owed = 0;
+  return outOfTime();
+}
+
 bool CompositeChecker::stateValid(const CompositeState& q) const {
+  return !outOfTimeAfter(work_per_instant_) && checkState(q);
+}
+
+bool CompositeChecker::checkState(const CompositeState& q) const {
   const std::size_t n = robots_.size();
   // Each robot's bodies are placed once, for the obstacles and for every
   // robot near it. Per-thread scratch, as the checker is shared.
@@ -70,7 +90,7 @@ bool CompositeChecker::instantValid(const CompositeState& a, const CompositeStat
     scratch[r].resize(a[r].size());
     robots_[r]->interpolate(a[r].data(), b[r].data(), s, scratch[r].data());
   }
-  return stateValid(scratch);
+  return checkState(scratch);
 }
 
 bool CompositeChecker::motionValid(const CompositeState& a, const CompositeState& b, KnownValid known) const {
@@ -89,13 +109,12 @@ double CompositeChecker::lastValidFraction(const CompositeState& a, const Compos
   std::vector<char> tested(static_cast<std::size_t>(instants + 1), 0);
   tested.front() = known.start;
   tested.back() = known.end;
-  int tests = 0;
   for (int stride = instants; stride >= 1; stride /= 2) {
     for (int k = 0; k <= instants; k += stride) {
       if (tested[static_cast<std::size_t>(k)]) continue;
       tested[static_cast<std::size_t>(k)] = 1;
       if (k >= first_bad) continue;
-      if (deadline_ && ++tests % kInstantsPerClockRead == 0 && deadline_->expired()) return 0.0;
+      if (outOfTimeAfter(work_per_instant_)) return 0.0;
       if (!instantValid(a, b, static_cast<double>(k) / instants, scratch)) first_bad = k;
     }
     if (stride == 1) break;  // every instant below first_bad has now been tested
@@ -148,7 +167,7 @@ bool CompositeChecker::robotMotionValid(std::size_t r, const std::vector<const d
   q.resize(n);
   at.resize(n);
   for (long long k = known.start ? 1 : 0; k <= instants - (known.end && instants > 0 ? 1 : 0); ++k) {
-    if (deadline_ && k % kInstantsPerClockRead == 0 && deadline_->expired()) return false;
+    if (outOfTimeAfter(work_per_instant_)) return false;
     for (std::size_t w = 0; w < n; ++w) {
       if (instants == 0) {  // as motionValid: the state itself, not interpolated
         at[w] = a[w];

@@ -327,6 +327,14 @@ TEST_CASE("A composite motion checked after the checker's deadline reads as inva
   CompositeChecker late(world, m.raw, past);
   CHECK_FALSE(late.motionValid(a, b));
   CHECK(late.lastValidFraction(a, b) == 0.0);
+  // States too (OMPL's simplifier samples states after its time is up),
+  // and a motion of one robot among others.
+  CHECK(unlimited.stateValid(a));
+  CHECK_FALSE(late.stateValid(a));
+  CHECK(late.outOfTime());
+  const std::vector<const double*> from{a[0].data(), a[1].data()}, to{b[0].data(), b[1].data()};
+  CHECK(unlimited.robotMotionValid(0, from, to));
+  CHECK_FALSE(late.robotMotionValid(0, from, to));
 }
 
 TEST_CASE("The flat composite space measures and interpolates exactly as a compound of SE2 and joint spaces") {

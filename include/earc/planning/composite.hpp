@@ -2,6 +2,7 @@
 // against the world, and no two of them touching.
 #pragma once
 
+#include <atomic>
 #include <random>
 #include <vector>
 
@@ -55,14 +56,26 @@ class BodiesAlongPaths {
 class CompositeChecker {
  public:
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots)
-      : world_(world), robots_(std::move(robots)) {}
-  // Motions checked after `deadline` has expired read as invalid from the
-  // first instant (safe: nothing unchecked is ever called valid). One
-  // motion of thousands of robots can take seconds; the planner's own
-  // checks of its time limit come only between motions. The deadline must
-  // outlive this.
+      : world_(world), robots_(std::move(robots)) {
+    for (const RobotModel* m : robots_) work_per_instant_ += static_cast<std::size_t>(m->dim());
+  }
+  // Once `deadline` has expired, states and motions read as invalid (safe:
+  // nothing unchecked is ever called valid). The clock is read here, so
+  // that a checker made after its deadline calls everything invalid, and
+  // then every kWorkPerClockRead units of work done on the thread (a state
+  // being the robots' summed dim()), inside motions and states alike: one
+  // motion of thousands of robots, or one state of arms of thousands of
+  // links, takes long, and OMPL's planners and path simplifier check
+  // thousands more after their own termination condition (a round of
+  // simplification however late; repairs sampling near each state). The
+  // planner's own checks of its time limit come only between them. (A
+  // read per motion would cost the coupled planner on a few small robots
+  // some percent.) The deadline must outlive this.
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots, const Deadline& deadline)
-      : world_(world), robots_(std::move(robots)), deadline_(&deadline) {}
+      : CompositeChecker(world, std::move(robots)) {
+    deadline_ = &deadline;
+    expired_.store(deadline.expired(), std::memory_order_relaxed);
+  }
 
   // Every robot valid and no pair touching.
   bool stateValid(const CompositeState& q) const;
@@ -85,6 +98,9 @@ class CompositeChecker {
                       KnownValid known, BodiesAlongPaths& along, std::size_t t) const;
 
   const std::vector<const RobotModel*>& robots() const { return robots_; }
+  // Whether the deadline, if any, has expired (reads the clock unless a
+  // check has already found it so).
+  bool outOfTime() const;
 
  private:
   bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
@@ -92,7 +108,15 @@ class CompositeChecker {
   bool instantValid(const CompositeState& a, const CompositeState& b, double s, CompositeState& scratch) const;
   const CollisionWorld& world_;
   std::vector<const RobotModel*> robots_;
+  // Counts `work` done on this thread; whether the deadline has expired,
+  // read every kWorkPerClockRead units (a plain check per state would
+  // cost a small robot's planner a few percent).
+  bool outOfTimeAfter(std::size_t work) const;
+  // stateValid without the deadline.
+  bool checkState(const CompositeState& q) const;
   const Deadline* deadline_ = nullptr;
+  std::size_t work_per_instant_ = 0;
+  mutable std::atomic<bool> expired_{false};  // once seen; planners check from several threads
 };
 
 // Random shortcutting of a composite waypoint sequence: replace the part

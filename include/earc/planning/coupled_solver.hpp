@@ -60,6 +60,8 @@ void polishComposite(const CompositeChecker& checker, std::vector<CompositeState
 
 // Steps t of time-stamped paths whose motion t -> t+1 (either end or its
 // midpoint) is invalid, as maximal runs [first, last] of consecutive steps.
+// Past the checker's deadline every state and motion reads as invalid:
+// ask checker.outOfTime() before believing the runs.
 using StepRun = std::pair<std::size_t, std::size_t>;
 std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vector<Path>& paths);
 
