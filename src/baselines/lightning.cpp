@@ -268,7 +268,11 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
                                 spaceDescription(scenario));
   RobotModels robots(scenario);
   CollisionWorld world(scenario);
-  CompositeChecker checker(world, robots.raw);
+  // Motions checked past the limit read as invalid: OMPL's path simplifier
+  // runs one round however late (PathSimplifier::simplify, atLeastOnce),
+  // and on arms of thousands of links that round took tens of seconds.
+  const Deadline deadline(settings.time_limit_s - clock.seconds());
+  CompositeChecker checker(world, robots.raw, deadline);
   const CompositeState start = starts(scenario), goal = goals(scenario);
   OmplComposite composite(checker, compositeBounds(world, robots.raw, {}, {start, goal}));
   composite.setSeed(settings.seed);
@@ -281,7 +285,7 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   auto& st = result.stats;
   st["lightning_db_entries"] = entries_before;
   if (!checker.stateValid(start) || !checker.stateValid(goal)) {
-    result.failures.insert(FailureCause::InvalidInput);
+    result.failures.insert(checker.outOfTime() ? FailureCause::TimeLimit : FailureCause::InvalidInput);
     st["planning_time_s"] = clock.seconds();
     return result;
   }
@@ -325,6 +329,8 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     // leaves the last state it sampled, in collision, in the path. Drop
     // such states and replan what is still invalid between the valid
     // states around it, as Lightning repairs a recalled path.
+    // Past the limit checks read as invalid: a path found valid was truly
+    // checked, one found invalid then may not be (see below).
     std::vector<CompositeState> kept{waypoints.front()};
     for (std::size_t i = 1; i + 1 < waypoints.size(); ++i)
       if (checker.stateValid(waypoints[i])) kept.push_back(waypoints[i]);
@@ -333,7 +339,6 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     const std::vector<StepRun> runs = invalidRuns(checker, paths);
     std::string refused;
     if (!runs.empty()) {
-      const Deadline deadline(settings.time_limit_s - clock.seconds());
       RunRepair fix = repairRuns(world, robots.raw, paths, runs, {}, deadline.remaining(), deadline,
                                  splitSeed(settings.seed, kRepairPathStream));
       st["lightning_repaired_runs"] = runs.size();
@@ -347,6 +352,8 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     if (refused.empty()) {
       result.solution.solved = true;
       result.solution.paths = std::move(paths);
+    } else if (checker.outOfTime()) {
+      result.failures.insert(FailureCause::TimeLimit);
     } else {
       result.failures.insert(FailureCause::InvalidResult);
       st["invalid_result"] = nlohmann::json::array({refused});
