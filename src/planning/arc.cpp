@@ -258,7 +258,9 @@ std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const Lo
   }
   for (std::size_t i = 0; i < sub.robots.size(); ++i) view[static_cast<std::size_t>(sub.robots[i])] = &candidate[i];
   const std::size_t t1 = sub.t_start + local.length() - 1;
-  ConflictDetector detector(models_);
+  // Out of time, no robot is merged: the plan's own search for conflicts
+  // then stops at the deadline too, so nothing unchecked is reported solved.
+  ConflictDetector detector(models_, deadline_);
   auto c = detector.first(view, sub.t_start, t1, &focus);
   if (!c) return std::nullopt;
   const int other = focus[static_cast<std::size_t>(c->a)] ? c->b : c->a;
@@ -378,7 +380,7 @@ PlanResult ArcRun::run() {
   const double individual_s = clock.seconds();
   bool solved = false;
   if (failures_.empty()) {
-    ConflictDetector detector(models_);
+    ConflictDetector detector(models_, deadline_);
     std::size_t from = 0;
     for (;;) {
       if (deadline_.expired()) {
@@ -386,6 +388,10 @@ PlanResult ArcRun::run() {
         break;
       }
       auto c = detector.first(pathPointers(paths_), from);
+      if (!c && detector.interrupted()) {
+        failures_.insert(FailureCause::TimeLimit);
+        break;
+      }
       if (!c) {
         solved = true;
         break;

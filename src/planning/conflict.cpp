@@ -32,9 +32,15 @@ ConflictDetector::ConflictDetector(std::vector<const RobotModel*> models) : mode
   }
 }
 
+ConflictDetector::ConflictDetector(std::vector<const RobotModel*> models, const Deadline& deadline)
+    : ConflictDetector(std::move(models)) {
+  deadline_ = &deadline;
+}
+
 std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& paths, std::size_t from,
                                                 std::size_t to, const std::vector<char>* focus) {
   const std::size_t n = models_.size();
+  interrupted_ = false;
   std::size_t horizon = 0;
   for (const Path* p : paths)
     if (p && !p->empty()) horizon = std::max(horizon, p->size() - 1);
@@ -44,8 +50,16 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
   for (std::size_t r = 0; r < n; ++r)
     if (paths[r] && !paths[r]->empty()) active.push_back(static_cast<int>(r));
   std::vector<int> order = active;  // by min x after the first instant's sort
+  std::size_t work = 0;  // per instant
+  for (int r : active) work += static_cast<std::size_t>(models_[static_cast<std::size_t>(r)]->dim());
+  std::optional<DeadlinePoll> poll;
+  if (deadline_) poll.emplace(*deadline_, kWorkPerClockRead);
 
   for (std::size_t k = 2 * from; k <= 2 * to; ++k) {
+    if (poll && poll->expired(work)) {
+      interrupted_ = true;
+      return std::nullopt;
+    }
     for (int r : active) {
       auto ru = static_cast<std::size_t>(r);
       stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());

@@ -66,14 +66,22 @@ Scenario fourBoxes() {
   return s;
 }
 
+// Two discs that swap places in one step, touching only at its midpoint.
+struct MidpointSwap {
+  Scenario s;
+  std::vector<Path> paths{line({{1.0, 1.0, 0}, {1.4, 1.0, 0}}), line({{1.4, 1.0, 0}, {1.0, 1.0, 0}})};
+  MidpointSwap() : s(openScenario(5)) {
+    s.resolution.translation = 0.5;
+    s.robots = {disc("a", 0.1, {1.0, 1.0, 0}, {1.4, 1.0, 0}), disc("b", 0.1, {1.4, 1.0, 0}, {1.0, 1.0, 0})};
+  }
+};
+
 }  // namespace
 
 TEST_CASE("FindConflict catches two discs that touch only at the midpoint of a step") {
-  Scenario s = openScenario(5);
-  s.resolution.translation = 0.5;
-  s.robots = {disc("a", 0.1, {1.0, 1.0, 0}, {1.4, 1.0, 0}), disc("b", 0.1, {1.4, 1.0, 0}, {1.0, 1.0, 0})};
-  RobotModels m(s);
-  std::vector<Path> paths{line({{1.0, 1.0, 0}, {1.4, 1.0, 0}}), line({{1.4, 1.0, 0}, {1.0, 1.0, 0}})};
+  const MidpointSwap swap;
+  RobotModels m(swap.s);
+  const std::vector<Path>& paths = swap.paths;
   ConflictDetector det(m.raw);
   auto c = det.first(pathPointers(paths));
   REQUIRE(c.has_value());
@@ -90,6 +98,19 @@ TEST_CASE("FindConflict reports nothing for discs that pass with clearance") {
   std::vector<Path> paths{line({{1, 1, 0}, {1.05, 1, 0}, {1.1, 1, 0}}), line({{1, 1.3, 0}, {1.05, 1.3, 0}})};
   ConflictDetector det(m.raw);
   CHECK_FALSE(det.first(pathPointers(paths)).has_value());
+}
+
+TEST_CASE("FindConflict given a deadline that has passed gives up and says so, rather than report no conflict") {
+  const MidpointSwap swap;
+  RobotModels m(swap.s);
+  const std::vector<Path>& paths = swap.paths;
+  const Deadline later(1e6), past(-1.0);
+  ConflictDetector in_time(m.raw, later);
+  CHECK(in_time.first(pathPointers(paths)).has_value());
+  CHECK_FALSE(in_time.interrupted());
+  ConflictDetector late(m.raw, past);
+  CHECK_FALSE(late.first(pathPointers(paths)).has_value());
+  CHECK(late.interrupted());
 }
 
 TEST_CASE("FindConflict sees a robot that waits at its goal after its path ends") {

@@ -9,6 +9,7 @@
 #include "earc/geometry/shapes.hpp"
 #include "earc/scene/path.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc {
 
@@ -26,18 +27,26 @@ void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, do
 class ConflictDetector {
  public:
   explicit ConflictDetector(std::vector<const RobotModel*> models);
+  // With a deadline (which must outlive this), first() gives up once it
+  // has expired, polled every kWorkPerClockRead units of work (an instant
+  // being the robots' summed dim()): one instant of arms of thousands of
+  // links takes milliseconds a pair.
+  ConflictDetector(std::vector<const RobotModel*> models, const Deadline& deadline);
 
   // Earliest conflict among `paths` (one per robot; nullptr = robot absent)
   // at instants from step `from` through step `to` (inclusive; clamped to
   // the longest path). When `focus` is given, only pairs with at least one
   // focused robot count. A sort-and-sweep over the bodies' bounds per
   // instant (insertion sort: the order barely changes between instants)
-  // keeps this near linear in the number of robots.
+  // keeps this near linear in the number of robots. Nothing either when
+  // the deadline expired before the end: ask interrupted().
   std::optional<Conflict> first(const std::vector<const Path*>& paths, std::size_t from = 0,
                                 std::size_t to = static_cast<std::size_t>(-1),
                                 const std::vector<char>* focus = nullptr);
 
   std::size_t exactTests() const { return exact_tests_; }
+  // Whether the last first() gave up at the deadline.
+  bool interrupted() const { return interrupted_; }
 
  private:
   std::vector<const RobotModel*> models_;
@@ -45,6 +54,8 @@ class ConflictDetector {
   std::vector<std::vector<double>> q_;
   std::vector<geo::Body> bodies_;
   std::size_t exact_tests_ = 0;
+  const Deadline* deadline_ = nullptr;
+  bool interrupted_ = false;
 };
 
 // All robots' paths as the detector's pointer view.
