@@ -24,6 +24,7 @@ const char* obstacleKind(const Obstacle& o) { return o.type == Obstacle::Type::B
 // every instant.
 struct Scratch {
   std::vector<std::vector<geo::Body>> parts;  // per robot of the call
+  std::vector<geo::Aabb> bounds;              // of one robot's parts
   std::vector<int> touched;
   struct Hit {
     int obstacle;
@@ -118,13 +119,17 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
   }
 
   // Self-collision: links that share a joint never count.
+  // The parts' bounds are made once: an arm of a thousand links has half
+  // a million pairs, and making them per pair was most of its validation.
   for (std::size_t pos = 0; pos < n; ++pos) {
     const auto& parts = s.parts[pos];
     double worst = 0.0;
     std::size_t wa = 0, wb = 0;
+    s.bounds.resize(parts.size());
+    for (std::size_t i = 0; i < parts.size(); ++i) s.bounds[i] = geo::bounds(parts[i]);
     for (std::size_t i = 0; i + 2 < parts.size(); ++i)
       for (std::size_t j = i + 2; j < parts.size(); ++j)
-        if (geo::bounds(parts[i]).overlaps(geo::bounds(parts[j])) && geo::touches(parts[i], parts[j])) {
+        if (s.bounds[i].overlaps(s.bounds[j]) && geo::touches(parts[i], parts[j])) {
           const double overlap = -geo::signedDistance(parts[i], parts[j]);
           if (overlap > worst) worst = overlap, wa = i, wb = j;
         }
