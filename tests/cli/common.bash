@@ -73,3 +73,29 @@ FAKE
   esac
   chmod +x "$1"
 }
+# Runs `$BUILD/earc-plan plan "$@"`, timed: sets RC (its exit status) and
+# WALL (its seconds by the wall clock, start-up and writing included).
+timedPlan() {
+  local start
+  start=$(date +%s.%N)
+  "$BUILD/earc-plan" plan "$@"
+  RC=$?
+  WALL=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+}
+# Checks the solution $2 of the plan timedPlan ran last (named $1 in what
+# it says): planned for at most $3 s by its own clock and ran for at most
+# $4 s, and if unsolved, exited 1 saying the time limit was why. Needs jq.
+checkTimedPlan() {
+  local name=$1 out=$2 own_max=$3 wall_max=$4 own solved
+  [ -f "$out" ] || { fail "$name: no solution file (exit $RC)"; return 1; }
+  own=$(jq '.stats.planning_time_s' "$out")
+  solved=$(jq '.solved' "$out")
+  echo "$name: exit $RC, solved $solved, planning_time_s $own, wall $WALL s"
+  awk -v t="$own" -v m="$own_max" 'BEGIN { exit !(t <= m) }' || fail "$name planned for $own s (at most $own_max s)"
+  awk -v t="$WALL" -v m="$wall_max" 'BEGIN { exit !(t <= m) }' || fail "$name ran for $WALL s (at most $wall_max s)"
+  if [ "$solved" = false ]; then
+    [ "$RC" -eq 1 ] || fail "$name unsolved: exit $RC, expected 1"
+    jq -e '.stats.failure | index("time_limit")' "$out" > /dev/null ||
+      fail "$name: unsolved but not for the time limit: $(jq -c .stats.failure "$out")"
+  fi
+}
