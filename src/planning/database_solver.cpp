@@ -7,6 +7,7 @@
 #include <random>
 #include <string_view>
 
+#include "earc/experience/path_blob.hpp"
 #include "earc/experience/retrieval.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
@@ -385,6 +386,10 @@ void DatabaseSolver::accepted(const SolverContext& ctx, const LocalSolution& sol
   if (ctx.sub.robots.size() < 2 || ctx.sub.robots.size() > kMaxRobots) return;
   Pending p;
   for (int r : ctx.sub.robots) p.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  // A stored path holds at most kMaxBlobDim coordinates a state: an arm of
+  // more joints is planned, not learned (inserting it ended the plan).
+  for (const RobotModel* m : p.robots)
+    if (m->dim() > exp::kMaxBlobDim) return;
   // Trailing steps where every robot waits at its goal say nothing about
   // how the conflict was resolved: store the solution without them.
   std::size_t len = sol.length();

@@ -3,6 +3,7 @@
 # - learning (the default) counts the session and writes what it learned;
 # - the summary line says what the database answered and learned;
 # - a database for other robots is a warning line (E-ARC then plans as ARC);
+# - arms of more joints than a stored path holds are planned, not learned;
 # - --db-k and --db-repair-max reach the database solver, and
 #   --db-max-stretch refuses answers longer than its bound;
 # - --no-learn leaves the file exactly as it was (no session count, no usage
@@ -34,6 +35,13 @@ sessions=$(q "$F" "select value from store_meta where name = 'sessions'")
 grep -q "^earc-plan: warning: $WORK/boxes.db holds [0-9]* experiences, none for these robots (mobile:disc" \
   "$WORK/w.err" || fail "no warning for a database of other robots: $(cat "$WORK/w.err")"
 [ "$(wc -l < "$WORK/w.err")" -eq 1 ] || fail "more than the warning: $(cat "$WORK/w.err")"
+
+# Arms of 100 joints: more than a stored path holds a state. E-ARC plans
+# them and learns nothing (inserting them ended the plan with an error).
+manyLinkArms 100 0.02 > "$WORK/a100.json"
+"$PLAN" plan "$WORK/a100.json" -o "$WORK/a100.sol.json" --method earc --db "$WORK/a100.db" --time-limit 20 -q \
+  2> "$WORK/a100.err" || fail "E-ARC learning on arms of 100 joints: exit $?: $(cat "$WORK/a100.err")"
+[ "$(stat_of "$WORK/a100.sol.json" db_learned)" = 0 ] || fail "learned arms of 100 joints"
 
 # Learning: one more session, the counters of what was retrieved.
 "$PLAN" plan "$SCEN" -o "$WORK/a.json" --method earc --db "$F" --seed 1 -q 2> "$WORK/a.err" || fail "plan: exit $?"

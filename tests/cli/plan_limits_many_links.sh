@@ -17,30 +17,8 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 command -v jq > /dev/null || { echo "skipped: no jq (tools/setup.sh --tests)"; exit 77; }
 needBuilt earc-plan
 
-# Two facing arms of N links (2.5 long in all, radius 0.3 of a link) that
-# sweep through each other from up to down: the straight motions collide.
-# $2 bounds every joint but the first (0: the full circle).
-arms() {
-  awk -v n="$1" -v lim="$2" 'BEGIN {
-    pi = atan2(0, -1); L = 2.5 / n; if (lim == 0) lim = pi
-    printf "{\"format\": \"earc.scenario.v1\", \"name\": \"many-links\", \"workspace\": {\"min\": [0, 0], \"max\": [10, 10]}, \"robots\": ["
-    for (a = 0; a < 2; a++) {
-      printf "%s{\"name\": \"a%d\", \"type\": \"manipulator\", \"base\": [%s, 5, %.17g], \"link_radius\": %.17g, \"links\": [", (a ? ", " : ""), a, (a ? 7 : 3), (a ? pi : 0), 0.3 * L
-      for (i = 0; i < n; i++) printf "%s%.17g", (i ? ", " : ""), L
-      printf "], \"joint_limits\": [[%.17g, %.17g]", -pi, pi
-      for (i = 1; i < n; i++) printf ", [%.17g, %.17g]", -lim, lim
-      s = (a ? -pi / 2 : pi / 2)
-      printf "], \"start\": [%.17g", s
-      for (i = 1; i < n; i++) printf ", 0"
-      printf "], \"goal\": [%.17g", -s
-      for (i = 1; i < n; i++) printf ", 0"
-      printf "]}"
-    }
-    print "]}"
-  }'
-}
-arms 1000 0 > "$WORK/free.json"      # random samples almost all self-collide
-arms 1000 0.02 > "$WORK/stiff.json"  # Lightning finds a path and simplifies it
+manyLinkArms 1000 0 > "$WORK/free.json"      # random samples almost all self-collide
+manyLinkArms 1000 0.02 > "$WORK/stiff.json"  # Lightning finds a path and simplifies it
 
 LIMIT=1
 OWN_MAX=$(awk -v l=$LIMIT 'BEGIN { print l + 0.5 }')  # by the plan's own clock
