@@ -100,8 +100,8 @@ checkTimedPlan() {
   fi
 }
 # Writes on stdout a scenario of two facing arms of $1 links (2.5 long in
-# all, radius 0.3 of a link) that
-# sweep through each other from up to down: the straight motions collide.
+# all, radius 0.3 of a link) that sweep through each other from up to
+# down: the straight motions collide.
 # $2 bounds every joint but the first (0: the full circle).
 manyLinkArms() {
   awk -v n="$1" -v lim="$2" 'BEGIN {
