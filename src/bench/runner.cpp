@@ -11,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -174,10 +175,17 @@ class Runner {
       try {
         work();
       } catch (...) {
-        std::lock_guard lock(error_mutex);
-        if (!error) error = std::current_exception();
-        interruptFlag().store(true);
-        finished_cv_.notify_all();  // cutOff's waiters look at the flag
+        {
+          std::lock_guard lock(error_mutex);
+          if (!error) error = std::current_exception();
+        }
+        {
+          // Set under the mutex cutOff's waiters check it under: set
+          // between their check and their wait, they would sleep for good.
+          std::lock_guard lock(record_mutex_);
+          interruptFlag().store(true);
+        }
+        finished_cv_.notify_all();
       }
     };
     std::vector<std::thread> threads;
@@ -185,7 +193,10 @@ class Runner {
     worker();
     for (auto& t : threads) t.join();
     progress.finish();
-    if (error) std::rethrow_exception(error);
+    if (error) {
+      interruptFlag().store(false);  // the error stopped the run, not a signal
+      std::rethrow_exception(error);
+    }
     if (interruptFlag().load()) return finishInterrupted();
     log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
     if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
@@ -404,11 +415,19 @@ class Runner {
     const bool database_method = t.method == "earc" || t.method == "lightning";
     const bool solved = doc["solved"].get<bool>();
     const nlohmann::json st = doc.value("stats", nlohmann::json::object());
+    // Another program's output (--plan-program): a figure the results
+    // reader would refuse (negative, fractional, not finite) is left out
+    // rather than stored, where it would make the whole file unreadable.
     auto num = [&](const char* key) -> std::optional<std::int64_t> {
-      if (st.contains(key) && st[key].is_number()) return st[key].get<std::int64_t>();
+      const auto v = st.find(key);
+      // JSON's whole numbers of 0 and more are read as unsigned.
+      if (v != st.end() && v->is_number_unsigned() &&
+          v->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        return v->get<std::int64_t>();
       return std::nullopt;
     };
-    if (st.contains("planning_time_s") && st["planning_time_s"].is_number())
+    if (st.contains("planning_time_s") && st["planning_time_s"].is_number() &&
+        std::isfinite(st["planning_time_s"].get<double>()) && st["planning_time_s"].get<double>() >= 0)
       t.planning_time_s = st["planning_time_s"].get<double>();
     t.makespan = num("makespan");
     t.sum_of_costs = num("sum_of_costs");
@@ -418,7 +437,9 @@ class Runner {
     // summary line and db_hit_rate count them (its db_hits stat counts the
     // former only); Lightning's: 1 when it recalled the whole problem.
     if (database_method)
-      t.db_hits = st.contains("subproblems_by_solver") ? databaseAnswers(st).answered() : num("db_hits");
+      t.db_hits = st.contains("subproblems_by_solver") ? std::optional<std::int64_t>(databaseAnswers(st).answered())
+                                                        : num("db_hits");
+    if (t.db_hits && *t.db_hits < 0) t.db_hits.reset();
     if (!solved && st.contains("failure")) {
       const auto& f = st["failure"];
       if (f.is_array()) {

@@ -83,8 +83,10 @@ bool conflicting(const CollisionWorld& world, const std::vector<const RobotModel
   return checker.stateValid(q.starts) && checker.stateValid(q.goals) && !checker.motionValid(q.starts, q.goals);
 }
 
-// The bounding radius of the default mobile footprint (a 0.6 x 0.4 box),
-// for which QuerySampling's distances were chosen.
+// The bounding radius of the default mobile footprint (the generators'
+// 0.6 x 0.4 box: 0.36056), for which QuerySampling's distances were
+// chosen; rounded up, so that the default builds exactly as before
+// whatever rounding the model's radius carries.
 constexpr double kTunedBoundingRadius = 0.3606;
 
 // Mobile: a workspace just around the query, no obstacles.

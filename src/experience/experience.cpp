@@ -228,6 +228,11 @@ std::optional<std::string> findProblem(const Experience& e) {
     return buf;
   }
   if (!std::isfinite(e.solve_time_s) || e.solve_time_s < 0) return "solve_time_s is negative or not finite";
+  // A session number counts a file's planning sessions: an import that
+  // keeps it also raises the file's count to it, which must stay a count.
+  if (e.created_session < 0 || e.created_session > kMaxSession)
+    return "created_session " + std::to_string(e.created_session) + " is not a session number (0.." +
+           std::to_string(kMaxSession) + ")";
   if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved)
     return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +
            std::to_string(e.succeeded) + ")";

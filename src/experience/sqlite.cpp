@@ -46,6 +46,8 @@ std::optional<std::vector<unsigned char>> readThroughSqlite(const std::string& p
   // the VFS may look for URI parameters after it).
   const std::unique_ptr<const char, decltype(&sqlite3_free_filename)> name(
       sqlite3_create_filename(path.c_str(), "", "", 0, nullptr), &sqlite3_free_filename);
+  if (!name) return std::nullopt;  // out of memory; a null name would open a temporary file
+  std::vector<unsigned char> data(static_cast<std::size_t>(bytes));  // before the file: nothing throws while open
   // sqlite3_file's state, as large as the VFS asks, suitably aligned.
   std::vector<std::max_align_t> state((static_cast<std::size_t>(vfs->szOsFile) + sizeof(std::max_align_t) - 1) /
                                       sizeof(std::max_align_t));
@@ -53,10 +55,7 @@ std::optional<std::vector<unsigned char>> readThroughSqlite(const std::string& p
   int flags = 0;
   const int opened = vfs->xOpen(vfs, name.get(), file, SQLITE_OPEN_READONLY | SQLITE_OPEN_MAIN_DB, &flags);
   std::optional<std::vector<unsigned char>> out;
-  if (opened == SQLITE_OK) {
-    std::vector<unsigned char> data(static_cast<std::size_t>(bytes));
-    if (file->pMethods->xRead(file, data.data(), bytes, 0) == SQLITE_OK) out = std::move(data);
-  }
+  if (opened == SQLITE_OK && file->pMethods->xRead(file, data.data(), bytes, 0) == SQLITE_OK) out = std::move(data);
   if (file->pMethods) file->pMethods->xClose(file);
   return out;
 }

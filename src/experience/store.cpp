@@ -339,7 +339,8 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     }
     // Rows kept with their sessions (an import restoring an export into an
     // empty file): the file has seen at least the latest of them, so that
-    // curate --older-than-sessions judges the copy as it judged the original.
+    // curate --older-than-sessions judges the copy as it judged the
+    // original (unless the original's last sessions learned nothing).
     if (stamp == SessionStamp::AsGiven)
       conn_->exec(
           "UPDATE store_meta SET value = max(value, (SELECT coalesce(max(created_session), 0) FROM experiences)) "

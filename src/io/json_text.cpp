@@ -191,7 +191,7 @@ json readJsonFile(const std::string& path) {
     // did not fit rather than only "std::bad_alloc".
     const std::string size =
         bytes ? " (" + formatNumber("%.1f", static_cast<double>(bytes) / (1 << 20)) + " MB of JSON)" : "";
-    throw OutOfMemory(path + ": out of memory while reading it" + size + " (is the memory limit, ulimit -v, too low?)");
+    throw OutOfMemory(path + ": " + outOfMemoryText("while reading it" + size));
   }
 }
 
@@ -303,7 +303,7 @@ void AtomicFile::write(std::string_view text) { writeAll(fd_, text, given_); }
 void AtomicFile::commit() {
   const int fd = std::exchange(fd_, -1);
   if (special_) {
-    ::close(fd);
+    if (::close(fd) != 0) throw std::runtime_error(given_ + ": cannot flush: " + std::strerror(errno));
     committed_ = true;
     return;
   }

@@ -473,7 +473,7 @@ DatabaseAnswers databaseAnswers(const nlohmann::json& stats) {
   const auto found = stats.find("subproblems_by_solver");
   if (found == stats.end() || !found->is_object()) return a;
   for (const auto& [name, count] : found->items()) {
-    const std::int64_t n = count.is_number_integer() ? count.get<std::int64_t>() : 0;
+    const std::int64_t n = count.is_number_integer() ? std::max<std::int64_t>(0, count.get<std::int64_t>()) : 0;
     a.solved += n;
     if (name == "database") a.retrieved = n;
     if (name == "repair") a.repaired = n;

@@ -32,6 +32,10 @@ void armMemoryReserve() {
 
 std::string outOfMemoryMessage(const std::bad_alloc& e, const std::string& doing) {
   if (dynamic_cast<const OutOfMemory*>(&e)) return e.what();
+  return outOfMemoryText(doing);
+}
+
+std::string outOfMemoryText(const std::string& doing) {
   return "out of memory" + (doing.empty() ? "" : " " + doing) + " (is the memory limit, ulimit -v, too low?)";
 }
 

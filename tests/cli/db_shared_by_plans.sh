@@ -11,7 +11,7 @@ set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
 needBuilt earc-plan earc-db earc-scenario
-command -v jq > /dev/null || { echo "skipped: no jq"; exit 77; }
+for tool in jq sqlite3; do command -v $tool > /dev/null || { echo "skipped: no $tool"; exit 77; }; done
 "$BUILD/earc-scenario" generate -n 40 --workspace 8 --seed 1 -o "$WORK/long.json" > /dev/null || fail "generate long"
 "$BUILD/earc-scenario" generate -n 24 --workspace 8 --obstacles 4 --seed 2 -o "$WORK/short.json" > /dev/null ||
   fail "generate short"
@@ -25,6 +25,8 @@ for i in 1 2 3 4; do
   "$BUILD/earc-plan" plan "$WORK/short.json" -o "$WORK/short$i.sol.json" --method earc --db "$WORK/s.db" \
     --seed $i -q 2> "$WORK/short$i.err" || fail "short plan $i exited $?: $(head -c 300 "$WORK/short$i.err")"
 done
+# The short plans must have closed the file while the long one used it.
+kill -0 $long 2> /dev/null || fail "the long plan ended before the short ones: the test proves nothing"
 wait $long || fail "the long plan exited $?: $(head -c 300 "$WORK/long.err")"
 "$BUILD/earc-db" verify --db "$WORK/s.db" > "$WORK/verify.out" 2>&1 || fail "verify: $(tail -c 400 "$WORK/verify.out")"
 learned=0

@@ -41,6 +41,7 @@ grep -q "^earc-plan: warning: $WORK/boxes.db holds [0-9]* experiences, none for 
 manyLinkArms 100 0.02 > "$WORK/a100.json"
 "$PLAN" plan "$WORK/a100.json" -o "$WORK/a100.sol.json" --method earc --db "$WORK/a100.db" --time-limit 20 -q \
   2> "$WORK/a100.err" || fail "E-ARC learning on arms of 100 joints: exit $?: $(cat "$WORK/a100.err")"
+[ "$(stat_of "$WORK/a100.sol.json" subproblems)" -gt 0 ] || fail "no subproblem on arms of 100 joints: nothing tested"
 [ "$(stat_of "$WORK/a100.sol.json" db_learned)" = 0 ] || fail "learned arms of 100 joints"
 
 # Learning: one more session, the counters of what was retrieved.

@@ -91,12 +91,18 @@ class ProgressLine {
     const auto start = steady_clock::now();
     bool drawn = false;
     std::unique_lock lock(mutex_);
-    for (auto next = start + milliseconds(500); !wake_.wait_until(lock, next, [this] { return stopping_; });
-         next += milliseconds(250)) {
-      const double elapsed = duration<double>(steady_clock::now() - start).count();
-      std::fprintf(stderr, "\r%s\033[K", text(elapsed).c_str());
-      std::fflush(stderr);
-      drawn = true;
+    try {
+      // After a pause (Ctrl-Z) the next draw is a quarter second on, not a
+      // burst of the draws missed.
+      for (auto next = start + milliseconds(500); !wake_.wait_until(lock, next, [this] { return stopping_; });
+           next = std::max(next + milliseconds(250), steady_clock::now())) {
+        const double elapsed = duration<double>(steady_clock::now() - start).count();
+        std::fprintf(stderr, "\r%s\033[K", text(elapsed).c_str());
+        std::fflush(stderr);
+        drawn = true;
+      }
+    } catch (const std::exception&) {
+      // Out of memory for a line of text: the plan matters, the line not.
     }
     if (drawn) std::fputs("\r\033[K", stderr);
   }

@@ -61,6 +61,10 @@ inline constexpr std::size_t kMaxMadeBy = 100;
 // Sum over robots of the path length in steps (states - 1).
 double pathCost(const std::vector<Path>& paths);
 
+// The most planning sessions a file may count (a billion: a session a
+// second for thirty years).
+inline constexpr std::int64_t kMaxSession = 1'000'000'000;
+
 // The robots' geometry signatures a class's '|'-joined signature names.
 std::vector<std::string_view> signatureParts(const std::string& signature);
 

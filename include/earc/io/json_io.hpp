@@ -37,7 +37,9 @@ void writeTextFileAtomic(const std::string& path, const std::string& text);
 
 // The same for output too large to hold in memory at once: write() it as
 // it comes; commit() names the file. Destroyed uncommitted (an error on the
-// way), it leaves the old file as it was and no temporary.
+// way), it leaves the old file as it was and no temporary. A stream
+// (/dev/stdout, a FIFO or device) is written as it comes: what was written
+// before an error stays written.
 class AtomicFile {
  public:
   explicit AtomicFile(const std::string& path);

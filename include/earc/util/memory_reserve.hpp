@@ -33,5 +33,7 @@ class OutOfMemory : public std::bad_alloc {
 // "out of memory" and `doing` ("while handling the request"), where
 // std::bad_alloc's what() says only "std::bad_alloc".
 std::string outOfMemoryMessage(const std::bad_alloc& e, const std::string& doing = "");
+// "out of memory while reading it (is the memory limit, ulimit -v, too low?)".
+std::string outOfMemoryText(const std::string& doing);
 
 }  // namespace earc
