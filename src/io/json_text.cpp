@@ -259,17 +259,31 @@ void writeAll(int fd, std::string_view bytes, const std::string& path) {
   }
 }
 
+namespace {
+// The descriptor a name stands for (/dev/stdout, /dev/stderr, /dev/fd/N,
+// /proc/self/fd/N), or -1.
+int descriptorNamed(const std::string& name) {
+  if (name == "/dev/stdout") return STDOUT_FILENO;
+  if (name == "/dev/stderr") return STDERR_FILENO;
+  for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"})
+    if (name.starts_with(prefix) && name.size() > prefix.size() && name.size() <= prefix.size() + 6 &&
+        isDigits(name.substr(prefix.size())))
+      return std::stoi(name.substr(prefix.size()));
+  return -1;
+}
+}  // namespace
+
 AtomicFile::AtomicFile(const std::string& given) : given_(given) {
-  // Standard output and error are written where they already point, at
-  // their own offset: through the link to a regular file they would
-  // replace it (`earc-bench export --csv /dev/stdout >> log` lost the log).
-  for (const auto& [name, fd] : {std::pair{"/dev/stdout", STDOUT_FILENO}, std::pair{"/dev/stderr", STDERR_FILENO}})
-    if (given == name) {
+  // An open descriptor is written where it already points, at its own
+  // offset: through the link to a regular file the output would replace
+  // it (`earc-bench export --csv /dev/stdout >> log` lost the log).
+  if (const int named = descriptorNamed(given); named >= 0) {
+    fd_ = ::dup(named);
+    if (fd_ >= 0) {
       special_ = true;
-      fd_ = ::dup(fd);
-      if (fd_ < 0) throw InputError(given, "", std::string("cannot write: ") + std::strerror(errno));
       return;
     }
+  }
   const OutputTarget target = outputTarget({"", given});
   path_ = target.path;
   special_ = target.special;

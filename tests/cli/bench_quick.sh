@@ -164,8 +164,10 @@ grep -qx "/dev/stdout: 12 trials" "$WORK/export.err" || fail "export --csv /dev/
 echo "earlier line" > "$WORK/log.txt"
 "$BENCH" export --results "$WORK/r.sqlite" --csv /dev/stdout >> "$WORK/log.txt" 2> /dev/null ||
   fail "export --csv /dev/stdout >> log exited $?"
-{ echo "earlier line"; cat "$WORK/r.csv"; } | cmp -s - "$WORK/log.txt" ||
-  fail "export --csv /dev/stdout >> log: $(head -n 2 "$WORK/log.txt")"
+"$BENCH" export --results "$WORK/r.sqlite" --csv /dev/fd/1 >> "$WORK/log.txt" 2> /dev/null ||
+  fail "export --csv /dev/fd/1 >> log exited $?"
+{ echo "earlier line"; cat "$WORK/r.csv" "$WORK/r.csv"; } | cmp -s - "$WORK/log.txt" ||
+  fail "export --csv /dev/stdout, then /dev/fd/1, >> log: $(head -n 2 "$WORK/log.txt")"
 "$BENCH" export --results "$WORK/r.sqlite" --databases-csv /dev/stdout --csv "$WORK/r2.csv" 2> "$WORK/export.err" |
   cat > "$WORK/stdout.csv"
 rc=${PIPESTATUS[0]}
@@ -212,7 +214,7 @@ if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
   # A value no run writes refuses the file in one line naming the row and
   # the column, in earc-bench and in the script on its own: no traceback,
   # no figure.
-  first=$("$PY" - "$WORK/r.sqlite" "$WORK/odd-values.sqlite" <<'PYEOF') || fail "could not make odd values"
+  cat > "$WORK/odd-values.py" <<'PYEOF'
 import sqlite3, sys
 src, dst = sqlite3.connect(sys.argv[1]), sqlite3.connect(sys.argv[2])
 src.backup(dst)
@@ -224,6 +226,7 @@ dst.execute("UPDATE databases SET construction_time_s = 'slow'")
 dst.commit()
 print(ids[0])
 PYEOF
+  first=$("$PY" "$WORK/odd-values.py" "$WORK/r.sqlite" "$WORK/odd-values.sqlite") || fail "could not make odd values"
   want="$WORK/odd-values.sqlite: trials row id $first, column planning_time_s: 'abc' is not a number of seconds (0 or more)"
   refused "$want" plot --results "$WORK/odd-values.sqlite" -o "$WORK/fig2"
   refusedInOneLine "plot_results.py: $want" "$PY" "$SRC/tools/plots/plot_results.py" \
