@@ -1,7 +1,9 @@
 #!/bin/bash
 # One experience file, several E-ARC plans at once: a long plan learning
-# while short plans open, learn and close the same file beside it. Every
-# plan exits 0, the file passes `earc-db verify` (integrity_check and every
+# while short plans open, learn and close the same file beside it. The
+# plans exit 0 or 1 (on a loaded machine a crowded plan may run out of
+# time; never 2, damage), the file
+# passes `earc-db verify` (integrity_check and every
 # row), and every row id a plan reported learned is in the file. (Each
 # plan's background quick_check used to read the file's header through a
 # descriptor of its own, whose close dropped the plan's SQLite locks: a
@@ -18,16 +20,20 @@ for tool in jq sqlite3; do command -v $tool > /dev/null || { echo "skipped: no $
 "$BUILD/earc-db" build --db "$WORK/s.db" --kind mobile --seed 1 -q || fail "build"
 
 "$BUILD/earc-plan" plan "$WORK/long.json" -o "$WORK/long.sol.json" --method earc --db "$WORK/s.db" \
-  --time-limit 60 -q 2> "$WORK/long.err" &
+  --time-limit 30 -q 2> "$WORK/long.err" &
 long=$!
 sleep 1
 for i in 1 2 3 4; do
   "$BUILD/earc-plan" plan "$WORK/short.json" -o "$WORK/short$i.sol.json" --method earc --db "$WORK/s.db" \
-    --seed $i -q 2> "$WORK/short$i.err" || fail "short plan $i exited $?: $(head -c 300 "$WORK/short$i.err")"
+    --seed $i -q 2> "$WORK/short$i.err"
+  rc=$?
+  [ $rc -le 1 ] || fail "short plan $i exited $rc: $(head -c 300 "$WORK/short$i.err")"
 done
 # The short plans must have closed the file while the long one used it.
 kill -0 $long 2> /dev/null || fail "the long plan ended before the short ones: the test proves nothing"
-wait $long || fail "the long plan exited $?: $(head -c 300 "$WORK/long.err")"
+wait $long
+rc=$?
+[ $rc -le 1 ] || fail "the long plan exited $rc: $(head -c 300 "$WORK/long.err")"
 "$BUILD/earc-db" verify --db "$WORK/s.db" > "$WORK/verify.out" 2>&1 || fail "verify: $(tail -c 400 "$WORK/verify.out")"
 learned=0
 for sol in "$WORK"/long.sol.json "$WORK"/short?.sol.json; do
