@@ -185,7 +185,6 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
 namespace {
 
 // Methods that plan with a database (--db).
-bool usesDb(const std::string& method) { return method == "earc" || method == "lightning"; }
 
 // One side's method: --old-method or --new-method, else --method.
 const std::string& sideMethod(const CompareOptions& o, bool old_side) {
@@ -289,13 +288,10 @@ class Comparer {
     const std::string out = o_.work_dir + "/logs/" + stem + ".out", err = o_.work_dir + "/logs/" + stem + ".err";
     fs::remove(solution);
     ChildSpec spec;
-    spec.argv = {side == "old" ? o_.old_program : new_, "plan", job.scenario_file, "-o", solution, "--method",
-                 methodOf(side), "--time-limit", std::to_string(o_.time_limit_s), "--seed",
-                 std::to_string(job.planner_seed), "-q"};
-    if (usesDb(methodOf(side))) {
-      spec.argv.insert(spec.argv.end(), {"--db", freshDb(side), "--no-learn"});
-    }
-    for (const std::string& a : side == "old" ? o_.old_args : o_.new_args) spec.argv.push_back(a);
+    // Each plan starts from a fresh copy of the database and learns nothing.
+    spec.argv = planArgv({side == "old" ? o_.old_program : new_, job.scenario_file, solution, methodOf(side),
+                          o_.time_limit_s, job.planner_seed, usesDatabase(methodOf(side)) ? freshDb(side) : "",
+                          /*learn=*/false, side == "old" ? o_.old_args : o_.new_args});
     spec.stdout_path = out;
     spec.stderr_path = err;
     spec.wall_limit_s = o_.time_limit_s + wallMargin(o_.time_limit_s);
@@ -457,10 +453,10 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
   }
   const std::string& old_method = sideMethod(o, true);
   const std::string& new_method = sideMethod(o, false);
-  if (usesDb(old_method) && usesDb(new_method) && old_method != new_method)
+  if (usesDatabase(old_method) && usesDatabase(new_method) && old_method != new_method)
     throw InputError("", "--db", "methods " + old_method + " and " + new_method + " read different kinds of database");
   for (const std::string* method : {&old_method, &new_method})
-    if (usesDb(*method)) {
+    if (usesDatabase(*method)) {
       if (o.db.empty()) throw InputError("", "--db", "method " + *method + " needs a database to start from");
       if (!fs::is_regular_file(o.db)) throw InputError(o.db, "--db", "no such file");
     }

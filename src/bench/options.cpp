@@ -120,6 +120,19 @@ void requirePlannerArgs(const std::vector<std::string>& args, const std::string&
   if (const auto why = plannerArgsProblem(args)) throw InputError("", option, *why);
 }
 
+bool usesDatabase(const std::string& method) { return method == "earc" || method == "lightning"; }
+
+std::vector<std::string> planArgv(const PlanCommand& c) {
+  std::vector<std::string> a = {c.program,  "plan",   c.scenario,    "-o",   c.solution, "--method", c.method,
+                                "--time-limit", std::to_string(c.time_limit_s), "--seed", std::to_string(c.seed), "-q"};
+  if (usesDatabase(c.method)) {
+    a.insert(a.end(), {"--db", c.db});
+    if (!c.learn) a.push_back("--no-learn");
+  }
+  a.insert(a.end(), c.extra.begin(), c.extra.end());
+  return a;
+}
+
 std::string plannerArgsText(const std::vector<std::string>& args) {
   std::string out;
   for (const std::string& a : args) {

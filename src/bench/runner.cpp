@@ -397,22 +397,16 @@ class Runner {
 
   std::vector<std::string> planArgv(const Cell& c, const std::string& scenario, const std::string& solution,
                                     std::uint64_t seed) const {
-    const std::string limit = std::to_string(o_.time_limit_s), s = std::to_string(seed);
-    std::vector<std::string> a = {plan_, "plan", scenario, "-o", solution, "--method", c.method,
-                                  "--time-limit", limit, "--seed", s, "-q"};
-    if (c.method == "earc" || c.method == "lightning") {
-      a.push_back("--db");
-      a.push_back(c.method == "earc" ? earcDb(c.suite->family) : lightningDb(*c.suite, c.robots));
-      if (!o_.learn) a.push_back("--no-learn");
-    }
-    for (const std::string& arg : argsOf(c.method)) a.push_back(arg);
-    return a;
+    const std::string db = c.method == "earc"        ? earcDb(c.suite->family)
+                           : c.method == "lightning" ? lightningDb(*c.suite, c.robots)
+                                                     : std::string();
+    return bench::planArgv({plan_, scenario, solution, c.method, o_.time_limit_s, seed, db, o_.learn, argsOf(c.method)});
   }
 
   // The trial's figures from a solution readPlanSolution accepted; its
   // solved flag.
   static bool readStats(const nlohmann::json& doc, TrialRecord& t) {
-    const bool database_method = t.method == "earc" || t.method == "lightning";
+    const bool database_method = usesDatabase(t.method);
     const bool solved = doc["solved"].get<bool>();
     const nlohmann::json st = doc.value("stats", nlohmann::json::object());
     // Another program's output (--plan-program): a figure the results

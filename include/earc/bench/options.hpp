@@ -4,6 +4,7 @@
 // checked as they are parsed, by earc::cli's validators.
 #pragma once
 
+#include <cstdint>
 #include <exception>
 #include <optional>
 #include <string>
@@ -46,6 +47,22 @@ void requireSeparateOutputs(const std::string& input, const std::string& input_o
 std::optional<std::string> plannerArgsProblem(const std::vector<std::string>& args);
 // The same, thrown as InputError naming `option`.
 void requirePlannerArgs(const std::vector<std::string>& args, const std::string& option);
+
+// Whether a method reads a database (earc: experiences, lightning: OMPL's).
+bool usesDatabase(const std::string& method);
+
+// One plan as earc-bench runs it (run and compare): `earc-plan plan` with
+// what earc-bench sets itself (plannerArgsProblem refuses these in
+// `extra`), --db for a method that reads one, then `extra`.
+struct PlanCommand {
+  std::string program, scenario, solution, method;
+  double time_limit_s = 0.0;
+  std::uint64_t seed = 0;
+  std::string db;
+  bool learn = false;
+  std::vector<std::string> extra;
+};
+std::vector<std::string> planArgv(const PlanCommand& c);
 
 // The arguments as a shell would take them, each quoted as Python's
 // shlex.quote quotes it (plot_results.py labels with shlex.join):
