@@ -29,9 +29,10 @@ std::string fileOf(sqlite3* db) {
   return f && *f ? f : "<memory>";
 }
 
-// The first `bytes` bytes of a file, read through SQLite's own file layer;
-// nothing for a short or unreadable file. Never through a descriptor of
-// our own: closing any descriptor of a file drops every POSIX lock this
+// The 100-byte header of an SQLite file, read before SQLite opens it;
+// nothing for a short or unreadable file or one without SQLite's magic.
+// Read through SQLite's own file layer, never through a descriptor of our
+// own: closing any descriptor of a file drops every POSIX lock this
 // process holds on it (fcntl semantics), SQLite's included. A plan's
 // background quick_check opened a second connection and read the header
 // so, and from then on its main connection held no lock: another process
@@ -39,7 +40,8 @@ std::string fileOf(sqlite3* db) {
 // deleted the WAL under it, and rows were lost and the file damaged. The
 // unix VFS keeps such a descriptor open until the file's last lock in the
 // process is released.
-std::optional<std::vector<unsigned char>> readThroughSqlite(const std::string& path, int bytes) {
+using SqliteHeader = std::array<unsigned char, 100>;
+std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
   sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
   if (!vfs) return std::nullopt;
   // A main-database name as SQLite makes them (double NUL-terminated, so
@@ -47,29 +49,18 @@ std::optional<std::vector<unsigned char>> readThroughSqlite(const std::string& p
   const std::unique_ptr<const char, decltype(&sqlite3_free_filename)> name(
       sqlite3_create_filename(path.c_str(), "", "", 0, nullptr), &sqlite3_free_filename);
   if (!name) return std::nullopt;  // out of memory; a null name would open a temporary file
-  std::vector<unsigned char> data(static_cast<std::size_t>(bytes));  // before the file: nothing throws while open
-  // sqlite3_file's state, as large as the VFS asks, suitably aligned.
+  // sqlite3_file's state, as large as the VFS asks, suitably aligned;
+  // allocated before the file is open, so that nothing throws while it is.
   std::vector<std::max_align_t> state((static_cast<std::size_t>(vfs->szOsFile) + sizeof(std::max_align_t) - 1) /
                                       sizeof(std::max_align_t));
   auto* file = reinterpret_cast<sqlite3_file*>(state.data());
+  SqliteHeader h{};
   int flags = 0;
   const int opened = vfs->xOpen(vfs, name.get(), file, SQLITE_OPEN_READONLY | SQLITE_OPEN_MAIN_DB, &flags);
-  std::optional<std::vector<unsigned char>> out;
-  if (opened == SQLITE_OK && file->pMethods->xRead(file, data.data(), bytes, 0) == SQLITE_OK) out = std::move(data);
+  const bool read = opened == SQLITE_OK && file->pMethods->xRead(file, h.data(), static_cast<int>(h.size()), 0) == SQLITE_OK;
   if (file->pMethods) file->pMethods->xClose(file);
-  return out;
-}
-
-// The 100-byte header of an SQLite file, read before SQLite opens it;
-// nothing for a short or unreadable file or one without SQLite's magic.
-using SqliteHeader = std::array<unsigned char, 100>;
-std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
-  const auto bytes = readThroughSqlite(path, 100);
-  if (!bytes) return std::nullopt;
-  SqliteHeader h{};
-  std::copy(bytes->begin(), bytes->end(), h.begin());
   static constexpr char kMagic[] = "SQLite format 3";  // and its NUL: 16 bytes
-  if (std::memcmp(h.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
+  if (!read || std::memcmp(h.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
   return h;
 }
 
