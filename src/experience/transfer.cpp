@@ -275,7 +275,6 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
   db.exec("COMMIT");
   file.write(chunk);
   file.commit();
-  if (progress) progress->finish();
   return written;
 }
 

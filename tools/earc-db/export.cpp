@@ -22,6 +22,7 @@ void runExport(const ExportOptions& opt, std::ostream& out) {
   earc::Progress progress("export", 0, !opt.quiet);
   const std::size_t rows =
       earc::exp::withInputErrors(opt.db, [&] { return earc::exp::exportJsonl(opt.db, opt.out, &progress); });
+  progress.finish();
   out << "exported " << rows << " rows from " << opt.db << " to " << opt.out << "\n";
 }
 
