@@ -23,14 +23,18 @@ for tool in jq sqlite3; do command -v $tool > /dev/null || { echo "skipped: no $
   --time-limit 30 -q 2> "$WORK/long.err" &
 long=$!
 sleep 1
-for i in 1 2 3 4; do
-  "$BUILD/earc-plan" plan "$WORK/short.json" -o "$WORK/short$i.sol.json" --method earc --db "$WORK/s.db" \
-    --seed $i -q 2> "$WORK/short$i.err"
+# Short plans one after another while the long one runs (at most 8): at
+# least one must have opened and closed the file while the long plan used
+# it, i.e. a second one started, or the test proves nothing.
+started=0
+while [ $started -lt 8 ] && kill -0 $long 2> /dev/null; do
+  started=$((started + 1))
+  "$BUILD/earc-plan" plan "$WORK/short.json" -o "$WORK/short$started.sol.json" --method earc --db "$WORK/s.db" \
+    --seed $started -q 2> "$WORK/short$started.err"
   rc=$?
-  [ $rc -le 1 ] || fail "short plan $i exited $rc: $(head -c 300 "$WORK/short$i.err")"
+  [ $rc -le 1 ] || fail "short plan $started exited $rc: $(head -c 300 "$WORK/short$started.err")"
 done
-# The short plans must have closed the file while the long one used it.
-kill -0 $long 2> /dev/null || fail "the long plan ended before the short ones: the test proves nothing"
+[ $started -ge 2 ] || fail "the long plan ended before a short one had closed the file: the test proves nothing"
 wait $long
 rc=$?
 [ $rc -le 1 ] || fail "the long plan exited $rc: $(head -c 300 "$WORK/long.err")"
@@ -44,4 +48,4 @@ for sol in "$WORK"/long.sol.json "$WORK"/short?.sol.json; do
   done
 done
 [ $learned -ge 1 ] || fail "no plan learned anything: the test proves nothing"
-echo "ok: 5 plans shared the file, $learned learned rows all there"
+echo "ok: $((started + 1)) plans shared the file, $learned learned rows all there"
