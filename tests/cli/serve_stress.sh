@@ -104,11 +104,19 @@ def read_loop():
 
 # Everything starts once a service has the file open: the socket service
 # answers a ping only then (clients wait in its backlog until it does).
+# The socket file appears at bind(), a moment before listen(): a connect
+# in between is refused, so it is tried again.
+sock = None
 for _ in range(600):
     if os.path.exists(sock_path):
-        break
+        try:
+            sock = socket.socket(socket.AF_UNIX); sock.connect(sock_path)
+            break
+        except ConnectionRefusedError:
+            sock.close(); sock = None
     time.sleep(0.05)
-sock = socket.socket(socket.AF_UNIX); sock.connect(sock_path)
+if sock is None:
+    sys.exit("FAIL: service3's socket never accepted a connection")
 sock_file = sock.makefile("rw")
 sock_file.write('{"id": "hello", "op": "ping"}\n'); sock_file.flush()
 if '"ok":true' not in sock_file.readline():
