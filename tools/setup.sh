@@ -4,7 +4,8 @@
 #   tools/setup.sh            build and run dependencies
 #   tools/setup.sh --tests    also what the tests use (python3-numpy for the
 #                             agreement tests, chromium and jq for the viewer tests,
-#                             clang for the fuzz targets)
+#                             clang for the fuzz targets, strace for the
+#                             socket test)
 set -euo pipefail
 
 packages=(
@@ -15,7 +16,7 @@ packages=(
   python3 python3-numpy python3-matplotlib librsvg2-bin
 )
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(chromium jq clang libclang-rt-14-dev)
+  packages+=(chromium jq clang libclang-rt-14-dev strace)
 fi
 
 missing=()

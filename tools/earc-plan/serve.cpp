@@ -100,13 +100,27 @@ bool writeAll(int fd, const std::string& text) {
   return true;
 }
 
+// A name for binding beside `path` (same directory, so it can be linked
+// to `path`), or "" when none fits in a socket address.
+std::string bindingName(const std::string& path, std::size_t max_length) {
+  const std::size_t slash = path.rfind('/');
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = dir + ".earc-serve-" + std::to_string(::getpid());
+  return name.size() <= max_length ? name : "";
+}
+
 // The listening socket at `path`. A stale socket file (no one accepts on
 // it) is replaced; a live one, or any other kind of file, is refused.
+// The socket is bound under another name and linked to `path` once it
+// listens, so a client that sees the file can connect at once (bound
+// there directly, the file exists a moment before connections are
+// accepted, and such a client is refused).
 Fd listenOn(const std::string& path) {
   sockaddr_un addr{};
   addr.sun_family = AF_UNIX;
-  if (path.size() >= sizeof addr.sun_path)
-    throw InputError(path, "--socket", "path longer than " + std::to_string(sizeof addr.sun_path - 1) + " bytes");
+  const std::size_t max_length = sizeof addr.sun_path - 1;
+  if (path.size() > max_length)
+    throw InputError(path, "--socket", "path longer than " + std::to_string(max_length) + " bytes");
   std::memcpy(addr.sun_path, path.c_str(), path.size() + 1);
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) {
@@ -118,9 +132,41 @@ Fd listenOn(const std::string& path) {
   }
   Fd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
   if (fd.get() < 0) throw systemError("socket");
-  if (::bind(fd.get(), reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+  // Bound directly when no other name fits: then the moment remains.
+  std::string binding = bindingName(path, max_length);
+  if (!binding.empty() && ::lstat(binding.c_str(), &st) == 0) {
+    // Left by a killed service of the same pid; anything else is not ours.
+    if (S_ISSOCK(st.st_mode))
+      ::unlink(binding.c_str());
+    else
+      binding.clear();
+  }
+  sockaddr_un bind_addr = addr;
+  if (!binding.empty()) std::memcpy(bind_addr.sun_path, binding.c_str(), binding.size() + 1);
+  if (::bind(fd.get(), reinterpret_cast<sockaddr*>(&bind_addr), sizeof bind_addr) != 0)
     throw systemError(path + ": cannot bind");
-  if (::listen(fd.get(), 16) != 0) throw systemError(path + ": cannot listen");
+  if (::listen(fd.get(), 16) != 0) {
+    const int saved = errno;
+    if (!binding.empty()) ::unlink(binding.c_str());
+    errno = saved;
+    throw systemError(path + ": cannot listen");
+  }
+  if (!binding.empty()) {
+    // link() does not replace: a service that started meanwhile on the
+    // same path keeps it. A file system without hard links gets a rename.
+    if (::link(binding.c_str(), path.c_str()) == 0) {
+      ::unlink(binding.c_str());
+    } else {
+      const int saved = errno;
+      if (saved == EEXIST || ::rename(binding.c_str(), path.c_str()) != 0) {
+        const int why = saved == EEXIST ? saved : errno;
+        ::unlink(binding.c_str());
+        if (why == EEXIST) throw InputError(path, "--socket", "another service took the path while this one started");
+        errno = why;
+        throw systemError(path + ": cannot create");
+      }
+    }
+  }
   return fd;
 }
 
