@@ -17,6 +17,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
+#include "earc/scene/pass_through.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
@@ -172,6 +173,8 @@ int runPlan(const PlanOptions& o) {
   requireWritableOutput({"-o", o.output});
   requireWritableOutput({"--trace", o.trace});
   Scenario scenario = requireRobots(loadScenario(o.scenario), o.scenario);
+  if (const std::string w = passThroughWarning(scenario); !w.empty())
+    std::cerr << "earc-plan: warning: " << printableText(o.scenario + ": " + w, 4096) << "\n";
   PlannerSettings s;
   try {
     s.method = methodFromName(o.method);

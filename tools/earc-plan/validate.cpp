@@ -6,6 +6,8 @@
 #include <iostream>
 
 #include "earc/io/json_io.hpp"
+#include "earc/scene/pass_through.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 #include "earc/validate/validator.hpp"
 
@@ -67,8 +69,16 @@ int runValidate(const ValidateOptions& opt, std::ostream& out) {
     const earc::Scenario sc = earc::loadScenario(opt.scenario);
     const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
     const earc::ValidationReport rep = earc::validateSolution(sc, sol);
-    if (opt.json) out << reportToJson(sc, rep).dump() << "\n";
-    else printText(sc, rep, out);
+    // Valid or not, the verdict holds only at the checked instants.
+    const std::string warning = earc::passThroughWarning(sc);
+    if (opt.json) {
+      nlohmann::json report = reportToJson(sc, rep);
+      report["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
+      out << report.dump() << "\n";
+    } else {
+      if (!warning.empty()) std::cerr << "earc-plan: warning: " << earc::printableText(opt.scenario + ": " + warning, 4096) << "\n";
+      printText(sc, rep, out);
+    }
     return rep.valid ? 0 : 1;
   } catch (const earc::InputError& e) {
     // The one-line message goes to stderr (runProgram); --json readers

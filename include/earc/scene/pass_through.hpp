@@ -1,0 +1,33 @@
+// Whether a scenario's resolution lets a robot pass through an obstacle
+// unseen. A solution is checked at every step and at every step's
+// midpoint (the contract, formats.md): a robot that can move further
+// between two such instants than an obstacle's thinnest extent plus its
+// own can be on one side of it at one instant and on the other at the
+// next, and the solution is still valid. The contract asks for obstacles
+// thicker than twice the largest step; this asks only whether crossing
+// is possible at all, with the robots' own thickness counted.
+#pragma once
+
+#include <string>
+
+#include "earc/scene/scenario.hpp"
+
+namespace earc {
+
+// How far any point of the robot's body can move in one step of the
+// scenario's resolution (an upper bound: every joint or the heading
+// turning by its full resolution at once, and the reference point moving
+// by its full translation).
+double largestStepMotion(const RobotSpec& robot, const Resolution& resolution);
+
+// The robot's thinnest extent: a disc's diameter, a box's shorter side, a
+// link's diameter.
+double thinnestExtent(const RobotSpec& robot);
+double thinnestExtent(const Obstacle& obstacle);
+
+// One line saying which robot can cross which obstacle between two
+// checked instants (the one with the widest margin, and how many other
+// obstacles are as thin for some robot), or "" when none can.
+std::string passThroughWarning(const Scenario& scenario);
+
+}  // namespace earc
