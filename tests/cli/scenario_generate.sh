@@ -68,6 +68,8 @@ refused "--workspace: must be in [2, 1000], got 1" generate --workspace 1
 refused "--workspace: must be in [3, 1000], got 2.5" generate --workspace 2.5 --obstacles
 refused "--radius: must be in [0.01, 5], got 100" generate --shape disc --radius 100
 refused "--radius: applies to --shape disc only" generate --radius 0.2
+refused "--rotated: turns obstacles: give --obstacles" generate --rotated
+refused "--rotated: turns obstacles: give --obstacles" generate --rotated --obstacles 0 --family arms
 refused "--robots: '1' is not a whole number in 2..128" generate --robots 1
 refused "--seed: '-1' is not a whole number" generate --seed -1
 refused "--obstacles: '-1' is not a count in [0, 1000]" generate --obstacles -1

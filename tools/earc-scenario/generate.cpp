@@ -96,6 +96,8 @@ void setupGenerate(CLI::App& app) {
     if (opt->family == "arms" && (shape->count() || radius->count() || workspace->count()))
       throw CLI::ValidationError("--shape, --radius and --workspace", "apply to --family mobile only");
     earc::scenario_cli::requireDiscForRadius(shape, opt->shape, radius);
+    // Turning obstacles that are not there would change nothing, silently.
+    if (opt->rotated && opt->obstacles == 0) throw CLI::ValidationError("--rotated", "turns obstacles: give --obstacles");
     runGenerate(*opt);
   });
 }
