@@ -13,6 +13,7 @@
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
+#include "earc/scene/robot_model.hpp"
 
 namespace earc::exp {
 
@@ -458,6 +459,21 @@ void ExperienceStore::requireOpen() const {
 void ExperienceStore::requireWritable() const {
   requireOpen();
   if (options_.read_only) throw std::logic_error("ExperienceStore: write on a store opened read-only");
+}
+
+std::string noClassFitsWarning(const ExperienceStore& store, const Scenario& scenario, const std::string& db) {
+  if (store.size() == 0) return "";  // a new file: expected to start empty
+  std::set<std::string> ours;
+  for (const auto& m : makeRobotModels(scenario)) ours.insert(m->geometrySignature());
+  for (const auto& c : store.classes()) {
+    bool fits = true;
+    for (const std::string_view one : signatureParts(c.cls.signature)) fits = fits && ours.count(std::string(one)) > 0;
+    if (fits) return "";
+  }
+  std::string names;
+  for (const std::string& s : ours) names += (names.empty() ? "" : ", ") + s;
+  return db + " holds " + std::to_string(store.size()) + " experiences, none for these robots (" + names +
+         "): E-ARC plans as ARC does (earc-db build --scenario makes a database for them)";
 }
 
 }  // namespace earc::exp

@@ -12,6 +12,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/planning/database_solver.hpp"
 #include "earc/planning/planner.hpp"
+#include "earc/scene/pass_through.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/memory_reserve.hpp"
@@ -194,6 +195,13 @@ json Service::plan(const json& request) {
     store_->refresh();
     entries_before = store_->size();
   }
+  // What earc-plan plan says on stderr, given with the answer (only when
+  // there is something to say); before planning, which may learn.
+  json warnings = json::array();
+  if (const std::string w = passThroughWarning(scenario); !w.empty()) warnings.push_back(w);
+  if (s.method == Method::Earc)
+    if (const std::string w = exp::noClassFitsWarning(*store_, scenario, store_->path()); !w.empty())
+      warnings.push_back(w);
   ++counters_.plans;
   Stopwatch clock;
   PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr);
@@ -210,6 +218,7 @@ json Service::plan(const json& request) {
     counters_.db_refused_too_long += st.value("db_refused_too_long", 0);
   }
   json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
+  if (!warnings.empty()) out["warnings"] = std::move(warnings);
   if (r.solution.solved) {
     ++counters_.solved;
     out["solution"] = solutionToJson(r.solution);

@@ -166,6 +166,33 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
   svc.close();
 }
 
+TEST_CASE("serve protocol: an answer carries the warnings earc-plan plan would give") {
+  exp::ScratchDirectory dir("service-warnings");
+  auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
+  service::Service svc(store, {});
+  // An empty database: nothing to warn of.
+  json r = reply(svc, json{{"scenario", scenarioToJson(serviceScenario())}, {"seed", 3}}.dump());
+  REQUIRE(r["solved"] == true);
+  CHECK_FALSE(r.contains("warnings"));
+  REQUIRE(store->size() > 0);
+  // Now it holds experiences of boxes only: discs get none of them.
+  Scenario discs = loadScenario(EARC_TEST_DATA_DIR "/scenarios/swap-discs.json");
+  r = reply(svc, json{{"scenario", scenarioToJson(discs)}, {"learn", false}}.dump());
+  REQUIRE(r["ok"] == true);
+  REQUIRE(r["warnings"].size() == 1);
+  CHECK(r["warnings"][0].get<std::string>().find("none for these robots") != std::string::npos);
+  // ARC reads no database; a resolution that steps through the
+  // scenario's obstacles is said whatever the method.
+  r = reply(svc, json{{"scenario", scenarioToJson(discs)}, {"method", "arc"}}.dump());
+  CHECK_FALSE(r.contains("warnings"));
+  discs.resolution.translation = 2.0;
+  discs.obstacles.push_back(Obstacle::makeBox({5, 0.5}, {0.01, 0.01}));
+  r = reply(svc, json{{"scenario", scenarioToJson(discs)}, {"method", "arc"}}.dump());
+  REQUIRE(r["warnings"].size() == 1);
+  CHECK(r["warnings"][0].get<std::string>().rfind("resolution: robot", 0) == 0);
+  svc.close();
+}
+
 TEST_CASE("serve protocol: the service picks up experiences another connection inserted since the last request") {
   exp::ScratchDirectory dir("service-refresh");
   const std::string path = dir.file("s.db");

@@ -136,25 +136,6 @@ class ProgressLine {
   std::thread thread_;
 };
 
-// A database that holds experiences, none of them for these robots'
-// geometry, answers nothing: E-ARC then plans as ARC does (and learns).
-// Said once, so that a comparison is not taken for E-ARC's. The line, or
-// nothing.
-std::string noClassFitsWarning(const exp::ExperienceStore& store, const Scenario& scenario, const std::string& db) {
-  if (store.size() == 0) return "";  // a new file: expected to start empty
-  std::set<std::string> ours;
-  for (const auto& m : makeRobotModels(scenario)) ours.insert(m->geometrySignature());
-  for (const auto& c : store.classes()) {
-    bool fits = true;
-    for (const std::string_view one : exp::signatureParts(c.cls.signature)) fits = fits && ours.count(std::string(one)) > 0;
-    if (fits) return "";
-  }
-  std::string names;
-  for (const std::string& s : ours) names += (names.empty() ? "" : ", ") + s;
-  return db + " holds " + std::to_string(store.size()) + " experiences, none for these robots (" + names +
-         "): E-ARC plans as ARC does (earc-db build --scenario makes a database for them)";
-}
-
 // What the experience database did in an E-ARC plan, for the summary
 // line: "; database answered 6 of 8 subproblems (1 by repair), learned 2":
 // of the subproblems solved, as db_hit_rate counts them.
@@ -213,7 +194,7 @@ int runPlan(const PlanOptions& o) {
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
   if (store)
-    if (const std::string w = noClassFitsWarning(*store, scenario, o.db); !w.empty())
+    if (const std::string w = exp::noClassFitsWarning(*store, scenario, o.db); !w.empty())
       std::cerr << "earc-plan: warning: " << printableText(w, 4096) << "\n";
   PlanProgress progress;
   s.progress = &progress;

@@ -221,4 +221,10 @@ class ExperienceStore {
   bool history_described_ = false;     // else "learn", "planning session N"
 };
 
+// A database that holds experiences, none of them for these robots'
+// geometry, answers nothing: E-ARC then plans as ARC does (and learns).
+// The one line that says so, naming `db`, or "" when a class fits or the
+// store is empty (a new file is expected to start so).
+std::string noClassFitsWarning(const ExperienceStore& store, const Scenario& scenario, const std::string& db);
+
 }  // namespace earc::exp

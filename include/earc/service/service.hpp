@@ -16,7 +16,8 @@
 //   {"id": any, "op": "stats"}
 // Responses echo "id" (null when the request had none or was unreadable):
 //   {"id":..., "ok": true, "solved": bool, "interrupted": bool,
-//    "solution": {earc.solution.v1, only when solved}, "stats": {...}}
+//    "solution": {earc.solution.v1, only when solved},
+//    "warnings": ["one line", ...: only when there are any], "stats": {...}}
 //   {"id":..., "ok": false, "error": "one line"}
 // Planning goes through earc::plan(), so a solution reported solved has
 // passed the validator. The store is refreshed before every request, so
