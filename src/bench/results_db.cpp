@@ -230,14 +230,8 @@ const std::string& robotCountText() {
   return text;
 }
 
-std::vector<std::string> knownSuiteNames() {
-  std::vector<std::string> names;
-  for (const Suite& s : allSuites()) names.push_back(s.name);
-  return names;
-}
-
 TrialRecord readTrialRow(const CheckedResultRow& r) {
-  static const std::vector<std::string> suites = knownSuiteNames();
+  static const std::vector<std::string> suites = resultSuiteNames();
   TrialRecord t;
   t.suite = r.oneOf(1, suites, "a suite earc-bench runs");
   t.robots = static_cast<int>(r.integer(2, 2, kMaxResultsRobots, robotCountText()));
@@ -274,7 +268,7 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
 }
 
 DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
-  static const std::vector<std::string> suites = knownSuiteNames();
+  static const std::vector<std::string> suites = resultSuiteNames();
   static const std::vector<std::string> methods = {"earc", "lightning"};
   DatabaseRecord d;
   d.method = r.oneOf(1, methods, "a method with a database");

@@ -49,10 +49,16 @@ constexpr double kValidateWallLimitS = 300.0;
 constexpr double kEarcDbWallLimitS = 4 * 3600.0;
 
 struct Cell {
-  const Suite* suite;
+  const Suite* suite;  // null for a scenario file's trial
   int robots;
   int trial;
   std::string method;
+  const ScenarioFile* file = nullptr;
+
+  std::string suiteName() const { return file ? kFilesSuite : suite->name; }
+  const std::string& family() const { return file ? file->family : suite->family; }
+  // "mobile-obst-32-t4", "files-8-t0": names the trial's files and logs.
+  std::string trialName() const { return suiteName() + "-" + std::to_string(robots) + "-t" + std::to_string(trial); }
 };
 
 // EARC_BENCH_FAULT=METHOD:crash|hang (test only): the plan child of that
@@ -80,10 +86,31 @@ std::int64_t fileSize(const std::string& path) {
 // Scenarios, logs and built databases: the one given, or RESULTS.work.
 std::string workDir(const RunOptions& o) { return o.work_dir.empty() ? o.results + ".work" : o.work_dir; }
 
-// The E-ARC database of a family: the one given, or WORK/earc-FAMILY.sqlite.
+// The E-ARC database of a family: the one given, or WORK/earc-FAMILY.sqlite
+// (WORK/earc-files-FAMILY.sqlite for scenario files: built for their
+// robots, not the suites').
 std::string earcDbPath(const RunOptions& o, const std::string& family) {
   const std::string& given = family == "arms" ? o.db_arms : o.db_mobile;
-  return given.empty() ? workDir(o) + "/earc-" + family + ".sqlite" : given;
+  if (!given.empty()) return given;
+  return workDir(o) + (o.scenario_files.empty() ? "/earc-" : "/earc-files-") + family + ".sqlite";
+}
+
+// What an E-ARC database built from a file covers: its robots' geometry,
+// and for arms their layout too (the relative base transforms make the
+// classes). Files with the same key need one build between them.
+std::string earcBuildKey(const ScenarioFile& f) {
+  nlohmann::json robots = scenarioToJson(f.scenario)["robots"];
+  for (auto& r : robots) {
+    r.erase("name");
+    r.erase("start");
+    r.erase("goal");
+  }
+  if (f.family == "arms") return robots.dump();
+  std::set<std::string> shapes;
+  for (const auto& r : robots) shapes.insert(r.dump());
+  std::string key;
+  for (const std::string& one : shapes) key += one;
+  return key;
 }
 
 // The entries of an existing E-ARC database, opened read-only as the
@@ -113,14 +140,15 @@ using EarcDbEntries = std::map<std::string, std::int64_t>;
 
 class Runner {
  public:
-  Runner(const RunOptions& o, EarcDbEntries existing, std::ostream& log)
-      : o_(o), log_(log), db_(o.results), existing_(std::move(existing)) {
+  Runner(const RunOptions& o, const std::vector<ScenarioFile>& files, EarcDbEntries existing, std::ostream& log)
+      : o_(o), files_(files), log_(log), db_(o.results), existing_(std::move(existing)) {
     work_ = workDir(o);
     lightning_dir_ = o.lightning_dir.empty() ? work_ + "/lightning" : o.lightning_dir;
     const std::string here = executableDir();
     plan_ = o.plan_program.empty() ? here + "/earc-plan" : o.plan_program;
     bench_ = o.bench_program.empty() ? here + "/earc-bench" : o.bench_program;
     requireSamePlannerArgs();
+    requireSameFiles();
     for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
   }
 
@@ -152,8 +180,8 @@ class Runner {
           if (o_.cutoff) done(c);
           return;
         }
-        if (c.method == "lightning") ensureLightningDb(*c.suite, c.robots);
-        progress.setStatus(c.suite->name + " " + std::to_string(c.robots) + " " + c.method + " #" +
+        if (c.method == "lightning") ensureLightningDb(c);
+        progress.setStatus(c.suiteName() + " " + std::to_string(c.robots) + " " + c.method + " #" +
                            std::to_string(c.trial));
         TrialRecord t = runTrial(c);
         if (interruptFlag().load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
@@ -236,6 +264,32 @@ class Runner {
     }
   }
 
+  // A scenario file's trials are numbered by the order the files were
+  // given in: a resumed run given other files, or the same in another
+  // order, would skip trials recorded for other scenarios. The hash of
+  // each file's scenario is recorded as its trials' scenario seed.
+  void requireSameFiles() const {
+    if (files_.empty()) return;
+    const TrialFilter f{o_.seed, o_.time_limit_s};
+    for (const TrialRecord& t : f.apply(db_.trials())) {
+      if (t.suite != kFilesSuite) continue;
+      for (const ScenarioFile& file : files_)
+        if (file.robots() == t.robots && file.trial == t.trial && file.hash != t.scenario_seed)
+          throw InputError(o_.results, "",
+                           "its trial " + std::string(kFilesSuite) + "-" + std::to_string(t.robots) + "-t" +
+                               std::to_string(t.trial) + " (" + t.method + ") was planned on another scenario than " +
+                               file.path + ", the " + ordinal(file.trial + 1) + " file of " +
+                               std::to_string(t.robots) +
+                               " robots given: give the files as before, or another --results");
+    }
+  }
+
+  static std::string ordinal(int n) {
+    const int tens = n % 100, ones = n % 10;
+    const char* suffix = tens >= 11 && tens <= 13 ? "th" : ones == 1 ? "st" : ones == 2 ? "nd" : ones == 3 ? "rd" : "th";
+    return std::to_string(n) + suffix;
+  }
+
   RunSummary finishInterrupted() {
     summary_.interrupted = true;
     log_ << "interrupted: " << summary_.run << " trials recorded in " << o_.results
@@ -246,6 +300,21 @@ class Runner {
   std::vector<Cell> pending() {
     const auto done = db_.finishedTrials(o_.seed, o_.time_limit_s);
     std::vector<Cell> cells;
+    // Scenario files: the methods take turns file by file (with several
+    // jobs, each method's files in a row), as in a suite's cell.
+    for (const ScenarioFile& f : files_)
+      for (const std::string& m : o_.methods) {
+        ++summary_.cells_total;
+        if (done.count({kFilesSuite, f.robots(), m, f.trial})) {
+          ++summary_.skipped;
+          continue;
+        }
+        cells.push_back({nullptr, f.robots(), f.trial, m, &f});
+      }
+    if (o_.jobs > 1)
+      std::stable_sort(cells.begin(), cells.end(),
+                       [&](const Cell& a, const Cell& b) { return methodIndex(a.method) < methodIndex(b.method); });
+    if (!files_.empty()) return cells;
     for (const std::string& name : o_.suites) {
       const Suite& s = suiteByName(name);
       for (int n : s.robots) {
@@ -279,8 +348,13 @@ class Runner {
     return static_cast<std::size_t>(std::find(o_.methods.begin(), o_.methods.end(), m) - o_.methods.begin());
   }
 
-  std::string lightningDb(const Suite& s, int robots) const {
-    return lightning_dir_ + "/" + s.name + "-" + std::to_string(robots) + ".lightning";
+  // A suite's per robot count; a scenario file's per world (files that
+  // differ only in starts and goals share it).
+  std::string lightningDb(const Cell& c) const {
+    if (!c.file) return lightning_dir_ + "/" + c.suite->name + "-" + std::to_string(c.robots) + ".lightning";
+    char hex[20];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(c.file->world));
+    return lightning_dir_ + "/" + kFilesSuite + "-" + std::to_string(c.robots) + "-" + hex + ".lightning";
   }
 
   std::string earcDb(const std::string& family) const { return earcDbPath(o_, family); }
@@ -298,20 +372,25 @@ class Runner {
   // first trial that needs it, so that trials --cutoff skips never pay for
   // one (at 32 robots that is minutes of planning problems it cannot
   // solve). One build at a time; other workers wait for theirs.
-  void ensureLightningDb(const Suite& suite, int robots) {
+  void ensureLightningDb(const Cell& c) {
     std::lock_guard lock(lightning_mutex_);
     if (interruptFlag().load()) return;
-    const std::string path = lightningDb(suite, robots);
+    const int robots = c.robots;
+    const std::string path = lightningDb(c);
     if (fs::exists(path)) return;
     fs::create_directories(lightning_dir_);
     const int problems = o_.lightning_problems.value_or(o_.lightning_problems_per_robot * robots);
     log_ << "building Lightning database " << path << " from " << problems << " problems\n";
-    std::vector<std::string> argv = {bench_, "lightning-db", "--suite", suite.name, "--robots",
-                                     std::to_string(robots), "--count", std::to_string(problems), "--seed",
-                                     std::to_string(o_.seed), "--problem-time-limit",
-                                     std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
-                                     "--results", o_.results};
-    const std::string stem = work_ + "/logs/lightning-db-" + suite.name + "-" + std::to_string(robots);
+    std::vector<std::string> argv = {bench_, "lightning-db"};
+    if (c.file) {
+      argv.insert(argv.end(), {"--scenario", scenarioFile(c)});
+    } else {
+      argv.insert(argv.end(), {"--suite", c.suite->name, "--robots", std::to_string(robots)});
+    }
+    argv.insert(argv.end(), {"--count", std::to_string(problems), "--seed", std::to_string(o_.seed),
+                             "--problem-time-limit", std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
+                             "--results", o_.results});
+    const std::string stem = work_ + "/logs/lightning-db-" + fs::path(path).stem().string();
     ChildSpec spec;
     spec.argv = argv;
     spec.stdout_path = stem + ".out";
@@ -329,7 +408,7 @@ class Runner {
   void prepareDatabases(const std::vector<Cell>& cells) {
     std::set<std::string> families;
     for (const Cell& c : cells)
-      if (c.method == "earc") families.insert(c.suite->family);
+      if (c.method == "earc") families.insert(c.family());
     for (const std::string& family : families) {
       if (interruptFlag().load()) return;
       const std::string path = earcDb(family);
@@ -342,7 +421,7 @@ class Runner {
       }
       DatabaseRecord d;
       d.method = "earc";
-      d.suite = family;
+      d.suite = files_.empty() ? family : kFilesSuite;
       d.robots = 0;
       d.path = path;
       d.construction_time_s = construction;
@@ -361,44 +440,70 @@ class Runner {
   // Runs `earc-db build` for one family; its wall time is the construction
   // time (nullopt when it failed: the earc trials then fail with
   // earc-plan's own message about the database).
+  // Scenario files: one build per robot geometry (and arm layout) among
+  // the family's files, into the one database; the construction time is
+  // their sum.
   std::optional<double> buildEarcDb(const std::string& family, const std::string& path) {
     const std::string program = o_.earc_db_program.empty() ? executableDir() + "/earc-db" : o_.earc_db_program;
-    log_ << "building E-ARC database " << path << " (earc-db build --kind " << family << ")\n";
-    log_.flush();
-    ChildSpec spec;
-    spec.argv = {program, "build", "--db", path, "--kind", family, "--seed", std::to_string(o_.seed)};
-    if (o_.earc_db_count) {
-      spec.argv.push_back("--count");
-      spec.argv.push_back(std::to_string(*o_.earc_db_count));
+    std::vector<std::pair<std::string, std::string>> builds;  // (how, log stem)
+    if (files_.empty()) {
+      builds.push_back({"--kind=" + family, work_ + "/logs/earc-db-" + family});
+    } else {
+      std::set<std::string> keys;
+      for (const ScenarioFile& f : files_)
+        if (f.family == family && keys.insert(earcBuildKey(f)).second)
+          builds.push_back({"--scenario=" + scenarioFile(f),
+                            work_ + "/logs/earc-db-" + family + "-" + std::to_string(builds.size())});
     }
-    const std::string stem = work_ + "/logs/earc-db-" + family;
-    spec.stdout_path = stem + ".out";
-    spec.stderr_path = stem + ".err";
-    spec.wall_limit_s = kEarcDbWallLimitS;
-    spec.memory_limit_mb = o_.memory_limit_mb;
-    ChildOutcome out = runChild(spec, &interruptFlag());
-    if (out.exit_code == 0) return out.wall_s;
-    buildFailed(path, out, stem, "earc");
-    std::error_code ec;
-    fs::remove(path, ec);  // a half-built database must not pass for a built one
-    return std::nullopt;
+    double construction = 0;
+    for (const auto& [how, stem] : builds) {
+      if (interruptFlag().load()) break;
+      log_ << "building E-ARC database " << path << " (earc-db build " << how << ")\n";
+      log_.flush();
+      ChildSpec spec;
+      spec.argv = {program, "build", "--db", path, how, "--seed", std::to_string(o_.seed)};
+      if (o_.earc_db_count) {
+        spec.argv.push_back("--count");
+        spec.argv.push_back(std::to_string(*o_.earc_db_count));
+      }
+      spec.stdout_path = stem + ".out";
+      spec.stderr_path = stem + ".err";
+      spec.wall_limit_s = kEarcDbWallLimitS;
+      spec.memory_limit_mb = o_.memory_limit_mb;
+      ChildOutcome out = runChild(spec, &interruptFlag());
+      if (out.exit_code != 0) {
+        buildFailed(path, out, stem, "earc");
+        std::error_code ec;
+        fs::remove(path, ec);  // a half-built database must not pass for a built one
+        return std::nullopt;
+      }
+      construction += out.wall_s;
+    }
+    return construction;
   }
 
-  std::string scenarioFile(const Cell& c, const TrialSeeds& seeds) {
+  TrialSeeds seedsOf(const Cell& c) const {
+    return c.file ? fileTrialSeeds(*c.file, o_.seed) : trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
+  }
+
+  // The trial's scenario in WORK/scenarios, written once: a suite's
+  // generated, a file's copied as it was read.
+  std::string scenarioFile(const Cell& c) {
     char hex[20];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(seeds.scenario));
-    const std::string path = work_ + "/scenarios/" + c.suite->name + "-" + std::to_string(c.robots) + "-t" +
-                             std::to_string(c.trial) + "-" + hex + ".json";
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(seedsOf(c).scenario));
+    const std::string path = work_ + "/scenarios/" + c.trialName() + "-" + hex + ".json";
     std::lock_guard lock(scenario_mutex_);
     if (!fs::exists(path))
-      writeTextFileAtomic(path, scenarioToJson(trialScenario(*c.suite, c.robots, c.trial, o_.seed)).dump(1) + "\n");
+      writeTextFileAtomic(path, scenarioToJson(c.file ? c.file->scenario : trialScenario(*c.suite, c.robots, c.trial, o_.seed))
+                                        .dump(1) + "\n");
     return path;
   }
+  std::string scenarioFile(const ScenarioFile& f) { return scenarioFile(Cell{nullptr, f.robots(), f.trial, "", &f}); }
 
   std::vector<std::string> planArgv(const Cell& c, const std::string& scenario, const std::string& solution,
                                     std::uint64_t seed) const {
-    const std::string db = c.method == "earc"        ? earcDb(c.suite->family)
-                           : c.method == "lightning" ? lightningDb(*c.suite, c.robots)
+    const std::string db = c.method == "earc"        ? earcDb(c.family())
+                           : c.method == "lightning" ? lightningDb(c)
                                                      : std::string();
     return bench::planArgv({plan_, scenario, solution, c.method, o_.time_limit_s, seed, db, o_.learn, argsOf(c.method)});
   }
@@ -454,7 +559,7 @@ class Runner {
 
   TrialRecord runTrial(const Cell& c) {
     TrialRecord t;
-    t.suite = c.suite->name;
+    t.suite = c.suiteName();
     t.robots = c.robots;
     t.method = c.method;
     t.trial = c.trial;
@@ -463,17 +568,17 @@ class Runner {
     t.jobs = o_.jobs;
     t.bench_version = earc::version();
     t.planner_args = argsOf(c.method);
-    const TrialSeeds seeds = trialSeeds(*c.suite, c.robots, c.trial, o_.seed);
+    const TrialSeeds seeds = seedsOf(c);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;
     std::string scenario;
     try {
-      scenario = scenarioFile(c, seeds);
+      scenario = scenarioFile(c);
     } catch (const std::exception& e) {
       t.failure = std::string("scenario generation failed: ") + e.what();
       return t;
     }
-    const std::string stem = c.suite->name + "-" + std::to_string(c.robots) + "-t" + std::to_string(c.trial) + "-" + c.method;
+    const std::string stem = c.trialName() + "-" + c.method;
     const std::string solution = work_ + "/solutions/" + stem + ".json";
     const std::string out = work_ + "/logs/" + stem + ".out", err = work_ + "/logs/" + stem + ".err";
     fs::remove(solution);
@@ -495,8 +600,7 @@ class Runner {
     // would be skipped when the run is resumed with the options mended.
     if (!t.planner_args.empty() && refusedItsCommand(run, t.failure, scenario))
       throw InputError(plan_, "--method-arg " + c.method,
-                       "refused " + c.method + "'s trial " + c.suite->name + "-" + std::to_string(c.robots) + "-t" +
-                           std::to_string(c.trial) + " run" + withArgs(t.planner_args) + ", so would every " +
+                       "refused " + c.method + "'s trial " + c.trialName() + " run" + withArgs(t.planner_args) + ", so would every " +
                            c.method + " trial (not recorded): " + t.failure);
     if (t.failure.empty()) {
       nlohmann::json doc;
@@ -535,7 +639,8 @@ class Runner {
       std::lock_guard lock(record_mutex_);
       ++summary_.invalid;
     }
-    std::cerr << "INVALID SOLUTION: " << c.suite->name << ", " << c.robots << " robots, method " << c.method
+    std::cerr << "INVALID SOLUTION: " << (c.file ? c.file->path : c.suiteName()) << ", " << c.robots
+              << " robots, method " << c.method
               << ", trial " << c.trial << ": " << *why << " (scenario " << scenario << ", solution " << solution
               << ")\n";
   }
@@ -559,7 +664,7 @@ class Runner {
     auto undecided = [&] {
       for (const auto& [key, n] : running_) {
         const auto& [suite, method, robots] = key;
-        if (n > 0 && suite == c.suite->name && method == c.method && robots < c.robots && outcomes_[key].second == 0)
+        if (n > 0 && suite == c.suiteName() && method == c.method && robots < c.robots && outcomes_[key].second == 0)
           return true;
       }
       return false;
@@ -567,7 +672,7 @@ class Runner {
     finished_cv_.wait(lock, [&] { return !undecided() || interruptFlag().load(); });
     for (const auto& [key, o] : outcomes_) {
       const auto& [suite, method, robots] = key;
-      if (suite != c.suite->name || method != c.method || robots >= c.robots) continue;
+      if (suite != c.suiteName() || method != c.method || robots >= c.robots) continue;
       if (o.first >= o_.trials && o.second == 0) {
         ++summary_.cut;
         const std::string note = "cut off: " + c.method + " on " + suite + " from " + std::to_string(c.robots) +
@@ -577,7 +682,7 @@ class Runner {
         return true;
       }
     }
-    ++running_[{c.suite->name, c.method, c.robots}];
+    ++running_[{c.suiteName(), c.method, c.robots}];
     return false;
   }
 
@@ -585,7 +690,7 @@ class Runner {
   void done(const Cell& c) {
     {
       std::lock_guard lock(record_mutex_);
-      --running_[{c.suite->name, c.method, c.robots}];
+      --running_[{c.suiteName(), c.method, c.robots}];
     }
     finished_cv_.notify_all();
   }
@@ -611,15 +716,23 @@ class Runner {
     TrialFilter f{o_.seed, o_.time_limit_s};
     std::set<std::string> suites(o_.suites.begin(), o_.suites.end());
     std::set<std::string> methods(o_.methods.begin(), o_.methods.end());
+    // Scenario files: the trials of the files given.
+    std::set<std::pair<int, int>> given;
+    for (const ScenarioFile& file : files_) given.insert({file.robots(), file.trial});
     std::vector<TrialRecord> mine;
-    for (TrialRecord& t : db_.trials())
-      if (f.matches(t) && suites.count(t.suite) && methods.count(t.method) &&
-          (o_.robots.empty() || std::count(o_.robots.begin(), o_.robots.end(), t.robots)) && t.trial < o_.trials)
-        mine.push_back(std::move(t));
+    for (TrialRecord& t : db_.trials()) {
+      if (!f.matches(t) || !methods.count(t.method)) continue;
+      const bool ours = files_.empty() ? suites.count(t.suite) &&
+                                             (o_.robots.empty() || std::count(o_.robots.begin(), o_.robots.end(), t.robots)) &&
+                                             t.trial < o_.trials
+                                       : t.suite == kFilesSuite && given.count({t.robots, t.trial});
+      if (ours) mine.push_back(std::move(t));
+    }
     log_ << "\n" << markdownTable(mine, db_.databases());
   }
 
   const RunOptions& o_;
+  const std::vector<ScenarioFile>& files_;
   std::ostream& log_;
   ResultsDb db_;
   const EarcDbEntries existing_;
@@ -700,7 +813,7 @@ namespace {
 // Every option checked before anything is created, run or recorded: a
 // configuration error is not a trial failure. Returns the entries of the
 // E-ARC databases that exist, which it had to open to check.
-EarcDbEntries validateOptions(const RunOptions& o) {
+EarcDbEntries validateOptions(const RunOptions& o, const std::vector<ScenarioFile>& files) {
   // Single numbers were checked as the options were parsed (earc::cli's
   // validators); what is left depends on more than one option or on the
   // machine.
@@ -711,8 +824,11 @@ EarcDbEntries validateOptions(const RunOptions& o) {
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
   std::vector<const Suite*> suites;
   std::set<std::string> families;
+  for (const ScenarioFile& f : files) families.insert(f.family);
+  if (!files.empty() && o.cutoff)
+    throw InputError("", "--cutoff", "is for suites (robot counts that grow), not scenario files");
   std::string counts;  // "mobile: 2, 4, 8, 16, 32; arms: 2, 4, 8, 16"
-  for (const std::string& name : o.suites) {
+  for (const std::string& name : files.empty() ? o.suites : std::vector<std::string>{}) {
     const Suite& s = suiteByName(name);
     suites.push_back(&s);
     families.insert(s.family);
@@ -720,7 +836,7 @@ EarcDbEntries validateOptions(const RunOptions& o) {
     for (std::size_t i = 0; i < s.robots.size(); ++i) counts += (i ? ", " : " ") + std::to_string(s.robots[i]);
   }
   // A count no suite runs would make "nothing to run: all 0 trials are in ...".
-  for (int n : o.robots)
+  for (int n : files.empty() ? o.robots : std::vector<int>{})
     if (std::none_of(suites.begin(), suites.end(),
                      [n](const Suite* s) { return std::count(s->robots.begin(), s->robots.end(), n) > 0; }))
       throw InputError("", "--robots", "no suite of this run has " + std::to_string(n) + " robots (" + counts + ")");
@@ -743,9 +859,10 @@ EarcDbEntries validateOptions(const RunOptions& o) {
 }  // namespace
 
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
-  EarcDbEntries existing = validateOptions(options);
+  const std::vector<ScenarioFile> files = loadScenarioFiles(options.scenario_files);
+  EarcDbEntries existing = validateOptions(options, files);
   InterruptGuard guard;
-  Runner runner(options, std::move(existing), log);
+  Runner runner(options, files, std::move(existing), log);
   return runner.run();
 }
 

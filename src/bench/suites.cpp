@@ -1,11 +1,15 @@
 #include "earc/bench/suites.hpp"
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 
+#include "earc/bench/results_db.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/gen/placement.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/io/json_io.hpp"
 #include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
 
@@ -18,6 +22,8 @@ constexpr int kGenerationAttempts = 8;
 // Stream tags that keep trial seeds and database seeds apart.
 constexpr std::uint64_t kTrialStream = 0x7419;
 constexpr std::uint64_t kDatabaseStream = 0xdb;
+// Of the planner seeds of scenario files' trials.
+constexpr std::uint64_t kFileStream = 0xf11e;
 
 // A stable hash of a suite name: seeds must not depend on the order
 // suites are listed in.
@@ -107,6 +113,56 @@ Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_
                                  static_cast<std::uint64_t>(robots));
   Scenario s = generateRetrying(suite, robots, splitSeed(cell, static_cast<std::uint64_t>(index)));
   s.name = suite.name + "-" + std::to_string(robots) + "-db" + std::to_string(index);
+  return s;
+}
+
+std::vector<std::string> resultSuiteNames() {
+  std::vector<std::string> names;
+  for (const Suite& s : allSuites()) names.push_back(s.name);
+  names.push_back(kFilesSuite);
+  return names;
+}
+
+std::vector<ScenarioFile> loadScenarioFiles(const std::vector<std::string>& paths) {
+  std::vector<ScenarioFile> files;
+  std::map<int, int> per_count;
+  for (const std::string& path : paths) {
+    ScenarioFile f;
+    f.path = path;
+    f.scenario = loadScenario(path);
+    const int n = f.robots();
+    if (n < 2 || n > kMaxResultsRobots)
+      throw InputError(path, "", std::to_string(n) + (n == 1 ? " robot" : " robots") + ": earc-bench run takes scenarios of 2 to " +
+                                     std::to_string(kMaxResultsRobots) + " robots");
+    std::size_t arms = 0;
+    for (const RobotSpec& r : f.scenario.robots) arms += r.kind == RobotKind::Manipulator ? 1 : 0;
+    if (arms != 0 && arms != f.scenario.robots.size())
+      throw InputError(path, "$.robots",
+                       "mixes mobile robots and arms: earc-bench run takes one kind per scenario (its E-ARC "
+                       "databases are per kind)");
+    f.family = arms ? "arms" : "mobile";
+    f.trial = per_count[n]++;
+    nlohmann::json doc = scenarioToJson(f.scenario);
+    f.hash = fnv1a64(doc.dump());
+    doc.erase("name");
+    for (auto& r : doc["robots"]) {
+      r.erase("start");
+      r.erase("goal");
+    }
+    f.world = fnv1a64(doc.dump());
+    files.push_back(std::move(f));
+  }
+  return files;
+}
+
+TrialSeeds fileTrialSeeds(const ScenarioFile& file, std::uint64_t run_seed) {
+  return {file.hash, splitSeed(splitSeed(run_seed, kFileStream) ^ file.hash, 1)};
+}
+
+Scenario fileDatabaseProblem(const ScenarioFile& file, int index, std::uint64_t seed) {
+  const std::uint64_t world = splitSeed(splitSeed(seed, kDatabaseStream) ^ file.world, kFileStream);
+  Scenario s = gen::redrawStartsAndGoals(file.scenario, splitSeed(world, static_cast<std::uint64_t>(index)));
+  s.name = std::string(kFilesSuite) + "-" + std::to_string(file.robots()) + "-db" + std::to_string(index);
   return s;
 }
 

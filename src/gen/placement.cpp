@@ -5,6 +5,8 @@
 #include <memory>
 #include <queue>
 
+#include "earc/gen/generators.hpp"
+
 namespace earc::gen {
 
 namespace {
@@ -135,6 +137,20 @@ bool placeMobileRobots(Scenario& s, const CollisionWorld& world, const DiscFree&
   return placeStartsAndGoals(s, world, rng, [&grid](const RobotModel& robot, const double* q) {
     return grid.componentOf(robot.boundingCenter(q));
   });
+}
+
+Scenario redrawStartsAndGoals(const Scenario& base, std::uint64_t seed) {
+  constexpr int kAttempts = 20;
+  Scenario s = base;
+  const CollisionWorld world(s);
+  const bool mobile = std::all_of(s.robots.begin(), s.robots.end(),
+                                  [](const RobotSpec& r) { return r.kind == RobotKind::Mobile; });
+  auto disc_free = [&world](geo::Vec2 c, double r) { return world.bodyFree(geo::Body::disc(c, r)); };
+  Random rng(seed);
+  for (int attempt = 0; attempt < kAttempts; ++attempt)
+    if (mobile ? placeMobileRobots(s, world, disc_free, rng) : placeStartsAndGoals(s, world, rng, {})) return s;
+  throw CrowdedError("could not place the " + std::to_string(s.robots.size()) + " robots of " + base.name +
+                     " at new starts and goals in " + std::to_string(kAttempts) + " attempts");
 }
 
 }  // namespace earc::gen

@@ -81,3 +81,31 @@ TEST_CASE("generated coordinates are rounded to four decimals") {
   for (const auto& r : s.robots)
     for (double v : r.start) CHECK(roundCoordinate(v) == v);
 }
+
+TEST_CASE("new starts and goals in a scenario's world: a function of the seed, the world kept, every end valid") {
+  MobileSettings mobile;
+  mobile.robots = 6;
+  mobile.obstacles = 8;
+  mobile.seed = 2;
+  ArmSettings arms;
+  arms.robots = 4;
+  arms.obstacles = 2;
+  arms.seed = 2;
+  for (const Scenario& base : {generateMobile(mobile), generateArms(arms)}) {
+    INFO(base.name);
+    const Scenario a = redrawStartsAndGoals(base, 7), again = redrawStartsAndGoals(base, 7),
+                   other = redrawStartsAndGoals(base, 8);
+    CHECK(scenarioToJson(a) == scenarioToJson(again));
+    CHECK(scenarioToJson(a) != scenarioToJson(other));
+    CHECK(scenarioToJson(a)["obstacles"] == scenarioToJson(base)["obstacles"]);
+    REQUIRE(a.robots.size() == base.robots.size());
+    bool moved = false;
+    for (std::size_t i = 0; i < a.robots.size(); ++i) {
+      CHECK(a.robots[i].name == base.robots[i].name);
+      moved = moved || a.robots[i].start != base.robots[i].start;
+    }
+    CHECK(moved);
+    // What loadScenario accepts: ends inside, clear, apart.
+    CHECK_NOTHROW(scenarioFromJson(scenarioToJson(a), "redrawn"));
+  }
+}

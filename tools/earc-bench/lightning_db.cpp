@@ -4,6 +4,12 @@
 //   earc-bench lightning-db --robots N --family mobile|arms [--obstacles]
 //     --count M [--seed S] [--problem-time-limit S] -o FILE [--append]
 //     [--results FILE.sqlite]
+//   earc-bench lightning-db --scenario FILE --count M ...
+//
+// With --scenario the problems are the file's robots in its world at
+// random starts and goals (bench::fileDatabaseProblem): the database for
+// earc-bench run's trials of that file, and of every file that differs
+// from it only in starts and goals.
 //
 // The problems are generated like the suites' trials but from a stream of
 // the seed that trials never use (bench::databaseProblem). Construction
@@ -27,6 +33,7 @@ namespace earc {
 namespace {
 
 struct LightningDbOptions {
+  std::string scenario;
   std::string suite;
   std::string family = "mobile";
   bool obstacles = false;
@@ -45,7 +52,15 @@ const bench::Suite& chooseSuite(const LightningDbOptions& o) {
 }
 
 void runLightningDb(const LightningDbOptions& o) {
-  const bench::Suite& suite = chooseSuite(o);
+  // A scenario file's world, or a suite.
+  std::optional<bench::ScenarioFile> file;
+  if (!o.scenario.empty()) file = std::move(bench::loadScenarioFiles({o.scenario}).front());
+  const bench::Suite* suite = file ? nullptr : &chooseSuite(o);
+  const std::string suite_name = file ? bench::kFilesSuite : suite->name;
+  const int robots = file ? file->robots() : o.robots;
+  auto problem = [&](int i) {
+    return file ? bench::fileDatabaseProblem(*file, i, o.seed) : bench::databaseProblem(*suite, robots, i, o.seed);
+  };
   const bool exists = std::filesystem::exists(o.output);
   if (exists && !o.append) throw InputError(o.output, "-o", "exists; pass --append to grow it");
   // The results database is opened (checked, or created) before the
@@ -56,7 +71,7 @@ void runLightningDb(const LightningDbOptions& o) {
     results.emplace(o.results);
   }
 
-  Scenario first = bench::databaseProblem(suite, o.robots, 0, o.seed);
+  Scenario first = problem(0);
   LightningDatabase db(first);
   if (exists) db.load(o.output);
   const std::size_t before = db.entries();
@@ -66,7 +81,7 @@ void runLightningDb(const LightningDbOptions& o) {
   int solved = 0, recalled = 0;
   Stopwatch clock;
   for (int i = 0; i < o.count; ++i) {
-    Scenario s = i == 0 ? first : bench::databaseProblem(suite, o.robots, i, o.seed);
+    Scenario s = i == 0 ? first : problem(i);
     PlannerSettings ps;
     ps.method = Method::Lightning;
     ps.time_limit_s = o.problem_time_limit;
@@ -82,14 +97,15 @@ void runLightningDb(const LightningDbOptions& o) {
   db.save(o.output);
   const auto size = static_cast<std::int64_t>(std::filesystem::file_size(o.output));
   std::cout << o.output << ": " << db.entries() << " entries (" << db.entries() - before << " new, " << db.states()
-            << " states), " << size << " bytes; " << o.count << " problems of " << suite.name << " with " << o.robots
+            << " states), " << size << " bytes; " << o.count << " problems of "
+            << (file ? "the world of " + file->path : suite_name) << " with " << robots
             << " robots, " << solved << " solved (" << recalled << " from recall); construction " << construction
             << " s\n";
   if (results) {
     bench::DatabaseRecord d;
     d.method = "lightning";
-    d.suite = suite.name;
-    d.robots = o.robots;
+    d.suite = suite_name;
+    d.robots = robots;
     d.path = o.output;
     d.construction_time_s = construction;
     d.entries = static_cast<std::int64_t>(db.entries());
@@ -103,10 +119,14 @@ void runLightningDb(const LightningDbOptions& o) {
 void setupLightningDb(CLI::App& app) {
   auto o = std::make_shared<LightningDbOptions>();
   auto* cmd = app.add_subcommand("lightning-db", "Grow a Lightning database from random problems of one size, timed");
-  cmd->add_option("--robots,-n", o->robots, "Robots per problem")->check(earc::cli::wholeNumberIn(2, bench::kMaxResultsRobots))->capture_default_str();
-  cmd->add_option("--family", o->family, "mobile or arms")->check(CLI::IsMember({"mobile", "arms"}))->capture_default_str();
-  cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
-  cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");
+  auto* scenario = cmd->add_option("--scenario", o->scenario,
+                                   "Problems in this scenario's world (its robots at random starts and goals) instead of a suite's")
+                       ->check(earc::cli::kFileName);
+  auto* robots = cmd->add_option("--robots,-n", o->robots, "Robots per problem")->check(earc::cli::wholeNumberIn(2, bench::kMaxResultsRobots))->capture_default_str();
+  auto* family = cmd->add_option("--family", o->family, "mobile or arms")->check(CLI::IsMember({"mobile", "arms"}))->capture_default_str();
+  auto* obstacles = cmd->add_flag("--obstacles", o->obstacles, "Random obstacles, as in the -obst suites");
+  auto* suite = cmd->add_option("--suite", o->suite, "A suite name instead of --family/--obstacles");
+  for (auto* other : {robots, family, obstacles, suite}) scenario->excludes(other);
   cmd->add_option("--count", o->count, "Problems to plan")->check(earc::cli::kPositiveWholeNumber)->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the problems and the planners")->check(earc::cli::kWholeNumber)->capture_default_str();
   cmd->add_option("--problem-time-limit", o->problem_time_limit, "Seconds per problem")

@@ -4,7 +4,10 @@
 //     [--methods earc,arc,lightning,prioritized,coupled] [--trials N]
 //     [--time-limit S] [--seed S] [--results FILE.sqlite] [--db-mobile FILE]
 //     [--db-arms FILE] [--lightning-dir DIR] [--jobs N] [--full]
-//     [--method-arg METHOD=ARG]...
+//     [--method-arg METHOD=ARG]... [SCENARIO...]
+//
+// Scenario files given instead of suites are the trials (suite "files",
+// one trial per file and method).
 //
 // Exit status 0 when the run finished (failed trials are results, not
 // errors), 1 when some solution was INVALID, 2 for bad options, 130 when
@@ -65,7 +68,12 @@ void setupRun(CLI::App& app) {
   auto o = std::make_shared<RunCli>();
   bench::RunOptions& r = o->run;
   auto* cmd = app.add_subcommand(
-      "run", "Run the paper's experiments: trials per (suite, robots, method), each in its own process; resumable");
+      "run", "Run the paper's experiments, or every method on your scenario files: trials per (suite, robots, method), "
+             "each in its own process; resumable");
+  cmd->add_option("scenarios", r.scenario_files,
+                  "Scenario files to run instead of the suites: one trial per file and method (suite 'files'); "
+                  "E-ARC's database is built for their robots")
+      ->check(earc::cli::kFileName);
   auto* suites = cmd->add_option("--suites", o->suites, "Suites: mobile, mobile-obst, arms, arms-obst (the paper's), movingai-random, movingai-den520d "
                   "(MovingAI maps) (default mobile-obst,arms)");
   auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full every count of the suite)");
@@ -112,15 +120,19 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--method-arg", o->method_args,
                   "METHOD=ARG: one argument added to every earc-plan plan of METHOD and recorded with its trials "
                   "(repeatable: earc=--db-k=5 arc=--window=4; an option and its value as two: earc=--window earc=4)");
-  cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
+  auto* full = cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
                 "(with --suites: those suites instead)");
   cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
   cmd->add_flag("--keep-solutions", r.keep_solutions, "Keep the solution files of solved trials");
   cmd->add_flag("-v,--verbose", r.verbose, "One line per finished trial");
   cmd->add_flag("--cutoff", r.cutoff,
                 "Skip a method at larger robot counts of a suite once it solved none of the trials at a smaller one");
-  cmd->callback([o, suites, robots, methods, trials] {
+  cmd->callback([o, suites, robots, methods, trials, full] {
     bench::RunOptions& r = o->run;
+    if (!r.scenario_files.empty())
+      for (const CLI::Option* opt : {suites, robots, trials, full})
+        if (opt->count())
+          throw InputError("", opt->get_name(), "is for the suites; scenario files are the trials themselves");
     if (o->full) {
       r.suites.clear();
       for (const auto& s : bench::allSuites())

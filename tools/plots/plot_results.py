@@ -57,14 +57,16 @@ SCHEMA_VERSION = 5  # kResultsSchemaVersion there
 # planners poll their deadline): kSolvedTimeLimitSlack in results_db.hpp.
 TIME_LIMIT_SLACK = 1.01
 MAX_ROBOTS = 128  # kMaxResultsRobots there
-SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d"]
+# allSuites() then kFilesSuite (earc-bench run FILE...): suites.hpp.
+SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d", "files"]
 METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
           "coupled": "Coupled RRT-Connect"}
 # Line style and marker per suite: databases of one method for several
 # suites share its colour.
 SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", "s"), "arms-obst": ("-.", "D"),
-                "movingai-random": ((0, (5, 1)), "v"), "movingai-den520d": ((0, (1, 1, 3, 1)), "P")}
+                "movingai-random": ((0, (5, 1)), "v"), "movingai-den520d": ((0, (1, 1, 3, 1)), "P"),
+                "files": ((0, (3, 1, 1, 1, 1, 1)), "X")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
           "coupled": "tab:orange"}
 

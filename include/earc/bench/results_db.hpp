@@ -41,7 +41,8 @@
 // missing column does, in one line naming the file, the table, the row's
 // id and the column:
 //   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 128
-// What a run writes: suite and method names earc-bench has (bench/suites.hpp;
+// What a run writes: suite and method names earc-bench has (bench/suites.hpp,
+// resultSuiteNames: the suites and kFilesSuite;
 // databases: method earc or lightning, robots 0 or a count); robot counts
 // 2 to kMaxResultsRobots; trial numbers, counts (makespan, sum_of_costs,
 // conflicts, db_hits, peak_memory_kb, entries, size_bytes, problems) and

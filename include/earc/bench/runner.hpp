@@ -18,6 +18,14 @@
 namespace earc::bench {
 
 struct RunOptions {
+  // Scenario files to run instead of the suites (suite kFilesSuite, one
+  // trial per file; suites, robots and trials are then not used). Their
+  // E-ARC databases default to WORK/earc-files-FAMILY.sqlite, built with
+  // `earc-db build --scenario` from the files (once per robot geometry,
+  // and for arms per layout); their Lightning databases are per world
+  // (files that differ only in starts and goals share one), grown from
+  // the file's robots at random starts and goals.
+  std::vector<std::string> scenario_files;
   std::vector<std::string> suites = {"mobile-obst", "arms"};
   std::vector<int> robots = {2, 4, 8};  // empty: every count of each suite
   std::vector<std::string> methods = {"earc", "arc", "lightning", "prioritized"};

@@ -53,6 +53,44 @@ Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t 
 // database built with the benchmark's seed never holds its test problems.
 Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_t seed);
 
+// Trials that come from scenario files (earc-bench run FILE...) are of
+// this suite: one trial per file and method, with the file's robots.
+inline constexpr const char* kFilesSuite = "files";
+
+// What a results file's suite column may hold: every suite's name and
+// kFilesSuite.
+std::vector<std::string> resultSuiteNames();
+
+// A scenario file given to earc-bench run.
+struct ScenarioFile {
+  std::string path;        // as given
+  Scenario scenario;
+  std::string family;      // "mobile" or "arms": which E-ARC database it takes
+  int trial = 0;           // among the files of its robot count, in the order given
+  std::uint64_t hash = 0;  // of its content as read: a resumed run checks it
+  // Of what its problems share with others of their kind (workspace,
+  // obstacles, robots without starts and goals, resolution): files with
+  // the same world share a Lightning database.
+  std::uint64_t world = 0;
+  int robots() const { return static_cast<int>(scenario.robots.size()); }
+};
+
+// Reads the files (InputError naming the file for one that is not a valid
+// scenario, has fewer than 2 or more than kMaxResultsRobots robots, or
+// mixes mobile robots and arms) and numbers them per robot count in the
+// order given.
+std::vector<ScenarioFile> loadScenarioFiles(const std::vector<std::string>& paths);
+
+// Seeds of a file's trial: the scenario's is the file's hash (recorded, so
+// that a resumed run can tell that the file changed), the planner's
+// derives from it and the run seed.
+TrialSeeds fileTrialSeeds(const ScenarioFile& file, std::uint64_t run_seed);
+
+// Problem `index` for growing a Lightning database of a file's world: its
+// robots at random starts and goals, from a stream of `seed` that trials
+// never use.
+Scenario fileDatabaseProblem(const ScenarioFile& file, int index, std::uint64_t seed);
+
 // Splits "a,b,c" (empty items dropped).
 std::vector<std::string> splitList(const std::string& list);
 

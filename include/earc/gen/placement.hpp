@@ -79,4 +79,11 @@ bool placeStartsAndGoals(Scenario& s, const CollisionWorld& world, Random& rng, 
 // scenario's workspace and obstacles.
 bool placeMobileRobots(Scenario& s, const CollisionWorld& world, const DiscFree& free, Random& rng);
 
+// Problems of the same kind as `base`: its workspace, obstacles, robots
+// and resolution, every robot's start and goal drawn again (as
+// placeMobileRobots places them when every robot is mobile, else as
+// placeStartsAndGoals does). A function of (base, seed). Throws
+// CrowdedError when no placement is found in a few attempts.
+Scenario redrawStartsAndGoals(const Scenario& base, std::uint64_t seed);
+
 }  // namespace earc::gen
