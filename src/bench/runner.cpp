@@ -416,9 +416,9 @@ class Runner {
       if (!fs::exists(path)) {
         construction = buildEarcDb(family, path);
         if (!construction) continue;
-      } else if (db_.hasDatabase("earc", path)) {
-        continue;
       }
+      warnNoClassFits(family, path);
+      if (!construction && db_.hasDatabase("earc", path)) continue;
       DatabaseRecord d;
       d.method = "earc";
       d.suite = files_.empty() ? family : kFilesSuite;
@@ -435,6 +435,28 @@ class Runner {
       d.entries = construction || checked == existing_.end() ? earcDbEntries(o_, family) : checked->second;
       db_.addDatabase(d);
     }
+  }
+
+  // A database given for scenario files (--db-mobile, --db-arms) may hold
+  // nothing for their robots: E-ARC then plans as ARC, which a table would
+  // not show. Said once per robot geometry (and arm layout), as earc-plan
+  // says it.
+  void warnNoClassFits(const std::string& family, const std::string& path) {
+    if (files_.empty()) return;
+    std::optional<exp::ExperienceStore> store;
+    try {
+      exp::StoreOptions so;
+      so.read_only = true;
+      so.new_session = false;
+      store.emplace(path, so);
+    } catch (const std::exception&) {
+      return;  // the trials say what is wrong with it
+    }
+    std::set<std::string> said;
+    for (const ScenarioFile& f : files_)
+      if (f.family == family && said.insert(earcBuildKey(f)).second)
+        if (const std::string w = exp::noClassFitsWarning(*store, f.scenario, path); !w.empty())
+          std::cerr << "earc-bench: warning: " << printableText(f.path + ": " + w, 4096) << "\n";
   }
 
   // Runs `earc-db build` for one family; its wall time is the construction

@@ -62,6 +62,13 @@ refusedInOneLine "--suites: is for the suites; scenario files are the trials the
   "$BENCH" run --suites mobile d3.json --results other.sqlite
 refusedInOneLine "--trials: is for the suites" "$BENCH" run --trials 3 d3.json --results other.sqlite
 
+# A database given for files whose robots it does not serve: one warning
+# per geometry, and the run goes on.
+"$BENCH" run --methods earc --time-limit 5 --db-mobile r.sqlite.work/earc-files-arms.sqlite --results w.sqlite \
+  d3.json d4.json > out 2> err || fail "run with another kind's database exited $?"
+[ "$(grep -c 'earc-bench: warning: d3.json: .*none for these robots' err)" = 1 ] || fail "no one warning: $(cat err)"
+grep -q 'd4.json' err && fail "warned twice for one geometry: $(cat err)"
+
 "$PY" - <<'PY' || fail "bad files"
 import json
 s = json.load(open("d3.json"))
