@@ -19,6 +19,7 @@
 #include <csignal>
 #include <cstring>
 #include <iostream>
+#include <deque>
 #include <list>
 
 #include "earc/experience/maintenance.hpp"
@@ -84,14 +85,16 @@ std::runtime_error systemError(const std::string& what) {
   return std::runtime_error(what + ": " + std::strerror(errno));
 }
 
-// Writes all of text; false when the reader has gone (EPIPE and the like).
+// Writes all of text to a blocking descriptor (stdout); false when the
+// reader has gone (EPIPE and the like) or a stop signal came while the
+// write waited for a reader that does not read.
 bool writeAll(int fd, const std::string& text) {
   const char* p = text.data();
   std::size_t left = text.size();
   while (left > 0) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0) {
-      if (errno == EINTR) continue;
+      if (errno == EINTR && !g_signal) continue;
       return false;
     }
     p += n;
@@ -99,6 +102,11 @@ bool writeAll(int fd, const std::string& text) {
   }
   return true;
 }
+
+// A connection's answers wait here while its client does not read; past
+// this much the service stops reading the client's requests until it has
+// read its answers, so one client that does not read holds up no other.
+constexpr std::size_t kPendingAnswerBytes = 1 << 20;
 
 // A name for binding beside `path` (same directory, so it can be linked
 // to `path`), or "" when none fits in a socket address.
@@ -174,9 +182,17 @@ Fd listenOn(const std::string& path) {
 struct Client {
   int in = -1;
   int out = -1;
-  Fd owned;  // connections only
+  Fd owned;  // connections only (non-blocking)
   service::LineSplitter lines;
+  std::deque<service::LineSplitter::Line> queued;  // read, not yet answered
+  std::string pending;  // connections: answers not yet taken by the client
+  bool reading = true;  // until the client's end of input
   bool open = true;
+
+  bool connection() const { return owned.get() >= 0; }
+  // Whether its next request may be answered now: a connection whose
+  // client has not taken its earlier answers waits.
+  bool ready() const { return !queued.empty() && pending.size() < kPendingAnswerBytes; }
 };
 
 class Server {
@@ -184,6 +200,12 @@ class Server {
   Server(service::Service& service, Fd listener) : service_(service), listener_(std::move(listener)) {}
 
   // Serves until a stop signal, or the end of stdin when there is no socket.
+  // Requests are answered one at a time, taking the clients in turn (one
+  // request each per round), so that a client with many requests queued
+  // does not hold up the others'. A client's requests are read only once
+  // its earlier ones are answered, and a connection's answers wait in a
+  // queue while its client does not read them: a client that does not
+  // read holds up no other, nor a stop signal.
   void run() {
     Client stdio;
     stdio.in = STDIN_FILENO;
@@ -194,20 +216,38 @@ class Server {
     g_wake_fd = wake_write.get();
     while (!g_signal) {
       std::vector<pollfd> fds{{wake_read.get(), POLLIN, 0}};
-      if (stdio.open) fds.push_back({stdio.in, POLLIN, 0});
+      bool work = stdio.open && !stdio.queued.empty();
+      if (stdio.open) fds.push_back({stdio.in, static_cast<short>(stdio.reading && stdio.queued.empty() ? POLLIN : 0), 0});
       if (listener_.get() >= 0) fds.push_back({listener_.get(), POLLIN, 0});
-      for (const Client& c : connections_) fds.push_back({c.in, POLLIN, 0});
+      for (const Client& c : connections_) {
+        const short in = c.reading && c.queued.empty() && c.pending.size() < kPendingAnswerBytes ? POLLIN : 0;
+        fds.push_back({c.in, static_cast<short>(in | (c.pending.empty() ? 0 : POLLOUT)), 0});
+        work = work || c.ready();
+      }
       if (!stdio.open && listener_.get() < 0) break;
-      if (::poll(fds.data(), fds.size(), -1) < 0) {
+      if (::poll(fds.data(), fds.size(), work ? 0 : -1) < 0) {
         if (errno == EINTR) continue;
         throw systemError("poll");
       }
       std::size_t i = 1;
-      if (stdio.open && fds[i++].revents) serve(stdio);
+      if (stdio.open && fds[i++].revents && stdio.reading) read(stdio);
       if (listener_.get() >= 0 && fds[i++].revents & POLLIN) accept();
-      for (auto it = connections_.begin(); it != connections_.end() && !g_signal;) {
-        if (i < fds.size() && fds[i].fd == it->in && fds[i].revents) serve(*it);
+      for (Client& c : connections_) {
+        // Connections accepted just now have no entry yet.
+        if (i < fds.size() && fds[i].fd == c.in && fds[i].revents) {
+          if (!c.pending.empty()) flush(c);
+          if (c.open && c.reading && c.queued.empty() && (fds[i].revents & (POLLIN | POLLHUP | POLLERR))) read(c);
+        }
         ++i;
+      }
+      // One request of each client that has one, in turn.
+      if (stdio.open && !stdio.queued.empty()) answerNext(stdio);
+      for (Client& c : connections_)
+        if (c.open && c.ready()) answerNext(c);
+      if (stdio.open && !stdio.reading && stdio.queued.empty()) stdio.open = false;
+      for (auto it = connections_.begin(); it != connections_.end();) {
+        // Closed once the client has all its answers (or is gone).
+        if (!it->reading && it->queued.empty() && it->pending.empty()) it->open = false;
         it = it->open ? std::next(it) : connections_.erase(it);
       }
     }
@@ -216,29 +256,54 @@ class Server {
 
  private:
   void accept() {
-    const int fd = ::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC);
+    const int fd = ::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0) return;  // the client gave up already, or EINTR: poll again
     Client& c = connections_.emplace_back();
     c.owned = Fd(fd);
     c.in = c.out = fd;
   }
 
-  // Reads what is there and answers every complete line, one at a time.
-  void serve(Client& c) {
+  // Reads what is there and queues its complete lines.
+  void read(Client& c) {
     char buf[65536];
     const ssize_t n = ::read(c.in, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) return;
+    if (n < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) return;
     const bool eof = n <= 0;
     auto lines = eof ? c.lines.finish() : c.lines.feed(std::string_view(buf, static_cast<std::size_t>(n)));
-    for (const auto& line : lines) {
-      if (g_signal) return;  // not started: left unanswered
-      const std::string response = line.too_long ? service_.tooLongResponse() : service_.handleLine(line.text);
-      if (!writeAll(c.out, response + "\n")) {
-        c.open = false;
-        return;
-      }
+    for (auto& line : lines) c.queued.push_back(std::move(line));
+    if (eof) c.reading = false;
+  }
+
+  // Answers the client's oldest request: on stdout as it is (blocking), to
+  // a connection through its queue, written as far as the client takes it.
+  void answerNext(Client& c) {
+    if (g_signal) return;  // not started: left unanswered
+    const service::LineSplitter::Line line = std::move(c.queued.front());
+    c.queued.pop_front();
+    std::string response = line.too_long ? service_.tooLongResponse() : service_.handleLine(line.text);
+    response += '\n';
+    if (!c.connection()) {
+      if (!writeAll(c.out, response)) c.open = false;
+      return;
     }
-    if (eof) c.open = false;
+    c.pending += response;
+    flush(c);
+  }
+
+  // Writes a connection's queued answers as far as it takes them now.
+  void flush(Client& c) {
+    std::size_t written = 0;
+    while (written < c.pending.size()) {
+      const ssize_t n = ::write(c.out, c.pending.data() + written, c.pending.size() - written);
+      if (n < 0) {
+        if (errno == EINTR && !g_signal) continue;
+        if (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK) break;
+        c.open = false;  // the client has gone: its answers with it
+        break;
+      }
+      written += static_cast<std::size_t>(n);
+    }
+    c.pending.erase(0, written);
   }
 
   service::Service& service_;
