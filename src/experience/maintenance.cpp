@@ -159,7 +159,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries, int h
   r.path = path;
   r.schema_version = store.schemaVersion();
   r.file_bytes = fileSize(path);
-  r.wal_bytes = fileSize(path + "-wal");
+  r.wal_bytes = fileSize(databaseFile(path) + "-wal");  // beside the real file, through any link
   r.sessions = store.session();
   db.exec("BEGIN");  // one snapshot for every number
   const std::string usage = r.schema_version >= 2 ? "sum(retrieved_count), sum(succeeded_count), avg(solve_time_s)"

@@ -40,6 +40,10 @@ std::string fileOf(sqlite3* db) {
 // deleted the WAL under it, and rows were lost and the file damaged. The
 // unix VFS keeps such a descriptor open until the file's last lock in the
 // process is released.
+// The name given is resolved first, as SQLite resolves a main database's
+// (xFullPathname): the unix VFS opens with O_NOFOLLOW and refuses a
+// symbolic link, so through a link the header went unread, and with it
+// every check that reads it.
 using SqliteHeader = std::array<unsigned char, 100>;
 std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
   sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
@@ -47,7 +51,7 @@ std::optional<SqliteHeader> sqliteHeader(const std::string& path) {
   // A main-database name as SQLite makes them (double NUL-terminated, so
   // the VFS may look for URI parameters after it).
   const std::unique_ptr<const char, decltype(&sqlite3_free_filename)> name(
-      sqlite3_create_filename(path.c_str(), "", "", 0, nullptr), &sqlite3_free_filename);
+      sqlite3_create_filename(databaseFile(path).c_str(), "", "", 0, nullptr), &sqlite3_free_filename);
   if (!name) return std::nullopt;  // out of memory; a null name would open a temporary file
   // sqlite3_file's state, as large as the VFS asks, suitably aligned;
   // allocated before the file is open, so that nothing throws while it is.
@@ -75,9 +79,7 @@ struct RealFile {
   std::filesystem::path path, dir;
 };
 RealFile realFile(const std::string& path) {
-  std::error_code ec;
-  RealFile f{std::filesystem::weakly_canonical(path, ec), {}};
-  if (ec) f.path = path;
+  RealFile f{databaseFile(path), {}};
   f.dir = f.path.parent_path();
   if (f.dir.empty()) f.dir = ".";
   return f;
@@ -141,6 +143,17 @@ std::optional<std::string> truncation(const std::string& file) {
 }  // namespace
 
 bool startsLikeSqlite(const std::string& path) { return sqliteHeader(path).has_value(); }
+
+std::string databaseFile(const std::string& path) {
+  sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
+  if (!vfs || path.empty()) return path;
+  std::string full(static_cast<std::size_t>(vfs->mxPathname) + 1, '\0');
+  const int rc = vfs->xFullPathname(vfs, path.c_str(), static_cast<int>(full.size()), full.data());
+  // SQLITE_OK_SYMLINK: resolved, and a link was followed on the way.
+  if (rc != SQLITE_OK && rc != SQLITE_OK_SYMLINK) return path;  // a loop, a name too long: SQLite refuses it too
+  full.resize(std::strlen(full.c_str()));
+  return full;
+}
 
 std::string withoutFile(const std::string& message, const std::string& path) {
   std::error_code ec;

@@ -94,6 +94,14 @@ std::vector<std::string> checkProblemLines(const std::string& row);
 // layer so that this process's locks on the file stay (see sqlite.cpp).
 bool startsLikeSqlite(const std::string& path);
 
+// The file SQLite opens for a database named `path`: absolute, every
+// symbolic link on the way followed (a dangling one too, to the file it
+// would create), as SQLite resolves a main database's name; `path` as
+// given when it cannot be resolved. Its -wal and -shm are beside it: look
+// for them, or remove or rename the database, here, not at `path`. For
+// the filesystem only; messages name the path as given.
+std::string databaseFile(const std::string& path);
+
 // A StoreError's message without its leading "FILE: " (path as given, or
 // as SQLite names it, absolute), for errors that name the file themselves.
 std::string withoutFile(const std::string& message, const std::string& path);
