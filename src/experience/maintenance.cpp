@@ -461,8 +461,14 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   // The copy is curated under a temporary name and appears under its own
   // name only when complete: a crash or an error part way never leaves a
   // half-curated copy that looks like a database.
-  const std::string& out = settings.output;
-  if (std::filesystem::exists(out)) throw InputError(out, "", "already exists; not overwriting it");
+  // A link given as the output has its target created (as export's
+  // does): the copy is made beside the target and renamed onto it, and a
+  // dangling link is no existing file. Messages name the output as given.
+  const std::string& given = settings.output;
+  const std::string out = databaseFile(given);
+  std::error_code ec;
+  if (std::filesystem::exists(std::filesystem::symlink_status(out, ec)))
+    throw InputError(given, "", "already exists; not overwriting it");
   removeStaleTemporaries(out);
   const std::string tmp = curateTemporary(out, std::to_string(::getpid()));
   removeDatabaseFiles(tmp);
@@ -471,12 +477,12 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
     CurateReport r = curateFile(tmp, settings, path);
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, out.c_str(), RENAME_NOREPLACE) != 0) {
       const int err = errno;
-      throw InputError(out, "", err == EEXIST ? std::string("already exists; not overwriting it")
-                                              : std::string("cannot create it: ") + std::strerror(err));
+      throw InputError(given, "", err == EEXIST ? std::string("already exists; not overwriting it")
+                                                : std::string("cannot create it: ") + std::strerror(err));
     }
     removeDatabaseFiles(tmp);  // an empty -wal or -shm left by the close
     syncDirectoryOf(out);
-    r.curated_path = out;
+    r.curated_path = given;
     return r;
   } catch (...) {
     removeDatabaseFiles(tmp);

@@ -4,7 +4,9 @@
 # refused by name, not found at the first write), it imports and merges,
 # reading it leaves nothing beside the target, and a plan and a service
 # use it. SQLite's unix VFS refuses to open a link itself (O_NOFOLLOW):
-# earc resolves the name first, as SQLite does for a main database.
+# earc resolves the name first, as SQLite does for a main database. A
+# dangling link given as curate's output has its target created, as
+# export's does.
 set -u
 BUILD=$1
 SRC=$2
@@ -100,5 +102,22 @@ got = [json.loads(subprocess.run([db, "inspect", "--db", f, "--json"], check=Tru
 assert got[0] > 0 and got[1] == got[0], got
 c.close()
 PYEOF
+
+# A dangling link as curate's output: its target is created (and the
+# link kept), as export -o does; a second curate to it is refused.
+cd "$WORK/links" || fail "cd"
+ln -s ../data/curated.db dangling.db
+"$DB" curate --db link.db --dedupe 0.1 -o dangling.db > "$WORK/out" 2> "$WORK/err" ||
+  fail "curate -o onto a dangling link: exit $?: $(cat "$WORK/err")"
+grep -qF "curated dangling.db:" "$WORK/out" || fail "curate -o onto a dangling link: $(cat "$WORK/out")"
+[ -L dangling.db ] && [ -f "$WORK/data/curated.db" ] || fail "curate -o did not create the link's target"
+"$DB" verify --db "$WORK/data/curated.db" > /dev/null || fail "the curated target does not verify"
+ls "$WORK/data" | grep -q 'curated\.db\.tmp' && fail "curate -o left a temporary beside the target"
+ls "$WORK/links" | grep -q '\.tmp\.' && fail "curate -o left a temporary beside the link"
+refusedInOneLine "dangling.db: already exists; not overwriting it" \
+  "$DB" curate --db link.db --dedupe 0.1 -o dangling.db
+ln -s ../data/exported.jsonl dangling.jsonl
+"$DB" export --db link.db -o dangling.jsonl -q || fail "export -o onto a dangling link"
+[ -L dangling.jsonl ] && [ -s "$WORK/data/exported.jsonl" ] || fail "export -o did not create the link's target"
 
 echo "ok"
