@@ -277,7 +277,8 @@ class Comparer {
     const std::string copy = o_.work_dir + "/db-" + side + (methodOf(side) == "lightning" ? ".lightning" : ".sqlite");
     exp::removeDatabaseFiles(copy);
     fs::copy_file(o_.db, copy);
-    if (fs::exists(o_.db + "-wal")) fs::copy_file(o_.db + "-wal", copy + "-wal");
+    // Beside the real file, through any link.
+    if (const std::string wal = exp::databaseFile(o_.db) + "-wal"; fs::exists(wal)) fs::copy_file(wal, copy + "-wal");
     return copy;
   }
 

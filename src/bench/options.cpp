@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "earc/bench/suites.hpp"
+#include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/format.hpp"
@@ -57,8 +58,9 @@ void requireSeparateOutputs(const std::string& input, const std::string& input_o
     if (path.empty()) continue;
     if (sameFile(path, input))
       throw InputError(path, option, "is the " + input_option + " file; writing it would destroy that");
+    // Beside the real file, through any link, as well as beside the name.
     for (const char* suffix : kDatabaseCompanions)
-      if (sameFile(path, input + suffix))
+      if (sameFile(path, input + suffix) || sameFile(path, exp::databaseFile(input) + suffix))
         throw InputError(path, option,
                          "is the " + input_option + " file's " + suffix + " file; writing it would destroy that");
     for (std::size_t j = 0; j < i; ++j)

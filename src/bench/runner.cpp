@@ -27,6 +27,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
@@ -425,7 +426,7 @@ class Runner {
       d.robots = 0;
       d.path = path;
       d.construction_time_s = construction;
-      d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(path + "-wal"));
+      d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(exp::databaseFile(path) + "-wal"));
       if (construction) {
         d.seed = o_.seed;
         if (o_.earc_db_count) d.problems = *o_.earc_db_count;
@@ -495,8 +496,9 @@ class Runner {
       ChildOutcome out = runChild(spec, &interruptFlag());
       if (out.exit_code != 0) {
         buildFailed(path, out, stem, "earc");
-        std::error_code ec;
-        fs::remove(path, ec);  // a half-built database must not pass for a built one
+        // A half-built database must not pass for a built one: the file
+        // (a link's target: the link was given) and its -wal and -shm.
+        exp::removeDatabaseFiles(exp::databaseFile(path));
         return std::nullopt;
       }
       construction += out.wall_s;

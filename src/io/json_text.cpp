@@ -383,10 +383,14 @@ void requireDistinctFiles(const std::vector<NamedPath>& paths) {
   // SQLite keeps them beside the real file, through any link.
   auto companion = [](const NamedPath& db, const NamedPath& other) -> std::string {
     if (!db.database) return "";
+    // (A dangling link too, which weakly_canonical leaves: the database
+    // would be created at its target.)
     std::error_code ec;
     const fs::path real = fs::weakly_canonical(db.path, ec);
+    const std::string target = throughLinks(db.path);
     for (const char* suffix : kDatabaseCompanions)
-      if (sameFile(db.path + suffix, other.path) || (!ec && sameFile(real.string() + suffix, other.path)))
+      if (sameFile(db.path + suffix, other.path) || (!ec && sameFile(real.string() + suffix, other.path)) ||
+          sameFile(target + suffix, other.path))
         return suffix;
     return "";
   };

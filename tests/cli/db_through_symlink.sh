@@ -119,5 +119,83 @@ refusedInOneLine "dangling.db: already exists; not overwriting it" \
 ln -s ../data/exported.jsonl dangling.jsonl
 "$DB" export --db link.db -o dangling.jsonl -q || fail "export -o onto a dangling link"
 [ -L dangling.jsonl ] && [ -s "$WORK/data/exported.jsonl" ] || fail "export -o did not create the link's target"
+# The -wal of a new database made through a dangling link is part of it.
+ln -s ../data/new.db dangling-new.db
+refusedInOneLine "is the -wal file of --db" \
+  "$PLAN" plan "$SCEN" -o "$WORK/data/new.db-wal" --method earc --db dangling-new.db
+# earc-db build through a dangling link that makes no problem at all
+# removes the file it made, the link's target, and keeps the link.
+ln -s ../data/huge.db huge.db
+refusedInOneLine "none of 3 problems could be made" \
+  "$DB" build --db huge.db --shape disc --radius 40 --count 3 --threads 1
+[ -L huge.db ] || fail "a build that made nothing removed the link it was given"
+[ -e "$WORK/data/huge.db" ] && fail "a build that made nothing left the file it made through a link"
+
+# earc-bench through links: a given database's size counts the WAL
+# beside its target, and a build into a dangling link that fails part
+# way removes what it made (the target and its WAL), not the link. A
+# stand-in earc-db beside a copy of earc-bench fails so; a stand-in
+# planner keeps the trials quick and away from the database.
+mkdir "$WORK/bin"
+cp "$BUILD/earc-bench" "$WORK/bin/"
+ln -s "$BUILD/earc-plan" "$WORK/bin/earc-plan"
+cat > "$WORK/bin/earc-db" <<'FAKE'
+#!/bin/bash
+while [ $# -gt 0 ]; do [ "$1" = --db ] && db=$2; shift; done
+t=$(readlink -m "$db")
+printf half > "$t"; printf half > "$t-wal"
+echo "killed part way" >&2
+exit 1
+FAKE
+chmod +x "$WORK/bin/earc-db"
+writeTeleportingPlanner "$WORK/teleport"
+ln -s ../data/half.db half.db
+"$WORK/bin/earc-bench" run "$SCEN" --methods earc --db-mobile half.db --plan-program "$WORK/teleport" \
+  --results "$WORK/half.sqlite" > "$WORK/out" 2> "$WORK/err"
+grep -qF "building half.db failed" "$WORK/err" || fail "the stand-in build did not fail: $(cat "$WORK/err")"
+[ -L half.db ] || fail "earc-bench removed the link it was given after a failed build"
+[ -e "$WORK/data/half.db" ] || [ -e "$WORK/data/half.db-wal" ] &&
+  fail "earc-bench left a half-built database at a link's target"
+"$PY" - "$BUILD/earc-bench" "$SCEN" "$WORK/teleport" "$WORK/data/real.db" link.db "$WORK/size.sqlite" <<'PYEOF' ||
+import os, sqlite3, subprocess, sys
+bench, scen, planner, real, link, results = sys.argv[1:]
+c = sqlite3.connect(real)
+c.execute("PRAGMA wal_autocheckpoint = 0")
+c.execute("UPDATE experiences SET retrieved_count = retrieved_count + 1")
+c.commit()
+want = os.path.getsize(real) + os.path.getsize(real + "-wal")
+subprocess.run([bench, "run", scen, "--methods", "earc", "--db-mobile", link, "--plan-program", planner,
+                "--results", results], capture_output=True)
+got = sqlite3.connect("file:%s?mode=ro" % results, uri=True).execute("SELECT size_bytes FROM databases").fetchall()
+assert got == [(want,)], (got, want)
+c.close()
+PYEOF
+  fail "the size of a database given through a link"
+
+# earc-bench compare's outputs may not be the -wal beside a linked --db's
+# target either.
+refusedInOneLine "is the --db file's -wal file" "$BUILD/earc-bench" compare --old "$PLAN" --method earc \
+  --db link.db --suite mobile --robots 2 --trials 1 --work-dir "$WORK/w" --csv "$WORK/data/real.db-wal"
+[ -e "$WORK/data/real.db-wal" ] && fail "compare wrote over the -wal of its --db's target"
+
+# earc-bench compare starts each side from a copy of --db with its WAL,
+# which is beside the target: rows another process deleted (held in the
+# WAL) stay deleted in the copies.
+"$PY" - "$BUILD/earc-bench" "$PLAN" "$WORK/data/real.db" link.db "$WORK/cmp" <<'PYEOF' || fail "compare through a link"
+import sqlite3, subprocess, sys
+bench, plan, real, link, work = sys.argv[1:]
+c = sqlite3.connect(real)
+c.execute("PRAGMA wal_autocheckpoint = 0")
+c.execute("DELETE FROM experiences WHERE id NOT IN (SELECT id FROM experiences ORDER BY id LIMIT 3)")
+c.commit()
+r = subprocess.run([bench, "compare", "--old", plan, "--method", "earc", "--db", link, "--suite", "mobile", "--robots", "2",
+                    "--trials", "1", "--time-limit", "5", "--work-dir", work], capture_output=True, text=True)
+assert r.returncode == 0, r.stderr
+for side in ("old", "new"):
+    got = sqlite3.connect("file:%s/db-%s.sqlite?mode=ro" % (work, side), uri=True).execute(
+        "SELECT count(*) FROM experiences").fetchone()[0]
+    assert got == 3, (side, got)
+c.close()
+PYEOF
 
 echo "ok"

@@ -174,7 +174,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   // from the conflict point) places no problem at all: said, not "built 0".
   // A file this build made holds nothing then: it goes too.
   if (report.problems > 0 && report.no_query == report.problems) {
-    if (!existed) earc::exp::removeDatabaseFiles(opt.db);
+    if (!existed) earc::exp::removeDatabaseFiles(earc::exp::databaseFile(opt.db));  // a link's target, not the link
     const bool from_scenario = opt.size.empty() && opt.radius == 0.0 && !opt.scenario.empty();
     throw earc::InputError(from_scenario ? opt.scenario : "",
                            from_scenario ? "$.robots" : !opt.size.empty() ? "--size" : "--radius",
