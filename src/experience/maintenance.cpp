@@ -484,6 +484,12 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
     syncDirectoryOf(out);
     r.curated_path = given;
     return r;
+  } catch (const NoSpaceError&) {
+    // Met writing the copy (VACUUM INTO, a statement reading the source,
+    // names the source; a step on the copy, the temporary): the output
+    // is what had no room.
+    removeDatabaseFiles(tmp);
+    throw InputError(given, "", std::string(kDiskFull) + "; no copy was made");
   } catch (...) {
     removeDatabaseFiles(tmp);
     throw;

@@ -130,9 +130,11 @@ std::optional<std::string> truncation(const std::string& file) {
   }
   if (primary == SQLITE_IOERR && (rc == SQLITE_IOERR_SHORT_READ || rc == SQLITE_IOERR_TRUNCATE))
     throw DamagedDatabaseError(file + ": damaged database file (truncated: " + message + ")");
+  // A full disk is the same whichever statement met it ("executing
+  // \"VACUUM INTO ?1\"", "COMMIT"): said plainly.
+  if (primary == SQLITE_FULL) throw NoSpaceError(file + ": " + std::string(kDiskFull));
   std::string msg = file + ": " + std::string(context) + ": " + message;
   if (isBusy(rc)) throw BusyError(msg);
-  if (primary == SQLITE_FULL) throw NoSpaceError(msg);
   throw StoreError(msg);
 }
 

@@ -66,7 +66,9 @@ class BusyError : public StoreError {
 };
 
 // The disk (or the file's page limit) has no room for a write: SQLite
-// rolled the transaction back, and the file holds what it held.
+// rolled the transaction back, and the file holds what it held. what() is
+// "FILE: cannot write: the disk is full" (kDiskFull), without the
+// statement that met it.
 class NoSpaceError : public StoreError {
  public:
   using StoreError::StoreError;
@@ -193,6 +195,9 @@ inline constexpr int kQuickCheckCacheKiB = 2 * 1024;
 // Largest string or blob a hostile file may hand us (bytes): a path blob of
 // 4 robots x 5 joints x 100,000 steps is 16 MB.
 inline constexpr int kHostileMaxLength = 64 << 20;
+// Said of a database file SQLite could not write for want of room
+// (SQLITE_FULL), whichever statement met it.
+inline constexpr const char* kDiskFull = "cannot write: the disk is full";
 // Said of a device, FIFO or socket given as a database.
 inline constexpr const char* kNotARegularFile = "not a regular file (a device, FIFO or socket); a database is a file";
 
