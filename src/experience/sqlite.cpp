@@ -277,10 +277,10 @@ void requireKnownFileFormat(const std::optional<SqliteHeader>& h, const std::str
   }
 }
 
-}  // namespace
-
-Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
-    : path_(path), mode_(mode), settings_(settings) {
+// The checks of a database file before SQLite opens it, and the flags to
+// open it with; query_only: open our own WAL file read-write under PRAGMA
+// query_only (ConnectionSettings::own_application_id).
+int checkFileBeforeOpen(const std::string& path, OpenMode mode, const ConnectionSettings& settings, bool& query_only) {
   // SQLite would open a device or FIFO and hang reading it, or write a
   // journal beside /dev/null: refused before it is touched.
   {
@@ -294,7 +294,7 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
   requireKnownFileFormat(header, path);
   const RealFile real = realFile(path);
   const std::filesystem::path& dir = real.dir;
-  const bool query_only = mode == OpenMode::ReadOnly && ownWalHeader(header, settings.own_application_id);
+  query_only = mode == OpenMode::ReadOnly && ownWalHeader(header, settings.own_application_id);
   // Writing needs the file and its directory (for -wal and -shm): said
   // before any work, not as a failed PRAGMA or a failed commit after it.
   if (mode == OpenMode::ReadWrite) {
@@ -304,22 +304,33 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
     if (std::filesystem::exists(real.path, ec) && ::access(real.path.c_str(), W_OK) != 0)
       throw StoreError(path + ": cannot write: the file is read-only");
   }
-  int flags = mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
-              : query_only                ? SQLITE_OPEN_READWRITE
-                                          : SQLITE_OPEN_READONLY;
+  return mode == OpenMode::ReadWrite ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
+         : query_only                ? SQLITE_OPEN_READWRITE
+                                     : SQLITE_OPEN_READONLY;
+}
+
+}  // namespace
+
+Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
+    : path_(path), mode_(mode), settings_(settings) {
+  const bool memory = mode == OpenMode::Memory;
+  bool query_only = false;
+  int flags = memory ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_MEMORY
+                     : checkFileBeforeOpen(path, mode, settings, query_only);
   // The store serializes access itself; the connection need not.
   flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   sqlite3* raw = nullptr;
-  int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
+  int rc = sqlite3_open_v2(memory ? ":memory:" : path.c_str(), &raw, flags, nullptr);
   db_.reset(raw);
   if (rc != SQLITE_OK) {
     std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);
     // SQLite says "unable to open database file" for all of these: the
     // usual causes said as the output checks say them.
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
+    const std::filesystem::path dir = realFile(path).dir;
+    if (!memory && !std::filesystem::is_directory(dir, ec))
       why = "no directory " + dir.string();
-    else if (mode != OpenMode::ReadWrite && !std::filesystem::exists(path, ec))
+    else if (!memory && mode != OpenMode::ReadWrite && !std::filesystem::exists(path, ec))
       why = "no such file";
     throw StoreError(path + ": cannot open: " + why);
   }

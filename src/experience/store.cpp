@@ -5,11 +5,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 #include <thread>
 
 #include "earc/experience/keys.hpp"
+#include "earc/experience/maintenance.hpp"
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
@@ -44,12 +46,39 @@ struct ResetOnExit {
 ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
     : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
   std::lock_guard lock(mutex_);
+  // Whether this open creates the file (SQLite creates it, empty, when it
+  // opens it, before the first write can fail).
+  std::error_code ec;
+  const std::string real = databaseFile(path);
+  const bool creating =
+      !options.read_only && !options.in_memory && !std::filesystem::exists(std::filesystem::symlink_status(real, ec));
   try {
     openLocked();
   } catch (...) {
     if (check_.joinable()) check_.join();  // no destructor will
+    if (creating) discardCreatedLocked(real);
     throw;
   }
+}
+
+void ExperienceStore::discardCreatedLocked(const std::string& real) {
+  // Nothing committed: no schema (another process creating the same file
+  // at the same time may have committed its own, which stays).
+  bool committed = true;
+  if (conn_) {
+    try {
+      committed = checkIdentity(*conn_) != 0;
+    } catch (const std::exception&) {
+      // unreadable: left as it is
+    }
+  } else {
+    std::error_code ec;
+    committed = std::filesystem::file_size(real, ec) != 0 || ec;
+  }
+  fetch_.reset();
+  data_version_.reset();
+  conn_.reset();
+  if (!committed) removeDatabaseFiles(real);
 }
 
 ExperienceStore::~ExperienceStore() {
@@ -61,7 +90,9 @@ ExperienceStore::~ExperienceStore() {
 }
 
 void ExperienceStore::openLocked() {
-  const OpenMode mode = options_.read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite;
+  const OpenMode mode = options_.in_memory   ? OpenMode::Memory
+                        : options_.read_only ? OpenMode::ReadOnly
+                                             : OpenMode::ReadWrite;
   if (options_.read_only) requireDatabaseFile(path_);  // else SQLite's "unable to open database file"
   ConnectionSettings settings = options_.connection;
   settings.own_application_id = kApplicationId;
@@ -87,7 +118,7 @@ void ExperienceStore::openLocked() {
   if (options_.read_only) {
     if (version_ == 0) throw notYetADatabase(path_);
   } else if (!background) {
-    conn_->retryWhileBusy([&] { conn_->enableWal(); });
+    if (!options_.in_memory) conn_->retryWhileBusy([&] { conn_->enableWal(); });
     version_ = migrate(*conn_);
   }
   session_ = metaLocked("sessions");

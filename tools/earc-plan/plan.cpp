@@ -189,7 +189,11 @@ int runPlan(const PlanOptions& o) {
     if (!o.no_learn) requireWritableOutput({"--db", o.db});
     s.lightning_db = o.db;
   }
-  auto store = openStoreForPlanning(s.method, o.db, s.db_learn);
+  // A disk too full to open the database for learning costs the lesson,
+  // not the plan (said after the plan is written).
+  std::string full_disk;
+  auto store = openStoreForPlanning(s.method, o.db, s.db_learn, &full_disk);
+  if (!full_disk.empty()) s.db_learn = false;
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
@@ -202,6 +206,7 @@ int runPlan(const PlanOptions& o) {
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
                        : plan(scenario, s, nullptr);
   line.stop();
+  if (!full_disk.empty()) r.stats["db_learn_error"] = r.solution.stats["db_learn_error"] = full_disk;
   saveSolution(o.output, r.solution);
   // What could not be written to the database (a full disk) is said once,
   // after the plan is saved. Closing here, not in the destructor, keeps it
@@ -233,7 +238,9 @@ int runPlan(const PlanOptions& o) {
           << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
     out << "solution: " << o.output << "\n";
   }
-  if (!learn_error.empty())
+  if (!full_disk.empty())
+    std::cerr << "earc-plan: warning: " << printableText(full_disk, 4096) << " (the plan is written)\n";
+  else if (!learn_error.empty())
     std::cerr << "earc-plan: warning: " << printableText(learn_error, 4096)
               << " (the plan is written; the database keeps what it had)\n";
   else if (!close_error.empty())

@@ -1,11 +1,52 @@
 #include "plan_store.hpp"
 
+#include <filesystem>
+
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 
 namespace earc {
 
-std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn) {
+namespace {
+
+// The store; with full_disk, a disk too full for the open's writes falls
+// back as openStoreForPlanning says.
+std::shared_ptr<exp::ExperienceStore> openStore(const std::string& db, const exp::StoreOptions& options,
+                                                std::string* full_disk) {
+  try {
+    return std::make_shared<exp::ExperienceStore>(db, options);
+  } catch (const InputError&) {
+    throw;
+  } catch (const exp::NoSpaceError& e) {
+    if (!full_disk) throw InputError(db, "database", exp::withoutFile(e.what(), db));
+    // The open had to write (create the file, switch it to WAL, migrate
+    // it, count the session) and the disk had no room: the plan is made
+    // all the same, without learning. A file that holds a database is
+    // read as it is; one that could not be created (the store removed
+    // what it made) is an empty database in memory: E-ARC then plans as
+    // ARC does.
+    std::error_code ec;
+    const bool there = std::filesystem::file_size(db, ec) > 0 && !ec;
+    exp::StoreOptions fallback;
+    fallback.new_session = false;
+    fallback.check_in_background = there;
+    fallback.read_only = there;
+    fallback.in_memory = !there;
+    *full_disk = db + ": " + exp::kDiskFull +
+                 (there ? "; E-ARC planned with what the database holds and learned nothing"
+                        : ", so the database could not be created; E-ARC planned as ARC does, with no experience, "
+                          "and learned nothing");
+    return openStore(db, fallback, nullptr);
+  } catch (const std::exception& e) {
+    // Foreign, newer or damaged files: one line naming the file, nothing written.
+    throw InputError(db, "database", exp::withoutFile(e.what(), db));
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
+                                                           std::string* full_disk) {
   if (method != Method::Earc) return nullptr;
   if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file (earc-db build makes one; a new file name starts empty)");
   exp::StoreOptions options;
@@ -14,14 +55,7 @@ std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const 
     options.read_only = true;
     options.new_session = false;
   }
-  try {
-    return std::make_shared<exp::ExperienceStore>(db, options);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    // Foreign, newer or damaged files: one line naming the file, nothing written.
-    throw InputError(db, "database", exp::withoutFile(e.what(), db));
-  }
+  return openStore(db, options, full_disk);
 }
 
 }  // namespace earc

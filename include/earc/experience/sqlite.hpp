@@ -156,6 +156,7 @@ enum class OpenMode {
   ReadWrite,  // create when missing, WAL, writable
   ReadOnly,   // our own file, no writes (inspect, export, curate -o, bench table)
   Hostile,    // an import source or verify: read-only, cell_size_check, no mmap, length limit
+  Memory,     // a new, empty database in memory; the path only names it in messages
 };
 
 // Connection tuning. Named here so every connection is opened alike.

@@ -64,6 +64,11 @@ struct StoreOptions {
   // curate), which must not add to a damaged one; ignores
   // check_in_background.
   bool full_check = false;
+  // A new, empty database in memory instead of the file, which is not
+  // touched (the path only names it in messages): for a plan whose
+  // database cannot be created (a full disk), which then plans as E-ARC
+  // with no experience. Nothing it learns is kept.
+  bool in_memory = false;
   ConnectionSettings connection;
 };
 
@@ -96,7 +101,9 @@ class ExperienceStore {
   // Opens (creating when missing, unless read_only) and loads the index.
   // Throws ForeignDatabaseError, SchemaVersionError, StoreError; read_only,
   // InputError for a file that is missing or no database yet
-  // (requireDatabaseFile).
+  // (requireDatabaseFile). A file this open created is removed again when
+  // the open fails before anything was committed to it (a full disk): a
+  // new database appears whole or not at all, never as an empty file.
   explicit ExperienceStore(const std::string& path, const StoreOptions& options = {});
   // Flushes pending counters; errors are reported on stderr, not thrown.
   ~ExperienceStore();
@@ -177,6 +184,10 @@ class ExperienceStore {
 
  private:
   void openLocked();
+  // After a failed open that created the file `real`: closes the
+  // connection and removes the file and its -wal, -shm and -journal
+  // unless something was committed to it.
+  void discardCreatedLocked(const std::string& real);
   void refreshLocked();
   void loadTailLocked();
   std::int64_t metaLocked(const char* name);
