@@ -250,11 +250,23 @@ OutputTarget outputTarget(const NamedPath& output) {
 
 }  // namespace
 
+namespace {
+// An output that could not be written. No room (a full disk, a used-up
+// quota) is said plainly and is exit status 2, as for a database that
+// cannot take a build, an import or a curate; other errors stay runtime
+// errors (exit 1).
+[[noreturn]] void throwWriteError(const std::string& path, const std::string& doing, int err) {
+  if (err == ENOSPC) throw InputError(path, "", "cannot write: the disk is full");
+  if (err == EDQUOT) throw InputError(path, "", "cannot write: the disk quota is used up");
+  throw std::runtime_error(path + ": " + doing + ": " + std::strerror(err));
+}
+}  // namespace
+
 void writeAll(int fd, std::string_view bytes, const std::string& path) {
   while (!bytes.empty()) {
     const ssize_t n = ::write(fd, bytes.data(), bytes.size());
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error(path + ": cannot write: " + std::strerror(n < 0 ? errno : EIO));
+    if (n <= 0) throwWriteError(path, "cannot write", n < 0 ? errno : EIO);
     bytes.remove_prefix(static_cast<std::size_t>(n));
   }
 }
@@ -317,25 +329,24 @@ void AtomicFile::write(std::string_view text) { writeAll(fd_, text, given_); }
 void AtomicFile::commit() {
   const int fd = std::exchange(fd_, -1);
   if (special_) {
-    if (::close(fd) != 0) throw std::runtime_error(given_ + ": cannot flush: " + std::strerror(errno));
+    if (::close(fd) != 0) throwWriteError(given_, "cannot flush", errno);
     committed_ = true;
     return;
   }
-  bool ok = ::fsync(fd) == 0;
-  std::string why = ok ? "" : std::strerror(errno);
-  if (ok && anonymous_) {
+  // Where the file system allocates late (NFS, delayed allocation), a
+  // full disk shows only here.
+  int err = ::fsync(fd) == 0 ? 0 : errno;
+  std::string doing = "cannot flush";
+  if (err == 0 && anonymous_) {
     named_ = ::linkat(AT_FDCWD, ("/proc/self/fd/" + std::to_string(fd)).c_str(), AT_FDCWD, tmp_.c_str(),
                       AT_SYMLINK_FOLLOW) == 0;
     if (!named_) {
-      ok = false;
-      why = std::string("cannot name the written file: ") + std::strerror(errno);
+      err = errno;
+      doing = "cannot flush: cannot name the written file";
     }
   }
-  if (::close(fd) != 0 && ok) {
-    ok = false;
-    why = std::strerror(errno);
-  }
-  if (!ok) throw std::runtime_error(given_ + ": cannot flush: " + why);
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err != 0) throwWriteError(given_, doing, err);
   if (::rename(tmp_.c_str(), path_.c_str()) != 0)
     throw InputError(given_, "", std::string("cannot replace it: ") + std::strerror(errno));
   committed_ = true;

@@ -60,6 +60,9 @@ assert earc["solved"] and earc["paths"] == arc["paths"], "not the plan ARC makes
 st = earc["stats"]
 assert st["db_learned"] == 0 and "could not be created" in st["db_learn_error"], st' "$WORK/arc.json" "$WORK/new.json" ||
   fail "the plan with a new database on a full disk"
+# ... and when even the plan has no room: one line, exit 2, nothing left.
+refusedInOneLine "new.json: cannot write: the disk is full" "$PLAN" plan "$SCEN" -o new.json --method earc --db new.db
+ls | grep -q '^new\.' && fail "a plan left $(ls | grep '^new\.') on the full disk"
 # A database whose open must write (switching it to WAL): read as it is,
 # with one warning line, and left as it was.
 "$PLAN" plan "$SCEN" -o "$WORK/rb.json" --method earc --db rb.db --seed 3 -q 2> "$WORK/err" ||
@@ -84,6 +87,10 @@ refusedInOneLine "i.db: cannot write: the disk is full" "$DB" import --db i.db "
 noSqlText "import"
 ls | grep -qE '^(b|i)\.db' && fail "a writer left $(ls | grep -E '^(b|i)\.db')"
 
+# Written outputs: export's, like the writers above, is exit 2 (it was 1),
+# and leaves neither a partial file nor a temporary.
+refusedInOneLine "e.jsonl: cannot write: the disk is full" "$DB" export --db "$WORK/src.db" -o e.jsonl
+ls | grep -q '^e\.jsonl' && fail "export left $(ls | grep '^e\.jsonl')"
 rm filler
 ls | grep -vxF rb.db && fail "files left on the full disk"
 
