@@ -171,6 +171,12 @@ assert got == [(want,)], (got, want)
 c.close()
 PYEOF
   fail "the size of a database given through a link"
+# earc-bench's results file through a link: read as our own, under
+# query_only, so that nothing is left beside the target.
+ln -s ../size.sqlite results.sqlite
+"$BUILD/earc-bench" table --results results.sqlite > /dev/null 2> "$WORK/err" ||
+  fail "earc-bench table through a link: $(cat "$WORK/err")"
+leftNothingBeside "$WORK/size.sqlite" "earc-bench table through a link"
 
 # earc-bench compare's outputs may not be the -wal beside a linked --db's
 # target either.
