@@ -2,6 +2,7 @@
 // and whole plans that must validate.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -670,4 +671,40 @@ TEST_CASE("Every method reports a solution as solved only when it validates") {
     CHECK(validateSolution(s, r.solution).valid);
     CHECK(r.solution.method == methodName(m));
   }
+}
+
+TEST_CASE("A solution's paths end where each robot last moves, so sum of costs is not n x makespan") {
+  // The prioritized baseline padded every path to the makespan: a robot
+  // with a short trip was charged for waiting at its goal.
+  Scenario s = openScenario(8);
+  s.robots = {disc("near", 0.3, {1, 1, 0}, {2, 1, 0}), disc("far", 0.3, {1, 3, 0}, {7, 7, 0})};
+  for (Method m : {Method::Arc, Method::Prioritized, Method::Coupled}) {
+    CAPTURE(std::string(methodName(m)));
+    PlannerSettings settings;
+    settings.method = m;
+    settings.time_limit_s = 20;
+    PlanResult r = plan(s, settings);
+    REQUIRE(r.solution.solved);
+    for (const Path& p : r.solution.paths) {
+      REQUIRE(p.size() >= 2);
+      CHECK_FALSE(std::equal(p.at(p.size() - 1), p.at(p.size() - 1) + p.dim(), p.at(p.size() - 2)));
+    }
+    // Coupled planning moves every robot along each composite edge, so
+    // the near robot creeps until the end; the others plan each robot alone.
+    if (m == Method::Coupled) continue;
+    CHECK(r.solution.paths[0].size() < r.solution.paths[1].size());
+    CHECK(r.stats["sum_of_costs"].get<std::size_t>() < 2 * r.stats["makespan"].get<std::size_t>());
+  }
+}
+
+TEST_CASE("Dropping a path's trailing waits keeps every state up to its last move") {
+  Path p = line({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 0, 0}, {2, 0, 0}});
+  p.dropTrailingWaits();
+  CHECK(p == line({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 0, 0}}));
+  Path still = line({{3, 3, 1}, {3, 3, 1}});
+  still.dropTrailingWaits();
+  CHECK(still == line({{3, 3, 1}}));
+  Path turn = line({{3, 3, 1}, {3, 3, 1.5}});
+  turn.dropTrailingWaits();
+  CHECK(turn.size() == 2);
 }

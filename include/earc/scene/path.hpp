@@ -2,6 +2,7 @@
 // its last state a robot stays there.
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <span>
@@ -36,6 +37,15 @@ class Path {
     if (from < o.size()) data_.insert(data_.end(), o.data_.begin() + static_cast<std::ptrdiff_t>(from * dim_), o.data_.end());
   }
   void clear() { data_.clear(); }
+  // Drops copies of the last state at the end: the robot waits there
+  // anyway, and a solution's sum of costs counts a robot's steps only
+  // until it last moves.
+  void dropTrailingWaits() {
+    const auto d = static_cast<std::size_t>(dim_);
+    while (size() > 1 && std::equal(data_.end() - static_cast<std::ptrdiff_t>(d), data_.end(),
+                                    data_.end() - static_cast<std::ptrdiff_t>(2 * d)))
+      data_.resize(data_.size() - d);
+  }
   void reserve(std::size_t n) { data_.reserve(n * static_cast<std::size_t>(dim_)); }
 
   // Steps [from, to) as a new path.
