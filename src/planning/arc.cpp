@@ -55,6 +55,7 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
   while (sub.t_end < horizon && !goalsApart(sub.robots, models, paths, sub.t_end)) ++sub.t_end;
   const bool last_level = level >= settings.max_expansions;
   sub.whole_problem = sub.t_start == 0 && sub.t_end >= horizon && last_level;
+  bool saturated = sub.t_start == 0 && sub.t_end >= horizon && !last_level;
 
   for (int r : sub.robots) {
     const RobotModel& m = *models[static_cast<std::size_t>(r)];
@@ -101,7 +102,12 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
     }
     sub.workspace_region.expand(foot);
     sub.region.push_back(std::move(box));
+    saturated = saturated && sub.region.back() == full;
   }
+  // A window and regions grown to cover everything before the last level
+  // are the whole problem already: say so, and ARC goes straight on to
+  // larger budgets instead of retrying the same subproblem level by level.
+  if (saturated) sub.whole_problem = true;
   return sub;
 }
 
@@ -290,6 +296,7 @@ bool ArcRun::resolve(const Conflict& c) {
     }
     Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.max_expansions), models_, paths_, world_,
                                       settings_);
+    if (sub.whole_problem && level < settings_.max_expansions) level = settings_.max_expansions;
     report(&PlanProgress::subproblem_robots, static_cast<int>(sub.robots.size()));
     report(&PlanProgress::expansions, level);
     nlohmann::json ev;

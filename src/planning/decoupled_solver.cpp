@@ -370,7 +370,13 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // building one does not take the search's time.
   for (int robot : sub.robots) ctx.roadmaps.forRobot(robot);
   const Deadline deadline = ctx.deadline.capped(settings_.time_budget_s * ctx.budget_scale);
-  std::size_t max_expansions = settings_.max_expansions;
+  // Past ARC's last expansion level the hierarchy raises budget_scale
+  // to retry the same subproblem: every limit grows with it, or the
+  // retries repeat the same failed searches (a 4-robot corridor swap that
+  // needs a fifth priority order failed for 60 s).
+  const double scale = std::max(1.0, ctx.budget_scale);
+  std::size_t max_expansions = static_cast<std::size_t>(std::min(1e9, static_cast<double>(settings_.max_expansions) * scale));
+  const int max_orders = static_cast<int>(std::min(1e4, settings_.max_orders * scale));
   if (settings_.expansions_per_horizon_step > 0)
     max_expansions = std::min(max_expansions, static_cast<std::size_t>(static_cast<double>(
                                                   settings_.expansions_per_horizon_step * horizon) * ctx.budget_scale));
@@ -383,7 +389,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   orders.push_back(order);
   if (n > 1) orders.emplace_back(order.rbegin(), order.rend());
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdec0));
-  while (static_cast<int>(orders.size()) < settings_.max_orders && n > 2) {
+  while (static_cast<int>(orders.size()) < max_orders && n > 2) {
     std::shuffle(order.begin(), order.end(), rng);
     orders.push_back(order);
   }

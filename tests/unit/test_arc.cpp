@@ -307,6 +307,58 @@ TEST_CASE("Expanding a subproblem doubles its window and grows its region until 
   CHECK(last.goals[0] == f.s.robots[0].goal);
 }
 
+TEST_CASE("A subproblem whose window and regions already cover everything is the whole problem before the last level") {
+  // Retrying it level by level would solve the same subproblem again with
+  // the same budgets; marked whole, ARC goes on to larger budgets.
+  CrossingFixture f;
+  RobotModels m(f.s);
+  CollisionWorld world(f.s);
+  PlannerSettings settings;
+  settings.initial_window = 4;
+  settings.max_expansions = 12;
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(f.paths));
+  REQUIRE(c.has_value());
+  int first_saturated = -1;
+  for (int level = 0; level <= settings.max_expansions; ++level) {
+    CAPTURE(level);
+    Subproblem sub = createSubproblem(*c, {0, 1}, level, m.raw, f.paths, world, settings);
+    bool covers = sub.t_start == 0 && sub.t_end == 80;
+    for (int r = 0; r < 2; ++r) {
+      ConfigBox full;
+      m.raw[static_cast<std::size_t>(r)]->samplingBounds(world.workspace(), full.lo, full.hi);
+      covers = covers && sub.region[static_cast<std::size_t>(r)].lo == full.lo &&
+               sub.region[static_cast<std::size_t>(r)].hi == full.hi;
+    }
+    CHECK(sub.whole_problem == (covers || level == settings.max_expansions));
+    if (covers && first_saturated < 0) first_saturated = level;
+  }
+  CHECK(first_saturated > 0);
+  CHECK(first_saturated < settings.max_expansions);
+}
+
+TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budget scale") {
+  // Past ARC's last level the same subproblem is retried with a larger
+  // budget scale: a search cut off by its expansion cap must get further.
+  CrossingFixture f;
+  RobotModels m(f.s);
+  CollisionWorld world(f.s);
+  PlannerSettings settings;
+  ConflictDetector det(m.raw);
+  auto c = det.first(pathPointers(f.paths));
+  REQUIRE(c.has_value());
+  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  DecoupledSettings tight;
+  tight.max_expansions = 3;
+  tight.expansions_per_horizon_step = 0;
+  tight.avoid_others = false;
+  SolverContext ctx{world, m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
+  CHECK_FALSE(DecoupledSolver(tight).solve(ctx).solution.has_value());
+  ctx.budget_scale = 2000;
+  CHECK(DecoupledSolver(tight).solve(ctx).solution.has_value());
+}
+
 TEST_CASE("Splicing replaces the window and shifts the rest of the path in time") {
   Path p = line({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {4, 0, 0}});
   std::vector<Path> paths{p};

@@ -16,6 +16,7 @@ struct ConfigBox {
   std::vector<double> lo;
   std::vector<double> hi;
   bool contains(const double* q) const;
+  bool operator==(const ConfigBox&) const = default;
 };
 
 struct Subproblem {
