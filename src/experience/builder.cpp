@@ -230,6 +230,23 @@ std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& ar
   return out;
 }
 
+std::string noArmPairClassReason(const std::vector<RobotSpec>& arms) {
+  std::map<int, int> per_count;  // joint count -> arms with it
+  std::string counts;
+  for (std::size_t i = 0; i < arms.size(); ++i) {
+    const std::string name = arms[i].name.empty() ? "arm " + std::to_string(i) : "'" + arms[i].name + "'";
+    counts += (i ? ", " : "") + name + ": " + std::to_string(arms[i].dim()) + (i ? "" : " joints");
+    ++per_count[arms[i].dim()];
+  }
+  if (std::none_of(per_count.begin(), per_count.end(), [](const auto& c) { return c.second > 1; }))
+    return "no two arms have the same number of joints (" + counts +
+           "), and an arm database holds pairs of arms with equal joint counts only";
+  std::ostringstream overlap;
+  overlap << kMinReachOverlap;
+  return "no two arms with the same number of joints can reach each other (" + counts +
+         "; their reach discs must overlap by " + overlap.str() + " or more)";
+}
+
 namespace {
 
 // The build's line in the database's history: what was asked for.
@@ -256,7 +273,7 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
   std::vector<std::pair<int, int>> arm_pairs;
   if (s.kind == RobotKind::Manipulator) {
     arm_pairs = armPairClasses(s.arms, s.resolution);
-    if (arm_pairs.empty()) throw std::invalid_argument("build: no two arms of the layout can reach each other");
+    if (arm_pairs.empty()) throw std::invalid_argument("build: " + noArmPairClassReason(s.arms));
   }
   store.describeHistory("build", buildDescription(s, arm_pairs.size()));
   const std::size_t n = static_cast<std::size_t>(s.count);

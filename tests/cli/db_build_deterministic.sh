@@ -77,6 +77,38 @@ rc=$?
 [ -e "$WORK/mixed.db" ] && fail "a refused build made a file"
 "$DB" build --db "$WORK/mixed.db" --scenario "$WORK/mixed.json" --kind mobile --count 5 --threads 1 -q ||
   fail "--kind mobile with a mixed scenario: exit $?"
+# The database holds pairs of arms with equal joint counts only (a key
+# and a path blob of one dimension for both): a layout without two such
+# arms that reach each other is refused in one line that names the file
+# and each arm's joint count (exit 2, no file made); one with such a pair
+# and other arms is built for that pair's class.
+armLayout() {  # armLayout OUT NAME:X:Y:JOINTS...
+  "$PY" - "$@" <<'PY'
+import json, sys
+robots = []
+for spec in sys.argv[2:]:
+    name, x, y, n = spec.split(":")
+    n = int(n)
+    robots.append({"name": name, "type": "manipulator", "base": [float(x), float(y), 0], "links": [0.5] * n,
+                   "link_radius": 0.05, "start": [0] * n, "goal": [0.5] * n})
+json.dump({"format": "earc.scenario.v1", "name": "layout", "workspace": {"min": [0, 0], "max": [10, 10]},
+           "obstacles": [], "robots": robots}, open(sys.argv[1], "w"))
+PY
+}
+armLayout "$WORK/unequal.json" a:4:4:3 b:6:4:4 c:5:5.8:2
+refusedInOneLine "unequal.json: \$.robots: no two arms have the same number of joints ('a': 3 joints, 'b': 4, 'c': 2)" \
+  "$DB" build --db "$WORK/unequal.db" --scenario "$WORK/unequal.json" --count 5
+[ -e "$WORK/unequal.db" ] && fail "a refused build made a file"
+armLayout "$WORK/apart.json" a:1:5:3 b:8:5:3 c:5:2:2
+refusedInOneLine "apart.json: \$.robots: no two arms with the same number of joints can reach each other ('a': 3 joints" \
+  "$DB" build --db "$WORK/apart.db" --scenario "$WORK/apart.json" --count 5
+[ -e "$WORK/apart.db" ] && fail "a refused build made a file"
+armLayout "$WORK/one-pair.json" a:4:4:3 b:6:4:3 c:5:5.8:2
+"$DB" build --db "$WORK/one-pair.db" --scenario "$WORK/one-pair.json" --count 5 --threads 1 -q ||
+  fail "a layout with one pair of equal arms: exit $?"
+"$DB" inspect --db "$WORK/one-pair.db" > "$WORK/inspect.out" || fail "inspect exited $?"
+[ "$(grep -Ec "^manipulator +2 " "$WORK/inspect.out")" -eq 1 ] ||
+  fail "a layout with one pair of equal arms did not give its one class: $(cat "$WORK/inspect.out")"
 # A footprint option says mobile, whatever the scenario holds; with
 # --kind arms it would be ignored, so it is refused.
 "$DB" build --db "$WORK/discs.db" --scenario "$WORK/a4.json" --shape disc --radius 0.3 --count 5 --threads 1 -q ||

@@ -150,6 +150,9 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     for (const auto& r : scenario->robots)
       if (r.kind == earc::RobotKind::Manipulator) s.arms.push_back(r);
     if (s.arms.size() < 2) throw earc::InputError(opt.scenario, "$.robots", "fewer than two arms to build for");
+    // Said before the database is made: a refused build leaves no file.
+    if (earc::exp::armPairClasses(s.arms, s.resolution).empty())
+      throw earc::InputError(opt.scenario, "$.robots", earc::exp::noArmPairClassReason(s.arms));
   }
   // Opened (created) only once every input has been accepted.
   std::optional<CommitLog> log;

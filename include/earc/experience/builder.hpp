@@ -80,6 +80,13 @@ inline constexpr double kMinReachOverlap = 0.25;
 // pair (indices into arms) per class, in canonical order.
 std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution);
 
+// Why armPairClasses found no class in a layout, in one line that names
+// each arm with its joint count: the store holds pairs of arms with equal
+// joint counts only (hasExperienceClass: a key and a path blob of one
+// dimension for both), so with no two such arms there is nothing to build
+// for, whatever their reach; else none of the equal pairs can reach.
+std::string noArmPairClassReason(const std::vector<RobotSpec>& arms);
+
 // Builds into the store; progress (optional) ticks once per problem.
 // Throws std::invalid_argument for unusable settings.
 BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& settings, Progress* progress = nullptr);
