@@ -29,9 +29,10 @@ void requireDatabaseFile(const std::string& path, bool may_be_empty) {
   if (fs::is_directory(st)) throw InputError(path, "", "is a directory, not a file");
   if (!fs::is_regular_file(st)) throw InputError(path, "", kNotARegularFile);
   // SQLite reads a 0-byte file as an empty database; one whose pages are
-  // all still in its WAL is not empty.
+  // all still in its WAL is not empty. The WAL is the one SQLite reads:
+  // beside a link's target, not beside the link.
   if (!may_be_empty && fs::is_regular_file(st) && fs::file_size(path, ec) == 0 && !ec &&
-      !(fs::file_size(path + "-wal", ec) > 0 && !ec))
+      !(fs::file_size(databaseFile(path) + "-wal", ec) > 0 && !ec))
     throw notYetADatabase(path);
 }
 

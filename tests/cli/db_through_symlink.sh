@@ -63,6 +63,17 @@ refusedBadlink "$BUILD/earc-bench" run "$SCEN" --methods earc --db-mobile badlin
 [ -e "$WORK/data/c.db" ] && fail "a refused import created its target"
 [ -e "$WORK/bad.json" ] && fail "a refused plan wrote a solution"
 
+# A 0-byte target is judged by the -wal beside it, which is what SQLite
+# reads, not by one beside the link: with a stray -wal next to the link,
+# a source that only is read is still refused as an empty file.
+: > "$WORK/data/empty.db"
+ln -s ../data/empty.db empty.db
+printf stray > empty.db-wal
+refusedInOneLine "empty.db: empty file (0 bytes), not an earc database yet" "$DB" import --db "$WORK/data/d.db" empty.db
+refusedInOneLine "empty.db: empty file (0 bytes), not an earc database yet" \
+  "$DB" curate --db "$WORK/data/other.db" --merge empty.db
+rm empty.db-wal
+
 # Reading through a link leaves nothing beside the target (or the link).
 for cmd in "inspect --db link.db" "export -q -o $WORK/r.jsonl --db link.db" \
   "curate -q -o $WORK/copy.db --db link.db"; do
