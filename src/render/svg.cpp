@@ -1,6 +1,7 @@
 #include "earc/render/svg.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -100,31 +101,60 @@ std::ostream& operator<<(std::ostream& out, const Paint& p) {
   return p.attributes.empty() ? out : out << ' ' << p.attributes;
 }
 
-// One body as an SVG element.
-void writeBody(std::ostream& out, const View& v, const geo::Body& b, const Paint& paint) {
+// A box's corners in picture coordinates, counterclockwise on the picture.
+std::array<geo::Vec2, 4> boxCorners(const View& v, const geo::Body& b) {
+  const geo::Vec2 ax = b.axis * b.half.x, ay = geo::perp(b.axis) * b.half.y;
+  return {v(b.p0 + ax + ay), v(b.p0 - ax + ay), v(b.p0 - ax - ay), v(b.p0 + ax - ay)};
+}
+
+// One body's outline as path data ("M... Z"), counterclockwise on the
+// picture whatever the body: outlines drawn in one path then overlap
+// filled under the nonzero rule (a turn the other way would cut a hole).
+std::string outlinePath(const View& v, const geo::Body& b) {
   const double r = b.radius * v.scale;
+  std::ostringstream d;
+  // In picture coordinates (y down) sweep flag 0 turns counterclockwise.
+  const std::string arc = " A" + num(r) + "," + num(r) + " 0 0 0 ";
   switch (b.kind) {
     case geo::CoreKind::Point: {
-      const geo::Vec2 c = v(b.p0);
-      out << "<circle cx=\"" << num(c.x) << "\" cy=\"" << num(c.y) << "\" r=\"" << num(r) << '"' << paint << "/>";
-      return;
+      const geo::Vec2 c = v(b.p0), e{r, 0};
+      d << 'M' << Pt{c + e} << arc << Pt{c - e} << arc << Pt{c + e} << 'Z';
+      break;
     }
     case geo::CoreKind::Segment: {
       const geo::Vec2 a = v(b.p0), e = v(b.p1);
       const double len = geo::norm(e - a);
-      if (len < 1e-9) return writeBody(out, v, geo::Body::disc(b.p0, b.radius), paint);
+      if (len < 1e-9) return outlinePath(v, geo::Body::disc(b.p0, b.radius));
+      // A capsule: two sides and two half circles.
       const geo::Vec2 n = geo::perp((e - a) * (1.0 / len)) * r;
-      // A capsule: two sides and two half circles; in picture coordinates
-      // (y down) both caps turn the same way, sweep flag 0.
-      const std::string arc = " A" + num(r) + "," + num(r) + " 0 0 0 ";
-      out << "<path d=\"M" << Pt{a + n} << " L" << Pt{e + n} << arc << Pt{e - n} << " L" << Pt{a - n} << arc
-          << Pt{a + n} << "Z\"" << paint << "/>";
-      return;
+      d << 'M' << Pt{a + n} << " L" << Pt{e + n} << arc << Pt{e - n} << " L" << Pt{a - n} << arc << Pt{a + n} << 'Z';
+      break;
     }
     case geo::CoreKind::Rect: {
-      const geo::Vec2 ax = b.axis * b.half.x, ay = geo::perp(b.axis) * b.half.y;
-      out << "<polygon points=\"" << Pt{v(b.p0 + ax + ay)} << ' ' << Pt{v(b.p0 - ax + ay)} << ' '
-          << Pt{v(b.p0 - ax - ay)} << ' ' << Pt{v(b.p0 + ax - ay)} << '"' << paint << "/>";
+      const auto c = boxCorners(v, b);
+      d << 'M' << Pt{c[0]} << " L" << Pt{c[1]} << " L" << Pt{c[2]} << " L" << Pt{c[3]} << 'Z';
+      break;
+    }
+  }
+  return d.str();
+}
+
+// One body as an SVG element.
+void writeBody(std::ostream& out, const View& v, const geo::Body& b, const Paint& paint) {
+  switch (b.kind) {
+    case geo::CoreKind::Point: {
+      const geo::Vec2 c = v(b.p0);
+      out << "<circle cx=\"" << num(c.x) << "\" cy=\"" << num(c.y) << "\" r=\"" << num(b.radius * v.scale) << '"'
+          << paint << "/>";
+      return;
+    }
+    case geo::CoreKind::Segment:
+      out << "<path d=\"" << outlinePath(v, b) << '"' << paint << "/>";
+      return;
+    case geo::CoreKind::Rect: {
+      const auto c = boxCorners(v, b);
+      out << "<polygon points=\"" << Pt{c[0]} << ' ' << Pt{c[1]} << ' ' << Pt{c[2]} << ' ' << Pt{c[3]} << '"' << paint
+          << "/>";
       return;
     }
   }
@@ -249,16 +279,18 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
         << ",0)\">\n<text x=\"" << num(v.left) << "\" y=\"" << num(kTitlePx - 6.0) << "\" font-size=\""
         << num(kFontPx + 3) << "\">" << escapeXml(sc.name);
     if (timed) out << "  t = " << steps[k];
-    // Obstacles get a thin stroke of their fill: anti-aliasing would leave
-    // hairline seams between adjacent boxes (merged map cells).
     out << "</text>\n<rect class=\"workspace\" x=\"" << num(v.left) << "\" y=\"" << num(v.top) << "\" width=\""
         << num(v.width()) << "\" height=\"" << num(v.height()) << "\" fill=\"#fafafa\" stroke=\"#000\" stroke-width=\""
-        << num(kOutlinePx) << "\"/>\n<g class=\"obstacles\" fill=\"#666\" stroke=\"#666\" stroke-width=\"0.6\">\n";
-    for (const auto& ob : sc.obstacles) {
-      writeBody(out, v, ob.body(), {});
-      out << '\n';
+        << num(kOutlinePx) << "\"/>\n";
+    // All obstacles are one path, filled as their union: filled one by
+    // one, adjacent boxes (merged map cells) each anti-alias their shared
+    // edge and leave a light hairline seam along it, stroke or not. The
+    // thin stroke of the fill keeps obstacles thinner than a pixel seen.
+    if (!sc.obstacles.empty()) {
+      out << "<path class=\"obstacles\" fill=\"#666\" stroke=\"#666\" stroke-width=\"0.6\" d=\"";
+      for (std::size_t i = 0; i < sc.obstacles.size(); ++i) out << (i ? "\n" : "") << outlinePath(v, sc.obstacles[i].body());
+      out << "\"/>\n";
     }
-    out << "</g>\n";
     for (std::size_t i = 0; i < sc.robots.size(); ++i)
       writeRobot(out, v, *models[i], i, polylines[i], paths[i], timed ? &steps[k] : nullptr, o.labels);
     out << "</g>\n";

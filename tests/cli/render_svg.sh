@@ -32,6 +32,15 @@ done
 wellformed "$WORK/scenario.svg" || fail "scenario SVG is not well-formed"
 [ "$(count "$WORK/scenario.svg" 'class="robot"')" -eq 4 ] || fail "scenario SVG does not have 4 robot groups"
 
+# A MovingAI map's obstacles (merged cells, many abutting) are one path,
+# filled as their union: filled one by one, each box's anti-aliased edge
+# left a light seam along the next.
+"$GEN" movingai random-32-32-10 --robots 2 --seed 1 -o "$WORK/map.json" > /dev/null || fail "movingai exited $?"
+"$PLAN" render "$WORK/map.json" -o "$WORK/map.svg" > /dev/null || fail "map render exited $?"
+wellformed "$WORK/map.svg" || fail "map SVG is not well-formed"
+[ "$(count "$WORK/map.svg" '<path class="obstacles"')" -eq 1 ] || fail "the map's obstacles are not one path"
+[ "$(count "$WORK/map.svg" '<polygon')" -eq 4 ] || fail "the map's obstacles are drawn one by one (or robots are missing)"
+
 "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/step.svg" --step 10 > /dev/null || fail "--step exited $?"
 wellformed "$WORK/step.svg" || fail "solution SVG is not well-formed"
 [ "$(count "$WORK/step.svg" 'class="path"')" -eq 4 ] || fail "solution SVG does not have 4 paths"
