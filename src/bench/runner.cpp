@@ -100,12 +100,8 @@ std::string earcDbPath(const RunOptions& o, const std::string& family) {
 // and for arms their layout too (the relative base transforms make the
 // classes). Files with the same key need one build between them.
 std::string earcBuildKey(const ScenarioFile& f) {
-  nlohmann::json robots = scenarioToJson(f.scenario)["robots"];
-  for (auto& r : robots) {
-    r.erase("name");
-    r.erase("start");
-    r.erase("goal");
-  }
+  nlohmann::json robots = scenarioWorldJson(f.scenario)["robots"];
+  for (auto& r : robots) r.erase("name");
   if (f.family == "arms") return robots.dump();
   std::set<std::string> shapes;
   for (const auto& r : robots) shapes.insert(r.dump());

@@ -123,6 +123,16 @@ std::vector<std::string> resultSuiteNames() {
   return names;
 }
 
+nlohmann::json scenarioWorldJson(const Scenario& scenario) {
+  nlohmann::json doc = scenarioToJson(scenario);
+  doc.erase("name");
+  for (auto& r : doc["robots"]) {
+    r.erase("start");
+    r.erase("goal");
+  }
+  return doc;
+}
+
 std::vector<ScenarioFile> loadScenarioFiles(const std::vector<std::string>& paths) {
   std::vector<ScenarioFile> files;
   std::map<int, int> per_count;
@@ -142,14 +152,8 @@ std::vector<ScenarioFile> loadScenarioFiles(const std::vector<std::string>& path
                        "databases are per kind)");
     f.family = arms ? "arms" : "mobile";
     f.trial = per_count[n]++;
-    nlohmann::json doc = scenarioToJson(f.scenario);
-    f.hash = fnv1a64(doc.dump());
-    doc.erase("name");
-    for (auto& r : doc["robots"]) {
-      r.erase("start");
-      r.erase("goal");
-    }
-    f.world = fnv1a64(doc.dump());
+    f.hash = fnv1a64(scenarioToJson(f.scenario).dump());
+    f.world = fnv1a64(scenarioWorldJson(f.scenario).dump());
     files.push_back(std::move(f));
   }
   return files;

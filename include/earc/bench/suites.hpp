@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "earc/scene/scenario.hpp"
 
 namespace earc::bench {
@@ -74,6 +76,12 @@ struct ScenarioFile {
   std::uint64_t world = 0;
   int robots() const { return static_cast<int>(scenario.robots.size()); }
 };
+
+// What a scenario's problems share with others of their kind: its JSON
+// (scenarioToJson) without its name and without its robots' starts and
+// goals. Hashed, it is ScenarioFile::world; its robots, without their
+// names, say which E-ARC database build covers the file.
+nlohmann::json scenarioWorldJson(const Scenario& scenario);
 
 // Reads the files (InputError naming the file for one that is not a valid
 // scenario, has fewer than 2 or more than kMaxResultsRobots robots, or
