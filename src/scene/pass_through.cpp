@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "earc/util/format.hpp"
+
 namespace earc {
 
 namespace {
@@ -82,6 +84,13 @@ std::string passThroughWarning(const Scenario& scenario) {
                      number(thinnestExtent(robot)) + ") together: a valid solution may pass through the obstacle";
   if (crossable > 1) line += " (and through " + std::to_string(crossable - 1) + " other obstacles)";
   return line + "; a finer resolution prevents this";
+}
+
+std::string passThroughWarningLine(const Scenario& scenario, const std::string& scenario_file,
+                                   std::string_view program) {
+  const std::string warning = passThroughWarning(scenario);
+  if (warning.empty()) return "";
+  return std::string(program) + ": warning: " + printableText(scenario_file + ": " + warning, 4096);
 }
 
 }  // namespace earc

@@ -154,8 +154,8 @@ int runPlan(const PlanOptions& o) {
   requireWritableOutput({"-o", o.output});
   requireWritableOutput({"--trace", o.trace});
   Scenario scenario = requireRobots(loadScenario(o.scenario), o.scenario);
-  if (const std::string w = passThroughWarning(scenario); !w.empty())
-    std::cerr << "earc-plan: warning: " << printableText(o.scenario + ": " + w, 4096) << "\n";
+  if (const std::string line = passThroughWarningLine(scenario, o.scenario, "earc-plan"); !line.empty())
+    std::cerr << line << "\n";
   PlannerSettings s;
   try {
     s.method = methodFromName(o.method);

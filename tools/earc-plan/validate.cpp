@@ -7,7 +7,6 @@
 
 #include "earc/io/json_io.hpp"
 #include "earc/scene/pass_through.hpp"
-#include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
 #include "earc/validate/validator.hpp"
 
@@ -70,13 +69,14 @@ int runValidate(const ValidateOptions& opt, std::ostream& out) {
     const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
     const earc::ValidationReport rep = earc::validateSolution(sc, sol);
     // Valid or not, the verdict holds only at the checked instants.
-    const std::string warning = earc::passThroughWarning(sc);
     if (opt.json) {
+      const std::string warning = earc::passThroughWarning(sc);
       nlohmann::json report = reportToJson(sc, rep);
       report["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
       out << report.dump() << "\n";
     } else {
-      if (!warning.empty()) std::cerr << "earc-plan: warning: " << earc::printableText(opt.scenario + ": " + warning, 4096) << "\n";
+      if (const std::string line = earc::passThroughWarningLine(sc, opt.scenario, "earc-plan"); !line.empty())
+        std::cerr << line << "\n";
       printText(sc, rep, out);
     }
     return rep.valid ? 0 : 1;

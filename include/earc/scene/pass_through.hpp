@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "earc/scene/scenario.hpp"
 
@@ -29,5 +30,12 @@ double thinnestExtent(const Obstacle& obstacle);
 // checked instants (the one with the widest margin, and how many other
 // obstacles are as thin for some robot), or "" when none can.
 std::string passThroughWarning(const Scenario& scenario);
+
+// The warning as a command prints it on stderr for the scenario read from
+// `scenario_file`: "PROGRAM: warning: FILE: resolution: ...", the file
+// name and the warning made printable (printableText, 4096 bytes at most),
+// without a line break; "" when passThroughWarning says nothing.
+std::string passThroughWarningLine(const Scenario& scenario, const std::string& scenario_file,
+                                   std::string_view program);
 
 }  // namespace earc
