@@ -27,6 +27,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/experience/builder.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
@@ -451,9 +452,24 @@ class Runner {
     }
     std::set<std::string> said;
     for (const ScenarioFile& f : files_)
-      if (f.family == family && said.insert(earcBuildKey(f)).second)
-        if (const std::string w = exp::noClassFitsWarning(*store, f.scenario, path); !w.empty())
-          std::cerr << "earc-bench: warning: " << printableText(f.path + ": " + w, 4096) << "\n";
+      if (f.family == family && said.insert(earcBuildKey(f)).second) {
+        std::string w = unbuildableReason(f);
+        if (!w.empty())
+          w += ": an E-ARC database holds nothing for these arms, and E-ARC plans as ARC does";
+        else
+          w = exp::noClassFitsWarning(*store, f.scenario, path);
+        if (!w.empty()) std::cerr << "earc-bench: warning: " << printableText(f.path + ": " + w, 4096) << "\n";
+      }
+  }
+
+  // Why `earc-db build --scenario` would refuse a file's robots (its arms
+  // have no pair of one class), or "".
+  static std::string unbuildableReason(const ScenarioFile& f) {
+    std::vector<RobotSpec> arms;
+    for (const RobotSpec& r : f.scenario.robots)
+      if (r.kind == RobotKind::Manipulator) arms.push_back(r);
+    if (arms.size() < 2 || !exp::armPairClasses(arms, f.scenario.resolution).empty()) return "";
+    return exp::noArmPairClassReason(arms);
   }
 
   // Runs `earc-db build` for one family; its wall time is the construction
@@ -469,10 +485,18 @@ class Runner {
       builds.push_back({"--kind=" + family, work_ + "/logs/earc-db-" + family});
     } else {
       std::set<std::string> keys;
-      for (const ScenarioFile& f : files_)
-        if (f.family == family && keys.insert(earcBuildKey(f)).second)
-          builds.push_back({"--scenario=" + scenarioFile(f),
-                            work_ + "/logs/earc-db-" + family + "-" + std::to_string(builds.size())});
+      for (const ScenarioFile& f : files_) {
+        if (f.family != family || !keys.insert(earcBuildKey(f)).second) continue;
+        // An arm layout with no pair the database can hold has nothing to
+        // build: said here, its E-ARC trials plan as ARC. Failing its build
+        // would take the other files' rows and E-ARC trials with it.
+        // (warnNoClassFits says so.)
+        if (!unbuildableReason(f).empty()) continue;
+        builds.push_back({"--scenario=" + scenarioFile(f),
+                          work_ + "/logs/earc-db-" + family + "-" + std::to_string(builds.size())});
+      }
+      // Every layout unbuildable: an empty database, which E-ARC opens.
+      if (builds.empty()) exp::ExperienceStore created(path);
     }
     double construction = 0;
     for (const auto& [how, stem] : builds) {

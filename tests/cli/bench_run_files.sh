@@ -77,6 +77,28 @@ json.dump(one, open("one.json", "w"))
 a = json.load(open("a2.json"))
 json.dump(dict(s, robots=s["robots"] + a["robots"][:1]), open("mixed.json", "w"))
 PY
+# Arms too far apart for any database class: said once, no build for
+# them, and the other file's database and trials are kept (a failed build
+# used to delete the database and fail every E-ARC arm trial for good).
+"$PY" - <<'PY' || fail "far arms"
+import json
+a = json.load(open("a2.json"))
+a["name"] = "far"
+a["workspace"]["max"][0] = max(a["workspace"]["max"][0], 40)
+a["robots"][1]["base"][0] = a["robots"][0]["base"][0] + 30
+json.dump(a, open("far.json", "w"))
+PY
+"$BENCH" run --methods earc --time-limit 5 --earc-db-count 50 --results f.sqlite a2.json far.json > out 2> err ||
+  fail "run with unreachable arms exited $?"
+[ "$(grep -c "earc-bench: warning: far.json: no two arms .* can reach each other.*E-ARC plans as ARC does" err)" = 1 ] ||
+  fail "no one warning for the far arms: $(cat err)"
+[ "$(sqlite3 f.sqlite "select count(*) from trials where success = 1")" = 2 ] || fail "an E-ARC arm trial failed"
+"$BUILD/earc-db" inspect --db f.sqlite.work/earc-files-arms.sqlite --json > inspect.json || fail "inspect"
+[ "$("$PY" -c 'import json; print(json.load(open("inspect.json"))["entries"])')" -gt 0 ] ||
+  fail "a2's database rows are gone: $(head -c 300 inspect.json)"
+"$BENCH" run --methods earc --time-limit 5 --results g.sqlite far.json > out 2> err || fail "far arms alone exited $?"
+[ "$(sqlite3 g.sqlite "select success from trials")" = 1 ] || fail "far arms alone: E-ARC failed"
+
 refusedInOneLine "one.json: 1 robot: earc-bench run takes scenarios of 2 to 128 robots" \
   "$BENCH" run d3.json one.json --results other.sqlite
 refusedInOneLine 'mixed.json: $.robots: mixes mobile robots and arms' "$BENCH" run mixed.json --results other.sqlite
