@@ -362,6 +362,8 @@ class Runner {
   // message about the file.
   static void buildFailed(const std::string& path, const ChildOutcome& out, const std::string& stem,
                           std::string_view method) {
+    // Stopped by Ctrl-C (or SIGTERM): the run says it was interrupted.
+    if (interruptFlag().load()) return;
     std::cerr << "earc-bench: building " << path << " failed (" << exitDescription(out)
               << "): " << lastLine(stem + ".err") << "; its " << method << " trials will fail\n";
   }
@@ -379,6 +381,7 @@ class Runner {
     fs::create_directories(lightning_dir_);
     const int problems = o_.lightning_problems.value_or(o_.lightning_problems_per_robot * robots);
     log_ << "building Lightning database " << path << " from " << problems << " problems\n";
+    log_.flush();
     std::vector<std::string> argv = {bench_, "lightning-db"};
     if (c.file) {
       argv.insert(argv.end(), {"--scenario", scenarioFile(c)});
