@@ -491,9 +491,9 @@ class Runner {
       for (const ScenarioFile& f : files_) {
         if (f.family != family || !keys.insert(earcBuildKey(f)).second) continue;
         // An arm layout with no pair the database can hold has nothing to
-        // build: said here, its E-ARC trials plan as ARC. Failing its build
-        // would take the other files' rows and E-ARC trials with it.
-        // (warnNoClassFits says so.)
+        // build, and its E-ARC trials plan as ARC (warnNoClassFits says
+        // why). Failing its build would take the other files' rows and
+        // E-ARC trials with it.
         if (!unbuildableReason(f).empty()) continue;
         builds.push_back({"--scenario=" + scenarioFile(f),
                           work_ + "/logs/earc-db-" + family + "-" + std::to_string(builds.size())});
