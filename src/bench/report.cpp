@@ -17,6 +17,7 @@
 
 #include "earc/bench/options.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/hash.hpp"
@@ -201,6 +202,34 @@ bool TrialFilter::matches(const TrialRecord& t) const {
 std::vector<TrialRecord> TrialFilter::apply(std::vector<TrialRecord> trials) const {
   std::erase_if(trials, [this](const TrialRecord& t) { return !matches(t); });
   return trials;
+}
+
+std::vector<TrialRecord> TrialFilter::applyRequired(std::vector<TrialRecord> trials, const std::string& results) const {
+  if (trials.empty()) return trials;
+  std::set<std::uint64_t> seeds;
+  std::set<double> limits;
+  for (const TrialRecord& t : trials) {
+    seeds.insert(t.seed);
+    limits.insert(t.time_limit_s);
+  }
+  trials = apply(std::move(trials));
+  if (!trials.empty()) return trials;
+  // Said of the first option that matches nothing on its own.
+  auto list = [](const auto& values, auto text) {
+    std::string out;
+    for (const auto& v : values) out += (out.empty() ? "" : ", ") + text(v);
+    return out;
+  };
+  auto seconds = [](double s) { return formatNumber(s) + " s"; };
+  auto number = [](std::uint64_t n) { return std::to_string(n); };
+  if (seed && !seeds.count(*seed))
+    throw InputError(results, "--seed", "no trials of run seed " + std::to_string(*seed) + " (its trials' seeds: " +
+                                             list(seeds, number) + ")");
+  if (time_limit_s && !limits.count(*time_limit_s))
+    throw InputError(results, "--time-limit", "no trials with a time limit of " + seconds(*time_limit_s) +
+                                                  " (its trials' limits: " + list(limits, seconds) + ")");
+  throw InputError(results, "--seed/--time-limit",
+                   "no trials of run seed " + std::to_string(*seed) + " with a time limit of " + seconds(*time_limit_s));
 }
 
 std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials) {

@@ -89,6 +89,15 @@ done
 "$BENCH" table --results "$WORK/limits.sqlite" --time-limit 20 > "$WORK/limits.md" || fail "table --time-limit exited $?"
 grep -qx "### mobile" "$WORK/limits.md" && grep -q "| 4 | lightning | ./1 " "$WORK/limits.md" ||
   fail "table --time-limit 20: $(cat "$WORK/limits.md")"
+# A filter that matches no trial is a mistake to point out, not an empty
+# table (exit 0): said with the values the file has.
+refusedInOneLine "limits.sqlite: --time-limit: no trials with a time limit of 15 s (its trials' limits: 10 s, 20 s)" \
+  "$BENCH" table --results "$WORK/limits.sqlite" --time-limit 15
+refusedInOneLine "r.sqlite: --seed: no trials of run seed 8 (its trials' seeds: 7)" \
+  "$BENCH" export --results "$WORK/r.sqlite" --seed 8 --csv "$WORK/none.csv"
+[ -e "$WORK/none.csv" ] && fail "a refused export wrote its CSV"
+refusedInOneLine "r.sqlite: --time-limit: no trials with a time limit of 15 s" \
+  "$BENCH" plot --results "$WORK/r.sqlite" --time-limit 15 -o "$WORK/none-plots"
 
 "$BENCH" export --results "$WORK/r.sqlite" --csv "$WORK/r.csv" --databases-csv "$WORK/dbs.csv" \
   --ompl-log "$WORK/logs" > /dev/null || fail "export exited $?"

@@ -44,7 +44,7 @@ void setupExport(CLI::App& app) {
     bench::TrialFilter f;
     if (seed->count()) f.seed = o->seed;
     if (limit->count()) f.time_limit_s = o->time_limit;
-    const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
+    const std::vector<bench::TrialRecord> trials = f.applyRequired(db.trials(), o->results);
     // Before anything is written: no output may overwrite the results or
     // another output.
     std::vector<std::pair<std::string, std::string>> outputs = {

@@ -9,6 +9,7 @@
 
 #include "earc/bench/child.hpp"
 #include "earc/bench/options.hpp"
+#include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
@@ -45,7 +46,13 @@ void setupPlot(CLI::App& app) {
     if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
     // The checks table and export make (a foreign file, a newer schema, a
     // row no run writes), with their messages, before Python runs.
-    { const bench::ResultsDb check(o->results, true); }
+    {
+      const bench::ResultsDb check(o->results, true);
+      bench::TrialFilter f;
+      if (seed->count()) f.seed = o->seed;
+      if (limit->count()) f.time_limit_s = o->time_limit;
+      f.applyRequired(check.trials(), o->results);
+    }
     bench::requireOutputDirectory(o->output, "-o");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
     bench::requireExecutable(o->python, "--python");

@@ -35,7 +35,7 @@ void setupTable(CLI::App& app) {
     bench::TrialFilter f;
     if (seed->count()) f.seed = o->seed;
     if (limit->count()) f.time_limit_s = o->time_limit;
-    const std::vector<bench::TrialRecord> trials = f.apply(db.trials());
+    const std::vector<bench::TrialRecord> trials = f.applyRequired(db.trials(), o->results);
     std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()));
   });
 }

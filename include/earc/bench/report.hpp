@@ -35,6 +35,10 @@ struct TrialFilter {
   std::optional<double> time_limit_s;
   bool matches(const TrialRecord& t) const;
   std::vector<TrialRecord> apply(std::vector<TrialRecord> trials) const;
+  // The matching trials; when there are trials and none matches, an
+  // InputError naming `results` and the option, with the values its
+  // trials have (an empty table would not say the filter was mistyped).
+  std::vector<TrialRecord> applyRequired(std::vector<TrialRecord> trials, const std::string& results) const;
 };
 
 // One (suite, robots, method, time limit) cell. Trials under another time
