@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "earc/scene/robot_model.hpp"
+#include "earc/util/format.hpp"
 
 namespace earc::render {
 
@@ -32,21 +33,6 @@ std::string num(double v) {
   if (s.back() == '.') s.pop_back();
   if (s == "-0") s = "0";
   return s;
-}
-
-std::string escapeXml(const std::string& in) {
-  std::string out;
-  for (char c : in) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // Well-separated colours: hues a golden angle apart, as #rrggbb.
@@ -231,7 +217,7 @@ void writeRobot(std::ostream& out, const View& v, const RobotModel& m, std::size
                 const Path* path, const std::size_t* step, bool labels) {
   const RobotSpec& r = m.spec();
   const std::string colour = robotColour(index);
-  out << "<g class=\"robot\" data-robot=\"" << escapeXml(r.name) << "\" fill=\"" << colour << "\" stroke=\"" << colour
+  out << "<g class=\"robot\" data-robot=\"" << xmlText(r.name) << "\" fill=\"" << colour << "\" stroke=\"" << colour
       << "\">\n";
   if (!polyline.empty())
     out << "<polyline class=\"path\" fill=\"none\" stroke-width=\"" << num(kPathStrokePx)
@@ -246,7 +232,7 @@ void writeRobot(std::ostream& out, const View& v, const RobotModel& m, std::size
   if (labels) {
     const geo::Vec2 c = v(m.boundingCenter(now));
     out << "<text x=\"" << num(c.x) << "\" y=\"" << num(c.y - 4.0) << "\" stroke=\"none\" fill=\"#000\">"
-        << escapeXml(r.name) << "</text>";
+        << xmlText(r.name) << "</text>";
   }
   out << "\n</g>\n";
 }
@@ -272,12 +258,12 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(total_w) << "\" height=\"" << num(panel_h)
       << "\" viewBox=\"0 0 " << num(total_w) << ' ' << num(panel_h) << "\" font-family=\"sans-serif\" font-size=\""
-      << num(kFontPx) << "\">\n<title>" << escapeXml(sc.name) << "</title>\n"
+      << num(kFontPx) << "\">\n<title>" << xmlText(sc.name) << "</title>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (std::size_t k = 0; k < steps.size(); ++k) {
     out << "<g class=\"panel\" transform=\"translate(" << num(static_cast<double>(k) * (o.panel_width_px + kPanelGapPx))
         << ",0)\">\n<text x=\"" << num(v.left) << "\" y=\"" << num(kTitlePx - 6.0) << "\" font-size=\""
-        << num(kFontPx + 3) << "\">" << escapeXml(sc.name);
+        << num(kFontPx + 3) << "\">" << xmlText(sc.name);
     if (timed) out << "  t = " << steps[k];
     out << "</text>\n<rect class=\"workspace\" x=\"" << num(v.left) << "\" y=\"" << num(v.top) << "\" width=\""
         << num(v.width()) << "\" height=\"" << num(v.height()) << "\" fill=\"#fafafa\" stroke=\"#000\" stroke-width=\""

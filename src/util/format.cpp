@@ -65,4 +65,29 @@ std::string printableText(std::string_view text, std::size_t max_bytes) {
   return out;
 }
 
+std::string xmlText(std::string_view text) {
+  constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8Length(text, i);
+    const std::string_view c = text.substr(i, n == 0 ? 1 : n);
+    i += c.size();
+    const unsigned char b = static_cast<unsigned char>(c[0]);
+    if (n == 0 || (b < 0x20 && b != '\t' && b != '\n' && b != '\r') || c == "\xEF\xBF\xBE" || c == "\xEF\xBF\xBF") {
+      out += kReplacement;
+      continue;
+    }
+    switch (b) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 }  // namespace earc

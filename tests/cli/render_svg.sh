@@ -41,6 +41,26 @@ wellformed "$WORK/map.svg" || fail "map SVG is not well-formed"
 [ "$(count "$WORK/map.svg" '<path class="obstacles"')" -eq 1 ] || fail "the map's obstacles are not one path"
 [ "$(count "$WORK/map.svg" '<polygon')" -eq 4 ] || fail "the map's obstacles are drawn one by one (or robots are missing)"
 
+# Names may hold any character JSON can escape; the picture still parses:
+# what XML 1.0 forbids (C0 controls, even as &#1;; U+FFFF) is drawn as U+FFFD.
+"$PY" - "$WORK/s.json" "$WORK/ctl.json" "$WORK/ctl.sol.json" <<'PYEOF' || fail "could not write the control-character scenario"
+import json, sys
+sc = json.load(open(sys.argv[1]))
+sc["name"] = "title\u0007\uffff"
+for r, name in zip(sc["robots"], ["ctl\u0001x", "\u0000", "tab\tlf\ncr\r", "<&'\">"]):
+    r["name"] = name
+json.dump(sc, open(sys.argv[2], "w"))
+paths = [{"robot": r["name"], "states": [r["start"], r["goal"]]} for r in sc["robots"]]
+json.dump({"format": "earc.solution.v1", "scenario": sc["name"], "method": "line", "solved": True,
+           "paths": paths, "stats": {"planning_time_s": 0}}, open(sys.argv[3], "w"))
+PYEOF
+"$PLAN" render "$WORK/ctl.json" "$WORK/ctl.sol.json" -o "$WORK/ctl.svg" --step 1 > /dev/null || fail "control-character render exited $?"
+wellformed "$WORK/ctl.svg" || fail "names with control characters make SVG that is not XML"
+grep -q 'data-robot="ctl'$'\xef\xbf\xbd''x"' "$WORK/ctl.svg" || fail "U+0001 in a name is not drawn as U+FFFD"
+if command -v rsvg-convert > /dev/null; then
+  "$PLAN" render "$WORK/ctl.json" -o "$WORK/ctl.png" > /dev/null || fail "control-character PNG render exited $?"
+fi
+
 "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/step.svg" --step 10 > /dev/null || fail "--step exited $?"
 wellformed "$WORK/step.svg" || fail "solution SVG is not well-formed"
 [ "$(count "$WORK/step.svg" 'class="path"')" -eq 4 ] || fail "solution SVG does not have 4 paths"

@@ -1,6 +1,7 @@
 // SVG pictures of scenarios and solutions.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -205,6 +206,22 @@ TEST_CASE("robot and scenario names are escaped") {
   const std::string svg = scenarioSvg(s);
   CHECK(wellFormed(svg));
   CHECK(countOf(svg, "r&lt;0&gt;") == 2);  // data attribute and label
+}
+
+TEST_CASE("names with characters XML 1.0 forbids are drawn with U+FFFD, so the SVG stays XML") {
+  // A name read from JSON may hold any character, escaped in the file (U+0001,
+  // even U+0000); XML 1.0 allows none of the C0 controls but tab and line
+  // breaks, not even as &#1;: one in an attribute and the picture does not open.
+  Scenario s = oneDisc({2, 2}, {8, 8});
+  s.name = std::string("scen\x02\xEF\xBF\xBF", 8);
+  s.robots[0].name = std::string("ctl\x01x\0", 6);
+  const std::string svg = scenarioSvg(s);
+  CHECK(wellFormed(svg));
+  CHECK(std::all_of(svg.begin(), svg.end(), [](char c) { return static_cast<unsigned char>(c) >= 0x20 || c == '\n'; }));
+  CHECK(svg.find("\xEF\xBF\xBF") == std::string::npos);
+  CHECK(svg.find("&#") == std::string::npos);
+  CHECK(countOf(svg, "ctl\xEF\xBF\xBDx\xEF\xBF\xBD") == 2);  // data attribute and label
+  CHECK(countOf(svg, "scen\xEF\xBF\xBD\xEF\xBF\xBD") == 2);   // title and panel heading
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {

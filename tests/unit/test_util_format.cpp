@@ -1,10 +1,14 @@
 // Text shown to people or put in JSON from files and command lines.
 #include <doctest/doctest.h>
 
+#include <string>
+#include <string_view>
+
 #include "earc/util/format.hpp"
 
 using earc::printableText;
 using earc::utcTimeText;
+using earc::xmlText;
 
 TEST_CASE("printableText keeps valid UTF-8 and replaces control characters and bad bytes") {
   CHECK(printableText("plain text", 100) == "plain text");
@@ -25,6 +29,19 @@ TEST_CASE("printableText cuts on a character boundary and marks the cut") {
   CHECK(printableText("abcdef", 2) == "..");
   CHECK(printableText("", 0).empty());
   for (std::size_t max = 0; max < 12; ++max) CHECK(printableText("\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9", max).size() <= max);
+}
+
+TEST_CASE("xmlText escapes markup and replaces what XML 1.0 forbids by U+FFFD") {
+  const std::string fffd = "\xEF\xBF\xBD";
+  CHECK(xmlText("a<b & \"c\" 'd'>") == "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;");
+  CHECK(xmlText("ctl\x01x") == "ctl" + fffd + "x");
+  CHECK(xmlText(std::string_view("\0", 1)) == fffd);
+  CHECK(xmlText("\x1b[0m\x1f") == fffd + "[0m" + fffd);
+  CHECK(xmlText("\xEF\xBF\xBE\xEF\xBF\xBF") == fffd + fffd);  // U+FFFE, U+FFFF
+  CHECK(xmlText("\xff\xc3") == fffd + fffd);                      // not UTF-8
+  // Allowed: tab, line breaks, DEL and C1 controls, U+FFFD itself, emoji.
+  CHECK(xmlText("a\tb\nc\rd\x7f\xc2\x85") == "a\tb\nc\rd\x7f\xc2\x85");
+  CHECK(xmlText("caf\xc3\xa9 \xef\xbf\xbd \xf0\x9f\xa4\x96") == "caf\xc3\xa9 \xef\xbf\xbd \xf0\x9f\xa4\x96");
 }
 
 TEST_CASE("utcTimeText writes ISO 8601 in UTC") {

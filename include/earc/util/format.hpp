@@ -57,4 +57,12 @@ inline std::string utcTimeText(std::int64_t unix_seconds) {
 // For text from a file shown to people or put in JSON.
 std::string printableText(std::string_view text, std::size_t max_bytes);
 
+// `text` as well-formed XML 1.0 character data, fit for an element's text
+// and a quoted attribute value alike: & < > " ' become entities, and what
+// XML 1.0 forbids even as a character reference (C0 controls other than
+// tab, line feed and carriage return; U+FFFE; U+FFFF) and bytes that are
+// not UTF-8 become U+FFFD. For names from a file written into SVG: one
+// such byte makes the whole picture unreadable.
+std::string xmlText(std::string_view text);
+
 }  // namespace earc
