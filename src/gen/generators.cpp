@@ -98,13 +98,21 @@ RobotSpec mobileRobot(int index, const MobileFootprint& f) {
   return r;
 }
 
-void requireFootprint(const MobileFootprint& f, double workspace_side) {
+void requireFootprint(const MobileFootprint& f, double workspace_side, const std::string& space) {
+  const double max_radius = 0.25 * workspace_side, max_box_side = 0.5 * workspace_side;
   if (f.shape == MobileShape::Disc) {
-    requireRange("radius", f.radius, 0.01, 0.25 * workspace_side);
-  } else {
-    requireRange("box length", f.box_size.x, 0.01, 0.5 * workspace_side);
-    requireRange("box width", f.box_size.y, 0.01, 0.5 * workspace_side);
+    requireRange("radius", f.radius, 0.01, max_radius);
+    return;
   }
+  // The box is no option of earc-scenario (it is always 0.6 x 0.4): one too
+  // big is a space too small, and the way out is the other shape.
+  if (!(std::max(f.box_size.x, f.box_size.y) <= max_box_side))
+    throw SettingError("shape", space + " is too small for the " + compact(f.box_size.x) + " x " + compact(f.box_size.y) +
+                                    " box footprint (a box's sides must be at most half the smaller side, " +
+                                    compact(max_box_side) + "): use --shape disc with --radius at most " +
+                                    compact(max_radius));
+  requireRange("box length", f.box_size.x, 0.01, max_box_side);
+  requireRange("box width", f.box_size.y, 0.01, max_box_side);
 }
 
 Scenario generateMobile(const MobileSettings& settings) {
@@ -118,7 +126,7 @@ Scenario generateMobile(const MobileSettings& settings) {
     requireRange("workspace", settings.workspace, std::max(2.0, settings.obstacle_max_side), 1000.0);
   }
   const MobileFootprint& f = settings.footprint;
-  requireFootprint(f, settings.workspace);
+  requireFootprint(f, settings.workspace, "the " + compact(settings.workspace) + " x " + compact(settings.workspace) + " workspace");
 
   Random rng(settings.seed);
   Scenario s;

@@ -187,7 +187,8 @@ Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings) 
   const MobileFootprint& f = settings.footprint;
   // A 1e-300 radius would pass placement; a radius wider than the map is
   // named as itself, not as too many robots.
-  requireFootprint(f, std::min(map.width, map.height));
+  requireFootprint(f, std::min(map.width, map.height),
+                   "the " + std::to_string(map.width) + " x " + std::to_string(map.height) + " map");
   for (int i = 0; i < settings.robots; ++i) s.robots.push_back(mobileRobot(i, f));
   const CollisionWorld world(s);
   // The map's own cell test is exact and much faster than the world's.

@@ -51,6 +51,20 @@ for r in 1e-300 20; do
   [ $? -eq 2 ] || fail "--radius $r did not exit 2: $(cat "$WORK/err")"
   grep -qF -- "--radius: must be in [0.01, 8], got $r" "$WORK/err" || fail "--radius $r: $(cat "$WORK/err")"
 done
+# A map too small for the 0.6 x 0.4 box is said in terms of the options
+# there are (the box's size is none: it read "--box length: must be in
+# [0.01, 0.5], got 0.6"), and the disc it suggests fits.
+printf 'type octile\nheight 1\nwidth 1\nmap\n.\n' > "$WORK/tiny.map"
+printf 'type octile\nheight 1\nwidth 5\nmap\n.....\n' > "$WORK/strip.map"
+for m in tiny:1x1 strip:5x1; do
+  name=${m%%:*} size=${m#*:}
+  refusedInOneLine "$WORK/$name.map: --shape: the ${size/x/ x } map is too small for the 0.6 x 0.4 box footprint" \
+    "$GEN" movingai "$WORK/$name.map" --robots 1 -o "$WORK/x.json"
+  grep -qF -- "use --shape disc with --radius at most 0.25" "$WORK/err" || fail "$name.map: no way out: $(cat "$WORK/err")"
+  grep -qF -- "--box" "$WORK/err" && fail "$name.map: names an option that does not exist: $(cat "$WORK/err")"
+  "$GEN" movingai "$WORK/$name.map" --robots 1 --shape disc --radius 0.25 -o "$WORK/$name.json" > /dev/null ||
+    fail "$name.map: the suggested disc does not fit"
+done
 # A compiled-in map by name, from a directory without it: the same scenario.
 (cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||
   fail "the compiled-in map random-32-32-10 was not found by name"

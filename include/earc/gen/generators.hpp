@@ -46,8 +46,11 @@ struct MobileFootprint {
 RobotSpec mobileRobot(int index, const MobileFootprint& footprint);
 
 // A footprint's sizes must be at least 0.01 and at most a quarter (disc
-// radius) or half (box sides) of `workspace_side`; else SettingError.
-void requireFootprint(const MobileFootprint& footprint, double workspace_side);
+// radius) or half (box sides) of `workspace_side`; else SettingError. A
+// box too big for the space is a SettingError of "shape" whose reason
+// begins with `space` ("the 1 x 1 map") and names the options earc-scenario
+// offers instead: the box's sides are no option.
+void requireFootprint(const MobileFootprint& footprint, double workspace_side, const std::string& space);
 
 // Obstacle count used when obstacles are asked for without a count.
 inline constexpr int kDefaultMobileObstacles = 12;
