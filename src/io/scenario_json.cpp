@@ -28,6 +28,10 @@ Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) 
   r.object(v, p);
   Obstacle o;
   const std::string type = r.string(r.required(v, "type", p), member(p, "type"));
+  // The type first: another kind ({"type": "polygon", "points": ...}) has
+  // no centre, and "missing center" would send the user after the wrong field.
+  if (type != "box" && type != "circle")
+    r.fail(member(p, "type"), "unknown obstacle type \"" + type + "\" (expected \"box\" or \"circle\")");
   o.center = r.vec2(r.required(v, "center", p), member(p, "center"));
   if (type == "box") {
     o.type = Obstacle::Type::Box;
@@ -36,11 +40,9 @@ Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) 
     r.numbers(size, 2, sp);
     o.size = {r.positive(size[0], element(sp, 0)), r.positive(size[1], element(sp, 1))};
     if (const json* a = r.optional(v, "angle")) o.angle = r.number(*a, member(p, "angle"));
-  } else if (type == "circle") {
+  } else {
     o.type = Obstacle::Type::Circle;
     o.radius = r.positive(r.required(v, "radius", p), member(p, "radius"));
-  } else {
-    r.fail(member(p, "type"), "unknown obstacle type \"" + type + "\" (expected \"box\" or \"circle\")");
   }
   return o;
 }

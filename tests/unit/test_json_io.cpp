@@ -287,6 +287,11 @@ TEST_CASE("unknown robot, obstacle and shape types are refused") {
   doc = validScenario();
   doc["obstacles"][1]["type"] = "polygon";
   CHECK_ERROR(scenarioError(doc), "$.obstacles[1].type", "unknown obstacle type \"polygon\"");
+  // An obstacle of another kind has none of a box's fields: the type is
+  // what is wrong, not the missing centre (the error named "center").
+  doc = validScenario();
+  doc["obstacles"][1] = {{"type", "polygon"}, {"points", {{0, 0}, {1, 1}, {1, 0}}}};
+  CHECK_ERROR(scenarioError(doc), "$.obstacles[1].type", "unknown obstacle type \"polygon\"");
   doc = validScenario();
   doc["robots"][0]["shape"]["type"] = "triangle";
   CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.type", "unknown shape type \"triangle\"");
