@@ -65,6 +65,10 @@ for m in tiny:1x1 strip:5x1; do
   "$GEN" movingai "$WORK/$name.map" --robots 1 --shape disc --radius 0.25 -o "$WORK/$name.json" > /dev/null ||
     fail "$name.map: the suggested disc does not fit"
 done
+# A name that is neither a file nor a compiled-in map says both, listing
+# the compiled-in maps (it said only "cannot open file").
+refusedInOneLine "empty-32-32: no such file, nor a compiled-in map (den520d, random-32-32-10, random-32-32-20)" \
+  "$GEN" movingai empty-32-32 --robots 2 -o "$WORK/x.json"
 # A compiled-in map by name, from a directory without it: the same scenario.
 (cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||
   fail "the compiled-in map random-32-32-10 was not found by name"

@@ -27,9 +27,19 @@ struct MovingAiOptions {
   std::string output;
 };
 
+// The compiled-in maps' names: "den520d, random-32-32-10, ...".
+std::string embeddedMapNames() {
+  std::string names;
+  for (const auto& m : earc::gen::embeddedMovingAiMaps()) names += (names.empty() ? "" : ", ") + std::string(m.name);
+  return names;
+}
+
 earc::gen::GridMap loadMap(const std::string& map) {
-  if (!std::filesystem::exists(map))
+  if (!std::filesystem::exists(map)) {
     if (auto embedded = earc::gen::embeddedMovingAiMap(map)) return *embedded;
+    // Neither: say both, or a mistyped map name reads as a missing file.
+    throw earc::InputError(map, "", "no such file, nor a compiled-in map (" + embeddedMapNames() + ")");
+  }
   return earc::gen::readMovingAiMap(map);
 }
 
@@ -51,7 +61,7 @@ void runMovingAi(const MovingAiOptions& opt) {
 void setupMovingAi(CLI::App& app) {
   auto opt = std::make_shared<MovingAiOptions>();
   CLI::App* sub = app.add_subcommand("movingai", "Make a scenario from a MovingAI .map file");
-  sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (den520d, random-32-32-10, random-32-32-20)")->required();
+  sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (" + embeddedMapNames() + ")")->required();
   sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(earc::cli::wholeNumberIn(1, 1024))->capture_default_str();
   sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")
