@@ -221,20 +221,39 @@ TEST_CASE("clearOfMoving agrees with an instant-by-instant check on random box a
 
 namespace {
 
-// Two discs on straight, crossing paths through (5, 5).
+// Two discs on straight, crossing paths through (5, 5): their models, the
+// world, and the paths' first conflict, from which the subproblem tests
+// start. (Members are made in this order: each from those above it.)
 struct CrossingFixture {
-  Scenario s = openScenario(10);
-  std::vector<Path> paths;
-  CrossingFixture() {
-    s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0})};
+  Scenario s = scenario();
+  std::vector<Path> paths = crossingPaths();
+  RobotModels m{s};
+  CollisionWorld world{s};
+  Conflict c = firstConflict();
+
+ private:
+  static Scenario scenario() {
+    Scenario sc = openScenario(10);
+    sc.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0})};
+    return sc;
+  }
+  static std::vector<Path> crossingPaths() {
+    std::vector<Path> out;
     for (int r = 0; r < 2; ++r) {
       Path p(3);
       for (int t = 0; t <= 80; ++t) {
         double q[3] = {r == 0 ? 3 + 0.05 * t : 5.0, r == 0 ? 5.0 : 3 + 0.05 * t, 0};
         p.push(q);
       }
-      paths.push_back(std::move(p));
+      out.push_back(std::move(p));
     }
+    return out;
+  }
+  Conflict firstConflict() const {
+    ConflictDetector det(m.raw);
+    auto found = det.first(pathPointers(paths));
+    REQUIRE(found.has_value());
+    return *found;
   }
 };
 
@@ -242,18 +261,13 @@ struct CrossingFixture {
 
 TEST_CASE("A subproblem's window spans the conflict and its local query lies on the paths") {
   CrossingFixture f;
-  RobotModels m(f.s);
-  CollisionWorld world(f.s);
   PlannerSettings settings;
   settings.initial_window = 8;
-  ConflictDetector det(m.raw);
-  auto c = det.first(pathPointers(f.paths));
-  REQUIRE(c.has_value());
-  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
-  CHECK(sub.t_start + 8 == static_cast<std::size_t>(c->t));
-  CHECK(sub.t_end >= static_cast<std::size_t>(c->t) + 8);
+  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  CHECK(sub.t_start + 8 == static_cast<std::size_t>(f.c.t));
+  CHECK(sub.t_end >= static_cast<std::size_t>(f.c.t) + 8);
   // The end moved past the crossing so that the local goals are apart.
-  CHECK_FALSE(robotsTouch(*m.raw[0], sub.goals[0].data(), *m.raw[1], sub.goals[1].data()));
+  CHECK_FALSE(robotsTouch(*f.m.raw[0], sub.goals[0].data(), *f.m.raw[1], sub.goals[1].data()));
   for (int r = 0; r < 2; ++r) {
     CHECK(sub.starts[r] == std::vector<double>(f.paths[r].at(sub.t_start), f.paths[r].at(sub.t_start) + 3));
     CHECK(sub.region[r].contains(sub.starts[r].data()));
@@ -267,16 +281,11 @@ TEST_CASE("The decoupled solver builds its robots' roadmaps before its time budg
   // building them is not the search's time: with a budget of zero the
   // search gives up at once, yet the roadmap is there.
   CrossingFixture f;
-  RobotModels m(f.s);
-  CollisionWorld world(f.s);
   PlannerSettings settings;
-  ConflictDetector det(m.raw);
-  auto c = det.first(pathPointers(f.paths));
-  REQUIRE(c.has_value());
-  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
-  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
   REQUIRE(roadmaps.built() == 0);
-  SolverContext ctx{world, m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
   DecoupledSettings none;
   none.time_budget_s = 0;
   CHECK_FALSE(DecoupledSolver(none).solve(ctx).solution.has_value());
@@ -288,19 +297,14 @@ TEST_CASE("The decoupled solver builds its robots' roadmaps before its time budg
 
 TEST_CASE("Expanding a subproblem doubles its window and grows its region until it is the whole problem") {
   CrossingFixture f;
-  RobotModels m(f.s);
-  CollisionWorld world(f.s);
   PlannerSettings settings;
   settings.initial_window = 4;
   settings.max_expansions = 5;
-  ConflictDetector det(m.raw);
-  auto c = det.first(pathPointers(f.paths));
-  REQUIRE(c.has_value());
-  Subproblem a = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
-  Subproblem b = createSubproblem(*c, {0, 1}, 1, m.raw, f.paths, world, settings);
+  Subproblem a = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  Subproblem b = createSubproblem(f.c, {0, 1}, 1, f.m.raw, f.paths, f.world, settings);
   CHECK(a.t_start - b.t_start == 4);
   CHECK(b.region[0].hi[0] - b.region[0].lo[0] > a.region[0].hi[0] - a.region[0].lo[0]);
-  Subproblem last = createSubproblem(*c, {0, 1}, 5, m.raw, f.paths, world, settings);
+  Subproblem last = createSubproblem(f.c, {0, 1}, 5, f.m.raw, f.paths, f.world, settings);
   CHECK(last.whole_problem);
   CHECK(last.t_start == 0);
   CHECK(last.t_end == 80);
@@ -311,22 +315,17 @@ TEST_CASE("A subproblem whose window and regions already cover everything is the
   // Retrying it level by level would solve the same subproblem again with
   // the same budgets; marked whole, ARC goes on to larger budgets.
   CrossingFixture f;
-  RobotModels m(f.s);
-  CollisionWorld world(f.s);
   PlannerSettings settings;
   settings.initial_window = 4;
   settings.max_expansions = 12;
-  ConflictDetector det(m.raw);
-  auto c = det.first(pathPointers(f.paths));
-  REQUIRE(c.has_value());
   int first_saturated = -1;
   for (int level = 0; level <= settings.max_expansions; ++level) {
     CAPTURE(level);
-    Subproblem sub = createSubproblem(*c, {0, 1}, level, m.raw, f.paths, world, settings);
+    Subproblem sub = createSubproblem(f.c, {0, 1}, level, f.m.raw, f.paths, f.world, settings);
     bool covers = sub.t_start == 0 && sub.t_end == 80;
     for (int r = 0; r < 2; ++r) {
       ConfigBox full;
-      m.raw[static_cast<std::size_t>(r)]->samplingBounds(world.workspace(), full.lo, full.hi);
+      f.m.raw[static_cast<std::size_t>(r)]->samplingBounds(f.world.workspace(), full.lo, full.hi);
       covers = covers && sub.region[static_cast<std::size_t>(r)].lo == full.lo &&
                sub.region[static_cast<std::size_t>(r)].hi == full.hi;
     }
@@ -341,19 +340,14 @@ TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budge
   // Past ARC's last level the same subproblem is retried with a larger
   // budget scale: a search cut off by its expansion cap must get further.
   CrossingFixture f;
-  RobotModels m(f.s);
-  CollisionWorld world(f.s);
   PlannerSettings settings;
-  ConflictDetector det(m.raw);
-  auto c = det.first(pathPointers(f.paths));
-  REQUIRE(c.has_value());
-  Subproblem sub = createSubproblem(*c, {0, 1}, 0, m.raw, f.paths, world, settings);
-  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
   DecoupledSettings tight;
   tight.max_expansions = 3;
   tight.expansions_per_horizon_step = 0;
   tight.avoid_others = false;
-  SolverContext ctx{world, m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
   CHECK_FALSE(DecoupledSolver(tight).solve(ctx).solution.has_value());
   ctx.budget_scale = 2000;
   CHECK(DecoupledSolver(tight).solve(ctx).solution.has_value());
