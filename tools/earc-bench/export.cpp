@@ -15,6 +15,7 @@
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/subcommands.hpp"
+#include "trial_filter_options.hpp"
 
 namespace earc {
 namespace {
@@ -22,8 +23,7 @@ namespace {
 struct ExportOptions {
   std::string results;
   std::string csv, databases_csv, ompl_dir;
-  std::uint64_t seed = 0;
-  double time_limit = 0;
+  bench::TrialFilter filter;
 };
 
 
@@ -34,17 +34,12 @@ void setupExport(CLI::App& app) {
   cmd->add_option("--csv", o->csv, "One row per trial");
   cmd->add_option("--databases-csv", o->databases_csv, "One row per database");
   cmd->add_option("--ompl-log", o->ompl_dir, "Directory for OMPL benchmark logs (one per suite and robot count)");
-  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
-                    ->check(earc::cli::kFinitePositive);
-  cmd->callback([o, seed, limit] {
+  addTrialFilterOptions(*cmd, o->filter);
+  cmd->callback([o] {
     if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())
       throw InputError("", "--csv/--databases-csv/--ompl-log", "nothing to export: give at least one");
     bench::ResultsDb db(o->results, true);
-    bench::TrialFilter f;
-    if (seed->count()) f.seed = o->seed;
-    if (limit->count()) f.time_limit_s = o->time_limit;
-    const std::vector<bench::TrialRecord> trials = f.applyRequired(db.trials(), o->results);
+    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.trials(), o->results);
     // Before anything is written: no output may overwrite the results or
     // another output.
     std::vector<std::pair<std::string, std::string>> outputs = {

@@ -14,6 +14,7 @@
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/subcommands.hpp"
+#include "trial_filter_options.hpp"
 
 namespace earc {
 namespace {
@@ -26,8 +27,7 @@ struct PlotOptions {
   std::string output;
   std::string python = "/usr/bin/python3";
   std::string script = std::string(EARC_SOURCE_DIR) + "/tools/plots/plot_results.py";
-  std::uint64_t seed = 0;
-  double time_limit = 0;
+  bench::TrialFilter filter;
 };
 
 void setupPlot(CLI::App& app) {
@@ -39,29 +39,25 @@ void setupPlot(CLI::App& app) {
   cmd->add_option("--script", o->script, "The plotting script")->capture_default_str();
   // As table and export take them (TrialFilter); the script selects the
   // same trials.
-  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
-                    ->check(earc::cli::kFinitePositive);
-  cmd->callback([o, seed, limit] {
+  addTrialFilterOptions(*cmd, o->filter);
+  cmd->callback([o] {
     if (!std::filesystem::exists(o->results)) throw InputError(o->results, "--results", "no such file");
     // The checks table and export make (a foreign file, a newer schema, a
     // row no run writes), with their messages, before Python runs.
     {
       const bench::ResultsDb check(o->results, true);
-      bench::TrialFilter f;
-      if (seed->count()) f.seed = o->seed;
-      if (limit->count()) f.time_limit_s = o->time_limit;
-      f.applyRequired(check.trials(), o->results);
+      o->filter.applyRequired(check.trials(), o->results);
     }
     bench::requireOutputDirectory(o->output, "-o");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");
     bench::requireExecutable(o->python, "--python");
     bench::ChildSpec spec;
     spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
-    if (seed->count()) spec.argv.insert(spec.argv.end(), {"--seed", std::to_string(o->seed)});
+    if (o->filter.seed) spec.argv.insert(spec.argv.end(), {"--seed", std::to_string(*o->filter.seed)});
     // Seventeen digits: the script's float is this very double, which it
     // compares with the stored limits as table does.
-    if (limit->count()) spec.argv.insert(spec.argv.end(), {"--time-limit", formatNumber("%.17g", o->time_limit)});
+    if (o->filter.time_limit_s)
+      spec.argv.insert(spec.argv.end(), {"--time-limit", formatNumber("%.17g", *o->filter.time_limit_s)});
     spec.wall_limit_s = kPlotWallLimitS;
     spec.inherit_output = true;
     bench::ChildOutcome out = bench::runChild(spec);

@@ -9,14 +9,14 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/util/subcommands.hpp"
+#include "trial_filter_options.hpp"
 
 namespace earc {
 namespace {
 
 struct TableOptions {
   std::string results;
-  std::uint64_t seed = 0;
-  double time_limit = 0;
+  bench::TrialFilter filter;
   bool wide = false;
 };
 
@@ -24,18 +24,13 @@ void setupTable(CLI::App& app) {
   auto o = std::make_shared<TableOptions>();
   auto* cmd = app.add_subcommand("table", "Print the results as a markdown table");
   cmd->add_option("--results", o->results, "Results database")->check(earc::cli::kFileName)->required();
-  auto* seed = cmd->add_option("--seed", o->seed, "Only trials of this run seed")->check(earc::cli::kWholeNumber);
-  auto* limit = cmd->add_option("--time-limit", o->time_limit, "Only trials with this time limit")
-                    ->check(earc::cli::kFinitePositive);
+  addTrialFilterOptions(*cmd, o->filter);
   cmd->add_flag("--wide", o->wide,
                 "One table per suite laid out like the paper's figures: a row per robot count, a column per method, "
                 "the paired E-ARC/ARC ratio and E-ARC's hit rate");
-  cmd->callback([o, seed, limit] {
+  cmd->callback([o] {
     bench::ResultsDb db(o->results, true);
-    bench::TrialFilter f;
-    if (seed->count()) f.seed = o->seed;
-    if (limit->count()) f.time_limit_s = o->time_limit;
-    const std::vector<bench::TrialRecord> trials = f.applyRequired(db.trials(), o->results);
+    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.trials(), o->results);
     std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()));
   });
 }
