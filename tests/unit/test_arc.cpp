@@ -336,6 +336,25 @@ TEST_CASE("A subproblem whose window and regions already cover everything is the
   CHECK(first_saturated < settings.max_expansions);
 }
 
+TEST_CASE("A subproblem spanning the paths whose regions together span the workspace is the whole problem") {
+  // Robot a's own region is not yet the full box, but the regions together
+  // cover the workspace: the levels left would only widen a's region a
+  // margin a level, each at the same budget.
+  CrossingFixture f;
+  PlannerSettings settings;
+  settings.initial_window = 64;  // the window spans both paths from level 0
+  settings.max_expansions = 12;
+  ConfigBox full;
+  f.m.raw[0]->samplingBounds(f.world.workspace(), full.lo, full.hi);
+  Subproblem one = createSubproblem(f.c, {0, 1}, 1, f.m.raw, f.paths, f.world, settings);
+  REQUIRE(one.t_start == 0);
+  REQUIRE(one.t_end == 80);
+  CHECK_FALSE(one.whole_problem);
+  Subproblem two = createSubproblem(f.c, {0, 1}, 2, f.m.raw, f.paths, f.world, settings);
+  CHECK(two.whole_problem);
+  CHECK_FALSE(two.region[0] == full);
+}
+
 TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budget scale") {
   // Past ARC's last level the same subproblem is retried with a larger
   // budget scale: a search cut off by its expansion cap must get further.

@@ -42,6 +42,7 @@ struct Aabb {
     hi = {std::max(hi.x, o.hi.x), std::max(hi.y, o.hi.y)};
   }
   Aabb inflated(double m) const { return {{lo.x - m, lo.y - m}, {hi.x + m, hi.y + m}}; }
+  bool contains(const Aabb& o) const { return lo.x <= o.lo.x && lo.y <= o.lo.y && o.hi.x <= hi.x && o.hi.y <= hi.y; }
 };
 
 enum class CoreKind { Point, Segment, Rect };
