@@ -145,14 +145,17 @@ Scenario scenarioFromJson(const json& doc, const std::string& file) {
     const std::string p = element("$.robots", i);
     const json& v = r.object(robots[i], p);
     RobotSpec spec;
+    // The type first, as for obstacles: a robot of another kind
+    // ({"type": "drone", "id": 3}) is wrong in its type, not in a missing name.
+    const std::string type = r.string(r.required(v, "type", p), member(p, "type"));
+    if (type != "mobile" && type != "manipulator")
+      r.fail(member(p, "type"), "unknown robot type \"" + type + "\" (expected \"mobile\" or \"manipulator\")");
     spec.name = r.string(r.required(v, "name", p), member(p, "name"));
     if (auto [it, fresh] = seen.emplace(spec.name, i); !fresh)
       r.fail(member(p, "name"), "duplicate robot name \"" + spec.name + "\" (also " +
                                     element("$.robots", it->second) + ")");
-    const std::string type = r.string(r.required(v, "type", p), member(p, "type"));
     if (type == "mobile") readMobile(r, v, p, spec);
-    else if (type == "manipulator") readManipulator(r, v, p, spec);
-    else r.fail(member(p, "type"), "unknown robot type \"" + type + "\" (expected \"mobile\" or \"manipulator\")");
+    else readManipulator(r, v, p, spec);
     s.robots.push_back(std::move(spec));
   }
   return s;

@@ -295,6 +295,11 @@ TEST_CASE("unknown robot, obstacle and shape types are refused") {
   doc = validScenario();
   doc["robots"][0]["shape"]["type"] = "triangle";
   CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.type", "unknown shape type \"triangle\"");
+  // Likewise a robot of another kind without a name: the type is what is
+  // wrong, not the missing name (the error named "name").
+  doc = validScenario();
+  doc["robots"][1] = {{"type", "drone"}, {"id", 3}};
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].type", "unknown robot type \"drone\"");
 }
 
 TEST_CASE("duplicate robot names are refused naming both robots") {
