@@ -206,36 +206,71 @@ BuildSettings withDefaults(BuildSettings s) {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution) {
+namespace {
+
+// Calls fn(i, j, traits of i, traits of j) for each pair of arms i < j whose
+// reach discs overlap by kMinReachOverlap or more.
+template <typename Fn>
+void forEachReachingArmPair(const std::vector<RobotSpec>& arms, const Resolution& resolution, Fn fn) {
   std::vector<std::shared_ptr<const RobotModel>> models;
   for (const RobotSpec& a : arms) {
     if (a.kind != RobotKind::Manipulator) throw std::invalid_argument("build: the arm layout has a mobile robot");
     models.push_back(makeRobotModel(a, resolution));
   }
-  std::map<std::string, std::pair<int, int>> classes;  // label -> representative
   for (std::size_t i = 0; i < models.size(); ++i)
     for (std::size_t j = i + 1; j < models.size(); ++j) {
       const double gap = geo::norm(arms[i].base_position - arms[j].base_position);
       if (gap > models[i]->boundingRadius() + models[j]->boundingRadius() - kMinReachOverlap) continue;
-      std::vector<RobotTraits> pair{traitsOf(*models[i]), traitsOf(*models[j])};
-      if (!hasExperienceClass(pair)) continue;
-      std::vector<std::vector<double>> q{arms[i].start, arms[j].start};
-      for (std::size_t r = 0; r < 2; ++r) q[r].assign(static_cast<std::size_t>(pair[r].dim), 0.0);
-      const Canonical c = canonicalize(pair, q, q);
-      const int a = static_cast<int>(c.order[0] == 0 ? i : j), b = static_cast<int>(c.order[0] == 0 ? j : i);
-      classes.try_emplace(c.cls.label(), a, b);
+      fn(i, j, traitsOf(*models[i]), traitsOf(*models[j]));
     }
+}
+
+// "'a'", or "arm 2" for an arm without a name.
+std::string armName(const std::vector<RobotSpec>& arms, std::size_t i) {
+  return arms[i].name.empty() ? "arm " + std::to_string(i) : "'" + arms[i].name + "'";
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution) {
+  std::map<std::string, std::pair<int, int>> classes;  // label -> representative
+  forEachReachingArmPair(arms, resolution, [&](std::size_t i, std::size_t j, RobotTraits ti, RobotTraits tj) {
+    std::vector<RobotTraits> pair{ti, tj};
+    if (!hasExperienceClass(pair)) return;
+    std::vector<std::vector<double>> q{arms[i].start, arms[j].start};
+    for (std::size_t r = 0; r < 2; ++r) q[r].assign(static_cast<std::size_t>(pair[r].dim), 0.0);
+    const Canonical c = canonicalize(pair, q, q);
+    const int a = static_cast<int>(c.order[0] == 0 ? i : j), b = static_cast<int>(c.order[0] == 0 ? j : i);
+    classes.try_emplace(c.cls.label(), a, b);
+  });
   std::vector<std::pair<int, int>> out;
   for (const auto& [label, pair] : classes) out.push_back(pair);
   return out;
+}
+
+std::vector<std::pair<int, int>> unequalArmPairs(const std::vector<RobotSpec>& arms, const Resolution& resolution) {
+  std::vector<std::pair<int, int>> out;
+  forEachReachingArmPair(arms, resolution, [&](std::size_t i, std::size_t j, RobotTraits ti, RobotTraits tj) {
+    if (ti.dim != tj.dim) out.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  });
+  return out;
+}
+
+std::string unequalArmPairsNote(const std::vector<RobotSpec>& arms, const std::vector<std::pair<int, int>>& pairs) {
+  if (pairs.empty()) return "";
+  const auto [a, b] = pairs.front();
+  const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+  return "left out " + std::to_string(pairs.size()) + " arm pair" + (pairs.size() == 1 ? "" : "s") +
+         " within reach whose joint counts differ (" + (pairs.size() == 1 ? "" : "e.g. ") + armName(arms, ia) +
+         ": " + std::to_string(arms[ia].dim()) + " joints, " + armName(arms, ib) + ": " +
+         std::to_string(arms[ib].dim()) + "); an arm database holds pairs of arms with equal joint counts only";
 }
 
 std::string noArmPairClassReason(const std::vector<RobotSpec>& arms) {
   std::map<int, int> per_count;  // joint count -> arms with it
   std::string counts;
   for (std::size_t i = 0; i < arms.size(); ++i) {
-    const std::string name = arms[i].name.empty() ? "arm " + std::to_string(i) : "'" + arms[i].name + "'";
-    counts += (i ? ", " : "") + name + ": " + std::to_string(arms[i].dim()) + (i ? "" : " joints");
+    counts += (i ? ", " : "") + armName(arms, i) + ": " + std::to_string(arms[i].dim()) + (i ? "" : " joints");
     ++per_count[arms[i].dim()];
   }
   if (std::none_of(per_count.begin(), per_count.end(), [](const auto& c) { return c.second > 1; }))

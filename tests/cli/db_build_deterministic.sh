@@ -109,6 +109,19 @@ armLayout "$WORK/one-pair.json" a:4:4:3 b:6:4:3 c:5:5.8:2
 "$DB" inspect --db "$WORK/one-pair.db" > "$WORK/inspect.out" || fail "inspect exited $?"
 [ "$(grep -Ec "^manipulator +2 " "$WORK/inspect.out")" -eq 1 ] ||
   fail "a layout with one pair of equal arms did not give its one class: $(cat "$WORK/inspect.out")"
+# The pairs of unequal joint counts left out of that build (a-c and b-c
+# reach each other) are counted in the summary, naming the first; -q
+# prints nothing; a layout of equal arms has no such line.
+"$DB" build --db "$WORK/one-pair-2.db" --scenario "$WORK/one-pair.json" --count 5 --threads 1 \
+  > "$WORK/build.out" 2> /dev/null || fail "a layout with one pair of equal arms: exit $?"
+grep -qxF "left out 2 arm pairs within reach whose joint counts differ (e.g. 'a': 3 joints, 'c': 2); an arm database holds pairs of arms with equal joint counts only" \
+  "$WORK/build.out" || fail "the summary does not count the pairs left out: $(cat "$WORK/build.out")"
+"$DB" build --db "$WORK/from-arms-2.db" --scenario "$WORK/a4.json" --count 5 --threads 1 \
+  > "$WORK/build.out" 2> /dev/null || fail "build from arms: exit $?"
+grep -q "left out" "$WORK/build.out" && fail "equal arms: the summary speaks of pairs left out: $(cat "$WORK/build.out")"
+"$DB" build --db "$WORK/one-pair-q.db" --scenario "$WORK/one-pair.json" --count 5 --threads 1 -q \
+  > "$WORK/build.out" 2>&1 || fail "a layout with one pair of equal arms, -q: exit $?"
+[ -s "$WORK/build.out" ] && fail "build -q printed: $(cat "$WORK/build.out")"
 # A footprint option says mobile, whatever the scenario holds; with
 # --kind arms it would be ignored, so it is refused.
 "$DB" build --db "$WORK/discs.db" --scenario "$WORK/a4.json" --shape disc --radius 0.3 --count 5 --threads 1 -q ||

@@ -154,6 +154,11 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     if (earc::exp::armPairClasses(s.arms, s.resolution).empty())
       throw earc::InputError(opt.scenario, "$.robots", earc::exp::noArmPairClassReason(s.arms));
   }
+  // Arms of unequal joint counts among equal ones: their pairs are left
+  // out, and the summary says so.
+  const std::string left_out = s.kind == earc::RobotKind::Manipulator
+                                   ? earc::exp::unequalArmPairsNote(s.arms, earc::exp::unequalArmPairs(s.arms, s.resolution))
+                                   : "";
   // Opened (created) only once every input has been accepted.
   std::optional<CommitLog> log;
   if (!opt.report.empty()) {
@@ -194,6 +199,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
                 s.time_per_problem_s, report.no_query, report.duplicates);
   out << line;
   for (const auto& [label, n] : report.inserted_per_class) out << "  " << n << "  " << label << "\n";
+  if (!left_out.empty()) out << left_out << "\n";
 }
 
 void setupBuild(CLI::App& app) {

@@ -80,6 +80,15 @@ inline constexpr double kMinReachOverlap = 0.25;
 // pair (indices into arms) per class, in canonical order.
 std::vector<std::pair<int, int>> armPairClasses(const std::vector<RobotSpec>& arms, const Resolution& resolution);
 
+// The pairs of arms (indices, i < j) that can reach each other but have
+// different joint counts: armPairClasses leaves them out, as the store
+// holds no class for them (hasExperienceClass).
+std::vector<std::pair<int, int>> unequalArmPairs(const std::vector<RobotSpec>& arms, const Resolution& resolution);
+
+// One line for a build's summary saying how many such pairs were left out
+// and naming the first with its joint counts; "" when pairs is empty.
+std::string unequalArmPairsNote(const std::vector<RobotSpec>& arms, const std::vector<std::pair<int, int>>& pairs);
+
 // Why armPairClasses found no class in a layout, in one line that names
 // each arm with its joint count: the store holds pairs of arms with equal
 // joint counts only (hasExperienceClass: a key and a path blob of one
