@@ -520,7 +520,7 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at,jobs,planner_version,bench_version,planner_args\n";
+         "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file\n";
   for (const auto& t : trials) {
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
@@ -529,7 +529,7 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
         << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
         << ',' << csvField(t.planner_version) << ',' << csvField(t.bench_version) << ','
-        << csvField(plannerArgsText(t.planner_args)) << "\n";
+        << csvField(plannerArgsText(t.planner_args)) << ',' << csvField(t.scenario_file) << "\n";
   }
 }
 

@@ -78,11 +78,15 @@ CREATE TABLE databases (
 // 5: what the planner was told beyond the benchmark's own options (run
 //    --method-arg): E-ARC with --db-k=5 is another experiment than E-ARC.
 //    Every trial before it ran with none: NULL, as none is written.
+// 6: which scenario file a trial of earc-bench run FILE... planned: its
+//    suite, robot count and trial number say only where among the files
+//    given it came. Unknown (NULL) for the files' trials before it.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
     "ALTER TABLE trials ADD COLUMN bench_version TEXT",
     "ALTER TABLE trials ADD COLUMN planner_args TEXT",
+    "ALTER TABLE trials ADD COLUMN scenario_file TEXT",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -264,6 +268,13 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
   t.planner_version = r.optText(22);
   t.bench_version = r.optText(23);
   t.planner_args = r.plannerArgs(24);
+  t.scenario_file = r.optText(25);
+  // A scenario file's trial names its file (or did not, before schema 6);
+  // a suite's has none.
+  if (!r.isNull(25) && t.suite != kFilesSuite)
+    r.bad(25, r.value(25) + " beside suite " + t.suite + ": only a scenario file's trial (suite " + kFilesSuite +
+                  ") names a file");
+  if (!r.isNull(25) && t.scenario_file.empty()) r.bad(25, "'' is not a path");
   return t;
 }
 
@@ -295,10 +306,10 @@ DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args) VALUES (?1, ?2, ?3,"
-    " ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''), NULLIF(?14, ''),"
-    " NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20, NULLIF(?21, ''),"
-    " NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, '')) ON CONFLICT DO NOTHING";
+    " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args, scenario_file)"
+    " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''),"
+    " NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20,"
+    " NULLIF(?21, ''), NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, ''), NULLIF(?25, '')) ON CONFLICT DO NOTHING";
 // A trial of the method run with other planner arguments (NULLIF as the
 // insert writes them): the trial would make the file mix two settings.
 constexpr const char* kOtherPlannerArgs =
@@ -317,11 +328,14 @@ constexpr const char* kFinishedTrials =
 // migrating them (table, export, plot): NULL for the columns it lacks.
 // The row's id first, for CheckedResultRow.
 constexpr const char* kSelectTrials[] = {
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, NULL FROM trials"
+    " ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file"
+    " FROM trials ORDER BY id",
 };
 static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
@@ -448,6 +462,7 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     s.bind(22, std::string_view(t.planner_version));
     s.bind(23, std::string_view(t.bench_version));
     s.bind(24, std::string_view(args));
+    s.bind(25, std::string_view(t.scenario_file));
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });

@@ -615,6 +615,7 @@ class Runner {
     t.jobs = o_.jobs;
     t.bench_version = earc::version();
     t.planner_args = argsOf(c.method);
+    if (c.file) t.scenario_file = c.file->path;
     const TrialSeeds seeds = seedsOf(c);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;

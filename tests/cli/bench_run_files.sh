@@ -44,6 +44,16 @@ grep -q '^### files' out || fail "no table of the files"
 [ "$(sqlite3 r.sqlite "select group_concat(distinct robots || ':' || trial) from
      (select * from trials order by robots, trial)")" = "2:0,3:0,3:1,3:2" ] || fail "trials numbered wrong"
 [ "$(sqlite3 r.sqlite "select count(distinct scenario_seed) from trials")" = 4 ] || fail "scenario seeds are not per file"
+# The CSV says which file each trial planned, as the run was given it.
+"$BENCH" export --results r.sqlite --csv trials.csv > out 2> err || fail "export exited $?"
+"$PY" - <<'PY' || fail "the CSV does not name each trial's file: $(cat trials.csv)"
+import csv
+rows = list(csv.DictReader(open("trials.csv")))
+want = {("3", "0"): "d3.json", ("3", "1"): "d4.json", ("3", "2"): "d3s.json", ("2", "0"): "a2.json"}
+assert len(rows) == 12, len(rows)
+for r in rows:
+    assert r["scenario_file"] == want[(r["robots"], r["trial"])], r
+PY
 # One E-ARC database per kind, built for the files' robots: no warning.
 for f in d3 a2; do
   db=r.sqlite.work/earc-files-$([ $f = a2 ] && echo arms || echo mobile).sqlite

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <optional>
 #include <set>
@@ -76,11 +77,35 @@ std::vector<std::string> lines(const std::string& path) {
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 6) c.exec("ALTER TABLE trials DROP COLUMN scenario_file");
   if (version < 5) c.exec("ALTER TABLE trials DROP COLUMN planner_args");
   if (version < 4) c.exec("ALTER TABLE trials DROP COLUMN bench_version");
   if (version < 3) c.exec("ALTER TABLE trials DROP COLUMN planner_version");
   if (version < 2) c.exec("ALTER TABLE trials DROP COLUMN jobs");
   c.exec("PRAGMA user_version = " + std::to_string(version));
+}
+
+// Makes the file one an earlier earc-bench left at `version`; checks that
+// a reader takes it as it is (each trial through `check_old`) and leaves
+// it at that version; adds `next` through a writer, which migrates it;
+// returns every trial then read back.
+std::vector<TrialRecord> readOldThenMigrate(const std::string& path, int version,
+                                            const std::function<void(const TrialRecord&)>& check_old,
+                                            const TrialRecord& next) {
+  makeOlder(path, version);
+  {
+    ResultsDb db(path, true);
+    for (const TrialRecord& t : db.trials()) check_old(t);
+    exp::Connection c(path, exp::OpenMode::ReadOnly);
+    CHECK(c.pragmaInt("user_version") == version);
+  }
+  {
+    ResultsDb db(path);
+    CHECK(db.addTrial(next));
+  }
+  exp::Connection c(path, exp::OpenMode::ReadOnly);
+  CHECK(c.pragmaInt("user_version") == kResultsSchemaVersion);
+  return ResultsDb(path, true).trials();
 }
 
 }  // namespace
@@ -210,7 +235,7 @@ TEST_CASE("a results database records which build planned each trial, and reads 
   std::ostringstream csv;
   writeCsv(all, csv);
   CHECK(csv.str().find(",jobs,planner_version,") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,,\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,,,\n") != std::string::npos);
 }
 
 TEST_CASE("a results database records which earc-bench ran each trial, and reads and migrates version 3 files") {
@@ -226,8 +251,8 @@ TEST_CASE("a results database records which earc-bench ran each trial, and reads
   CHECK(trialsNotes(all).find("\nPlanned by earc 0.1.0+ccccccc.\nTimed by 2 builds: ") != std::string::npos);
   std::ostringstream csv;
   writeCsv(all, csv);
-  CHECK(csv.str().find(",jobs,planner_version,bench_version,planner_args\n") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty,\n") != std::string::npos);
+  CHECK(csv.str().find(",jobs,planner_version,bench_version,planner_args,scenario_file\n") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty,,\n") != std::string::npos);
 }
 
 TEST_CASE("a results database records each trial's planner arguments, and reads and migrates version 4 files") {
@@ -253,29 +278,65 @@ TEST_CASE("a results database records each trial's planner arguments, and reads 
     CHECK(s.columnType(1) == SQLITE_NULL);
   }
   // A version 4 file, as an earlier earc-bench left it: read as it is,
-  // every trial without arguments (none could be given then).
-  makeOlder(file.path, 4);
-  {
-    ResultsDb db(file.path, true);
-    for (const TrialRecord& t : db.trials()) CHECK(t.planner_args.empty());
-    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
-    CHECK(c.pragmaInt("user_version") == 4);
-  }
-  {
-    // Opened for writing: migrated, the old rows kept (with none).
-    ResultsDb db(file.path);
-    TrialRecord t = trial("prioritized", 0, true, 2.0);
-    t.planner_args = {"--window=8"};
-    CHECK(db.addTrial(t));
-  }
-  exp::Connection c(file.path, exp::OpenMode::ReadOnly);
-  CHECK(c.pragmaInt("user_version") == kResultsSchemaVersion);
-  ResultsDb db(file.path, true);
-  const auto all = db.trials();
+  // every trial without arguments (none could be given then); migrated
+  // when opened for writing, the old rows kept (with none).
+  TrialRecord next = trial("prioritized", 0, true, 2.0);
+  next.planner_args = {"--window=8"};
+  const auto all =
+      readOldThenMigrate(file.path, 4, [](const TrialRecord& t) { CHECK(t.planner_args.empty()); }, next);
   REQUIRE(all.size() == 3);
   CHECK(all[0].planner_args.empty());
   CHECK(all[1].planner_args.empty());
   CHECK(all[2].planner_args == std::vector<std::string>{"--window=8"});
+}
+
+TEST_CASE("a results database records a scenario file trial's file, and reads and migrates version 5 files") {
+  TempPath file("earc-results-scenario-file");
+  TrialRecord from_file = trial("arc", 0, true, 1.0, kFilesSuite, 3);
+  from_file.scenario_file = "cell/a, b.json";
+  {
+    ResultsDb db(file.path);
+    CHECK(db.addTrial(from_file));
+    CHECK(db.addTrial(trial("arc", 0, true, 1.5)));  // a suite's: no file
+    const auto all = db.trials();
+    REQUIRE(all.size() == 2);
+    CHECK(all[0].scenario_file == "cell/a, b.json");
+    CHECK(all[1].scenario_file.empty());
+    // The CSV's last column: the path as given (quoted as needed), empty
+    // for a suite's trial.
+    std::ostringstream csv;
+    writeCsv(all, csv);
+    std::istringstream in(csv.str());
+    std::string header, row0, row1;
+    std::getline(in, header);
+    std::getline(in, row0);
+    std::getline(in, row1);
+    CHECK(header.substr(header.size() - 14) == ",scenario_file");
+    CHECK(row0.rfind("files,3,arc,0,", 0) == 0);
+    CHECK(row0.substr(row0.size() - 17) == ",\"cell/a, b.json\"");
+    CHECK(row1.back() == ',');
+  }
+  {
+    // As stored: the path; NULL for none.
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    exp::Statement s = c.prepare("SELECT scenario_file FROM trials ORDER BY id");
+    REQUIRE(s.step());
+    CHECK(s.textAt(0) == "cell/a, b.json");
+    REQUIRE(s.step());
+    CHECK(s.columnType(0) == SQLITE_NULL);
+  }
+  // A version 5 file, as an earlier earc-bench left it: read as it is,
+  // its files' trials without their file; migrated when opened for
+  // writing, the old rows kept (without a file).
+  TrialRecord next = from_file;
+  next.trial = 1;
+  next.scenario_file = "cell/c.json";
+  const auto all =
+      readOldThenMigrate(file.path, 5, [](const TrialRecord& t) { CHECK(t.scenario_file.empty()); }, next);
+  REQUIRE(all.size() == 3);
+  CHECK(all[0].scenario_file.empty());
+  CHECK(all[1].scenario_file.empty());
+  CHECK(all[2].scenario_file == "cell/c.json");
 }
 
 TEST_CASE("a results file keeps one set of planner arguments per method: a trial run with another is not added") {
@@ -416,6 +477,13 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
       {"UPDATE trials SET planner_args = '[\"--window=4\"]' WHERE id = 2",
        "trials row id 2, column planner_args: '[\"--window=4\"]' beside NULL of method arc in row id 1: a results "
        "file holds one set of planner arguments per method"},
+      {"UPDATE trials SET scenario_file = 'a.json' WHERE id = 1",
+       "trials row id 1, column scenario_file: 'a.json' beside suite mobile: only a scenario file's trial (suite "
+       "files) names a file"},
+      {"UPDATE trials SET suite = 'files', scenario_file = '' WHERE id = 1",
+       "trials row id 1, column scenario_file: '' is not a path"},
+      {"UPDATE trials SET suite = 'files', scenario_file = x'01' WHERE id = 1",
+       "trials row id 1, column scenario_file: a blob is not text"},
       {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
       {"UPDATE databases SET robots = 1",
        "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},
@@ -586,8 +654,8 @@ TEST_CASE("a method run with planner arguments is named with them in the tables,
     return out;
   }();
   REQUIRE(csv_lines.size() == 5);
-  CHECK(csv_lines[0].substr(csv_lines[0].size() - 13) == ",planner_args");
-  CHECK(csv_lines[1].substr(csv_lines[1].size() - 20) == ",--db-k=5 --window 4");
+  CHECK(csv_lines[0].substr(csv_lines[0].size() - 27) == ",planner_args,scenario_file");
+  CHECK(csv_lines[1].substr(csv_lines[1].size() - 21) == ",--db-k=5 --window 4,");
   CHECK(csv_lines[1].rfind("mobile,4,earc,0,", 0) == 0);  // the method column stays the method
   CHECK(csv_lines[3].back() == ',');
   TempPath dir("earc-ompl-logs-args");

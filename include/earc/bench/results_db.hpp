@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 5, WAL) that trials are appended to as they finish, each in
+// user_version 6, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -28,6 +28,9 @@
 //     one method in a file have the same (see ResultsDb): the file is one
 //     experiment per method, so that table, export and plot, which group
 //     by method, never pool two settings in one cell.
+//   Version 6 adds trials.scenario_file: the path of a scenario file's
+//     trial (suite kFilesSuite) as earc-bench run was given it; NULL for
+//     a suite's trials, and for every trial recorded before it.
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -52,7 +55,8 @@
 // signals 1 to 127; jobs 1 or more; seeds as decimal TEXT of a 64-bit
 // unsigned number, as std::to_string writes it (no sign, no leading zero);
 // times of day as utcNow() writes them; failure, versions and path as TEXT
-// (path not empty); planner_args NULL or a JSON array of at least one
+// (path not empty); scenario_file NULL or a path (not empty) of a trial
+// of kFilesSuite; planner_args NULL or a JSON array of at least one
 // string that plannerArgsProblem (bench/options.hpp) accepts, the same
 // (or NULL) in every row of a method:
 //   r.sqlite: trials row id 7, column planner_args: '["--db-k=5"]' beside
@@ -70,7 +74,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 5;
+inline constexpr int kResultsSchemaVersion = 6;
 // A solution may report a planning time this much over its time limit
 // (the planners poll their deadline) and still count as solved; later than
 // that it is "solved after the time limit", a failure.
@@ -102,6 +106,9 @@ struct TrialRecord {
   // Added to its `earc-plan plan` command (run --method-arg); empty: none
   // (and every trial before schema 5).
   std::vector<std::string> planner_args;
+  // The scenario file of a kFilesSuite trial, as given to the run; ""
+  // for a suite's trial (and every trial before schema 6).
+  std::string scenario_file;
 };
 
 struct DatabaseRecord {
