@@ -81,12 +81,18 @@ CREATE TABLE databases (
 // 6: which scenario file a trial of earc-bench run FILE... planned: its
 //    suite, robot count and trial number say only where among the files
 //    given it came. Unknown (NULL) for the files' trials before it.
+// 7: how the run grew its Lightning databases, on each lightning trial: a
+//    database grown from other problems or under another limit is another
+//    experiment, which a resumed run must not pool with the first.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
     "ALTER TABLE trials ADD COLUMN bench_version TEXT",
     "ALTER TABLE trials ADD COLUMN planner_args TEXT",
     "ALTER TABLE trials ADD COLUMN scenario_file TEXT",
+    "ALTER TABLE trials ADD COLUMN lightning_problems INTEGER;"
+    " ALTER TABLE trials ADD COLUMN lightning_problems_per_robot INTEGER;"
+    " ALTER TABLE trials ADD COLUMN lightning_problem_time_limit_s REAL",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -234,6 +240,34 @@ const std::string& robotCountText() {
   return text;
 }
 
+// The trial column of a Lightning option.
+int lightningColumn(const std::string& option) {
+  return option == "--lightning-problems" ? 26 : option == "--lightning-problems-per-robot" ? 27 : 28;
+}
+
+// Columns 26 to 28 of a trial row (readTrialRow): NULL, or on a lightning
+// trial a positive time and exactly one of the two counts, positive.
+constexpr int kLightningColumns[] = {26, 27, 28};
+std::optional<LightningSettings> readLightningSettings(const CheckedResultRow& r, const std::string& method) {
+  const auto set = std::find_if_not(std::begin(kLightningColumns), std::end(kLightningColumns),
+                                    [&r](int c) { return r.isNull(c); });
+  if (set == std::end(kLightningColumns)) return std::nullopt;
+  if (method != "lightning")
+    r.bad(*set, r.value(*set) + " beside method " + method + ": only a lightning trial records Lightning settings");
+  constexpr std::int64_t most = std::numeric_limits<int>::max();
+  LightningSettings l;
+  if (auto v = r.optInteger(26, 1, most, "a number of problems (1 or more)")) l.problems = static_cast<int>(*v);
+  if (auto v = r.optInteger(27, 1, most, "a number of problems per robot (1 or more)"))
+    l.problems_per_robot = static_cast<int>(*v);
+  if (l.problems && l.problems_per_robot)
+    r.bad(27, r.value(27) + " beside lightning_problems " + r.value(26) +
+                  ": problems per robot are for a run without a number of problems");
+  if (!l.problems && !l.problems_per_robot)
+    r.bad(26, "NULL beside lightning_problems_per_robot NULL: a lightning trial records one of them");
+  l.problem_time_limit_s = r.seconds(28, true);
+  return l;
+}
+
 TrialRecord readTrialRow(const CheckedResultRow& r) {
   static const std::vector<std::string> suites = resultSuiteNames();
   TrialRecord t;
@@ -275,6 +309,7 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
     r.bad(25, r.value(25) + " beside suite " + t.suite + ": only a scenario file's trial (suite " + kFilesSuite +
                   ") names a file");
   if (!r.isNull(25) && t.scenario_file.empty()) r.bad(25, "'' is not a path");
+  t.lightning = readLightningSettings(r, t.method);
   return t;
 }
 
@@ -306,14 +341,21 @@ DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
 constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
-    " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args, scenario_file)"
+    " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args, scenario_file,"
+    " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s)"
     " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''),"
     " NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20,"
-    " NULLIF(?21, ''), NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, ''), NULLIF(?25, '')) ON CONFLICT DO NOTHING";
+    " NULLIF(?21, ''), NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, ''), NULLIF(?25, ''), NULLIF(?26, ''),"
+    " NULLIF(?27, ''), NULLIF(?28, '')) ON CONFLICT DO NOTHING";
 // A trial of the method run with other planner arguments (NULLIF as the
 // insert writes them): the trial would make the file mix two settings.
 constexpr const char* kOtherPlannerArgs =
     "SELECT id, planner_args FROM trials WHERE method = ?1 AND planner_args IS NOT NULLIF(?2, '') LIMIT 1";
+// The first lightning trial that recorded its Lightning settings: every
+// other that did has the same (a file is checked so when opened).
+constexpr const char* kFirstLightningSettings =
+    "SELECT id, lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s FROM trials"
+    " WHERE method = 'lightning' AND lightning_problem_time_limit_s IS NOT NULL ORDER BY id LIMIT 1";
 constexpr const char* kInsertDatabase =
     "INSERT INTO databases (method, suite, robots, path, construction_time_s, entries, size_bytes, problems,"
     " seed, recorded_at) VALUES (?1, ?2, ?3, ?4, NULLIF(?5, ''), NULLIF(?6, ''), NULLIF(?7, ''),"
@@ -328,14 +370,18 @@ constexpr const char* kFinishedTrials =
 // migrating them (table, export, plot): NULL for the columns it lacks.
 // The row's id first, for CheckedResultRow.
 constexpr const char* kSelectTrials[] = {
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, NULL FROM trials"
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL, NULL, NULL, NULL, NULL FROM trials"
     " ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file"
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL, NULL, NULL, NULL, NULL"
     " FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, NULL, NULL, NULL, NULL"
+    " FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file, NULL,"
+    " NULL, NULL FROM trials ORDER BY id",
+    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file,"
+    " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s FROM trials ORDER BY id",
 };
 static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
 #undef EARC_TRIAL_COLUMNS_V1
@@ -347,7 +393,8 @@ constexpr const char* kHasDatabase =
 // Those a file of any version must run; the inserts only the current
 // version can (older files are read-only: they were opened so).
 constexpr const char* kReadStatements[] = {kFinishedTrials, kSelectDatabases, kHasDatabase};
-constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase, kOtherPlannerArgs};
+constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase, kOtherPlannerArgs,
+                                            kFirstLightningSettings};
 
 struct ResultsDb::Impl {
   std::string path;
@@ -442,6 +489,20 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
                                             " (row id " + std::to_string(other.int64At(0)) + "); a trial run with " +
                                             (args.empty() ? "none" : args) +
                                             " is not added: a results file holds one set per method");
+    if (t.lightning) {
+      Statement first = impl_->prepare(kFirstLightningSettings);
+      if (first.step()) {
+        LightningSettings stored;
+        if (first.columnType(1) != SQLITE_NULL) stored.problems = static_cast<int>(first.int64At(1));
+        if (first.columnType(2) != SQLITE_NULL) stored.problems_per_robot = static_cast<int>(first.int64At(2));
+        stored.problem_time_limit_s = first.doubleAt(3);
+        if (const auto d = lightningSettingDifference(stored, *t.lightning))
+          throw InputError(impl_->path, "", "its lightning trials ran with " + d->option + " " + d->stored +
+                                                " (row id " + std::to_string(first.int64At(0)) +
+                                                "); a trial run with " + d->given +
+                                                " is not added: a results file holds one Lightning setting");
+      }
+    }
     Statement s = impl_->prepare(kInsertTrial);
     s.bind(1, t.suite).bind(2, t.robots).bind(3, t.method).bind(4, t.trial);
     s.bind(5, std::to_string(t.seed)).bind(6, t.time_limit_s);
@@ -463,6 +524,10 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     s.bind(23, std::string_view(t.bench_version));
     s.bind(24, std::string_view(args));
     s.bind(25, std::string_view(t.scenario_file));
+    const std::optional<LightningSettings>& l = t.lightning;
+    bindOpt(s, 26, l ? l->problems : std::nullopt);
+    bindOpt(s, 27, l ? l->problems_per_robot : std::nullopt);
+    bindOpt(s, 28, l ? std::optional<double>(l->problem_time_limit_s) : std::nullopt);
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -498,10 +563,19 @@ std::vector<TrialRecord> ResultsDb::trials() const {
   // Per method, its first row (index in out, id): every other row of it
   // ran with the same arguments.
   std::map<std::string, std::pair<std::size_t, std::int64_t>> first_of_method;
+  // The first lightning trial with Lightning settings (its settings, id).
+  std::optional<std::pair<LightningSettings, std::int64_t>> first_lightning;
   while (s.step()) {
     const CheckedResultRow row(s, impl_->path, "trials");
     out.push_back(readTrialRow(row));
     const TrialRecord& t = out.back();
+    if (t.lightning && !first_lightning) first_lightning.emplace(*t.lightning, s.int64At(0));
+    if (t.lightning) {
+      if (const auto d = lightningSettingDifference(first_lightning->first, *t.lightning))
+        row.bad(lightningColumn(d->option), row.value(lightningColumn(d->option)) + " beside " + d->stored +
+                                                " in row id " + std::to_string(first_lightning->second) +
+                                                ": a results file holds one Lightning setting");
+    }
     const auto [first, inserted] = first_of_method.emplace(t.method, std::pair{out.size() - 1, s.int64At(0)});
     const std::vector<std::string>& before = out[first->second.first].planner_args;
     if (inserted || before == t.planner_args) continue;
@@ -519,6 +593,13 @@ std::vector<DatabaseRecord> ResultsDb::databases() const {
   return out;
 }
 
+std::optional<LightningSettings> ResultsDb::lightningSettings() const {
+  // Every row was checked at open: the first that has them tells for all.
+  for (const TrialRecord& t : trials())
+    if (t.lightning) return t.lightning;
+  return std::nullopt;
+}
+
 std::optional<std::vector<std::string>> ResultsDb::plannerArgs(const std::string& method) const {
   // Every row was checked at open: the method's first tells for all.
   for (const TrialRecord& t : trials())
@@ -530,6 +611,28 @@ bool ResultsDb::hasDatabase(const std::string& method, const std::string& path) 
   Statement s = impl_->prepare(kHasDatabase);
   s.bind(1, method).bind(2, path);
   return s.step();
+}
+
+std::optional<LightningSettingDifference> lightningSettingDifference(const LightningSettings& stored,
+                                                                     const LightningSettings& given) {
+  // --lightning-problems, when either has it, decides the count alone.
+  const auto count = [](const LightningSettings& l) {
+    return l.problems ? std::to_string(*l.problems)
+                      : "none (" + std::to_string(l.problems_per_robot.value_or(0)) + " per robot)";
+  };
+  if (stored.problems != given.problems) return {{"--lightning-problems", count(stored), count(given)}};
+  if (!stored.problems && stored.problems_per_robot != given.problems_per_robot)
+    return {{"--lightning-problems-per-robot", std::to_string(stored.problems_per_robot.value_or(0)),
+             std::to_string(given.problems_per_robot.value_or(0))}};
+  if (stored.problem_time_limit_s != given.problem_time_limit_s) {
+    // Digits enough to tell the two apart.
+    const char* format = formatNumber(stored.problem_time_limit_s) == formatNumber(given.problem_time_limit_s)
+                             ? "%.17g"
+                             : "%.6g";
+    return {{"--lightning-problem-time-limit", formatNumber(format, stored.problem_time_limit_s),
+             formatNumber(format, given.problem_time_limit_s)}};
+  }
+  return std::nullopt;
 }
 
 std::string utcNow() { return utcTimeText(std::time(nullptr)); }

@@ -146,6 +146,7 @@ class Runner {
     plan_ = o.plan_program.empty() ? here + "/earc-plan" : o.plan_program;
     bench_ = o.bench_program.empty() ? here + "/earc-bench" : o.bench_program;
     requireSamePlannerArgs();
+    requireSameLightningSettings();
     requireSameFiles();
     for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
   }
@@ -260,6 +261,32 @@ class Runner {
                            ": a results file holds one set of planner arguments per method (give another "
                            "--results, or measure one against the other with earc-bench compare)");
     }
+  }
+
+  // How this run grows the Lightning databases, as its lightning trials
+  // record it.
+  LightningSettings lightningSettings() const {
+    LightningSettings l;
+    l.problems = o_.lightning_problems;
+    if (!l.problems) l.problems_per_robot = o_.lightning_problems_per_robot;
+    l.problem_time_limit_s = o_.lightning_problem_time_limit_s;
+    return l;
+  }
+
+  // The same for Lightning's databases: its trials grown from other
+  // problems, or under another limit per problem, are another experiment,
+  // and a resumed run would put them in the cells of the first. Files
+  // from before schema 7 (or without a lightning trial) have no settings
+  // to hold the run to.
+  void requireSameLightningSettings() const {
+    if (std::find(o_.methods.begin(), o_.methods.end(), "lightning") == o_.methods.end()) return;
+    const auto recorded = db_.lightningSettings();
+    if (!recorded) return;
+    if (const auto d = lightningSettingDifference(*recorded, lightningSettings()))
+      throw InputError(o_.results, d->option,
+                       "its lightning trials ran with " + d->stored + "; this run gives " + d->given +
+                           ": a results file holds one Lightning database setting (give the same, or another "
+                           "--results)");
   }
 
   // A scenario file's trials are numbered by the order the files were
@@ -616,6 +643,7 @@ class Runner {
     t.bench_version = earc::version();
     t.planner_args = argsOf(c.method);
     if (c.file) t.scenario_file = c.file->path;
+    if (c.method == "lightning") t.lightning = lightningSettings();
     const TrialSeeds seeds = seedsOf(c);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;

@@ -10,7 +10,7 @@ BUILD=$1
 BENCH="$BUILD/earc-bench"
 needPython
 needBuilt earc-bench earc-plan
-fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }
+failShowsOutput
 cd "$WORK" || exit 1
 
 # 400 problems of up to 2 s each: minutes of building, far more than the wait.

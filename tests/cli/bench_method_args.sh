@@ -17,7 +17,7 @@ SRC=$2
 BENCH="$BUILD/earc-bench"
 needPython
 needBuilt earc-bench earc-plan
-fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }
+failShowsOutput
 
 # The planner, logging the plan commands it is given.
 cat > "$WORK/logging-plan" <<FAKE
@@ -42,7 +42,7 @@ print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.arg
 "$PY" - "$WORK/r.sqlite" <<'PYEOF' || fail "results database"
 import sqlite3, sys
 con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
-assert con.execute("PRAGMA user_version").fetchone()[0] == 6
+assert con.execute("PRAGMA user_version").fetchone()[0] == 7
 rows = sorted(con.execute("SELECT method, trial, planner_args FROM trials"))
 assert rows == [("arc", 0, '["--window","4"]'), ("arc", 1, '["--window","4"]'),
                 ("prioritized", 0, None), ("prioritized", 1, None)], rows

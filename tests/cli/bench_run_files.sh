@@ -16,7 +16,7 @@ BUILD=$1
 BENCH="$BUILD/earc-bench"
 needPython
 needBuilt earc-bench earc-plan earc-db earc-scenario
-fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }
+failShowsOutput
 cd "$WORK" || exit 1
 
 for seed in 3 4; do

@@ -6,6 +6,9 @@ PY=/usr/bin/python3
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
+# Makes fail also show the last lines of $WORK/out and $WORK/err, where a
+# test leaves the output of the command it checks.
+failShowsOutput() { fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }; }
 # Skipped (77) without /usr/bin/python3.
 needPython() { [ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }; }
 # refusedInOneLine WANT PROGRAM ARGS...: FAIL unless PROGRAM exits 2 with

@@ -77,6 +77,9 @@ std::vector<std::string> lines(const std::string& path) {
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 7)
+    c.exec("ALTER TABLE trials DROP COLUMN lightning_problems; ALTER TABLE trials DROP COLUMN "
+           "lightning_problems_per_robot; ALTER TABLE trials DROP COLUMN lightning_problem_time_limit_s");
   if (version < 6) c.exec("ALTER TABLE trials DROP COLUMN scenario_file");
   if (version < 5) c.exec("ALTER TABLE trials DROP COLUMN planner_args");
   if (version < 4) c.exec("ALTER TABLE trials DROP COLUMN bench_version");
@@ -339,6 +342,106 @@ TEST_CASE("a results database records a scenario file trial's file, and reads an
   CHECK(all[2].scenario_file == "cell/c.json");
 }
 
+namespace {
+
+LightningSettings perRobotLightning(int per_robot, double time_limit_s) {
+  LightningSettings l;
+  l.problems_per_robot = per_robot;
+  l.problem_time_limit_s = time_limit_s;
+  return l;
+}
+
+TrialRecord lightningTrial(int t, const LightningSettings& settings) {
+  TrialRecord r = trial("lightning", t, true, 1.0);
+  r.lightning = settings;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a results database records each lightning trial's Lightning settings, and reads and migrates version 6 files") {
+  TempPath file("earc-results-lightning");
+  {
+    ResultsDb db(file.path);
+    CHECK_FALSE(db.lightningSettings().has_value());
+    CHECK(db.addTrial(trial("arc", 0, true, 1.5)));
+    CHECK_FALSE(db.lightningSettings().has_value());  // none of another method's
+    CHECK(db.addTrial(lightningTrial(0, perRobotLightning(4, 10))));
+    CHECK(db.lightningSettings() == perRobotLightning(4, 10));
+    const auto all = db.trials();
+    REQUIRE(all.size() == 2);
+    CHECK_FALSE(all[0].lightning.has_value());
+    CHECK(all[1].lightning == perRobotLightning(4, 10));
+  }
+  {
+    // As stored: one count, the time; NULL on another method's trial.
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    exp::Statement s = c.prepare(
+        "SELECT lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s FROM trials ORDER BY id");
+    REQUIRE(s.step());
+    for (int col : {0, 1, 2}) CHECK(s.columnType(col) == SQLITE_NULL);
+    REQUIRE(s.step());
+    CHECK(s.columnType(0) == SQLITE_NULL);
+    CHECK(s.int64At(1) == 4);
+    CHECK(s.doubleAt(2) == 10.0);
+  }
+  // A version 6 file, as an earlier earc-bench left it: read as it is,
+  // no trial with settings; migrated when opened for writing, and a
+  // lightning trial of any settings added beside the old ones, which
+  // hold it to nothing.
+  LightningSettings twenty;
+  twenty.problems = 20;
+  twenty.problem_time_limit_s = 2.5;
+  const auto all = readOldThenMigrate(
+      file.path, 6, [](const TrialRecord& t) { CHECK_FALSE(t.lightning.has_value()); }, lightningTrial(1, twenty));
+  REQUIRE(all.size() == 3);
+  CHECK_FALSE(all[1].lightning.has_value());
+  CHECK(all[2].lightning == twenty);
+  CHECK(ResultsDb(file.path, true).lightningSettings() == twenty);
+}
+
+TEST_CASE("Lightning settings differ in the first option that says so, each value as a run gives it") {
+  LightningSettings twenty;
+  twenty.problems = 20;
+  twenty.problem_time_limit_s = 10;
+  const auto says = [](const LightningSettings& a, const LightningSettings& b) {
+    const auto d = lightningSettingDifference(a, b);
+    return d ? d->option + ": " + d->stored + " / " + d->given : std::string("same");
+  };
+  CHECK(says(perRobotLightning(4, 10), perRobotLightning(4, 10)) == "same");
+  CHECK(says(perRobotLightning(4, 10), perRobotLightning(2, 10)) == "--lightning-problems-per-robot: 4 / 2");
+  CHECK(says(perRobotLightning(4, 10), perRobotLightning(4, 2.5)) == "--lightning-problem-time-limit: 10 / 2.5");
+  CHECK(says(perRobotLightning(4, 1.0000001), perRobotLightning(4, 1.0000002)) ==
+        "--lightning-problem-time-limit: 1.0000001000000001 / 1.0000001999999999");
+  CHECK(says(perRobotLightning(4, 10), twenty) == "--lightning-problems: none (4 per robot) / 20");
+  CHECK(says(twenty, perRobotLightning(4, 10)) == "--lightning-problems: 20 / none (4 per robot)");
+  LightningSettings eight = twenty;
+  eight.problems = 8;
+  CHECK(says(twenty, eight) == "--lightning-problems: 20 / 8");
+  eight.problems = 20;
+  eight.problem_time_limit_s = 1;
+  CHECK(says(twenty, eight) == "--lightning-problem-time-limit: 10 / 1");
+}
+
+TEST_CASE("a results file keeps one Lightning setting: a lightning trial run with another is not added") {
+  TempPath file("earc-results-lightning-one");
+  ResultsDb db(file.path);
+  CHECK(db.addTrial(lightningTrial(0, perRobotLightning(4, 10))));
+  CHECK_THROWS_WITH_AS(db.addTrial(lightningTrial(1, perRobotLightning(4, 2))),
+                       (file.path + ": its lightning trials ran with --lightning-problem-time-limit 10 (row id 1); "
+                                    "a trial run with 2 is not added: a results file holds one Lightning setting")
+                           .c_str(),
+                       InputError);
+  LightningSettings twenty;
+  twenty.problems = 20;
+  twenty.problem_time_limit_s = 10;
+  CHECK_THROWS_AS(db.addTrial(lightningTrial(1, twenty)), InputError);
+  // Other methods hold none; the same settings go on.
+  CHECK(db.addTrial(trial("arc", 1, true, 1.0)));
+  CHECK(db.addTrial(lightningTrial(1, perRobotLightning(4, 10))));
+  CHECK(db.trials().size() == 3);
+}
+
 TEST_CASE("a results file keeps one set of planner arguments per method: a trial run with another is not added") {
   TempPath file("earc-results-args-per-method");
   ResultsDb db(file.path);
@@ -484,6 +587,24 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
        "trials row id 1, column scenario_file: '' is not a path"},
       {"UPDATE trials SET suite = 'files', scenario_file = x'01' WHERE id = 1",
        "trials row id 1, column scenario_file: a blob is not text"},
+      {"UPDATE trials SET lightning_problems = 3 WHERE id = 1",
+       "trials row id 1, column lightning_problems: 3 beside method arc: only a lightning trial records Lightning "
+       "settings"},
+      {"UPDATE trials SET method = 'lightning', lightning_problem_time_limit_s = 5 WHERE id = 1",
+       "trials row id 1, column lightning_problems: NULL beside lightning_problems_per_robot NULL: a lightning trial "
+       "records one of them"},
+      {"UPDATE trials SET method = 'lightning', lightning_problems = 2, lightning_problems_per_robot = 4,"
+       " lightning_problem_time_limit_s = 5 WHERE id = 1",
+       "trials row id 1, column lightning_problems_per_robot: 4 beside lightning_problems 2: problems per robot are "
+       "for a run without a number of problems"},
+      {"UPDATE trials SET method = 'lightning', lightning_problems = 0, lightning_problem_time_limit_s = 5 WHERE id = 1",
+       "trials row id 1, column lightning_problems: 0 is not a number of problems (1 or more)"},
+      {"UPDATE trials SET method = 'lightning', lightning_problems_per_robot = 4 WHERE id = 1",
+       "trials row id 1, column lightning_problem_time_limit_s: NULL is not a number of seconds above 0"},
+      {"UPDATE trials SET method = 'lightning', lightning_problems_per_robot = 4, lightning_problem_time_limit_s = 5;"
+       " UPDATE trials SET lightning_problem_time_limit_s = 2 WHERE id = 2",
+       "trials row id 2, column lightning_problem_time_limit_s: 2 beside 5 in row id 1: a results file holds one "
+       "Lightning setting"},
       {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
       {"UPDATE databases SET robots = 1",
        "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},

@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 6, WAL) that trials are appended to as they finish, each in
+// user_version 7, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -31,6 +31,15 @@
 //   Version 6 adds trials.scenario_file: the path of a scenario file's
 //     trial (suite kFilesSuite) as earc-bench run was given it; NULL for
 //     a suite's trials, and for every trial recorded before it.
+//   Version 7 adds trials.lightning_problems,
+//     lightning_problems_per_robot and lightning_problem_time_limit_s:
+//     the run's options for growing the Lightning databases
+//     (--lightning-problems, else --lightning-problems-per-robot; and
+//     --lightning-problem-time-limit), on each lightning trial; NULL on
+//     other methods' trials and on every trial recorded before it. A run
+//     resumed with other ones is refused (runner.cpp), as is a lightning
+//     trial added beside others with other ones, so that no cell pools
+//     trials of differently grown databases.
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -61,6 +70,10 @@
 // (or NULL) in every row of a method:
 //   r.sqlite: trials row id 7, column planner_args: '["--db-k=5"]' beside
 //   no planner arguments for method earc in row id 1: ...
+// and the Lightning settings NULL, or on a lightning trial a positive time
+// and one positive count (lightning_problems or
+// lightning_problems_per_robot), the same in every lightning trial that
+// has them.
 #pragma once
 
 #include <cstdint>
@@ -74,13 +87,31 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 6;
+inline constexpr int kResultsSchemaVersion = 7;
 // A solution may report a planning time this much over its time limit
 // (the planners poll their deadline) and still count as solved; later than
 // that it is "solved after the time limit", a failure.
 inline constexpr double kSolvedTimeLimitSlack = 1.01;
 // The most robots a run or lightning-db plans for (lightning-db --robots).
 inline constexpr int kMaxResultsRobots = 128;
+
+// How a run grows its Lightning databases (run --lightning-problems,
+// --lightning-problems-per-robot, --lightning-problem-time-limit): one of
+// the counts is set.
+struct LightningSettings {
+  std::optional<int> problems;            // this many, whatever the robot count
+  std::optional<int> problems_per_robot;  // else this many per robot
+  double problem_time_limit_s = 0;
+  bool operator==(const LightningSettings&) const = default;
+};
+
+// The first option in which two settings differ, with each one's value as
+// messages give it ("none (4 per robot)" for --lightning-problems unset).
+struct LightningSettingDifference {
+  std::string option, stored, given;
+};
+std::optional<LightningSettingDifference> lightningSettingDifference(const LightningSettings& stored,
+                                                                     const LightningSettings& given);
 
 struct TrialRecord {
   std::string suite;
@@ -109,6 +140,9 @@ struct TrialRecord {
   // The scenario file of a kFilesSuite trial, as given to the run; ""
   // for a suite's trial (and every trial before schema 6).
   std::string scenario_file;
+  // A lightning trial's: how its run grew the Lightning databases; unset
+  // for other methods (and every trial before schema 7).
+  std::optional<LightningSettings> lightning;
 };
 
 struct DatabaseRecord {
@@ -153,6 +187,9 @@ class ResultsDb {
   // The planner arguments the file's trials of `method` ran with; nothing
   // when it has none of them.
   std::optional<std::vector<std::string>> plannerArgs(const std::string& method) const;
+  // The Lightning settings the file's lightning trials ran with; nothing
+  // when none of them recorded any (none yet, or all before schema 7).
+  std::optional<LightningSettings> lightningSettings() const;
   std::vector<TrialRecord> trials() const;
   std::vector<DatabaseRecord> databases() const;
   bool hasDatabase(const std::string& method, const std::string& path) const;

@@ -1,0 +1,78 @@
+#!/bin/bash
+# label: bench
+# earc-bench run records on each lightning trial how the run grows the
+# Lightning databases (--lightning-problems, else
+# --lightning-problems-per-robot, and --lightning-problem-time-limit;
+# results schema 7). A run resumed into the same --results with other ones
+# is refused before anything runs, in one line naming the option, the
+# recorded and the given value (exit 2), where it would pool trials of
+# differently grown databases in one cell; the same ones resume. A file
+# from before schema 7 records none, and resumes with any. Skipped (77)
+# without /usr/bin/python3.
+set -u
+BUILD=$1
+. "$(dirname "$0")/common.bash"
+BENCH="$BUILD/earc-bench"
+needPython
+needBuilt earc-bench earc-plan
+failShowsOutput
+cd "$WORK" || exit 1
+count() { "$PY" -c 'import sqlite3, sys
+print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.argv[2]).fetchone()[0])' "$@"; }
+
+RUN=(run --suites mobile --robots 2 --methods arc,lightning --trials 1 --time-limit 5 --seed 3)
+LIGHTNING=(--lightning-problems 2 --lightning-problem-time-limit 1)
+"$BENCH" "${RUN[@]}" "${LIGHTNING[@]}" --results r.sqlite > out 2> err || fail "run exited $?"
+[ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "not 2 trials"
+[ "$(count r.sqlite "SELECT lightning_problems || ' ' || ifnull(lightning_problems_per_robot, 'NULL') || ' ' ||
+     lightning_problem_time_limit_s FROM trials WHERE method = 'lightning'")" = "2 NULL 1.0" ] ||
+  fail "the lightning trial does not record its settings"
+[ "$(count r.sqlite "SELECT count(*) FROM trials WHERE method = 'arc' AND (lightning_problems IS NOT NULL OR
+     lightning_problems_per_robot IS NOT NULL OR lightning_problem_time_limit_s IS NOT NULL)")" -eq 0 ] ||
+  fail "an arc trial records Lightning settings"
+
+# The same settings: nothing to run. Others: refused, nothing run or recorded.
+"$BENCH" "${RUN[@]}" "${LIGHTNING[@]}" --results r.sqlite > out 2> err || fail "resumed with the same: exit $?"
+grep -q "^nothing to run" out || fail "resumed with the same settings ran trials"
+tail=": a results file holds one Lightning database setting (give the same, or another --results)"
+refusedInOneLine "r.sqlite: --lightning-problem-time-limit: its lightning trials ran with 1; this run gives 3$tail" \
+  "$BENCH" "${RUN[@]}" --lightning-problems 2 --lightning-problem-time-limit 3 --results r.sqlite
+refusedInOneLine "r.sqlite: --lightning-problems: its lightning trials ran with 2; this run gives 5$tail" \
+  "$BENCH" "${RUN[@]}" --lightning-problems 5 --lightning-problem-time-limit 1 --results r.sqlite
+refusedInOneLine "r.sqlite: --lightning-problems: its lightning trials ran with 2; this run gives none (4 per robot)$tail" \
+  "$BENCH" "${RUN[@]}" --lightning-problem-time-limit 1 --results r.sqlite
+# More trials with other settings would have been run: still refused.
+refusedInOneLine "r.sqlite: --lightning-problem-time-limit: its lightning trials ran with 1; this run gives 2" \
+  "$BENCH" run --suites mobile --robots 2 --methods arc,lightning --trials 2 --time-limit 5 --seed 3 \
+  --lightning-problems 2 --lightning-problem-time-limit 2 --results r.sqlite
+[ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "a refused resume recorded trials"
+# A run without lightning is not held to them.
+"$BENCH" run --suites mobile --robots 2 --methods arc --trials 1 --time-limit 5 --seed 3 \
+  --lightning-problem-time-limit 3 --results r.sqlite > out 2> err || fail "arc alone, other settings: exit $?"
+
+# Per robot: recorded as such, and held to.
+"$BENCH" "${RUN[@]}" --lightning-problems-per-robot 1 --lightning-problem-time-limit 1 --results p.sqlite \
+  > out 2> err || fail "run per robot exited $?"
+[ "$(count p.sqlite "SELECT ifnull(lightning_problems, 'NULL') || ' ' || lightning_problems_per_robot FROM trials
+     WHERE method = 'lightning'")" = "NULL 1" ] || fail "the per-robot count is not recorded"
+refusedInOneLine "p.sqlite: --lightning-problems-per-robot: its lightning trials ran with 1; this run gives 2$tail" \
+  "$BENCH" "${RUN[@]}" --lightning-problems-per-robot 2 --lightning-problem-time-limit 1 --results p.sqlite
+
+# A version 6 file (no settings recorded): resumed with any settings, and
+# migrated; its old lightning trial holds the run to nothing.
+"$PY" - <<'PY' || fail "could not make a version 6 file"
+import sqlite3
+src, dst = sqlite3.connect("r.sqlite"), sqlite3.connect("old.sqlite")
+src.backup(dst)
+for column in ("lightning_problems", "lightning_problems_per_robot", "lightning_problem_time_limit_s"):
+    dst.execute("ALTER TABLE trials DROP COLUMN %s" % column)
+dst.execute("PRAGMA user_version = 6")
+dst.commit()
+PY
+"$BENCH" "${RUN[@]}" --lightning-problem-time-limit 3 --results old.sqlite --work-dir r.sqlite.work > out 2> err ||
+  fail "a version 6 file resumed with other settings: exit $?"
+grep -q "^nothing to run" out || fail "the version 6 file's trials were not skipped"
+[ "$(count old.sqlite "PRAGMA user_version")" -eq 7 ] || fail "the version 6 file was not migrated"
+[ "$(count old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
+  fail "the old trials gained settings"
+echo "ok: Lightning settings are recorded per trial and a resumed run is held to them"
