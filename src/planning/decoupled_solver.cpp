@@ -381,7 +381,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     max_expansions = std::min(max_expansions, static_cast<std::size_t>(static_cast<double>(
                                                   settings_.expansions_per_horizon_step * horizon) * ctx.budget_scale));
   std::vector<MovingObstacle> others;
-  if (settings_.avoid_others) others = nearbyRobots(ctx, horizon);
+  if (settings_.avoid_others && !ctx.ignore_others) others = nearbyRobots(ctx, horizon);
 
   std::vector<std::vector<std::size_t>> orders;
   std::vector<std::size_t> order(n);

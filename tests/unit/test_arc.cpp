@@ -372,6 +372,32 @@ TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budge
   CHECK(DecoupledSolver(tight).solve(ctx).solution.has_value());
 }
 
+TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through one that walls its group in") {
+  // ARC's retries of a whole problem do so every other time: the robot in
+  // the way then meets the answer as a conflict of its own.
+  CrossingFixture f;
+  std::vector<Path> paths = f.paths;
+  Path parked(3);  // robot b at rest across a's way for good
+  for (int t = 0; t <= 80; ++t) {
+    const double q[3] = {5, 5, 0};
+    parked.push(q);
+  }
+  paths[1] = parked;
+  PlannerSettings settings;
+  settings.initial_window = 16;
+  settings.region_margin = 0.2;  // too narrow a region to pass b
+  Subproblem sub = createSubproblem(f.c, {0}, 0, f.m.raw, paths, f.world, settings);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
+  SolverContext ctx{f.world, f.m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  const SolverOutcome avoiding = DecoupledSolver().solve(ctx);
+  CHECK_FALSE(avoiding.solution.has_value());
+  ctx.ignore_others = true;
+  const SolverOutcome ignoring = DecoupledSolver().solve(ctx);
+  REQUIRE(ignoring.solution.has_value());
+  const std::vector<MovingObstacle> b{{f.m.raw[1], &paths[1], sub.t_start, 1}};
+  CHECK_FALSE(clearOfMoving(*f.m.raw[0], ignoring.solution->paths[0], b));
+}
+
 TEST_CASE("Splicing replaces the window and shifts the rest of the path in time") {
   Path p = line({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {4, 0, 0}});
   std::vector<Path> paths{p};
@@ -505,6 +531,40 @@ TEST_CASE("A solver answering with the wrong number of paths is a named error, n
   CHECK_THROWS_WITH_AS(runArc(s, settings, std::move(hierarchy)),
                        doctest::Contains("solver 'one-path' answered a subproblem of 2 robots with 1 paths"),
                        std::logic_error);
+}
+
+TEST_CASE("ARC's retries beyond the last level ignore the robots outside the group every other time") {
+  // A solver that records what each attempt was told, and solves only when
+  // told to ignore the other robots (as a group walled in by them would).
+  struct Recorder : SubproblemSolver {
+    std::vector<std::pair<bool, bool>>* seen;  // (whole problem, ignore others) per attempt
+    explicit Recorder(std::vector<std::pair<bool, bool>>* s) : seen(s) {}
+    const char* name() const override { return "recorder"; }
+    SolverOutcome solve(SolverContext& ctx) override {
+      seen->emplace_back(ctx.sub.whole_problem, ctx.ignore_others);
+      if (!ctx.ignore_others) return {std::nullopt, name(), -1};
+      return DecoupledSolver().solve(ctx);
+    }
+  };
+  Scenario s = openScenario(6);
+  s.robots = {disc("w", 0.3, {1, 3, 0}, {5, 3, 0}), disc("e", 0.3, {5, 3, 3.14}, {1, 3, 0}),
+              disc("n", 0.3, {0.5, 5.5, 0}, {0.6, 5.5, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 20;
+  settings.max_expansions = 2;
+  settings.initial_window = 64;  // the window spans the paths: level 2 is the whole problem
+  std::vector<std::pair<bool, bool>> seen;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+  hierarchy.push_back(std::make_unique<Recorder>(&seen));
+  PlanResult r = runArc(s, settings, std::move(hierarchy));
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(s, r.solution).valid);
+  // Levels 0 to 2 (the last a whole problem) without ignoring, the first
+  // retry beyond them ignoring, and solved there.
+  REQUIRE(seen.size() >= 4);
+  for (std::size_t i = 0; i + 1 < seen.size(); ++i) CHECK_FALSE(seen[i].second);
+  CHECK(seen.back().first);
+  CHECK(seen.back().second);
 }
 
 TEST_CASE("ARC plans two facing arms whose straight motions collide, and the solution validates") {

@@ -71,6 +71,9 @@ struct SolverContext {
   // the whole problem the solvers get ever more of the remaining time
   // instead of the same short tries.
   double budget_scale = 1.0;
+  // Plan as if the robots outside the subproblem were not there: they
+  // meet its answer as later conflicts, and are replanned then.
+  bool ignore_others = false;
 };
 
 struct SolverOutcome {
