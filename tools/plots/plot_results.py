@@ -5,7 +5,9 @@
         [--seed S] [--time-limit S]
 
 Writes, per suite, time_<suite> (median planning time of solved trials
-against robot count per method, the band spanning the quartiles, log scale)
+against robot count per method, the band spanning the quartiles, log scale;
+a cell where some trials failed drawn hollow and labelled "k/n", one where
+all failed an x on the time limit's dotted line)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
 that serves every robot count, like E-ARC's, is a horizontal line).
@@ -274,24 +276,57 @@ def experiments(trials):
     return out
 
 
+def time_cells(rows, method):
+    """One method's cells of a time figure, by robot count: (robots, solved
+    trials, trials, (q1, median, q3) of the solved trials' planning times or
+    None when none solved)."""
+    cells = []
+    for n in sorted({t.robots for t in rows if t.method == method}):
+        cell = [t for t in rows if t.method == method and t.robots == n]
+        times = [t.planning_time for t in cell if t.success and t.planning_time is not None]
+        quartiles = tuple(float(q) for q in np.percentile(times, [25, 50, 75])) if times else None
+        cells.append((n, len(times), len(cell), quartiles))
+    return cells
+
+
 def plot_times(rows, name, title, out):
+    """The median over the solved trials only would understate a method
+    that failed some: a cell where not every trial solved is drawn hollow
+    and labelled "k/n", one where none solved is an x on the time limit's
+    line."""
     fig, ax = plt.subplots(figsize=(6, 4))
-    drawn = False
+    limit = max(t.time_limit for t in rows)
+    drawn = partial = unsolved = False
     for method in ordered({t.method for t in rows}, METHODS):
-        xs, med, lo, hi = [], [], [], []
-        for n in sorted({t.robots for t in rows if t.method == method}):
-            times = [t.planning_time for t in rows
-                     if t.method == method and t.robots == n and t.success and t.planning_time is not None]
-            if not times:
-                continue
-            q1, q2, q3 = np.percentile(times, [25, 50, 75])
-            xs.append(n), med.append(max(q2, 1e-4)), lo.append(max(q1, 1e-4)), hi.append(max(q3, 1e-4))
-        if not xs:
-            continue
         color = COLORS.get(method)
-        ax.plot(xs, med, marker="o", label=label(method, rows), color=color)
-        ax.fill_between(xs, lo, hi, alpha=0.2, color=color)
-        drawn = True
+        cells = time_cells(rows, method)
+        solved = [(n, k, total, q) for n, k, total, q in cells if q]
+        if solved:
+            xs = [n for n, _, _, _ in solved]
+            lo, med, hi = ([max(q[i], 1e-4) for _, _, _, q in solved] for i in range(3))
+            ax.plot(xs, med, marker="o", label=label(method, rows), color=color)
+            ax.fill_between(xs, lo, hi, alpha=0.2, color=color)
+            drawn = True
+        for n, k, total, q in cells:
+            if k == total:
+                continue
+            y = max(q[1], 1e-4) if q else limit
+            if q:
+                ax.plot([n], [y], marker="o", markerfacecolor="white", markeredgecolor=color, color=color)
+                partial = True
+            else:
+                ax.plot([n], [y], marker="x", markersize=8, color=color, linestyle="none")
+                unsolved = True
+            # Left of the point at the last robot count, so as not to run off the axes.
+            last = n == max(t.robots for t in rows)
+            ax.annotate("%d/%d" % (k, total), (n, y), textcoords="offset points", xytext=(-6 if last else 6, 4),
+                        ha="right" if last else "left", fontsize="x-small", color=color)
+    ax.axhline(limit, color="0.4", linestyle=":", linewidth=1, label="time limit %g s" % limit)
+    if partial:
+        ax.plot([], [], marker="o", markerfacecolor="white", markeredgecolor="0.3", color="0.3", linestyle="none",
+                label="k/n: k of n trials solved")
+    if unsolved:
+        ax.plot([], [], marker="x", color="0.3", linestyle="none", label="none solved")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     counts = sorted({t.robots for t in rows})
@@ -300,10 +335,14 @@ def plot_times(rows, name, title, out):
         ax.set_xticklabels([str(n) for n in counts])
     ax.set_xlabel("robots")
     ax.set_ylabel("planning time of solved trials (s)")
-    ax.set_title("%s: median and quartiles" % title)
+    trials = sorted({total for method in {t.method for t in rows} for _, _, total, _ in time_cells(rows, method)})
+    note = "%s trials per cell" % "/".join(str(n) for n in trials)
+    if "time limit" not in title:  # a suite under several limits has it in its title
+        note += ", time limit %g s" % limit
+    ax.set_title("%s: median and quartiles\n(%s)" % (title, note), fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
-    if drawn:
-        ax.legend()
+    if drawn or partial or unsolved:
+        ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.0, 1.0))
     return save(fig, out, "time_%s" % name)
 
 
