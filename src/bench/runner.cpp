@@ -33,6 +33,7 @@
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/planning/database_solver.hpp"
+#include "earc/scene/solution.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
 #include "earc/util/version.hpp"
@@ -614,14 +615,8 @@ class Runner {
                                                         : num("db_hits");
     if (t.db_hits && *t.db_hits < 0) t.db_hits.reset();
     if (!solved && st.contains("failure")) {
-      const auto& f = st["failure"];
-      if (f.is_array()) {
-        std::string why;
-        for (const auto& x : f) why += (why.empty() ? "" : ",") + (x.is_string() ? x.get<std::string>() : x.dump());
-        t.failure = "not solved: " + (why.empty() ? std::string("no reason given") : why);
-      } else {
-        t.failure = "not solved: " + (f.is_string() ? f.get<std::string>() : f.dump());
-      }
+      const std::string why = failureReasons(st);
+      t.failure = "not solved: " + (why.empty() ? std::string("no reason given") : why);
       // What was wrong with a result the planner refused (the validator's
       // violations, or Lightning's own motion check).
       if (st.contains("invalid_result") && st["invalid_result"].is_array() && !st["invalid_result"].empty() &&

@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <ostream>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/format.hpp"
@@ -35,22 +38,24 @@ std::string num(double v) {
   return s;
 }
 
-// Well-separated colours: hues a golden angle apart, as #rrggbb.
+// One colour per robot: 20 colours chosen greedily, each as far as it can
+// be (CIELAB) from those before it, from obstacle grey and from white:
+// any two of them differ by a CIELAB distance of 33 or more, and two in a
+// row by 43 or more, so a 21st robot repeats the first colour but next
+// to neighbours of other colours. (Hues a golden angle apart made robots
+// 6 and 14 both green, 7 apart.) tools/viewer/viewer.js has the same list.
 std::string robotColour(std::size_t i) {
-  const double h = std::fmod(static_cast<double>(i) * 137.50776405, 360.0) / 60.0;
-  const double s = 0.7, l = i % 2 == 0 ? 0.42 : 0.55;
-  const double c = (1.0 - std::abs(2.0 * l - 1.0)) * s;
-  const double x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
-  double rgb[3] = {0, 0, 0};
-  const int sector = static_cast<int>(h) % 6;
-  const int order[6][3] = {{0, 1, 2}, {1, 0, 2}, {2, 0, 1}, {2, 1, 0}, {1, 2, 0}, {0, 2, 1}};
-  const double parts[3] = {c, x, 0.0};
-  for (int k = 0; k < 3; ++k) rgb[k] = parts[order[sector][k]];
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", static_cast<int>(std::lround((rgb[0] + l - c / 2) * 255)),
-                static_cast<int>(std::lround((rgb[1] + l - c / 2) * 255)),
-                static_cast<int>(std::lround((rgb[2] + l - c / 2) * 255)));
-  return buf;
+  static const char* const kPalette[] = {"#d62728", "#0000ff", "#00b400", "#ff00c3", "#0069e1", "#c39600", "#0fb487",
+                                         "#961e5a", "#3c5a00", "#00a5e1", "#7800b4", "#783c0f", "#d287e1", "#f08787",
+                                         "#ff0078", "#ff7800", "#5a4b87", "#e100ff", "#87a500", "#b4965a"};
+  return kPalette[i % std::size(kPalette)];
+}
+
+// Roughly how wide a line of text is drawn: a sans-serif glyph averages
+// about 0.6 of the font size (a code point, not a byte, is a glyph).
+double textWidth(std::string_view text, double font_px) {
+  const auto glyphs = std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; });
+  return static_cast<double>(glyphs) * 0.6 * font_px;
 }
 
 double segmentDistance(geo::Vec2 p, geo::Vec2 a, geo::Vec2 b) {
@@ -211,6 +216,21 @@ std::string polyline(const RobotModel& m, const Path& path, const View& v, doubl
   return line.str();
 }
 
+constexpr double kGoalFontPx = 8.5;
+
+// `text` centred on `at` (its baseline), on a white halo, moved as little
+// as needed to lie inside the panel's padding.
+void writeLabel(std::ostream& out, const View& v, const std::string& text, geo::Vec2 at, double font_px,
+                const char* fill) {
+  const double w = textWidth(text, font_px), right = 2.0 * v.left + v.width();
+  const double x = std::max(2.0, std::min(at.x - w / 2, right - 2.0 - w));
+  const double y = std::clamp(at.y, v.top + font_px, v.top + v.height() - 2.0);
+  out << "<text class=\"label\" x=\"" << num(x) << "\" y=\"" << num(y) << "\"";
+  if (font_px != kFontPx) out << " font-size=\"" << num(font_px) << '"';
+  out << " fill=\"" << fill << "\" stroke=\"#fff\" stroke-width=\"2.5\" stroke-linejoin=\"round\" "
+      << "paint-order=\"stroke\">" << xmlText(text) << "</text>";
+}
+
 // One robot's group in one panel: its path, goal (outlined), start (solid,
 // faded when a step is drawn), its pose at *step if given, and its name.
 void writeRobot(std::ostream& out, const View& v, const RobotModel& m, std::size_t index, const std::string& polyline,
@@ -230,11 +250,115 @@ void writeRobot(std::ostream& out, const View& v, const RobotModel& m, std::size
     writePose(out, v, m, now, true, 1.0);
   }
   if (labels) {
-    const geo::Vec2 c = v(m.boundingCenter(now));
-    out << "<text x=\"" << num(c.x) << "\" y=\"" << num(c.y - 4.0) << "\" stroke=\"none\" fill=\"#000\">"
-        << xmlText(r.name) << "</text>";
+    // The name above the robot (an arm: above its base), its goal's small
+    // below the goal, each on a white halo so that it reads over dark
+    // paint, and moved inside the panel near its edges.
+    const double body = m.isMobile() ? m.boundingRadius() * v.scale : 0.0;
+    writeLabel(out, v, r.name, v(m.boundingCenter(now)) - geo::Vec2{0, body + 3.0}, kFontPx, "#000");
+    writeLabel(out, v, r.name, v(m.boundingCenter(r.goal.data())) + geo::Vec2{0, body + kGoalFontPx + 1.0},
+               kGoalFontPx, "#333");
   }
   out << "\n</g>\n";
+}
+
+// Items of the given widths laid out in rows no wider than `width`, `gap`
+// apart: each row's item indices. An item wider than the width has a row
+// of its own.
+std::vector<std::vector<std::size_t>> flowRows(const std::vector<double>& widths, double gap, double width) {
+  std::vector<std::vector<std::size_t>> rows;
+  double used = 0.0;
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    if (rows.empty() || used + gap + widths[i] > width) {
+      rows.emplace_back();
+      used = -gap;
+    }
+    rows.back().push_back(i);
+    used += gap + widths[i];
+  }
+  return rows;
+}
+
+const char* const kFactGap = " \u00b7 ";  // between the facts of a line: spaces alone collapse to one
+
+// What the solution file says, one fact each: method, solved or why not,
+// makespan, sum of costs, planning time. A fact marked true is a failure.
+std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
+  std::vector<std::pair<std::string, bool>> facts;
+  if (!sol.method.empty()) facts.emplace_back("method " + sol.method, false);
+  if (sol.solved) {
+    facts.emplace_back("solved", false);
+  } else {
+    const std::string why = failureReasons(sol.stats);
+    facts.emplace_back("not solved" + (why.empty() ? std::string() : ": " + why), true);
+  }
+  if (sol.hasPaths()) {
+    facts.emplace_back("makespan " + std::to_string(sol.makespan()) + " steps", false);
+    facts.emplace_back("sum of costs " + std::to_string(sol.sumOfCosts()), false);
+  } else {
+    facts.emplace_back("no paths: robots at their starts", true);
+  }
+  if (sol.stats.is_object() && sol.stats.contains("planning_time_s") && sol.stats["planning_time_s"].is_number())
+    facts.emplace_back("planned in " + formatNumber("%.3g", sol.stats["planning_time_s"].get<double>()) + " s", false);
+  return facts;
+}
+
+constexpr double kSubtitleFontPx = kFontPx + 1;
+constexpr double kSubtitleLinePx = 15.0;
+constexpr double kKeyRowPx = 16.0;
+constexpr double kKeyGlyphPx = 14.0;
+
+// The key's entries: what each mark of the picture means.
+enum class KeyMark { Start, Now, FadedStart, Goal, Path, Heading, Joint };
+
+std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool paths, bool timed) {
+  std::vector<std::pair<KeyMark, std::string>> keys;
+  if (sc.robots.empty()) return keys;
+  auto isMobile = [](const RobotSpec& r) { return r.kind == RobotKind::Mobile; };
+  const bool mobile = std::any_of(sc.robots.begin(), sc.robots.end(), isMobile);
+  const bool arms = !std::all_of(sc.robots.begin(), sc.robots.end(), isMobile);
+  if (timed) {
+    keys.emplace_back(KeyMark::Now, "robot at t");
+    keys.emplace_back(KeyMark::FadedStart, "start");
+  } else {
+    keys.emplace_back(KeyMark::Start, "start");
+  }
+  keys.emplace_back(KeyMark::Goal, "goal");
+  if (paths) keys.emplace_back(KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip");
+  if (mobile) keys.emplace_back(KeyMark::Heading, "heading");
+  if (arms) keys.emplace_back(KeyMark::Joint, "base and joints");
+  return keys;
+}
+
+// One key mark, kKeyGlyphPx wide, its middle at (x, y).
+void writeKeyMark(std::ostream& out, KeyMark mark, double x, double y) {
+  const double w = kKeyGlyphPx, h = 9.0, top = y - h / 2;
+  const std::string box = "<rect x=\"" + num(x) + "\" y=\"" + num(top) + "\" width=\"" + num(w) + "\" height=\"" +
+                          num(h) + "\" ";
+  const std::string solid = "fill=\"#999\" stroke=\"#222\" stroke-width=\"" + num(0.6 * kOutlinePx) + "\"";
+  switch (mark) {
+    case KeyMark::Start:
+    case KeyMark::Now:
+      out << box << solid << "/>";
+      break;
+    case KeyMark::FadedStart:
+      out << box << solid << opacityAttribute(kFadedOpacity) << "/>";
+      break;
+    case KeyMark::Goal:
+      out << box << "fill=\"none\" stroke=\"#555\" stroke-width=\"" << num(kOutlinePx) << "\" stroke-dasharray=\"3,2\"/>";
+      break;
+    case KeyMark::Path:
+      out << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w) << "\" y2=\"" << num(y)
+          << "\" stroke=\"#555\" stroke-width=\"" << num(kPathStrokePx) << "\"/>";
+      break;
+    case KeyMark::Heading:
+      out << box << solid << "/><line x1=\"" << num(x + w / 2) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w)
+          << "\" y2=\"" << num(y) << "\" stroke=\"#222\" stroke-width=\"" << num(kOutlinePx) << "\"/>";
+      break;
+    case KeyMark::Joint:
+      out << "<circle cx=\"" << num(x + 4) << "\" cy=\"" << num(y) << "\" r=\"3\" fill=\"#222\"/><circle cx=\""
+          << num(x + 11) << "\" cy=\"" << num(y) << "\" r=\"1.5\" fill=\"#222\"/>";
+      break;
+  }
 }
 
 std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o) {
@@ -242,29 +366,56 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   std::vector<std::size_t> steps = sol ? o.steps : std::vector<std::size_t>{};
   const bool timed = !steps.empty();
   if (!timed) steps.push_back(0);
+  const double total_w = static_cast<double>(steps.size()) * (o.panel_width_px + kPanelGapPx) - kPanelGapPx;
+  const double text_w = total_w - 2.0 * kPaddingPx;
+
+  // A plan's facts under the panel titles, as many lines as they need.
+  const auto facts = sol ? solutionFacts(*sol) : std::vector<std::pair<std::string, bool>>{};
+  std::vector<double> fact_w;
+  for (const auto& f : facts) fact_w.push_back(textWidth(f.first, kSubtitleFontPx));
+  const auto fact_rows = flowRows(fact_w, textWidth(kFactGap, kSubtitleFontPx), text_w);
 
   View v;
   v.world = sc.workspace;
   v.scale = (o.panel_width_px - 2.0 * kPaddingPx) / (sc.workspace.hi.x - sc.workspace.lo.x);
   v.left = kPaddingPx;  // in panel coordinates: each panel is translated into place
-  v.top = kTitlePx + kPaddingPx;
-  const double panel_h = v.top + v.height() + kPaddingPx;
-  const double total_w = static_cast<double>(steps.size()) * (o.panel_width_px + kPanelGapPx) - kPanelGapPx;
+  v.top = kTitlePx + static_cast<double>(fact_rows.size()) * kSubtitleLinePx + kPaddingPx;
   const std::vector<const Path*> paths = sol ? pathsByRobot(sc, *sol) : std::vector<const Path*>(sc.robots.size());
   std::vector<std::string> polylines(sc.robots.size());  // the same in every panel
   for (std::size_t i = 0; i < sc.robots.size(); ++i)
     if (paths[i]) polylines[i] = polyline(*models[i], *paths[i], v, o.tolerance_px);
+
+  // The key below the drawing, never over it.
+  const auto keys = keyEntries(sc, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed);
+  std::vector<double> key_w;
+  for (const auto& k : keys) key_w.push_back(kKeyGlyphPx + 4.0 + textWidth(k.second, kFontPx));
+  const auto key_rows = flowRows(key_w, 14.0, text_w);
+  const double key_top = v.top + v.height() + 8.0;
+  const double panel_h = key_top + static_cast<double>(key_rows.size()) * kKeyRowPx + kPaddingPx - 8.0;
 
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(total_w) << "\" height=\"" << num(panel_h)
       << "\" viewBox=\"0 0 " << num(total_w) << ' ' << num(panel_h) << "\" font-family=\"sans-serif\" font-size=\""
       << num(kFontPx) << "\">\n<title>" << xmlText(sc.name) << "</title>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  for (std::size_t r = 0; r < fact_rows.size(); ++r) {
+    out << "<text class=\"facts\" x=\"" << num(kPaddingPx) << "\" y=\"" << num(kTitlePx - 6.0 + kSubtitleLinePx * (r + 1.0))
+        << "\" font-size=\"" << num(kSubtitleFontPx) << "\" fill=\"#444\">";
+    for (std::size_t k = 0; k < fact_rows[r].size(); ++k) {
+      const auto& [text, failure] = facts[fact_rows[r][k]];
+      if (k) out << kFactGap;
+      if (failure)
+        out << "<tspan font-weight=\"bold\" fill=\"#c00\">" << xmlText(text) << "</tspan>";
+      else
+        out << xmlText(text);
+    }
+    out << "</text>\n";
+  }
   for (std::size_t k = 0; k < steps.size(); ++k) {
     out << "<g class=\"panel\" transform=\"translate(" << num(static_cast<double>(k) * (o.panel_width_px + kPanelGapPx))
         << ",0)\">\n<text x=\"" << num(v.left) << "\" y=\"" << num(kTitlePx - 6.0) << "\" font-size=\""
         << num(kFontPx + 3) << "\">" << xmlText(sc.name);
-    if (timed) out << "  t = " << steps[k];
+    if (timed) out << kFactGap << "t = " << steps[k] << " of " << sol->makespan();
     out << "</text>\n<rect class=\"workspace\" x=\"" << num(v.left) << "\" y=\"" << num(v.top) << "\" width=\""
         << num(v.width()) << "\" height=\"" << num(v.height()) << "\" fill=\"#fafafa\" stroke=\"#000\" stroke-width=\""
         << num(kOutlinePx) << "\"/>\n";
@@ -279,6 +430,20 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
     }
     for (std::size_t i = 0; i < sc.robots.size(); ++i)
       writeRobot(out, v, *models[i], i, polylines[i], paths[i], timed ? &steps[k] : nullptr, o.labels);
+    out << "</g>\n";
+  }
+  if (!keys.empty()) {
+    out << "<g class=\"key\" fill=\"#222\">\n";
+    for (std::size_t r = 0; r < key_rows.size(); ++r) {
+      const double y = key_top + kKeyRowPx * (r + 0.5);
+      double x = kPaddingPx;
+      for (std::size_t k : key_rows[r]) {
+        writeKeyMark(out, keys[k].first, x, y);
+        out << "<text x=\"" << num(x + kKeyGlyphPx + 4.0) << "\" y=\"" << num(y + 4.0) << "\">" << keys[k].second
+            << "</text>\n";
+        x += key_w[k] + 14.0;
+      }
+    }
     out << "</g>\n";
   }
   out << "</svg>\n";

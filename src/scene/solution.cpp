@@ -25,4 +25,18 @@ std::size_t Solution::sumOfCosts() const {
   return sum;
 }
 
+bool Solution::hasPaths() const {
+  return std::any_of(paths.begin(), paths.end(), [](const Path& p) { return !p.empty(); });
+}
+
+std::string failureReasons(const nlohmann::json& stats) {
+  if (!stats.is_object() || !stats.contains("failure")) return "";
+  const auto& f = stats["failure"];
+  auto text = [](const nlohmann::json& x) { return x.is_string() ? x.get<std::string>() : x.dump(); };
+  if (!f.is_array()) return text(f);
+  std::string why;
+  for (const auto& x : f) why += (why.empty() ? "" : ",") + text(x);
+  return why;
+}
+
 }  // namespace earc

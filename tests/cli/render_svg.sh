@@ -95,6 +95,30 @@ bad_step "--strip: step 99 is beyond the solution's makespan 20" "$WORK/s.json" 
 bad_step "--strip: '-1' is not a whole number" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,-1
 bad_step "--strip: a time step needs a SOLUTION file" "$WORK/s.json" -o "$WORK/x.svg" --strip 1,2
 "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/last.svg" --step 20 > /dev/null || fail "--step 20 (the makespan) exited $?"
+# An unsolved solution without paths: the picture says so under the title
+# (it once came out byte for byte the scenario's), and a time step is
+# refused as having no paths, not as past a "makespan 0".
+"$PY" - "$WORK/s.json" "$WORK/uns.sol.json" <<'PYEOF' || fail "could not write the unsolved solution"
+import json, sys
+sc = json.load(open(sys.argv[1]))
+json.dump({"format": "earc.solution.v1", "scenario": sc["name"], "method": "arc", "solved": False,
+           "stats": {"planning_time_s": 0.02, "failure": ["time_limit"]}}, open(sys.argv[2], "w"))
+PYEOF
+"$PLAN" render "$WORK/s.json" "$WORK/uns.sol.json" -o "$WORK/uns.svg" > /dev/null || fail "unsolved render exited $?"
+wellformed "$WORK/uns.svg" || fail "the unsolved SVG is not well-formed"
+cmp -s "$WORK/uns.svg" "$WORK/scenario.svg" && fail "an unsolved plan's picture is the scenario's"
+"$PY" - "$WORK/uns.svg" <<'PYEOF' || fail "the unsolved picture does not say it is not solved"
+import sys, xml.dom.minidom
+doc = xml.dom.minidom.parse(sys.argv[1])
+texts = ["".join(n.data for n in t.getElementsByTagName("tspan")[0].childNodes) if t.getElementsByTagName("tspan")
+         else "" for t in doc.getElementsByTagName("text") if t.getAttribute("class") == "facts"]
+assert "not solved: time_limit" in texts, texts
+PYEOF
+for steps in "--step 0" "--strip 0,10"; do
+  bad_step "uns.sol.json: ${steps%% *}: the solution is not solved (time_limit) and has no paths, so there are no time steps to draw" \
+    "$WORK/s.json" "$WORK/uns.sol.json" -o "$WORK/x.svg" $steps
+  grep -q makespan "$WORK/err" && fail "render $steps of an unsolved plan talks of a makespan: $(cat "$WORK/err")"
+done
 echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
 "$PLAN" render "$WORK/bad.json" -o "$WORK/x.svg" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a broken scenario is not bad input"

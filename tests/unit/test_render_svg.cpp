@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include "earc/gen/generators.hpp"
 #include "earc/gen/random.hpp"
 #include "earc/render/svg.hpp"
+#include "earc/view/viewer.hpp"
 
 using namespace earc;
 using namespace earc::render;
@@ -84,6 +86,17 @@ Scenario oneDisc(geo::Vec2 start, geo::Vec2 goal) {
   return s;
 }
 
+// oneDisc's m0 and a second disc, m1.
+Scenario twoDiscs(geo::Vec2 start0, geo::Vec2 goal0, geo::Vec2 start1, geo::Vec2 goal1) {
+  Scenario s = oneDisc(start0, goal0);
+  RobotSpec second = s.robots[0];
+  second.name = "m1";
+  second.start = {start1.x, start1.y, 0};
+  second.goal = {goal1.x, goal1.y, 0};
+  s.robots.push_back(second);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("a scenario SVG is well-formed with one group per robot") {
@@ -95,7 +108,7 @@ TEST_CASE("a scenario SVG is well-formed with one group per robot") {
   CHECK(wellFormed(svg));
   CHECK(countOf(svg, "<g class=\"robot\"") == 8);
   CHECK(countOf(svg, "<polygon") == 2 * 8);  // box robots at start and goal; obstacles are one path
-  CHECK(countOf(svg, ">m7</text>") == 1);
+  CHECK(countOf(svg, ">m7</text>") == 2);  // at its start and its goal
 }
 
 TEST_CASE("obstacles are filled as one path, so that abutting boxes show no seam between them") {
@@ -170,12 +183,7 @@ TEST_CASE("a strip moves each panel right and draws the same path in each") {
 }
 
 TEST_CASE("paths are matched to robots by name, not by position") {
-  Scenario s = oneDisc({1, 1}, {9, 9});
-  RobotSpec second = s.robots[0];
-  second.name = "m1";
-  second.start = {1, 9, 0};
-  second.goal = {9, 1, 0};
-  s.robots.push_back(second);
+  const Scenario s = twoDiscs({1, 1}, {9, 9}, {1, 9}, {9, 1});
   Solution sol = straightSolution(s, 10);
   std::swap(sol.paths[0], sol.paths[1]);
   sol.robot_names = {"m1", "m0"};
@@ -205,7 +213,7 @@ TEST_CASE("robot and scenario names are escaped") {
   s.robots[0].name = "r<0>";
   const std::string svg = scenarioSvg(s);
   CHECK(wellFormed(svg));
-  CHECK(countOf(svg, "r&lt;0&gt;") == 2);  // data attribute and label
+  CHECK(countOf(svg, "r&lt;0&gt;") == 3);  // data attribute and labels at start and goal
 }
 
 TEST_CASE("names with characters XML 1.0 forbids are drawn with U+FFFD, so the SVG stays XML") {
@@ -220,8 +228,194 @@ TEST_CASE("names with characters XML 1.0 forbids are drawn with U+FFFD, so the S
   CHECK(std::all_of(svg.begin(), svg.end(), [](char c) { return static_cast<unsigned char>(c) >= 0x20 || c == '\n'; }));
   CHECK(svg.find("\xEF\xBF\xBF") == std::string::npos);
   CHECK(svg.find("&#") == std::string::npos);
-  CHECK(countOf(svg, "ctl\xEF\xBF\xBDx\xEF\xBF\xBD") == 2);  // data attribute and label
+  CHECK(countOf(svg, "ctl\xEF\xBF\xBDx\xEF\xBF\xBD") == 3);  // data attribute and labels at start and goal
   CHECK(countOf(svg, "scen\xEF\xBF\xBD\xEF\xBF\xBD") == 2);   // title and panel heading
+}
+
+namespace {
+
+// The numeric value of attribute `name` in the tag that starts at `at`.
+double svgAttribute(const std::string& svg, std::size_t at, const std::string& name) {
+  const auto end = svg.find('>', at);
+  const auto a = svg.find(" " + name + "=\"", at);
+  REQUIRE(a < end);
+  return std::stod(svg.substr(a + name.size() + 3));
+}
+
+// The text of every <text> element (tspans flattened) inside the element
+// that starts at `from` and ends at `to`.
+std::vector<std::string> svgTexts(const std::string& svg, std::size_t from = 0, std::size_t to = std::string::npos) {
+  std::vector<std::string> texts;
+  for (auto at = svg.find("<text", from); at < to; at = svg.find("<text", at + 1)) {
+    const auto open_end = svg.find('>', at) + 1;
+    std::string inner = svg.substr(open_end, svg.find("</text>", open_end) - open_end), flat;
+    bool in_tag = false;
+    for (char c : inner) {
+      if (c == '<') in_tag = true;
+      if (!in_tag) flat += c;
+      if (c == '>') in_tag = false;
+    }
+    texts.push_back(flat);
+  }
+  return texts;
+}
+
+}  // namespace
+
+TEST_CASE("an unsolved solution's picture says that it is not solved, and why, under the title") {
+  const Scenario s = oneDisc({2, 2}, {8, 8});
+  Solution sol;
+  sol.scenario = s.name;
+  sol.method = "arc";
+  sol.solved = false;
+  sol.stats = {{"failure", {"time_limit"}}, {"planning_time_s", 0.02}};
+  const std::string svg = solutionSvg(s, sol);
+  CHECK(wellFormed(svg));
+  CHECK(svg != scenarioSvg(s));
+  CHECK(countOf(svg, "<tspan font-weight=\"bold\" fill=\"#c00\">not solved: time_limit</tspan>") == 1);
+  const auto texts = svgTexts(svg);
+  CHECK(std::find(texts.begin(), texts.end(),
+                  "method arc \u00b7 not solved: time_limit \u00b7 no paths: robots at their starts \u00b7 planned in "
+                  "0.02 s") != texts.end());
+  // The facts lie between the title and the workspace.
+  const double facts_y = svgAttribute(svg, svg.find("<text class=\"facts\""), "y");
+  CHECK(facts_y > svgAttribute(svg, svg.find("<text", svg.find("class=\"panel\"")), "y"));
+  CHECK(facts_y < svgAttribute(svg, svg.find("<rect class=\"workspace\""), "y"));
+}
+
+TEST_CASE("a plan picture says what the solution holds, and a step of how many") {
+  gen::MobileSettings ms;
+  ms.robots = 4;
+  const Scenario s = gen::generateMobile(ms);
+  Solution sol = straightSolution(s, 40);
+  sol.stats = {{"planning_time_s", 1.25}};
+  const auto texts = svgTexts(solutionSvg(s, sol));
+  CHECK(std::find(texts.begin(), texts.end(),
+                  "method test \u00b7 solved \u00b7 makespan 40 steps \u00b7 sum of costs 160 \u00b7 planned in 1.25 s") !=
+        texts.end());
+  SvgOptions o;
+  o.steps = {10, 40};
+  const auto timed = svgTexts(solutionSvg(s, sol, o));
+  CHECK(std::count(timed.begin(), timed.end(), s.name + " \u00b7 t = 10 of 40") == 1);
+  CHECK(std::count(timed.begin(), timed.end(), s.name + " \u00b7 t = 40 of 40") == 1);
+  CHECK(scenarioSvg(s).find("class=\"facts\"") == std::string::npos);  // a scenario has no plan to describe
+}
+
+TEST_CASE("the key names every mark and lies below the drawing, whatever the robots near the edges") {
+  // Two discs whose starts and goals each touch one edge of the workspace.
+  const Scenario s = twoDiscs({0.5, 5}, {9.5, 5}, {5, 9.5}, {5, 0.5});
+  for (double width : {800.0, 150.0}) {
+    SvgOptions o;
+    o.panel_width_px = width;
+    o.steps = {3};
+    const std::string svg = solutionSvg(s, straightSolution(s, 10), o);
+    CHECK(wellFormed(svg));
+    const auto ws = svg.find("<rect class=\"workspace\"");
+    const double bottom = svgAttribute(svg, ws, "y") + svgAttribute(svg, ws, "height");
+    const auto key = svg.find("<g class=\"key\"");
+    REQUIRE(key != std::string::npos);
+    const auto key_end = svg.find("</g>", key);
+    const auto texts = svgTexts(svg, key, key_end);
+    CHECK(texts == std::vector<std::string>{"robot at t", "start", "goal", "path", "heading"});
+    const double height = svgAttribute(svg, svg.find("<svg"), "height");
+    for (auto at = svg.find(" y=\"", key); at < key_end; at = svg.find(" y=\"", at + 1)) {
+      const double y = std::stod(svg.substr(at + 4));
+      CHECK(y > bottom);
+      CHECK(y < height);
+    }
+    // Each key text begins inside the picture.
+    const double total = svgAttribute(svg, svg.find("<svg"), "width");
+    for (auto at = svg.find("<text", key); at < key_end; at = svg.find("<text", at + 1))
+      CHECK(svgAttribute(svg, at, "x") < total);
+  }
+  // Arms: the path is the tip's; joints instead of a heading.
+  gen::ArmSettings as;
+  as.robots = 2;
+  const Scenario arms = gen::generateArms(as);
+  const std::string svg = solutionSvg(arms, straightSolution(arms, 5));
+  const auto key = svg.find("<g class=\"key\"");
+  CHECK(svgTexts(svg, key, svg.find("</g>", key)) ==
+        std::vector<std::string>{"start", "goal", "path of the tip", "base and joints"});
+}
+
+namespace {
+
+// CIELAB of "#rrggbb" (D65).
+std::array<double, 3> labOfHex(const std::string& hex) {
+  double c[3];
+  for (int k = 0; k < 3; ++k) {
+    const double v = std::stoi(hex.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+    c[k] = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  }
+  const double xyz[3] = {(0.4124 * c[0] + 0.3576 * c[1] + 0.1805 * c[2]) / 0.95047,
+                         0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2],
+                         (0.0193 * c[0] + 0.1192 * c[1] + 0.9505 * c[2]) / 1.08883};
+  double f[3];
+  for (int k = 0; k < 3; ++k) f[k] = xyz[k] > 0.008856 ? std::cbrt(xyz[k]) : 7.787 * xyz[k] + 16.0 / 116.0;
+  return {116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])};
+}
+
+// Each robot group's colour, in order.
+std::vector<std::string> robotFills(const std::string& svg) {
+  std::vector<std::string> fills;
+  for (auto at = svg.find("<g class=\"robot\""); at != std::string::npos; at = svg.find("<g class=\"robot\"", at + 1)) {
+    const auto f = svg.find(" fill=\"", at) + 7;
+    fills.push_back(svg.substr(f, 7));
+  }
+  return fills;
+}
+
+}  // namespace
+
+TEST_CASE("any two of 20 robots have colours far apart, and neighbours do beyond") {
+  gen::MobileSettings ms;
+  ms.robots = 64;
+  const auto fills = robotFills(scenarioSvg(gen::generateMobile(ms)));
+  REQUIRE(fills.size() == 64);
+  auto distance = [](const std::string& a, const std::string& b) {
+    const auto p = labOfHex(a), q = labOfHex(b);
+    return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+  };
+  double closest = 1e9;
+  for (std::size_t i = 0; i < 20; ++i)
+    for (std::size_t j = i + 1; j < 20; ++j) closest = std::min(closest, distance(fills[i], fills[j]));
+  CHECK(closest > 30);  // robots 6 and 14 were both green, 7.5 apart
+  for (std::size_t i = 0; i + 1 < fills.size(); ++i) CHECK(distance(fills[i], fills[i + 1]) > 40);
+  // The viewer colours robots alike: its list holds the same colours in order.
+  for (const auto& a : earc::view::viewerAssets()) {
+    if (std::string(a.name) != "viewer.js") continue;
+    const auto list = a.text.find("const PALETTE = [");
+    REQUIRE(list != std::string::npos);
+    std::size_t at = list;
+    for (std::size_t i = 0; i < 20; ++i) {
+      at = a.text.find("'" + fills[i] + "'", at);
+      CHECK(at < a.text.find("];", list));
+    }
+  }
+}
+
+TEST_CASE("names label the robot and, small, its goal, on a white halo, inside the picture") {
+  // A long name at the right edge: it once ran off the picture.
+  Scenario s = twoDiscs({9.4, 5}, {9.4, 9.4}, {0.6, 0.6}, {5, 5});
+  s.robots[0].name = "forklift-m3-east-wing-loading-dock";
+  const std::string svg = scenarioSvg(s);
+  CHECK(wellFormed(svg));
+  const double width = svgAttribute(svg, svg.find("<svg"), "width");
+  std::size_t labels = 0;
+  for (auto at = svg.find("<text class=\"label\""); at != std::string::npos;
+       at = svg.find("<text class=\"label\"", at + 1), ++labels) {
+    const auto end = svg.find("</text>", at);
+    CHECK(svg.substr(at, end - at).find("stroke=\"#fff\"") != std::string::npos);
+    CHECK(svg.substr(at, end - at).find("paint-order=\"stroke\"") != std::string::npos);
+    const std::string text = svg.substr(svg.find('>', at) + 1, end - svg.find('>', at) - 1);
+    const double font = svg.substr(at, end - at).find("font-size=\"8.5\"") != std::string::npos ? 8.5 : 11.0;
+    CHECK(svgAttribute(svg, at, "x") >= 0);
+    CHECK(svgAttribute(svg, at, "x") + 0.6 * font * static_cast<double>(text.size()) <= width);
+  }
+  CHECK(labels == 4);
+  CHECK(countOf(svg, ">forklift-m3-east-wing-loading-dock</text>") == 2);
+  CHECK(countOf(svg, "font-size=\"8.5\" fill=\"#333\" stroke=\"#fff\" stroke-width=\"2.5\" stroke-linejoin=\"round\" "
+                     "paint-order=\"stroke\">m1</text>") == 1);  // m1's goal
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {

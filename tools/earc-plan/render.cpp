@@ -56,6 +56,16 @@ void runRender(const RenderOptions& opt) {
   } else {
     const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
     requireKnownRobots(sc, sol, opt.solution);
+    // A solution without paths (one not solved) has no time steps: a
+    // picture "at t = 0" would look like a plan that had not started.
+    if (!opt.steps.empty() && !sol.hasPaths()) {
+      const std::string why = earc::failureReasons(sol.stats);
+      const std::string state =
+          sol.solved ? "the solution has no paths"
+                     : "the solution is not solved" + (why.empty() ? "" : " (" + why + ")") + " and has no paths";
+      throw earc::InputError(opt.solution, opt.steps_option,
+                             state + ", so there are no time steps to draw: leave out " + opt.steps_option);
+    }
     // A step past the makespan would draw every robot at its goal, as if
     // the plan had been that long.
     for (std::size_t t : opt.steps)

@@ -193,9 +193,12 @@
     if (cls) e.className = cls;
     return e;
   }
-  function robotColour(i) {
-    return 'hsl(' + ((i * 137.50776405) % 360).toFixed(1) + ',70%,' + (i % 2 ? 55 : 42) + '%)';
-  }
+  // The list of src/render/svg.cpp's robotColour: the same robot has the
+  // same colour in the viewer and in earc-plan render.
+  const PALETTE = ['#d62728', '#0000ff', '#00b400', '#ff00c3', '#0069e1', '#c39600', '#0fb487', '#961e5a',
+    '#3c5a00', '#00a5e1', '#7800b4', '#783c0f', '#d287e1', '#f08787', '#ff0078', '#ff7800', '#5a4b87', '#e100ff',
+    '#87a500', '#b4965a'];
+  function robotColour(i) { return PALETTE[i % PALETTE.length]; }
   function fmt(v, digits) { return Number(v.toFixed(digits === undefined ? 3 : digits)).toString(); }
   function stepText(t) {
     return t % 1 ? fmt(t, 1) + ' (midpoint of ' + Math.floor(t) + ' and ' + (Math.floor(t) + 1) + ')' : String(t);

@@ -32,6 +32,13 @@ struct Solution {
   std::size_t makespan() const;
   // Sum over robots of states - 1.
   std::size_t sumOfCosts() const;
+  // Whether any path holds a state.
+  bool hasPaths() const;
 };
+
+// Why a plan was not solved, from its stats' "failure" (the planner's list
+// of causes, or one string): the causes joined by commas ("time_limit"),
+// "" when there is none.
+std::string failureReasons(const nlohmann::json& stats);
 
 }  // namespace earc
