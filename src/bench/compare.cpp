@@ -110,7 +110,8 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   return st;
 }
 
-std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats, const std::string& title) {
+std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats,
+                       const std::vector<std::string>& heading) {
   struct Point {
     double x, y;
     bool differed;
@@ -125,20 +126,31 @@ std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats
     for (const Point& p : pts) lo = std::min({lo, p.x, p.y}), hi = std::max({hi, p.x, p.y});
   }
   const double dlo = std::floor(std::log10(lo)), dhi = std::max(dlo + 1, std::ceil(std::log10(hi)));
-  const double size = 420, left = 70, top = 50, w = left + size + 70, h = top + size + 60;
+  // Under the heading: how many plans each side failed (they have no
+  // point: the ratios are over the scenarios both solved), then the ratios.
+  std::vector<std::string> lines = heading;
+  const std::size_t heading_lines = lines.size();
+  lines.push_back("failed: old " + std::to_string(stats.plans - stats.old_solved) + " of " +
+                  std::to_string(stats.plans) + " plans, new " + std::to_string(stats.plans - stats.new_solved) +
+                  " of " + std::to_string(stats.plans) + "; " + std::to_string(stats.paired) +
+                  (stats.paired == 1 ? " scenario" : " scenarios") + " solved by both");
+  if (stats.paired_median)
+    lines.push_back("new/old over those: medians " + formatNumber("%.2f", stats.of_medians.value_or(NAN)) +
+                    ", paired " + formatNumber("%.2f", *stats.paired_median) + " [" +
+                    formatNumber("%.2f", *stats.paired_lo) + ", " + formatNumber("%.2f", *stats.paired_hi) + "]");
+  const double line_h = 17;
+  const double size = 420, left = 70, top = 18 + line_h * static_cast<double>(lines.size()), w = left + size + 70,
+               h = top + size + 60;
   auto px = [&](double v) { return left + (std::log10(v) - dlo) / (dhi - dlo) * size; };
   auto py = [&](double v) { return top + size - (std::log10(v) - dlo) / (dhi - dlo) * size; };
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h << "\" viewBox=\"0 0 " << w
       << " " << h << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << left << "\" y=\"20\" font-size=\"14\">" << title << "</text>\n";
-  std::string line = std::to_string(stats.paired) + " scenarios solved by both";
-  if (stats.paired_median)
-    line += "; new/old: medians " + formatNumber("%.2f", stats.of_medians.value_or(NAN)) + ", paired " +
-            formatNumber("%.2f", *stats.paired_median) + " [" + formatNumber("%.2f", *stats.paired_lo) + ", " +
-            formatNumber("%.2f", *stats.paired_hi) + "]";
-  svg << "<text x=\"" << left << "\" y=\"38\" fill=\"#444\">" << line << "</text>\n";
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    svg << "<text x=\"" << 18 << "\" y=\"" << 20 + line_h * static_cast<double>(k) << "\""
+        << (k == 0 ? " font-size=\"14\"" : k < heading_lines ? "" : " fill=\"#444\"") << ">" << xmlText(lines[k])
+        << "</text>\n";
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << size << "\" height=\"" << size
       << "\" fill=\"none\" stroke=\"#888\"/>\n";
   for (double d = dlo; d <= dhi + 1e-9; d += 1) {
@@ -234,9 +246,7 @@ class Comparer {
     report(out);
     if (!o_.csv.empty()) writeCsv(out.pairs);
     if (!o_.picture.empty())
-      render::writeImage(o_.picture, compareSvg(out.pairs, out.stats,
-                                                "earc-bench compare: " + methods() + ", " +
-                                                    std::to_string(out.stats.scenarios) + " scenarios"));
+      render::writeImage(o_.picture, compareSvg(out.pairs, out.stats, pictureHeading(out)));
     return out;
   }
 
@@ -265,6 +275,23 @@ class Comparer {
   }
 
   const std::string& methodOf(const std::string& side) const { return side == "old" ? old_method_ : new_method_; }
+
+  // The picture's heading: what was planned, under what limit, and each
+  // side's method, options and build, so that it can be read on its own.
+  std::vector<std::string> pictureHeading(const CompareSummary& out) const {
+    std::string what = "earc-bench compare: ";
+    if (o_.scenarios.empty()) what += o_.suite + ", " + std::to_string(o_.robots) + " robots, ";
+    what += std::to_string(out.stats.scenarios) + (out.stats.scenarios == 1 ? " scenario" : " scenarios");
+    if (o_.repeats > 1) what += " x " + std::to_string(o_.repeats) + " repeats";
+    what += ", time limit " + formatNumber("%g", o_.time_limit_s) + " s";
+    auto side = [&](const char* name, const std::string& method, const std::vector<std::string>& args,
+                    ComparePlan ComparePair::*plan) {
+      return std::string(name) + ": " + method + (args.empty() ? "" : " " + plannerArgsText(args)) + " (" +
+             builds(out.pairs, plan) + ")";
+    };
+    return {what, side("old", old_method_, o_.old_args, &ComparePair::old_plan),
+            side("new", new_method_, o_.new_args, &ComparePair::new_plan)};
+  }
 
   // "method earc", or "methods old arc, new earc".
   std::string methods() const {

@@ -48,6 +48,15 @@ assert all(float(r["old_time_s"]) > 0 and float(r["new_time_s"]) > 0 for r in ro
 svg = open(sys.argv[2]).read()
 assert svg.count("<circle") == 3 and 'stroke="#d62728"' not in svg, svg
 PYEOF
+# The picture says what was compared and how many plans each side failed.
+svgTexts() { "$PY" -c 'import sys, xml.dom.minidom
+for t in xml.dom.minidom.parse(sys.argv[1]).getElementsByTagName("text"): print(t.firstChild.data)' "$1"; }
+svgTexts "$WORK/same.svg" > "$WORK/texts" || fail "the picture is not XML"
+for want in "earc-bench compare: mobile, 4 robots, 3 scenarios, time limit 10 s" \
+  "old: arc (earc ${version#earc-plan })" "new: arc (earc ${version#earc-plan })" \
+  "failed: old 0 of 3 plans, new 0 of 3; 3 scenarios solved by both"; do
+  grep -qxF "$want" "$WORK/texts" || fail "the picture does not say '$want': $(cat "$WORK/texts")"
+done
 # Repeats: each scenario planned twice a side, both pairs recorded. The
 # CSV on stdout itself (a pipe) is the CSV alone: the report goes to stderr.
 "$BENCH" compare --suite mobile --robots 4 --trials 1 --seed 4 --time-limit 10 --work-dir "$WORK/w" --repeats 2 \
@@ -144,8 +153,14 @@ ls "$WORK/w4" | grep -q "^db-old" && fail "ARC's side was given a database"
 # --new-arg=X is a scenario (not the suite's generated ones), and X alone
 # goes to the new side's plan command.
 "$BENCH" compare --old "$PLAN" --old-method arc --new-method earc --db "$WORK/m.sqlite" --work-dir "$WORK/w5" \
-  --time-limit 10 --suite mobile --robots 4 --trials 2 --old-arg=--window=20 --new-arg=--db-k=5 \
+  --time-limit 10 --suite mobile --robots 4 --trials 2 --old-arg=--window=20 --new-arg=--db-k=5 --picture "$WORK/args.svg" \
   "$WORK/w/scenarios/mobile-4-t0.json" > "$WORK/out" 2> "$WORK/err" || { show; fail "--new-arg then a file: exited $?"; }
+# The picture names each side's options (scenario files: no suite).
+svgTexts "$WORK/args.svg" > "$WORK/texts" || fail "the picture is not XML"
+for want in "earc-bench compare: 1 scenario, time limit 10 s" "old: arc --window=20 (earc ${version#earc-plan })" \
+  "new: earc --db-k=5 (earc ${version#earc-plan })"; do
+  grep -qxF "$want" "$WORK/texts" || fail "the picture does not say '$want': $(cat "$WORK/texts")"
+done
 grep -q "^earc-bench compare: 1 scenario x 1 repeat, methods old arc, new earc, " "$WORK/out" ||
   { show; fail "the scenario file after --new-arg=X was not taken as the scenario"; }
 grep -q "^  old: $PLAN --window=20$" "$WORK/out" && grep -q "^  new: .*/earc-plan --db-k=5$" "$WORK/out" ||

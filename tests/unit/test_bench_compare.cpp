@@ -136,7 +136,7 @@ TEST_CASE("The comparison's picture has a point per paired scenario, hollow wher
       pair("d", 0, solvedIn(1.0), failed("not solved")),
   };
   const CompareStats s = compareStats(pairs, 1);
-  const std::string svg = compareSvg(pairs, s, "title here");
+  const std::string svg = compareSvg(pairs, s, {"title here"});
   CHECK(svg.rfind("<svg", 0) == 0);
   CHECK(svg.find("</svg>") != std::string::npos);
   CHECK(count(svg, "<circle") == 3);
@@ -152,9 +152,30 @@ TEST_CASE("The comparison's picture has a point per paired scenario, hollow wher
   CHECK(svg.find(">0.05<") == std::string::npos);
   const std::vector<ComparePair> narrow = {pair("a", 0, solvedIn(0.01), solvedIn(0.02)),
                                            pair("b", 0, solvedIn(0.2), solvedIn(0.1))};
-  const std::string two = compareSvg(narrow, compareStats(narrow, 1), "two decades");
+  const std::string two = compareSvg(narrow, compareStats(narrow, 1), {"two decades"});
   CHECK(two.find(">0.02<") != std::string::npos);
   CHECK(two.find(">0.5<") != std::string::npos);
   // An empty comparison still draws its axes.
-  CHECK(count(compareSvg({}, compareStats({}, 1), "none"), "<circle") == 0);
+  CHECK(count(compareSvg({}, compareStats({}, 1), {"none"}), "<circle") == 0);
+}
+
+TEST_CASE("The comparison's picture says how many plans each side failed, and what was compared, escaped") {
+  // Old fails two of four plans: its failures have no point, and the
+  // subtitle once said only "2 scenarios solved by both".
+  const std::vector<ComparePair> pairs = {
+      pair("a", 0, solvedIn(0.5), solvedIn(0.1)), pair("b", 0, failed("not solved: time_limit"), solvedIn(0.2)),
+      pair("c", 0, solvedIn(0.4), solvedIn(0.1)), pair("d", 0, failed("not solved: time_limit"), solvedIn(0.3))};
+  const std::string svg = compareSvg(pairs, compareStats(pairs, 1),
+                                     {"earc-bench compare: mobile-obst, 8 robots, 4 scenarios, time limit 1 s",
+                                      "old: coupled (earc 1)", "new: arc --window=<30> & more (earc 1)"});
+  CHECK(svg.find(">failed: old 2 of 4 plans, new 0 of 4; 2 scenarios solved by both</text>") != std::string::npos);
+  CHECK(svg.find(">earc-bench compare: mobile-obst, 8 robots, 4 scenarios, time limit 1 s</text>") != std::string::npos);
+  CHECK(svg.find(">old: coupled (earc 1)</text>") != std::string::npos);
+  CHECK(svg.find(">new: arc --window=&lt;30&gt; &amp; more (earc 1)</text>") != std::string::npos);
+  CHECK(count(svg, "<circle") == 2);
+  // The heading lines lie above the axes' square.
+  const auto square = svg.find("<rect x=");
+  const double square_top = std::stod(svg.substr(svg.find(" y=\"", square) + 4));
+  for (auto at = svg.find("<text"); at < square; at = svg.find("<text", at + 1))
+    CHECK(std::stod(svg.substr(svg.find(" y=\"", at) + 4)) < square_top);
 }

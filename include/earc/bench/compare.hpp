@@ -83,8 +83,11 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
 
 // A scatter plot: per paired scenario, old time across and new time up,
 // both logarithmic, with the line new = old and the line of the paired
-// median ratio; points whose plans differed are drawn hollow.
-std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats, const std::string& title);
+// median ratio; points whose plans differed are drawn hollow. The heading's
+// lines (the first the title) say what was compared; under them, how many
+// plans each side failed and the ratios.
+std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats,
+                       const std::vector<std::string>& heading);
 
 struct CompareSummary {
   CompareStats stats;
