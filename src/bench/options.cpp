@@ -126,7 +126,7 @@ bool usesDatabase(const std::string& method) { return method == "earc" || method
 
 std::vector<std::string> planArgv(const PlanCommand& c) {
   std::vector<std::string> a = {c.program,  "plan",   c.scenario,    "-o",   c.solution, "--method", c.method,
-                                "--time-limit", std::to_string(c.time_limit_s), "--seed", std::to_string(c.seed), "-q"};
+                                "--time-limit", exactNumber(c.time_limit_s), "--seed", std::to_string(c.seed), "-q"};
   if (usesDatabase(c.method)) {
     a.insert(a.end(), {"--db", c.db});
     if (!c.learn) a.push_back("--no-learn");

@@ -417,7 +417,7 @@ class Runner {
       argv.insert(argv.end(), {"--suite", c.suite->name, "--robots", std::to_string(robots)});
     }
     argv.insert(argv.end(), {"--count", std::to_string(problems), "--seed", std::to_string(o_.seed),
-                             "--problem-time-limit", std::to_string(o_.lightning_problem_time_limit_s), "-o", path,
+                             "--problem-time-limit", exactNumber(o_.lightning_problem_time_limit_s), "-o", path,
                              "--results", o_.results});
     const std::string stem = work_ + "/logs/lightning-db-" + fs::path(path).stem().string();
     ChildSpec spec;

@@ -1,6 +1,7 @@
 #include "earc/util/format.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <vector>
 
 namespace earc {
@@ -37,6 +38,12 @@ std::size_t utf8Length(std::string_view text, std::size_t i) {
 }
 
 }  // namespace
+
+std::string exactNumber(double v) {
+  char buf[32];  // the longest shortest form: "-2.2250738585072014e-308"
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : formatNumber("%.17g", v);
+}
 
 std::string printableText(std::string_view text, std::size_t max_bytes) {
   // Whole characters, each printable or '?'.

@@ -75,4 +75,12 @@ grep -q "^nothing to run" out || fail "the version 6 file's trials were not skip
 [ "$(count old.sqlite "PRAGMA user_version")" -eq 7 ] || fail "the version 6 file was not migrated"
 [ "$(count old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
   fail "the old trials gained settings"
+# A limit per problem reaches lightning-db exactly, however small: 1e-07,
+# not std::to_string's 0.000000, which lightning-db refuses.
+"$BENCH" run --suites mobile --robots 2 --methods lightning --trials 1 --time-limit 5 --seed 3 \
+  --lightning-problems 1 --lightning-problem-time-limit 1e-7 --results tiny.sqlite > out 2> err ||
+  fail "a run with a limit per problem of 1e-7 exited $?"
+grep -q "failed" err && fail "growing the Lightning database under 1e-7 s per problem failed"
+[ "$(count tiny.sqlite "SELECT count(*) FROM databases WHERE method = 'lightning'")" -eq 1 ] ||
+  fail "no Lightning database recorded for a limit per problem of 1e-7"
 echo "ok: Lightning settings are recorded per trial and a resumed run is held to them"

@@ -359,6 +359,22 @@ TrialRecord lightningTrial(int t, const LightningSettings& settings) {
 
 }  // namespace
 
+TEST_CASE("a plan command gives earc-plan its time limit exactly, however small or long") {
+  PlanCommand c;
+  c.program = "earc-plan";
+  c.scenario = "s.json";
+  c.solution = "o.json";
+  c.method = "arc";
+  const std::vector<std::pair<double, std::string>> limits = {{1e-7, "1e-07"}, {1.0000001, "1.0000001"}, {60.0, "60"}};
+  for (const auto& [limit, text] : limits) {
+    c.time_limit_s = limit;
+    const std::vector<std::string> argv = planArgv(c);
+    const auto at = std::find(argv.begin(), argv.end(), "--time-limit");
+    REQUIRE(at + 1 < argv.end());
+    CHECK(at[1] == text);
+  }
+}
+
 TEST_CASE("a results database records each lightning trial's Lightning settings, and reads and migrates version 6 files") {
   TempPath file("earc-results-lightning");
   {

@@ -1,11 +1,14 @@
 // Text shown to people or put in JSON from files and command lines.
 #include <doctest/doctest.h>
 
+#include <cstdlib>
+#include <limits>
 #include <string>
 #include <string_view>
 
 #include "earc/util/format.hpp"
 
+using earc::exactNumber;
 using earc::printableText;
 using earc::utcTimeText;
 using earc::xmlText;
@@ -47,4 +50,16 @@ TEST_CASE("xmlText escapes markup and replaces what XML 1.0 forbids by U+FFFD") 
 TEST_CASE("utcTimeText writes ISO 8601 in UTC") {
   CHECK(utcTimeText(0) == "1970-01-01T00:00:00Z");
   CHECK(utcTimeText(1700000000) == "2023-11-14T22:13:20Z");
+}
+
+TEST_CASE("exactNumber writes the shortest text that reads back as the same number") {
+  CHECK(exactNumber(10) == "10");
+  CHECK(exactNumber(0.5) == "0.5");
+  CHECK(exactNumber(0.1) == "0.1");
+  CHECK(exactNumber(1e-7) == "1e-07");  // std::to_string: "0.000000"
+  CHECK(exactNumber(1.0000001) == "1.0000001");
+  CHECK(exactNumber(1e300) == "1e+300");
+  for (double v : {1e-7, 1.0000001, 0.1 + 0.2, 123456.789012345, std::numeric_limits<double>::denorm_min(),
+                   std::numeric_limits<double>::max(), -2.2250738585072014e-308})
+    CHECK(std::strtod(exactNumber(v).c_str(), nullptr) == v);
 }

@@ -57,7 +57,7 @@ void setupPlot(CLI::App& app) {
     // Seventeen digits: the script's float is this very double, which it
     // compares with the stored limits as table does.
     if (o->filter.time_limit_s)
-      spec.argv.insert(spec.argv.end(), {"--time-limit", formatNumber("%.17g", *o->filter.time_limit_s)});
+      spec.argv.insert(spec.argv.end(), {"--time-limit", exactNumber(*o->filter.time_limit_s)});
     spec.wall_limit_s = kPlotWallLimitS;
     spec.inherit_output = true;
     bench::ChildOutcome out = bench::runChild(spec);

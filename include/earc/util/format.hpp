@@ -26,6 +26,13 @@ inline std::string formatNumber(const char* printf_format, double v) {
   return buf;
 }
 
+// A number as another program must read it: the shortest text that reads
+// back as the same double ("10", "0.5", "1e-07", "1.0000001"). For
+// numbers on a child's command line and in file names, where
+// std::to_string's six decimals would pass 1e-07 as 0.000000 and
+// 1.0000001 as 1.000000.
+std::string exactNumber(double v);
+
 // Whether `text` is one or more decimal digits and nothing else: no sign,
 // space or point (a "-1" given to an unsigned option, a PID in a name).
 inline bool isDigits(std::string_view text) {
