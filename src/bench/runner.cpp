@@ -374,13 +374,30 @@ class Runner {
     return static_cast<std::size_t>(std::find(o_.methods.begin(), o_.methods.end(), m) - o_.methods.begin());
   }
 
+  // The problems a Lightning database for this many robots is grown from.
+  int lightningProblems(int robots) const {
+    return o_.lightning_problems.value_or(o_.lightning_problems_per_robot * robots);
+  }
+
   // A suite's per robot count; a scenario file's per world (files that
-  // differ only in starts and goals share it).
+  // differ only in starts and goals share it). The name also says how it
+  // grows: from how many problems, each under what limit, of which seed,
+  // and whether trials add to it (--learn). A database is used only by
+  // runs that would grow it so, never found again by a run with other
+  // settings or another seed (a resumed file from before schema 7,
+  // another --results sharing the --lightning-dir) and taken as theirs.
   std::string lightningDb(const Cell& c) const {
-    if (!c.file) return lightning_dir_ + "/" + c.suite->name + "-" + std::to_string(c.robots) + ".lightning";
-    char hex[20];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(c.file->world));
-    return lightning_dir_ + "/" + kFilesSuite + "-" + std::to_string(c.robots) + "-" + hex + ".lightning";
+    std::string name = c.file ? std::string(kFilesSuite) : c.suite->name;
+    name += "-" + std::to_string(c.robots);
+    if (c.file) {
+      char hex[20];
+      std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(c.file->world));
+      name += std::string("-") + hex;
+    }
+    name += "-p" + std::to_string(lightningProblems(c.robots)) + "-t" +
+            exactNumber(o_.lightning_problem_time_limit_s) + "-s" + std::to_string(o_.seed);
+    if (o_.learn) name += "-learn";
+    return lightning_dir_ + "/" + name + ".lightning";
   }
 
   std::string earcDb(const std::string& family) const { return earcDbPath(o_, family); }
@@ -407,7 +424,7 @@ class Runner {
     const std::string path = lightningDb(c);
     if (fs::exists(path)) return;
     fs::create_directories(lightning_dir_);
-    const int problems = o_.lightning_problems.value_or(o_.lightning_problems_per_robot * robots);
+    const int problems = lightningProblems(robots);
     log_ << "building Lightning database " << path << " from " << problems << " problems\n";
     log_.flush();
     std::vector<std::string> argv = {bench_, "lightning-db"};

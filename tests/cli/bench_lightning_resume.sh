@@ -7,7 +7,9 @@
 # is refused before anything runs, in one line naming the option, the
 # recorded and the given value (exit 2), where it would pool trials of
 # differently grown databases in one cell; the same ones resume. A file
-# from before schema 7 records none, and resumes with any. Skipped (77)
+# from before schema 7 records none, and resumes with any. Each database
+# is named by what grows it, so that no run takes one grown otherwise;
+# the limit per problem reaches lightning-db exactly. Skipped (77)
 # without /usr/bin/python3.
 set -u
 BUILD=$1
@@ -83,4 +85,24 @@ grep -q "^nothing to run" out || fail "the version 6 file's trials were not skip
 grep -q "failed" err && fail "growing the Lightning database under 1e-7 s per problem failed"
 [ "$(count tiny.sqlite "SELECT count(*) FROM databases WHERE method = 'lightning'")" -eq 1 ] ||
   fail "no Lightning database recorded for a limit per problem of 1e-7"
+# A database is named by what grows it. Another results file sharing the
+# --lightning-dir takes one grown the same way, and grows its own under
+# other settings, another seed or --learn, where it took the first.
+SHARED=(run --suites mobile --robots 2 --methods lightning --trials 1 --time-limit 5 --lightning-dir shared)
+ONE=(--lightning-problems 1 --lightning-problem-time-limit 1)
+"$BENCH" "${SHARED[@]}" --seed 3 "${ONE[@]}" --results s1.sqlite > out 2> err || fail "shared run exited $?"
+[ "$(cd shared && echo *)" = "mobile-2-p1-t1-s3.lightning" ] || fail "not named by its growth: $(ls shared)"
+"$BENCH" "${SHARED[@]}" --seed 3 "${ONE[@]}" --results s2.sqlite > out 2> err || fail "second shared run exited $?"
+grep -q "^building Lightning database" out && fail "grown again for the same settings"
+n=0
+for other in "--seed 4 ${ONE[*]}" "--seed 3 --lightning-problems 2 --lightning-problem-time-limit 1" \
+  "--seed 3 --lightning-problems 1 --lightning-problem-time-limit 0.5" "--seed 3 ${ONE[*]} --learn"; do
+  n=$((n + 1))
+  # shellcheck disable=SC2086
+  "$BENCH" "${SHARED[@]}" $other --results "other$n.sqlite" > out 2> err || fail "run with $other exited $?"
+  grep -q "^building Lightning database" out || fail "a run with $other took the database grown with ${ONE[*]}"
+done
+[ "$(cd shared && echo *)" = "mobile-2-p1-t0.5-s3.lightning mobile-2-p1-t1-s3-learn.lightning \
+mobile-2-p1-t1-s3.lightning mobile-2-p1-t1-s4.lightning mobile-2-p2-t1-s3.lightning" ] ||
+  fail "not one database per growth: $(ls shared)"
 echo "ok: Lightning settings are recorded per trial and a resumed run is held to them"

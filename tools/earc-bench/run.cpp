@@ -94,7 +94,8 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--earc-db-count", r.earc_db_count, "Problems for an E-ARC database built here (default: earc-db's)")
       ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--lightning-dir", r.lightning_dir,
-                  "Lightning databases SUITE-ROBOTS.lightning, built here when missing (default WORK/lightning)");
+                  "Lightning databases, built here when missing and named by what grows them: "
+                  "SUITE-ROBOTS-pPROBLEMS-tLIMIT-sSEED[-learn].lightning (default WORK/lightning)");
   cmd->add_option("--lightning-problems", r.lightning_problems, "Problems per Lightning database (default 4 x robots)")
       ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--lightning-problems-per-robot", r.lightning_problems_per_robot,
