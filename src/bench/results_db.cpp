@@ -84,6 +84,10 @@ CREATE TABLE databases (
 // 7: how the run grew its Lightning databases, on each lightning trial: a
 //    database grown from other problems or under another limit is another
 //    experiment, which a resumed run must not pool with the first.
+// 8: whether the run let the databases learn (--learn), on each earc and
+//    lightning trial, and on each earc trial which E-ARC database it used
+//    and how that database stood: a resumed run on another database, or
+//    with learning switched, must not pool its trials with the first.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
@@ -93,6 +97,8 @@ constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN lightning_problems INTEGER;"
     " ALTER TABLE trials ADD COLUMN lightning_problems_per_robot INTEGER;"
     " ALTER TABLE trials ADD COLUMN lightning_problem_time_limit_s REAL",
+    "ALTER TABLE trials ADD COLUMN learn INTEGER; ALTER TABLE trials ADD COLUMN earc_db TEXT;"
+    " ALTER TABLE trials ADD COLUMN earc_db_state INTEGER",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -310,6 +316,21 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
                   ") names a file");
   if (!r.isNull(25) && t.scenario_file.empty()) r.bad(25, "'' is not a path");
   t.lightning = readLightningSettings(r, t.method);
+  // Whether the databases learned: a database method's trial says (or did
+  // not, before schema 8); another method's has none to learn.
+  if (!r.isNull(29) && !usesDatabase(t.method))
+    r.bad(29, r.value(29) + " beside method " + t.method +
+                  ": only a trial of a method with a database (earc, lightning) records --learn");
+  if (auto v = r.optInteger(29, 0, 1, "0 or 1")) t.learn = *v == 1;
+  // An earc trial's E-ARC database, and where its history stood.
+  if (!r.isNull(30) && t.method != "earc")
+    r.bad(30, r.value(30) + " beside method " + t.method + ": only an earc trial records an E-ARC database");
+  t.earc_db = r.optText(30);
+  if (!r.isNull(30) && t.earc_db.empty()) r.bad(30, "'' is not a path");
+  if (!r.isNull(31) && r.isNull(30))
+    r.bad(31, r.value(31) + " beside earc_db NULL: only a trial that records its E-ARC database records its state");
+  t.earc_db_state = r.optInteger(31, std::numeric_limits<std::int64_t>::min(),
+                                 std::numeric_limits<std::int64_t>::max(), "a history token (a whole number)");
   return t;
 }
 
@@ -342,15 +363,20 @@ constexpr const char* kInsertTrial =
     "INSERT INTO trials (suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success,"
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
     " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args, scenario_file,"
-    " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s)"
+    " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s, learn, earc_db,"
+    " earc_db_state)"
     " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''),"
     " NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20,"
     " NULLIF(?21, ''), NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, ''), NULLIF(?25, ''), NULLIF(?26, ''),"
-    " NULLIF(?27, ''), NULLIF(?28, '')) ON CONFLICT DO NOTHING";
+    " NULLIF(?27, ''), NULLIF(?28, ''), NULLIF(?29, ''), NULLIF(?30, ''), NULLIF(?31, '')) ON CONFLICT DO NOTHING";
 // A trial of the method run with other planner arguments (NULLIF as the
 // insert writes them): the trial would make the file mix two settings.
 constexpr const char* kOtherPlannerArgs =
     "SELECT id, planner_args FROM trials WHERE method = ?1 AND planner_args IS NOT NULLIF(?2, '') LIMIT 1";
+// A trial of the method whose run set --learn otherwise: the trial would
+// make the file mix databases that learned with fixed ones.
+constexpr const char* kOtherLearn =
+    "SELECT id, learn FROM trials WHERE method = ?1 AND learn IS NOT NULL AND learn != ?2 LIMIT 1";
 // The first lightning trial that recorded its Lightning settings: every
 // other that did has the same (a file is checked so when opened).
 constexpr const char* kFirstLightningSettings =
@@ -362,29 +388,32 @@ constexpr const char* kInsertDatabase =
     " NULLIF(?8, ''), NULLIF(?9, ''), ?10)";
 constexpr const char* kFinishedTrials =
     "SELECT suite, robots, method, trial FROM trials WHERE seed = ?1 AND time_limit_s = ?2";
-#define EARC_TRIAL_COLUMNS_V1                                                                                  \
-  "id, suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"      \
-  " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure," \
-  " finished_at"
-// kSelectTrials[v - 1] reads a version v file, older ones without
-// migrating them (table, export, plot): NULL for the columns it lacks.
-// The row's id first, for CheckedResultRow.
-constexpr const char* kSelectTrials[] = {
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, NULL, NULL, NULL, NULL, NULL, NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, NULL, NULL, NULL, NULL, NULL, NULL FROM trials"
-    " ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, NULL, NULL, NULL, NULL, NULL"
-    " FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, NULL, NULL, NULL, NULL"
-    " FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file, NULL,"
-    " NULL, NULL FROM trials ORDER BY id",
-    "SELECT " EARC_TRIAL_COLUMNS_V1 ", jobs, planner_version, bench_version, planner_args, scenario_file,"
-    " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s FROM trials ORDER BY id",
+constexpr const char* kTrialColumnsV1 =
+    "id, suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"
+    " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure,"
+    " finished_at";
+// The trial columns each later version added (kMigrations), in the order
+// readTrialRow reads them after version 1's.
+struct AddedColumn {
+  const char* name;
+  int since;
 };
-static_assert(std::size(kSelectTrials) == kResultsSchemaVersion, "a trial select for every version");
-#undef EARC_TRIAL_COLUMNS_V1
+constexpr AddedColumn kAddedTrialColumns[] = {
+    {"jobs", 2},          {"planner_version", 3},    {"bench_version", 4},
+    {"planner_args", 5},  {"scenario_file", 6},      {"lightning_problems", 7},
+    {"lightning_problems_per_robot", 7},             {"lightning_problem_time_limit_s", 7},
+    {"learn", 8},         {"earc_db", 8},            {"earc_db_state", 8},
+};
+static_assert(kAddedTrialColumns[std::size(kAddedTrialColumns) - 1].since == kResultsSchemaVersion,
+              "the columns of every version");
+// Reads a version `version` file, an older one without migrating it
+// (table, export, plot): NULL for the columns it lacks. The row's id
+// first, for CheckedResultRow.
+std::string selectTrials(int version) {
+  std::string sql = std::string("SELECT ") + kTrialColumnsV1;
+  for (const AddedColumn& c : kAddedTrialColumns) sql += std::string(", ") + (c.since <= version ? c.name : "NULL");
+  return sql + " FROM trials ORDER BY id";
+}
 constexpr const char* kSelectDatabases =
     "SELECT id, method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
@@ -393,7 +422,7 @@ constexpr const char* kHasDatabase =
 // Those a file of any version must run; the inserts only the current
 // version can (older files are read-only: they were opened so).
 constexpr const char* kReadStatements[] = {kFinishedTrials, kSelectDatabases, kHasDatabase};
-constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase, kOtherPlannerArgs,
+constexpr const char* kWriteStatements[] = {kInsertTrial, kInsertDatabase, kOtherPlannerArgs, kOtherLearn,
                                             kFirstLightningSettings};
 
 struct ResultsDb::Impl {
@@ -463,7 +492,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
   // trials has no column named X").
   if (version == kResultsSchemaVersion)
     for (const char* sql : kWriteStatements) impl_->prepare(sql);
-  impl_->prepare(kSelectTrials[version - 1]);
+  impl_->prepare(selectTrials(version));
   for (const char* sql : kReadStatements) impl_->prepare(sql);
   // Every row checked before any work, whatever the command then reads.
   trials();
@@ -489,6 +518,15 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
                                             " (row id " + std::to_string(other.int64At(0)) + "); a trial run with " +
                                             (args.empty() ? "none" : args) +
                                             " is not added: a results file holds one set per method");
+    if (t.learn) {
+      Statement other_learn = impl_->prepare(kOtherLearn);
+      other_learn.bind(1, t.method).bind(2, *t.learn ? 1 : 0);
+      if (other_learn.step())
+        throw InputError(impl_->path, "", "its " + t.method + " trials ran with " + learnText(!*t.learn) +
+                                              " (row id " + std::to_string(other_learn.int64At(0)) +
+                                              "); a trial run with " + learnText(*t.learn) +
+                                              " is not added: a results file holds one --learn setting per method");
+    }
     if (t.lightning) {
       Statement first = impl_->prepare(kFirstLightningSettings);
       if (first.step()) {
@@ -528,6 +566,9 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     bindOpt(s, 26, l ? l->problems : std::nullopt);
     bindOpt(s, 27, l ? l->problems_per_robot : std::nullopt);
     bindOpt(s, 28, l ? std::optional<double>(l->problem_time_limit_s) : std::nullopt);
+    bindOpt(s, 29, t.learn ? std::optional<int>(*t.learn ? 1 : 0) : std::nullopt);
+    s.bind(30, std::string_view(t.earc_db));
+    bindOpt(s, 31, t.earc_db_state);
     s.run();
     return sqlite3_changes(c.handle()) > 0;
   });
@@ -558,13 +599,15 @@ std::set<TrialKey> ResultsDb::finishedTrials(std::uint64_t seed, double time_lim
 }
 
 std::vector<TrialRecord> ResultsDb::trials() const {
-  Statement s = impl_->prepare(kSelectTrials[impl_->version - 1]);
+  Statement s = impl_->prepare(selectTrials(impl_->version));
   std::vector<TrialRecord> out;
   // Per method, its first row (index in out, id): every other row of it
   // ran with the same arguments.
   std::map<std::string, std::pair<std::size_t, std::int64_t>> first_of_method;
   // The first lightning trial with Lightning settings (its settings, id).
   std::optional<std::pair<LightningSettings, std::int64_t>> first_lightning;
+  // Per method, the --learn of its first trial that records one (and its id).
+  std::map<std::string, std::pair<bool, std::int64_t>> first_learn;
   while (s.step()) {
     const CheckedResultRow row(s, impl_->path, "trials");
     out.push_back(readTrialRow(row));
@@ -575,6 +618,13 @@ std::vector<TrialRecord> ResultsDb::trials() const {
         row.bad(lightningColumn(d->option), row.value(lightningColumn(d->option)) + " beside " + d->stored +
                                                 " in row id " + std::to_string(first_lightning->second) +
                                                 ": a results file holds one Lightning setting");
+    }
+    if (t.learn) {
+      const auto [first, inserted] = first_learn.emplace(t.method, std::pair{*t.learn, s.int64At(0)});
+      if (!inserted && first->second.first != *t.learn)
+        row.bad(29, row.value(29) + " beside " + (first->second.first ? "1" : "0") + " of method " + t.method +
+                        " in row id " + std::to_string(first->second.second) +
+                        ": a results file holds one --learn setting per method");
     }
     const auto [first, inserted] = first_of_method.emplace(t.method, std::pair{out.size() - 1, s.int64At(0)});
     const std::vector<std::string>& before = out[first->second.first].planner_args;
@@ -597,6 +647,13 @@ std::optional<LightningSettings> ResultsDb::lightningSettings() const {
   // Every row was checked at open: the first that has them tells for all.
   for (const TrialRecord& t : trials())
     if (t.lightning) return t.lightning;
+  return std::nullopt;
+}
+
+std::optional<bool> ResultsDb::learn(const std::string& method) const {
+  // Every row was checked at open: the first that has it tells for all.
+  for (const TrialRecord& t : trials())
+    if (t.method == method && t.learn) return t.learn;
   return std::nullopt;
 }
 
@@ -634,6 +691,8 @@ std::optional<LightningSettingDifference> lightningSettingDifference(const Light
   }
   return std::nullopt;
 }
+
+std::string learnText(bool learn) { return learn ? "--learn" : "no --learn (fixed databases)"; }
 
 std::string utcNow() { return utcTimeText(std::time(nullptr)); }
 

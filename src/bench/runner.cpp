@@ -112,11 +112,18 @@ std::string earcBuildKey(const ScenarioFile& f) {
   return key;
 }
 
-// The entries of an existing E-ARC database, opened read-only as the
-// trials' `earc-plan --no-learn` opens it. One that cannot be read (a
-// foreign file, a newer schema version) is bad input: every earc trial
-// would fail on it, and be recorded, and be skipped when resumed.
-std::int64_t earcDbEntries(const RunOptions& o, const std::string& family) {
+// What the run reads of an E-ARC database that is there: its entries, and
+// its history, oldest line first (none before experience schema 5).
+struct EarcDbFacts {
+  std::int64_t entries = 0;
+  std::vector<exp::HistoryLine> history;
+};
+
+// An existing E-ARC database, opened read-only as the trials' `earc-plan
+// --no-learn` opens it. One that cannot be read (a foreign file, a newer
+// schema version) is bad input: every earc trial would fail on it, and be
+// recorded, and be skipped when resumed.
+EarcDbFacts earcDbFacts(const RunOptions& o, const std::string& family) {
   const std::string path = earcDbPath(o, family);
   const bool given = !(family == "arms" ? o.db_arms : o.db_mobile).empty();
   const std::string option = given ? "--db-" + family : "";
@@ -126,20 +133,31 @@ std::int64_t earcDbEntries(const RunOptions& o, const std::string& family) {
     so.read_only = true;
     so.new_session = false;
     exp::ExperienceStore store(path, so);
-    return static_cast<std::int64_t>(store.size());
+    EarcDbFacts f;
+    f.entries = static_cast<std::int64_t>(store.size());
+    f.history = exp::readHistory(store.connection(), store.schemaVersion(), std::numeric_limits<int>::max()).lines;
+    return f;
   } catch (const std::exception& e) {
     throw InputError(path, option, "not a usable E-ARC database: " + reasonAbout(e, path) +
                                        (given ? "" : " (remove it to have it built again)"));
   }
 }
 
-// Entries of the E-ARC databases that existed before the run, by family:
-// validateOptions opens each once to check it, and that count is recorded.
-using EarcDbEntries = std::map<std::string, std::int64_t>;
+// Where a database's history stands (its last line's token), as earc
+// trials record it; nothing without a history.
+std::optional<std::int64_t> earcDbState(const EarcDbFacts& f) {
+  if (f.history.empty()) return std::nullopt;
+  return f.history.back().token;
+}
+
+// The E-ARC databases that existed before the run, by family:
+// validateOptions opens each once to check it, and what it read is
+// recorded and held to.
+using ExistingEarcDbs = std::map<std::string, EarcDbFacts>;
 
 class Runner {
  public:
-  Runner(const RunOptions& o, const std::vector<ScenarioFile>& files, EarcDbEntries existing, std::ostream& log)
+  Runner(const RunOptions& o, const std::vector<ScenarioFile>& files, ExistingEarcDbs existing, std::ostream& log)
       : o_(o), files_(files), log_(log), db_(o.results), existing_(std::move(existing)) {
     work_ = workDir(o);
     lightning_dir_ = o.lightning_dir.empty() ? work_ + "/lightning" : o.lightning_dir;
@@ -148,7 +166,11 @@ class Runner {
     bench_ = o.bench_program.empty() ? here + "/earc-bench" : o.bench_program;
     requireSamePlannerArgs();
     requireSameLightningSettings();
+    requireSameLearn();
     requireSameFiles();
+    requireSameEarcDb();
+    requireSameEarcDbCount();
+    for (const auto& [family, facts] : existing_) earc_states_[family] = earcDbState(facts);
     for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
   }
 
@@ -280,7 +302,7 @@ class Runner {
   // from before schema 7 (or without a lightning trial) have no settings
   // to hold the run to.
   void requireSameLightningSettings() const {
-    if (std::find(o_.methods.begin(), o_.methods.end(), "lightning") == o_.methods.end()) return;
+    if (!runs("lightning")) return;
     const auto recorded = db_.lightningSettings();
     if (!recorded) return;
     if (const auto d = lightningSettingDifference(*recorded, lightningSettings()))
@@ -288,6 +310,117 @@ class Runner {
                        "its lightning trials ran with " + d->stored + "; this run gives " + d->given +
                            ": a results file holds one Lightning database setting (give the same, or another "
                            "--results)");
+  }
+
+  bool runs(const std::string& method) const {
+    return std::find(o_.methods.begin(), o_.methods.end(), method) != o_.methods.end();
+  }
+
+  // The same for --learn, per method with a database: trials whose
+  // database learned as they went are another experiment than those of a
+  // fixed one. Files from before schema 8 have none to hold the run to.
+  void requireSameLearn() const {
+    for (const std::string& m : o_.methods) {
+      const auto recorded = usesDatabase(m) ? db_.learn(m) : std::nullopt;
+      if (!recorded || *recorded == o_.learn) continue;
+      throw InputError(o_.results, "--learn",
+                       "its " + m + " trials ran with " + learnText(*recorded) + "; this run gives " +
+                           learnText(o_.learn) +
+                           ": a results file holds one --learn setting per method (give the same, or another "
+                           "--results)");
+    }
+  }
+
+  // The families of robots (mobile, arms) whose E-ARC databases this
+  // run's earc trials use.
+  std::set<std::string> families() const {
+    std::set<std::string> out;
+    for (const ScenarioFile& f : files_) out.insert(f.family);
+    for (const std::string& name : files_.empty() ? o_.suites : std::vector<std::string>{})
+      out.insert(suiteByName(name).family);
+    return out;
+  }
+
+  // The family of a recorded trial: its suite's, or its scenario file's
+  // when that is one of this run's files; nothing for another file.
+  std::optional<std::string> familyOf(const TrialRecord& t) const {
+    if (t.suite != kFilesSuite) return suiteByName(t.suite).family;
+    for (const ScenarioFile& f : files_)
+      if (f.path == t.scenario_file) return f.family;
+    return std::nullopt;
+  }
+
+  // The earc trials of one family of robots plan with one E-ARC database,
+  // as they found it: a resumed run on another would put trials of two
+  // databases in one cell. "The same" is the same file wherever it lies
+  // now (moved or copied, given by another path) and changed since only
+  // by the trials' own learning (--learn): the token of the last line of
+  // its history, which each earc trial records, is still in its history,
+  // and no line after it added or removed rows but those. Another
+  // database, built again in its place (even by the same command: what it
+  // holds depends on the earc build too), curated or added to since, or
+  // one this run would build because it is gone, is refused before
+  // anything runs. Files from before schema 8, and databases without a
+  // history (experience schema before 5), have none to tell by.
+  void requireSameEarcDb() const {
+    if (!runs("earc")) return;
+    const std::set<std::string> ours = families();
+    std::set<std::pair<std::string, std::int64_t>> checked;
+    for (const TrialRecord& t : db_.trials()) {
+      if (t.method != "earc" || !t.earc_db_state) continue;
+      const auto family = familyOf(t);
+      if (!family || !ours.count(*family) || !checked.insert({*family, *t.earc_db_state}).second) continue;
+      const std::string path = earcDb(*family);
+      const auto refuse = [&](const std::string& now) {
+        return InputError(o_.results, "--db-" + *family,
+                          "its earc trials of " + (*family == "arms" ? std::string("arms") : *family + " robots") +
+                              " ran on the E-ARC database " + t.earc_db + "; " + now +
+                              ": a results file holds the earc trials of one E-ARC database per kind of robot, as "
+                              "they found it (give that one, or another --results)");
+      };
+      const auto facts = existing_.find(*family);
+      if (facts == existing_.end()) throw refuse("this run would build a new one at " + path);
+      const std::vector<exp::HistoryLine>& lines = facts->second.history;
+      if (lines.empty()) continue;
+      const auto then = std::find_if(lines.begin(), lines.end(),
+                                     [&](const exp::HistoryLine& l) { return l.token == *t.earc_db_state; });
+      if (then == lines.end()) throw refuse(path + " is another");
+      std::vector<std::string> changes;
+      for (auto l = then + 1; l != lines.end(); ++l)
+        if ((l->rows_added || l->rows_removed) && !(o_.learn && l->operation == "learn") &&
+            std::find(changes.begin(), changes.end(), l->operation) == changes.end())
+          changes.push_back(l->operation);
+      if (changes.empty()) continue;
+      std::string what;
+      for (const std::string& c : changes) what += (what.empty() ? "" : ", ") + c;
+      throw refuse(path + " has changed since (" + what + ")");
+    }
+  }
+
+  // An E-ARC database that is there is used as it is: one a run built into
+  // this file (its databases row has a construction time) from another
+  // --earc-db-count would not be built again, and the run's trials would
+  // not be of the count it gives. Older files recorded the count too.
+  void requireSameEarcDbCount() const {
+    if (!runs("earc")) return;
+    const std::vector<DatabaseRecord> recorded = db_.databases();
+    const auto count = [](std::optional<std::int64_t> n) {
+      return n ? std::to_string(*n) + " problems" : std::string("earc-db's default count");
+    };
+    for (const std::string& family : families()) {
+      if (!existing_.count(family)) continue;  // built by this run, from its count
+      const std::string path = earcDb(family);
+      std::optional<DatabaseRecord> built;
+      for (const DatabaseRecord& d : recorded)
+        if (d.method == "earc" && d.path == path && d.construction_time_s) built = d;
+      const std::optional<std::int64_t> given = o_.earc_db_count;
+      if (!built || built->problems == given) continue;
+      throw InputError(o_.results, "--earc-db-count",
+                       "its E-ARC database " + path + " was built from " + count(built->problems) +
+                           "; this run gives " + count(given) +
+                           ": a database that is there is used as it is, not built again (give the same, or "
+                           "another --results)");
+    }
   }
 
   // A scenario file's trials are numbered by the order the files were
@@ -478,7 +611,10 @@ class Runner {
       }
       // One built here is new: opened now, for the first time.
       const auto checked = existing_.find(family);
-      d.entries = construction || checked == existing_.end() ? earcDbEntries(o_, family) : checked->second;
+      const EarcDbFacts facts =
+          construction || checked == existing_.end() ? earcDbFacts(o_, family) : checked->second;
+      d.entries = facts.entries;
+      earc_states_[family] = earcDbState(facts);
       db_.addDatabase(d);
     }
   }
@@ -656,6 +792,12 @@ class Runner {
     t.planner_args = argsOf(c.method);
     if (c.file) t.scenario_file = c.file->path;
     if (c.method == "lightning") t.lightning = lightningSettings();
+    if (usesDatabase(c.method)) t.learn = o_.learn;
+    if (c.method == "earc") {
+      t.earc_db = earcDb(c.family());
+      const auto state = earc_states_.find(c.family());
+      if (state != earc_states_.end()) t.earc_db_state = state->second;
+    }
     const TrialSeeds seeds = seedsOf(c);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;
@@ -823,7 +965,10 @@ class Runner {
   const std::vector<ScenarioFile>& files_;
   std::ostream& log_;
   ResultsDb db_;
-  const EarcDbEntries existing_;
+  const ExistingEarcDbs existing_;
+  // Where each family's E-ARC database stood when the run began, for its
+  // earc trials to record: those there before, and those built here.
+  std::map<std::string, std::optional<std::int64_t>> earc_states_;
   std::string work_, lightning_dir_, plan_, bench_;
   RunSummary summary_;
   std::mutex record_mutex_, scenario_mutex_, lightning_mutex_;
@@ -901,7 +1046,7 @@ namespace {
 // Every option checked before anything is created, run or recorded: a
 // configuration error is not a trial failure. Returns the entries of the
 // E-ARC databases that exist, which it had to open to check.
-EarcDbEntries validateOptions(const RunOptions& o, const std::vector<ScenarioFile>& files) {
+ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioFile>& files) {
   // Single numbers were checked as the options were parsed (earc::cli's
   // validators); what is left depends on more than one option or on the
   // machine.
@@ -937,10 +1082,10 @@ EarcDbEntries validateOptions(const RunOptions& o, const std::vector<ScenarioFil
   }
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
-  EarcDbEntries existing;
+  ExistingEarcDbs existing;
   if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
     for (const std::string& family : families)
-      if (fs::exists(earcDbPath(o, family))) existing[family] = earcDbEntries(o, family);
+      if (fs::exists(earcDbPath(o, family))) existing[family] = earcDbFacts(o, family);
   return existing;
 }
 
@@ -948,7 +1093,7 @@ EarcDbEntries validateOptions(const RunOptions& o, const std::vector<ScenarioFil
 
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
   const std::vector<ScenarioFile> files = loadScenarioFiles(options.scenario_files);
-  EarcDbEntries existing = validateOptions(options, files);
+  ExistingEarcDbs existing = validateOptions(options, files);
   InterruptGuard guard;
   Runner runner(options, files, std::move(existing), log);
   return runner.run();

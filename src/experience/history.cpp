@@ -58,12 +58,12 @@ HistoryTail readHistory(Connection& db, int schema_version, int limit) {
   Statement total = db.prepare("SELECT count(*) FROM history");
   if (total.step()) tail.total = total.int64At(0);
   Statement last = db.prepare(
-      "SELECT id, at, program, operation, detail, rows_added, rows_removed FROM "
+      "SELECT id, at, program, operation, detail, rows_added, rows_removed, token FROM "
       "(SELECT * FROM history ORDER BY id DESC LIMIT ?1) ORDER BY id");
   last.bind(1, limit);
   while (last.step())
     tail.lines.push_back({last.int64At(0), last.int64At(1), last.textAt(2), last.textAt(3), last.textAt(4),
-                          last.int64At(5), last.int64At(6)});
+                          last.int64At(5), last.int64At(6), last.int64At(7)});
   return tail;
 }
 

@@ -66,7 +66,8 @@ refusedInOneLine "p.sqlite: --lightning-problems-per-robot: its lightning trials
 import sqlite3
 src, dst = sqlite3.connect("r.sqlite"), sqlite3.connect("old.sqlite")
 src.backup(dst)
-for column in ("lightning_problems", "lightning_problems_per_robot", "lightning_problem_time_limit_s"):
+for column in ("lightning_problems", "lightning_problems_per_robot", "lightning_problem_time_limit_s", "learn",
+               "earc_db", "earc_db_state"):
     dst.execute("ALTER TABLE trials DROP COLUMN %s" % column)
 dst.execute("PRAGMA user_version = 6")
 dst.commit()
@@ -74,7 +75,7 @@ PY
 "$BENCH" "${RUN[@]}" --lightning-problem-time-limit 3 --results old.sqlite --work-dir r.sqlite.work > out 2> err ||
   fail "a version 6 file resumed with other settings: exit $?"
 grep -q "^nothing to run" out || fail "the version 6 file's trials were not skipped"
-[ "$(count old.sqlite "PRAGMA user_version")" -eq 7 ] || fail "the version 6 file was not migrated"
+[ "$(count old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 6 file was not migrated"
 [ "$(count old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
   fail "the old trials gained settings"
 # A limit per problem reaches lightning-db exactly, however small: 1e-07,

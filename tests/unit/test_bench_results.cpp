@@ -77,6 +77,9 @@ std::vector<std::string> lines(const std::string& path) {
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 8)
+    c.exec("ALTER TABLE trials DROP COLUMN learn; ALTER TABLE trials DROP COLUMN earc_db; ALTER TABLE trials DROP "
+           "COLUMN earc_db_state");
   if (version < 7)
     c.exec("ALTER TABLE trials DROP COLUMN lightning_problems; ALTER TABLE trials DROP COLUMN "
            "lightning_problems_per_robot; ALTER TABLE trials DROP COLUMN lightning_problem_time_limit_s");
@@ -458,6 +461,92 @@ TEST_CASE("a results file keeps one Lightning setting: a lightning trial run wit
   CHECK(db.trials().size() == 3);
 }
 
+namespace {
+
+TrialRecord earcTrial(int t, bool learn, const std::string& db, std::optional<std::int64_t> state) {
+  TrialRecord r = trial("earc", t, true, 1.0);
+  r.learn = learn;
+  r.earc_db = db;
+  r.earc_db_state = state;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a results database records --learn and the E-ARC database of each trial, and reads and migrates version 7 files") {
+  TempPath file("earc-results-learn");
+  {
+    ResultsDb db(file.path);
+    CHECK_FALSE(db.learn("earc").has_value());
+    CHECK(db.addTrial(trial("arc", 0, true, 1.5)));
+    CHECK(db.addTrial(earcTrial(0, false, "w/earc-mobile.sqlite", -5)));
+    TrialRecord l = lightningTrial(0, perRobotLightning(4, 10));
+    l.learn = true;
+    CHECK(db.addTrial(l));
+    CHECK(db.learn("earc") == false);
+    CHECK(db.learn("lightning") == true);
+    CHECK_FALSE(db.learn("arc").has_value());
+    const auto all = db.trials();
+    REQUIRE(all.size() == 3);
+    CHECK_FALSE(all[0].learn.has_value());
+    CHECK(all[0].earc_db.empty());
+    CHECK_FALSE(all[0].earc_db_state.has_value());
+    CHECK(all[1].learn == false);
+    CHECK(all[1].earc_db == "w/earc-mobile.sqlite");
+    CHECK(all[1].earc_db_state == -5);
+    CHECK(all[2].learn == true);
+  }
+  {
+    // As stored: 0 or 1, the path, the token; NULL on another method's trial.
+    exp::Connection c(file.path, exp::OpenMode::ReadOnly);
+    exp::Statement s = c.prepare("SELECT learn, earc_db, earc_db_state FROM trials ORDER BY id");
+    REQUIRE(s.step());
+    for (int col : {0, 1, 2}) CHECK(s.columnType(col) == SQLITE_NULL);
+    REQUIRE(s.step());
+    CHECK(s.int64At(0) == 0);
+    CHECK(s.textAt(1) == "w/earc-mobile.sqlite");
+    CHECK(s.int64At(2) == -5);
+    REQUIRE(s.step());
+    CHECK(s.int64At(0) == 1);
+    CHECK(s.columnType(1) == SQLITE_NULL);
+  }
+  // A version 7 file: read as it is, nothing recorded; migrated when
+  // opened for writing, and an earc trial of either --learn added beside
+  // the old ones, which hold it to nothing. A database without a history
+  // leaves the state unset.
+  const auto all = readOldThenMigrate(
+      file.path, 7,
+      [](const TrialRecord& t) {
+        CHECK_FALSE(t.learn.has_value());
+        CHECK(t.earc_db.empty());
+        CHECK_FALSE(t.earc_db_state.has_value());
+      },
+      earcTrial(1, true, "e.sqlite", std::nullopt));
+  REQUIRE(all.size() == 4);
+  CHECK_FALSE(all[1].learn.has_value());
+  CHECK(all[3].learn == true);
+  CHECK(all[3].earc_db == "e.sqlite");
+  CHECK_FALSE(all[3].earc_db_state.has_value());
+  CHECK(ResultsDb(file.path, true).learn("earc") == true);
+}
+
+TEST_CASE("a results file keeps one --learn per method: a trial run with the other is not added") {
+  TempPath file("earc-results-learn-one");
+  ResultsDb db(file.path);
+  CHECK(db.addTrial(earcTrial(0, false, "e.sqlite", 1)));
+  CHECK_THROWS_WITH_AS(db.addTrial(earcTrial(1, true, "e.sqlite", 1)),
+                       (file.path + ": its earc trials ran with no --learn (fixed databases) (row id 1); a trial run "
+                                    "with --learn is not added: a results file holds one --learn setting per method")
+                           .c_str(),
+                       InputError);
+  // Per method: lightning's may learn; the same goes on.
+  TrialRecord l = lightningTrial(0, perRobotLightning(4, 10));
+  l.learn = true;
+  CHECK(db.addTrial(l));
+  CHECK(db.addTrial(earcTrial(1, false, "e.sqlite", 1)));
+  CHECK(db.trials().size() == 3);
+}
+
 TEST_CASE("a results file keeps one set of planner arguments per method: a trial run with another is not added") {
   TempPath file("earc-results-args-per-method");
   ResultsDb db(file.path);
@@ -621,6 +710,21 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
        " UPDATE trials SET lightning_problem_time_limit_s = 2 WHERE id = 2",
        "trials row id 2, column lightning_problem_time_limit_s: 2 beside 5 in row id 1: a results file holds one "
        "Lightning setting"},
+      {"UPDATE trials SET learn = 1 WHERE id = 1",
+       "trials row id 1, column learn: 1 beside method arc: only a trial of a method with a database (earc, "
+       "lightning) records --learn"},
+      {"UPDATE trials SET method = 'earc', learn = 2 WHERE id = 1", "trials row id 1, column learn: 2 is not 0 or 1"},
+      {"UPDATE trials SET method = 'earc', learn = 1; UPDATE trials SET learn = 0 WHERE id = 2",
+       "trials row id 2, column learn: 0 beside 1 of method earc in row id 1: a results file holds one --learn "
+       "setting per method"},
+      {"UPDATE trials SET earc_db = 'e.sqlite' WHERE id = 1",
+       "trials row id 1, column earc_db: 'e.sqlite' beside method arc: only an earc trial records an E-ARC database"},
+      {"UPDATE trials SET method = 'earc', earc_db = '' WHERE id = 1", "trials row id 1, column earc_db: '' is not a path"},
+      {"UPDATE trials SET method = 'earc', earc_db_state = 7 WHERE id = 1",
+       "trials row id 1, column earc_db_state: 7 beside earc_db NULL: only a trial that records its E-ARC database "
+       "records its state"},
+      {"UPDATE trials SET method = 'earc', earc_db = 'e.sqlite', earc_db_state = 'x' WHERE id = 1",
+       "trials row id 1, column earc_db_state: 'x' is not a history token (a whole number)"},
       {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
       {"UPDATE databases SET robots = 1",
        "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},

@@ -54,7 +54,7 @@ except ImportError as e:
     sys.exit(1)
 
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
-SCHEMA_VERSION = 7  # kResultsSchemaVersion there
+SCHEMA_VERSION = 8  # kResultsSchemaVersion there
 # A solved trial's planning time may be this much over its limit (the
 # planners poll their deadline): kSolvedTimeLimitSlack in results_db.hpp.
 TIME_LIMIT_SLACK = 1.01

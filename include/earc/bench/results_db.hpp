@@ -1,5 +1,5 @@
 // The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 7, WAL) that trials are appended to as they finish, each in
+// user_version 8, WAL) that trials are appended to as they finish, each in
 // its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
 // the trials that were running and resumes by skipping the finished ones.
 //
@@ -40,6 +40,17 @@
 //     resumed with other ones is refused (runner.cpp), as is a lightning
 //     trial added beside others with other ones, so that no cell pools
 //     trials of differently grown databases.
+//   Version 8 adds trials.learn, earc_db and earc_db_state: on each earc
+//     and lightning trial whether its run let the databases learn
+//     (--learn, 1 or 0), and on each earc trial the E-ARC database it used
+//     (as the run was given it or made it) and where that database's
+//     history stood when the run began (the token of its last line, NULL
+//     for a database without one); NULL elsewhere and on every trial
+//     recorded before it. A run resumed with another --learn for one of
+//     its database methods is refused, as is a trial added beside others
+//     of its method with another; so is a run whose E-ARC database is not
+//     the one the file's earc trials of that kind of robot used, as they
+//     found it (runner.cpp).
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -73,7 +84,9 @@
 // and the Lightning settings NULL, or on a lightning trial a positive time
 // and one positive count (lightning_problems or
 // lightning_problems_per_robot), the same in every lightning trial that
-// has them.
+// has them; learn NULL, or 0 or 1 on an earc or lightning trial, the same
+// in every trial of a method that has it; earc_db NULL or a path (not
+// empty) on an earc trial, and earc_db_state NULL or an integer beside one.
 #pragma once
 
 #include <cstdint>
@@ -87,7 +100,7 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 7;
+inline constexpr int kResultsSchemaVersion = 8;
 // A solution may report a planning time this much over its time limit
 // (the planners poll their deadline) and still count as solved; later than
 // that it is "solved after the time limit", a failure.
@@ -143,6 +156,17 @@ struct TrialRecord {
   // A lightning trial's: how its run grew the Lightning databases; unset
   // for other methods (and every trial before schema 7).
   std::optional<LightningSettings> lightning;
+  // An earc or lightning trial's: whether its run let the databases learn
+  // (--learn); unset for other methods (and every trial before schema 8).
+  std::optional<bool> learn;
+  // An earc trial's E-ARC database, as the run used it, and where that
+  // database's history stood when the run began: the token of its last
+  // line (experience/history.hpp), which names the file, wherever it is
+  // moved or copied, as it was then. Unset for a database without a
+  // history (experience schema before 5). "" and unset for other methods
+  // (and every trial before schema 8).
+  std::string earc_db;
+  std::optional<std::int64_t> earc_db_state;
 };
 
 struct DatabaseRecord {
@@ -187,6 +211,9 @@ class ResultsDb {
   // The planner arguments the file's trials of `method` ran with; nothing
   // when it has none of them.
   std::optional<std::vector<std::string>> plannerArgs(const std::string& method) const;
+  // Whether the file's trials of `method` ran with --learn; nothing when
+  // none of them recorded it (none yet, or all before schema 8).
+  std::optional<bool> learn(const std::string& method) const;
   // The Lightning settings the file's lightning trials ran with; nothing
   // when none of them recorded any (none yet, or all before schema 7).
   std::optional<LightningSettings> lightningSettings() const;
@@ -200,6 +227,9 @@ class ResultsDb {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// "--learn" or "no --learn (fixed databases)", for messages.
+std::string learnText(bool learn);
 
 // Now as "YYYY-MM-DDTHH:MM:SSZ".
 std::string utcNow();

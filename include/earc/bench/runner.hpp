@@ -120,7 +120,10 @@ struct RunSummary {
 // run, an E-ARC database that was given but cannot be read, a
 // --method-arg for a method not run or that plannerArgsProblem refuses,
 // or that differs from the one the results file's trials of that method
-// ran with) throw InputError before anything is run or recorded: they are
+// ran with; Lightning settings or a --learn other than the file's trials
+// ran with, an E-ARC database other than the one its earc trials found,
+// or an --earc-db-count other than the one its database was built from)
+// throw InputError before anything is run or recorded: they are
 // not trial failures. So does, once the run has begun, a trial of a
 // method given --method-arg that the planner refused (refusedItsCommand):
 // the run stops as an interrupt stops it, that trial is not recorded, and

@@ -56,6 +56,10 @@ struct HistoryLine {
   std::string detail;
   std::int64_t rows_added = 0;
   std::int64_t rows_removed = 0;
+  // Its open's random token: no other line of any file has it, and a copy
+  // of the file keeps it, so the last line's says which file this is and
+  // how far its changes go (earc-bench run holds a resumed run to it).
+  std::int64_t token = 0;
 };
 
 // The last `limit` lines, oldest first, and how many lines there are in
