@@ -392,6 +392,7 @@ constexpr const char* kTrialColumnsV1 =
     "id, suite, robots, method, trial, seed, time_limit_s, scenario_seed, planner_seed, success, planning_time_s,"
     " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure,"
     " finished_at";
+namespace {
 // The trial columns each later version added (kMigrations), in the order
 // readTrialRow reads them after version 1's.
 struct AddedColumn {
@@ -399,10 +400,17 @@ struct AddedColumn {
   int since;
 };
 constexpr AddedColumn kAddedTrialColumns[] = {
-    {"jobs", 2},          {"planner_version", 3},    {"bench_version", 4},
-    {"planner_args", 5},  {"scenario_file", 6},      {"lightning_problems", 7},
-    {"lightning_problems_per_robot", 7},             {"lightning_problem_time_limit_s", 7},
-    {"learn", 8},         {"earc_db", 8},            {"earc_db_state", 8},
+    {"jobs", 2},
+    {"planner_version", 3},
+    {"bench_version", 4},
+    {"planner_args", 5},
+    {"scenario_file", 6},
+    {"lightning_problems", 7},
+    {"lightning_problems_per_robot", 7},
+    {"lightning_problem_time_limit_s", 7},
+    {"learn", 8},
+    {"earc_db", 8},
+    {"earc_db_state", 8},
 };
 static_assert(kAddedTrialColumns[std::size(kAddedTrialColumns) - 1].since == kResultsSchemaVersion,
               "the columns of every version");
@@ -414,6 +422,7 @@ std::string selectTrials(int version) {
   for (const AddedColumn& c : kAddedTrialColumns) sql += std::string(", ") + (c.since <= version ? c.name : "NULL");
   return sql + " FROM trials ORDER BY id";
 }
+}  // namespace
 constexpr const char* kSelectDatabases =
     "SELECT id, method, suite, robots, path, construction_time_s, entries, size_bytes, problems, seed, recorded_at"
     " FROM databases ORDER BY id";
