@@ -75,12 +75,15 @@ std::vector<double> gather(const std::vector<double>& values, const std::vector<
   return out;
 }
 
-// Seconds with three significant digits, but never in exponent form.
+// Seconds with three significant digits, down to the microsecond, but
+// never in exponent form (a sub-millisecond median read "0.000").
 std::string secs(double s) {
   if (s >= 100) return formatNumber("%.0f", s);
   if (s >= 10) return formatNumber("%.1f", s);
   if (s >= 1) return formatNumber("%.2f", s);
-  return formatNumber("%.3f", s);
+  if (!(s > 0)) return formatNumber("%.3f", s);
+  const int decimals = std::clamp(2 - static_cast<int>(std::floor(std::log10(s))), 3, 6);
+  return formatNumber(("%." + std::to_string(decimals) + "f").c_str(), s);
 }
 
 std::string csvField(const std::string& s) {

@@ -769,6 +769,18 @@ TEST_CASE("cells count every trial but time only the solved ones") {
   CHECK(*cells[0].median_s == doctest::Approx(2));
 }
 
+TEST_CASE("the table gives times with three significant digits, also below a millisecond") {
+  // Medians of one trial each: a sub-millisecond plan read "0.000".
+  const std::string md = markdownTable({trial("arc", 0, true, 0.000123), trial("earc", 0, true, 0.0456),
+                                        trial("prioritized", 0, true, 0.5), trial("coupled", 0, true, 12.34)},
+                                       {});
+  CHECK(md.find("| 0.000123 |") != std::string::npos);
+  CHECK(md.find("| 0.0456 |") != std::string::npos);
+  CHECK(md.find("| 0.500 |") != std::string::npos);
+  CHECK(md.find("| 12.3 |") != std::string::npos);
+  CHECK(md.find("0.000 ") == std::string::npos);
+}
+
 TEST_CASE("the E-ARC/ARC ratio pairs trials by scenario and skips unpaired ones") {
   std::vector<TrialRecord> t = {trial("arc", 0, true, 2), trial("earc", 0, true, 1),   // 0.5
                                 trial("arc", 1, true, 4), trial("earc", 1, true, 3),   // 0.75
