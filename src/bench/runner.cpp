@@ -155,6 +155,16 @@ std::optional<std::int64_t> earcDbState(const EarcDbFacts& f) {
 // recorded and held to.
 using ExistingEarcDbs = std::map<std::string, EarcDbFacts>;
 
+// The families of robots (mobile, arms) a run plans for: its scenario
+// files', else its suites'.
+std::set<std::string> runFamilies(const RunOptions& o, const std::vector<ScenarioFile>& files) {
+  std::set<std::string> out;
+  for (const ScenarioFile& f : files) out.insert(f.family);
+  for (const std::string& name : files.empty() ? o.suites : std::vector<std::string>{})
+    out.insert(suiteByName(name).family);
+  return out;
+}
+
 class Runner {
  public:
   Runner(const RunOptions& o, const std::vector<ScenarioFile>& files, ExistingEarcDbs existing, std::ostream& log)
@@ -333,13 +343,7 @@ class Runner {
 
   // The families of robots (mobile, arms) whose E-ARC databases this
   // run's earc trials use.
-  std::set<std::string> families() const {
-    std::set<std::string> out;
-    for (const ScenarioFile& f : files_) out.insert(f.family);
-    for (const std::string& name : files_.empty() ? o_.suites : std::vector<std::string>{})
-      out.insert(suiteByName(name).family);
-    return out;
-  }
+  std::set<std::string> families() const { return runFamilies(o_, files_); }
 
   // The family of a recorded trial: its suite's, or its scenario file's
   // when that is one of this run's files; nothing for another file.
@@ -1056,15 +1060,12 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
       throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
   std::vector<const Suite*> suites;
-  std::set<std::string> families;
-  for (const ScenarioFile& f : files) families.insert(f.family);
   if (!files.empty() && o.cutoff)
     throw InputError("", "--cutoff", "is for suites (robot counts that grow), not scenario files");
   std::string counts;  // "mobile: 2, 4, 8, 16, 32; arms: 2, 4, 8, 16"
   for (const std::string& name : files.empty() ? o.suites : std::vector<std::string>{}) {
     const Suite& s = suiteByName(name);
     suites.push_back(&s);
-    families.insert(s.family);
     counts += (counts.empty() ? "" : "; ") + s.name + ":";
     for (std::size_t i = 0; i < s.robots.size(); ++i) counts += (i ? ", " : " ") + std::to_string(s.robots[i]);
   }
@@ -1084,7 +1085,7 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
   ExistingEarcDbs existing;
   if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
-    for (const std::string& family : families)
+    for (const std::string& family : runFamilies(o, files))
       if (fs::exists(earcDbPath(o, family))) existing[family] = earcDbFacts(o, family);
   return existing;
 }
