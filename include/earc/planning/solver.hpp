@@ -72,7 +72,9 @@ struct SolverContext {
   // instead of the same short tries.
   double budget_scale = 1.0;
   // Plan as if the robots outside the subproblem were not there: they
-  // meet its answer as later conflicts, and are replanned then.
+  // meet its answer as later conflicts, and are replanned then. The
+  // decoupled solver honours it (the coupled solver never sees them); the
+  // database solver still checks its answers against them.
   bool ignore_others = false;
 };
 
