@@ -54,8 +54,8 @@ void setupPlot(CLI::App& app) {
     bench::ChildSpec spec;
     spec.argv = {o->python, o->script, "--results", o->results, "-o", o->output};
     if (o->filter.seed) spec.argv.insert(spec.argv.end(), {"--seed", std::to_string(*o->filter.seed)});
-    // Seventeen digits: the script's float is this very double, which it
-    // compares with the stored limits as table does.
+    // Digits enough to round-trip: the script's float is this very double,
+    // which it compares with the stored limits as table does.
     if (o->filter.time_limit_s)
       spec.argv.insert(spec.argv.end(), {"--time-limit", exactNumber(*o->filter.time_limit_s)});
     spec.wall_limit_s = kPlotWallLimitS;
