@@ -340,6 +340,7 @@ bool clearOfMoving(const RobotModel& model, const Path& local, const std::vector
 
 std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t span) {
   std::vector<MovingObstacle> out;
+  if (ctx.ignore_others) return out;
   const Subproblem& sub = ctx.sub;
   std::vector<geo::Body> bodies;
   for (std::size_t r = 0; r < ctx.models.size(); ++r) {
@@ -381,7 +382,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     max_expansions = std::min(max_expansions, static_cast<std::size_t>(static_cast<double>(
                                                   settings_.expansions_per_horizon_step * horizon) * ctx.budget_scale));
   std::vector<MovingObstacle> others;
-  if (settings_.avoid_others && !ctx.ignore_others) others = nearbyRobots(ctx, horizon);
+  if (settings_.avoid_others) others = nearbyRobots(ctx, horizon);
 
   std::vector<std::vector<std::size_t>> orders;
   std::vector<std::size_t> order(n);

@@ -440,6 +440,14 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   CHECK(stats["db_refused_crowded"].get<int>() == 1);
   CHECK(stats["db_hits"].get<int>() == 0);
 
+  // Told to ignore the robots outside (ARC's retries beyond its last
+  // level), the solver uses the entry and leaves c to a later conflict.
+  SolverContext ignoring{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
+  ignoring.ignore_others = true;
+  SolverOutcome through = solver.solve(ignoring);
+  REQUIRE(through.solution.has_value());
+  CHECK(through.how == "database");
+
   // With c parked out of the way the same entry is used.
   f.plan_paths[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
   SolverContext clear_ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};

@@ -72,9 +72,9 @@ struct SolverContext {
   // instead of the same short tries.
   double budget_scale = 1.0;
   // Plan as if the robots outside the subproblem were not there: they
-  // meet its answer as later conflicts, and are replanned then. The
-  // decoupled solver honours it (the coupled solver never sees them); the
-  // database solver still checks its answers against them.
+  // meet its answer as later conflicts, and are replanned then.
+  // nearbyRobots() then finds none, for the decoupled and the database
+  // solver alike (the coupled solver never sees them).
   bool ignore_others = false;
 };
 
@@ -155,7 +155,8 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions);
 
 // Robots outside the subproblem whose motion during local steps
-// [0, span] may come near the subproblem's region, as moving obstacles.
+// [0, span] may come near the subproblem's region, as moving obstacles;
+// none when the context says to ignore them.
 std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t span);
 
 // True when `local` (a time-stamped path of `model`, local step 0 being
