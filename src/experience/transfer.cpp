@@ -296,6 +296,22 @@ std::vector<Experience> readImportSources(const std::vector<std::string>& inputs
   return all;
 }
 
+namespace {
+
+// True when the store already holds `e`'s experience: a row of its class
+// with the same key and the same paths (counters and provenance aside).
+bool alreadyStored(ExperienceStore& store, const Experience& e) {
+  // Rows with equal keys are at distance 0; a few may share a key.
+  for (const Neighbor& n : store.nearestIds(e.cls, e.key, 8)) {
+    if (n.distance > 0.0) break;
+    const std::optional<Experience> stored = store.get(n.id);
+    if (stored && stored->key == e.key && stored->paths == e.paths) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 ImportReport insertImported(ExperienceStore& store, const std::vector<Experience>& rows,
                             const ImportSettings& settings) {
   ImportReport report;
@@ -303,9 +319,23 @@ ImportReport insertImported(ExperienceStore& store, const std::vector<Experience
   // Sessions count one file's planning sessions: kept only when the rows
   // restore an empty file (export then import gives the same rows); into
   // a file with rows of its own they are new there, as curate --merge's.
-  const auto stamp = settings.keep_sessions && store.size() == 0 ? ExperienceStore::SessionStamp::AsGiven
-                                                                  : ExperienceStore::SessionStamp::ThisSession;
-  for (const auto& id : store.insertAll(rows, settings.near_duplicate_eps, stamp))
+  const bool restoring = store.size() == 0;
+  const auto stamp = settings.keep_sessions && restoring ? ExperienceStore::SessionStamp::AsGiven
+                                                         : ExperienceStore::SessionStamp::ThisSession;
+  // An experience the file already holds is not stored twice: importing
+  // the same export again changes nothing. Rows repeated within the
+  // inputs are kept, so that an export restores its file exactly.
+  std::vector<Experience> fresh;
+  if (!restoring) {
+    fresh.reserve(rows.size());
+    for (const Experience& e : rows) {
+      if (alreadyStored(store, e))
+        report.already_stored++;
+      else
+        fresh.push_back(e);
+    }
+  }
+  for (const auto& id : store.insertAll(restoring ? rows : fresh, settings.near_duplicate_eps, stamp))
     (id ? report.inserted : report.duplicates)++;
   return report;
 }

@@ -1,5 +1,6 @@
 #!/bin/bash
-# Export then import gives the same rows (every number bit for bit); an
+# Export then import gives the same rows (every number bit for bit), and
+# importing them again adds none; an
 # import with one bad row anywhere applies nothing and names the row; a
 # database can be imported directly and merged by curate; inspect prints
 # extreme numbers in bounded form, export keeps them exactly; a file with
@@ -25,6 +26,11 @@ head -1 "$WORK/a.jsonl" | grep -q '"format":"earc.experiences.v1"' || fail "no f
 grep -q "imported 40 of 40 rows" "$WORK/out" || fail "import summary: $(cat "$WORK/out")"
 "$DB" export --db "$WORK/b.db" -o "$WORK/b.jsonl" > /dev/null || fail "re-export"
 cmp -s <(tail -n +2 "$WORK/a.jsonl") <(tail -n +2 "$WORK/b.jsonl") || fail "export -> import -> export changed rows"
+# Importing the same export again adds nothing: the rows are there.
+"$DB" import --db "$WORK/twice.db" "$WORK/a.jsonl" > /dev/null || fail "first import into twice.db exited $?"
+"$DB" import --db "$WORK/twice.db" "$WORK/a.jsonl" > "$WORK/out" || fail "second import exited $?"
+grep -q "imported 0 of 40 rows into $WORK/twice.db (40 already in it)" "$WORK/out" || fail "second import said: $(cat "$WORK/out")"
+[ "$(count "$WORK/twice.db")" = 40 ] || fail "a second import of the same rows changed the row count to $(count "$WORK/twice.db")"
 
 # Every row names the build that made it, as --version does; inspect counts
 # rows per build; curate --drop-made-by deletes one build's rows (in a copy).

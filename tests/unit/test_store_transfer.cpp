@@ -131,16 +131,28 @@ TEST_CASE("export then import gives the same rows, every double bit for bit") {
   // --older-than-sessions judges both files alike.
   CHECK(ExperienceStore(b, wholeFileStoreOptions(true)).session() ==
         ExperienceStore(a, wholeFileStoreOptions(true)).session());
+  // Importing the same export again changes nothing: every row is there.
+  {
+    ExperienceStore again(b);
+    const ImportReport twice = importInto(again, {jsonl});
+    CHECK(twice.inserted == 0);
+    CHECK(twice.already_stored == 61);
+  }
+  CHECK(contents(b) == contents(a));
   // Into a file with rows of its own, the rows are new there: this session.
+  const std::string c = dir.file("c.db");
+  fill(c, 3);  // seed 2 would make the row `later` added above
   std::int64_t session = 0;
   {
-    ExperienceStore more(b);
+    ExperienceStore more(c);
     session = more.session();
-    CHECK(importInto(more, {jsonl}).inserted == 61);
+    const ImportReport into_other = importInto(more, {jsonl});
+    CHECK(into_other.inserted == 61);
+    CHECK(into_other.already_stored == 0);
   }
-  const auto rows = contents(b);
-  REQUIRE(rows.size() == 122);
-  for (std::size_t i = 61; i < rows.size(); ++i) CHECK(rows[i]["created_session"].get<std::int64_t>() == session);
+  const auto rows = contents(c);
+  REQUIRE(rows.size() == 121);
+  for (std::size_t i = 60; i < rows.size(); ++i) CHECK(rows[i]["created_session"].get<std::int64_t>() == session);
   // JSON equality compares doubles exactly; make sure some are not short decimals.
   CHECK(contents(a)[2]["solve_time_s"].get<double>() == 0.1 * 1 / 3.0);
   // Each row keeps the build that made it, known or not.

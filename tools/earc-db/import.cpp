@@ -49,6 +49,7 @@ void runImport(const ImportOptions& opt, std::ostream& out) {
     return earc::exp::insertImported(store, rows, settings);
   });
   out << "imported " << report.inserted << " of " << report.read << " rows into " << opt.db;
+  if (report.already_stored) out << " (" << report.already_stored << " already in it)";
   if (report.duplicates) out << " (" << report.duplicates << " near-duplicates skipped)";
   out << "\n";
 }

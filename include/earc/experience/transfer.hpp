@@ -52,7 +52,8 @@ struct ImportSettings {
 struct ImportReport {
   std::size_t read = 0;
   std::size_t inserted = 0;
-  std::size_t duplicates = 0;
+  std::size_t duplicates = 0;      // near duplicates skipped (--dedupe)
+  std::size_t already_stored = 0;  // the same experience was in the file
 };
 
 // Every row of every input, validated and ready to insert (ids cleared,
