@@ -67,16 +67,19 @@ std::vector<RobotSpec> defaultArms() {
   return gen::generateArms(a).robots;
 }
 
-int robotsForMix(const std::vector<double>& mix, double u) {
+// The index u in [0, 1) falls on when [0, 1) is cut in proportion to shares.
+std::size_t pickByShares(const std::vector<double>& shares, double u) {
   double total = 0;
-  for (double w : mix) total += w;
+  for (double w : shares) total += w;
   double acc = 0;
-  for (std::size_t i = 0; i < mix.size(); ++i) {
-    acc += mix[i] / total;
-    if (u < acc) return static_cast<int>(i) + 2;
+  for (std::size_t i = 0; i < shares.size(); ++i) {
+    acc += shares[i] / total;
+    if (u < acc) return i;
   }
-  return static_cast<int>(mix.size()) + 1;
+  return shares.size() - 1;
 }
+
+int robotsForMix(const std::vector<double>& mix, double u) { return static_cast<int>(pickByShares(mix, u)) + 2; }
 
 bool conflicting(const CollisionWorld& world, const std::vector<const RobotModel*>& robots, const Query& q) {
   const CompositeChecker checker(world, robots);
@@ -90,13 +93,16 @@ bool conflicting(const CollisionWorld& world, const std::vector<const RobotModel
 constexpr double kTunedBoundingRadius = 0.3606;
 
 // Mobile: a workspace just around the query, no obstacles.
-std::optional<Problem> mobileProblem(const BuildSettings& s, const RobotSpec& robot, int n, std::mt19937_64& rng) {
+std::optional<Problem> mobileProblem(const BuildSettings& s, std::vector<RobotSpec> group, std::mt19937_64& rng) {
   Problem p;
   p.scenario.resolution = s.resolution;
-  p.scenario.robots.assign(static_cast<std::size_t>(n), robot);
+  const int n = static_cast<int>(group.size());
+  p.scenario.robots = std::move(group);
   p.models = makeRobotModels(p.scenario);
   const auto robots = raw(p.models);
-  const double pad = p.models.front()->boundingRadius() + s.region_margin;
+  double radius = 0;
+  for (const auto& m : p.models) radius = std::max(radius, m->boundingRadius());
+  const double pad = radius + s.region_margin;
   // The start and goal distances were chosen for the default footprint
   // (the 0.6 x 0.4 box); a larger robot meets others farther from the
   // conflict point, and at those distances its starts would overlap: a
@@ -105,7 +111,7 @@ std::optional<Problem> mobileProblem(const BuildSettings& s, const RobotSpec& ro
   QuerySampling sampling = s.sampling;
   // At most 8 times: paths then run to hundreds of steps at the default
   // resolution, and a footprint beyond it finds no query, as before.
-  const double scale = std::clamp(p.models.front()->boundingRadius() / kTunedBoundingRadius, 1.0, 8.0);
+  const double scale = std::clamp(radius / kTunedBoundingRadius, 1.0, 8.0);
   sampling.min_start_distance *= scale;
   sampling.max_start_distance *= scale;
   for (int attempt = 0; attempt < kQueryAttempts; ++attempt) {
@@ -160,8 +166,15 @@ ProblemResult solveProblem(const BuildSettings& s, const std::vector<std::pair<i
   std::mt19937_64 rng(splitSeed(s.seed, index));
   std::optional<Problem> problem;
   if (s.kind == RobotKind::Mobile) {
-    const RobotSpec& robot = s.mobile_robots[index % s.mobile_robots.size()];
-    problem = mobileProblem(s, robot, robotsForMix(s.mobile_mix, uniform(rng, 0.0, 1.0)), rng);
+    const int n = robotsForMix(s.mobile_mix, uniform(rng, 0.0, 1.0));
+    const std::vector<double> shares =
+        s.mobile_shares.empty() ? std::vector<double>(s.mobile_robots.size(), 1.0) : s.mobile_shares;
+    std::vector<RobotSpec> group;
+    // One footprint draws nothing: its databases stay as they were.
+    for (int r = 0; r < n; ++r)
+      group.push_back(s.mobile_robots.size() == 1 ? s.mobile_robots.front()
+                                                  : s.mobile_robots[pickByShares(shares, uniform(rng, 0.0, 1.0))]);
+    problem = mobileProblem(s, std::move(group), rng);
   } else {
     const auto [a, b] = arm_pairs[index % arm_pairs.size()];
     problem = armProblem(s, s.arms[static_cast<std::size_t>(a)], s.arms[static_cast<std::size_t>(b)], rng);
@@ -198,6 +211,10 @@ BuildSettings withDefaults(BuildSettings s) {
       if (r.kind != RobotKind::Mobile) throw std::invalid_argument("build: mobile footprints must be mobile robots");
     if (s.mobile_mix.empty() || std::any_of(s.mobile_mix.begin(), s.mobile_mix.end(), [](double w) { return w < 0; }))
       throw std::invalid_argument("build: the robot-count mix needs non-negative shares");
+    if (!s.mobile_shares.empty() &&
+        (s.mobile_shares.size() != s.mobile_robots.size() ||
+         std::any_of(s.mobile_shares.begin(), s.mobile_shares.end(), [](double w) { return !(w > 0); })))
+      throw std::invalid_argument("build: one positive share per mobile footprint");
   } else {
     if (s.arms.empty()) s.arms = defaultArms();
   }

@@ -128,6 +128,16 @@ grep -q "left out" "$WORK/build.out" && fail "equal arms: the summary speaks of 
   fail "--shape with an arm scenario: exit $?"
 "$DB" inspect --db "$WORK/discs.db" > "$WORK/inspect.out" || fail "inspect exited $?"
 grep -Eq "^mobile +2 .*mobile:disc:r=0.3" "$WORK/inspect.out" || fail "--shape disc did not build discs: $(cat "$WORK/inspect.out")"
+# A footprint option beside a scenario of mobile robots builds for that
+# footprint: said in a warning when none of the scenario's robots has it
+# (the database would answer none of them), not when they do.
+"$DB" build --db "$WORK/other-boxes.db" --scenario "$SRC/tests/data/scenarios/swap-discs.json" --size 0.7x0.5 \
+  --count 5 --threads 1 -q > "$WORK/out" 2> "$WORK/err" || fail "--size beside a disc scenario: exit $?"
+grep -qF "warning: $SRC/tests/data/scenarios/swap-discs.json: none of its mobile robots has the footprint given (mobile:box:0.7x0.5)" \
+  "$WORK/err" || fail "--size beside a disc scenario, no warning: $(cat "$WORK/err")"
+"$DB" build --db "$WORK/same-discs.db" --scenario "$SRC/tests/data/scenarios/swap-discs.json" --shape disc --radius 0.3 \
+  --count 5 --threads 1 -q > "$WORK/out" 2> "$WORK/err" || fail "--shape disc beside a disc scenario: exit $?"
+[ -s "$WORK/err" ] && fail "the scenario's own footprint given again warned: $(cat "$WORK/err")"
 # A footprint too large for any query: an error, not "built 0 entries".
 "$DB" build --db "$WORK/huge.db" --shape disc --radius 1e300 --count 5 > "$WORK/out" 2> "$WORK/err"
 [ $? -eq 2 ] && grep -qF -- "--radius: none of 5 problems could be made" "$WORK/err" ||

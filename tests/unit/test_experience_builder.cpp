@@ -2,6 +2,9 @@
 // conflicting subproblems, for every class of the layout.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <sstream>
+
 #include "earc/experience/builder.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/scratch.hpp"
@@ -47,6 +50,14 @@ void checkStoredMobileValid(const Experience& e, const RobotSpec& robot, double 
     for (std::size_t t = 0; t < p.size(); ++t) box.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
   auto report = validateStored(e, std::vector<RobotSpec>(e.paths.size(), robot), box.inflated(margin));
   CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+}
+
+RobotSpec builderDisc(double radius) {
+  RobotSpec disc;
+  disc.kind = RobotKind::Mobile;
+  disc.shape = MobileShape::Disc;
+  disc.radius = radius;
+  return disc;
 }
 
 std::vector<RobotSpec> generatedArms() {
@@ -122,10 +133,7 @@ TEST_CASE("the builder finds conflicting queries for robots larger than the defa
   BuildSettings s;
   s.count = 40;
   s.seed = 2;
-  RobotSpec disc;
-  disc.kind = RobotKind::Mobile;
-  disc.shape = MobileShape::Disc;
-  disc.radius = 0.8;
+  const RobotSpec disc = builderDisc(0.8);
   s.mobile_robots = {disc};
   const BuildReport r = buildDatabase(store, s);
   CHECK(r.problems == 40);
@@ -135,4 +143,51 @@ TEST_CASE("the builder finds conflicting queries for robots larger than the defa
     CAPTURE(e.id);
     checkStoredMobileValid(e, disc, 2.0);
   }
+}
+
+TEST_CASE("a fleet of two footprints gets mixed groups, in proportion to its robots") {
+  // A user's warehouse of several footprints: its conflicts are between
+  // robots of different footprints, and so must its database's problems be.
+  ScratchDirectory dir("builder-mixed");
+  ExperienceStore store(dir.file("mixed.db"));
+  BuildSettings s;
+  s.count = 80;
+  s.seed = 3;
+  const RobotSpec disc = builderDisc(0.3);
+  RobotSpec box;
+  box.kind = RobotKind::Mobile;
+  box.shape = MobileShape::Box;
+  box.box_size = {0.8, 0.5};
+  s.mobile_robots = {disc, box};
+  s.mobile_shares = {3, 1};  // three discs to each box
+  const BuildReport r = buildDatabase(store, s);
+  REQUIRE(r.inserted >= 60);
+  const std::string disc_sig = makeRobotModel(disc, s.resolution)->geometrySignature();
+  const std::string box_sig = makeRobotModel(box, s.resolution)->geometrySignature();
+  int mixed = 0;
+  std::size_t discs = 0, boxes = 0;
+  for (const Experience& e : allRows(store)) {
+    CAPTURE(e.cls.signature);
+    // Each canonical robot's footprint, from the class signature.
+    std::vector<RobotSpec> robots;
+    std::stringstream parts(e.cls.signature);
+    for (std::string part; std::getline(parts, part, '|');) {
+      REQUIRE((part == disc_sig || part == box_sig));
+      robots.push_back(part == disc_sig ? disc : box);
+    }
+    REQUIRE(robots.size() == e.paths.size());
+    const auto n_disc = static_cast<std::size_t>(std::count_if(
+        robots.begin(), robots.end(), [](const RobotSpec& x) { return x.shape == MobileShape::Disc; }));
+    discs += n_disc;
+    boxes += robots.size() - n_disc;
+    mixed += n_disc > 0 && n_disc < robots.size();
+    geo::Aabb bounds;
+    for (const Path& p : e.paths)
+      for (std::size_t t = 0; t < p.size(); ++t) bounds.expand({{p.at(t)[0], p.at(t)[1]}, {p.at(t)[0], p.at(t)[1]}});
+    const auto report = validateStored(e, robots, bounds.inflated(2.0));
+    CHECK_MESSAGE(report.valid, (report.violations.empty() ? "" : report.violations.front().detail));
+  }
+  // Robots drawn 3:1: of 80 problems most have a disc and a box together.
+  CHECK(mixed >= r.inserted / 3);
+  CHECK(discs > 2 * boxes);
 }

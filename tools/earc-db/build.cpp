@@ -77,25 +77,49 @@ earc::geo::Vec2 parseSize(const std::string& text) {
   return {l, w};
 }
 
-// The footprints to build for: the scenario's distinct mobile robots, or
-// the one given by --shape/--size/--radius, or the builder's default.
-std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::Scenario* scenario) {
-  std::vector<earc::RobotSpec> out;
+// The scenario's distinct mobile footprints (signature -> one robot of it
+// and how many robots have it), in the order they first appear.
+struct Footprints {
+  std::vector<std::string> signatures;
+  std::vector<earc::RobotSpec> robots;
+  std::vector<double> counts;
+};
+
+Footprints scenarioFootprints(const earc::Scenario& scenario) {
+  Footprints f;
+  for (const auto& r : scenario.robots) {
+    if (r.kind != earc::RobotKind::Mobile) continue;
+    const std::string sig = earc::makeRobotModel(r, scenario.resolution)->geometrySignature();
+    const auto at = std::find(f.signatures.begin(), f.signatures.end(), sig);
+    if (at != f.signatures.end()) {
+      f.counts[static_cast<std::size_t>(at - f.signatures.begin())] += 1;
+      continue;
+    }
+    f.signatures.push_back(sig);
+    f.robots.push_back(r);
+    f.counts.push_back(1);
+  }
+  return f;
+}
+
+// The footprints to build for: the scenario's distinct mobile robots (each
+// problem's robots drawn in proportion to their numbers there), or the one
+// given by --shape/--size/--radius, or the builder's default.
+void setMobileRobots(const BuildOptions& opt, const earc::Scenario* scenario, earc::exp::BuildSettings& s) {
+  std::vector<earc::RobotSpec>& out = s.mobile_robots;
   // --size sizes the default box; --radius needs --shape disc, as in
   // earc-scenario. A footprint option that would be ignored is a mistake.
   const std::string shape = !opt.shape.empty() ? opt.shape : !opt.size.empty() || opt.radius != 0.0 ? "box" : "";
   if (shape == "disc" && !opt.size.empty()) throw earc::InputError("", "--size", "is for --shape box");
   if (shape == "box" && opt.radius != 0.0) throw earc::InputError("", "--radius", "is for --shape disc");
+  const Footprints fleet = scenario ? scenarioFootprints(*scenario) : Footprints{};
   if (scenario && shape.empty()) {
-    std::set<std::string> seen;
-    for (const auto& r : scenario->robots)
-      if (r.kind == earc::RobotKind::Mobile &&
-          seen.insert(earc::makeRobotModel(r, scenario->resolution)->geometrySignature()).second)
-        out.push_back(r);
-    if (out.empty()) throw earc::InputError(opt.scenario, "$.robots", "no mobile robot to build for");
-    return out;
+    if (fleet.robots.empty()) throw earc::InputError(opt.scenario, "$.robots", "no mobile robot to build for");
+    out = fleet.robots;
+    s.mobile_shares = fleet.counts;
+    return;
   }
-  if (shape.empty()) return out;  // builder default
+  if (shape.empty()) return;  // builder default
   earc::RobotSpec r;
   r.kind = earc::RobotKind::Mobile;
   if (shape == "disc") {
@@ -107,7 +131,14 @@ std::vector<earc::RobotSpec> mobileRobots(const BuildOptions& opt, const earc::S
     r.box_size = parseSize(opt.size.empty() ? "0.6x0.4" : opt.size);
   }
   out.push_back(r);
-  return out;
+  // The scenario then gives only its resolution: a database for another
+  // footprint than its robots' answers none of them. Said now, not when a
+  // plan finds its class empty.
+  const std::string given = earc::makeRobotModel(r, s.resolution)->geometrySignature();
+  if (!fleet.signatures.empty() &&
+      std::find(fleet.signatures.begin(), fleet.signatures.end(), given) == fleet.signatures.end())
+    std::cerr << "earc-db: warning: " << opt.scenario << ": none of its mobile robots has the footprint given ("
+              << given << "); built for that footprint, this database will not answer them\n";
 }
 
 // --kind, or a footprint option (mobile), or what the scenario holds: a
@@ -145,7 +176,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   }
   s.kind = kindToBuild(opt, scenario ? &*scenario : nullptr);
   if (s.kind == earc::RobotKind::Mobile) {
-    s.mobile_robots = mobileRobots(opt, scenario ? &*scenario : nullptr);
+    setMobileRobots(opt, scenario ? &*scenario : nullptr, s);
   } else if (scenario) {
     for (const auto& r : scenario->robots)
       if (r.kind == earc::RobotKind::Manipulator) s.arms.push_back(r);
@@ -198,7 +229,19 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
                 opt.db.c_str(), report.inserted, report.problems, report.seconds, report.solved, report.unsolved,
                 s.time_per_problem_s, report.no_query, report.duplicates);
   out << line;
-  for (const auto& [label, n] : report.inserted_per_class) out << "  " << n << "  " << label << "\n";
+  // A fleet of several footprints makes hundreds of classes: the largest
+  // are listed, the rest counted (earc-db inspect lists them all).
+  constexpr std::size_t kListedClasses = 12;
+  std::vector<std::pair<std::string, int>> classes(report.inserted_per_class.begin(), report.inserted_per_class.end());
+  if (classes.size() > kListedClasses)
+    std::stable_sort(classes.begin(), classes.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  for (std::size_t i = 0; i < std::min(classes.size(), kListedClasses); ++i)
+    out << "  " << classes[i].second << "  " << classes[i].first << "\n";
+  if (classes.size() > kListedClasses) {
+    int rest = 0;
+    for (std::size_t i = kListedClasses; i < classes.size(); ++i) rest += classes[i].second;
+    out << "  " << rest << " more in " << classes.size() - kListedClasses << " smaller classes (earc-db inspect lists them)\n";
+  }
   if (!left_out.empty()) out << left_out << "\n";
 }
 

@@ -40,9 +40,12 @@ struct BuildSettings {
   // Mobile: shares of problems with 2, 3 and 4 robots (ARC: conflicts of
   // few robots are the most frequent).
   std::vector<double> mobile_mix{0.5, 0.3, 0.2};
-  // Mobile footprints: problem i uses footprint i % size (equal signatures
-  // within one problem). Default: the generators' box robot.
+  // Mobile footprints, distinct. Each robot of a problem draws one of
+  // them, in proportion to mobile_shares (empty: equal shares), so that a
+  // fleet of several footprints gets the mixed groups its conflicts make.
+  // Default: the generators' box robot.
   std::vector<RobotSpec> mobile_robots;
+  std::vector<double> mobile_shares;  // robots of each footprint, say
   // Manipulators: the arm layout whose pair classes are built (default:
   // gen::generateArms with 4 arms: facing, neighbouring and diagonal pairs).
   std::vector<RobotSpec> arms;
