@@ -233,7 +233,7 @@ int runPlan(const PlanOptions& o) {
           << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0) << databaseSummary(st)
           << "\n";
     else
-      out << "not solved: " << st.value("failure", nlohmann::json::array()).dump() << " after "
+      out << "not solved (" << earc::failureReasons(st) << ") after "
           << st.value("planning_time_s", 0.0) << " s"
           << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
     out << "solution: " << o.output << "\n";
