@@ -183,6 +183,10 @@ void LightningDatabase::load(const std::string& path) {
   const std::string rebuild = " (build one with earc-bench lightning-db)";
   const std::string refusal = "not a Lightning database of " + space + rebuild;
   const std::string bytes = readTextFile(path);
+  // The likeliest wrong file: E-ARC's experience database, given to
+  // --method lightning with the same --db option.
+  if (bytes.starts_with(std::string_view("SQLite format 3\0", 16)))
+    throw InputError(path, "", "an SQLite file (an E-ARC experience database?), not a Lightning database" + rebuild);
   const std::size_t at = bytes.rfind("\n" + kTrailerTag);
   if (at == std::string::npos || bytes.back() != '\n') {
     const std::size_t other = bytes.rfind("\n" + std::string(kTrailerPrefix));

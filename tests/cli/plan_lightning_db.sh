@@ -53,6 +53,11 @@ echo "not a database" > "$WORK/text.lightning"
 refused "a text file" "$WORK/text.lightning" \
   "$PLAN" plan "$WORK/two.json" -o "$WORK/e.json" --method lightning --db "$WORK/text.lightning" -q
 [ "$(cat "$WORK/text.lightning")" = "not a database" ] || fail "a refused file was overwritten"
+# E-ARC's database given with the same option: said for what it is.
+printf 'SQLite format 3\0' > "$WORK/earc.db"
+head -c 4080 /dev/zero >> "$WORK/earc.db"
+refused "an E-ARC database" "$WORK/earc.db: an SQLite file (an E-ARC experience database?), not a Lightning database" \
+  "$PLAN" plan "$WORK/two.json" -o "$WORK/e.json" --method lightning --db "$WORK/earc.db" -q
 
 # A damaged file (bytes changed, cut short) is refused before OMPL, whose
 # loader trusts its input, reads it: exit 2, one line, never a crash.
