@@ -393,11 +393,18 @@ CurateReport curateFile(const std::string& target, const CurateSettings& setting
       for (const std::string& build : settings.drop_made_by) {
         del.bind(1, std::string_view(build));
         del.run();
-        n += sqlite3_changes(db.handle());
+        const int changed = sqlite3_changes(db.handle());
+        if (changed == 0) r.made_by_unmatched.push_back(build);
+        n += changed;
         del.reset();
       }
       return removed(n);
     });
+  if (!r.made_by_unmatched.empty()) {
+    Statement builds = db.prepare(
+        "SELECT made_by, count(*) AS n FROM experiences GROUP BY made_by ORDER BY n DESC, made_by LIMIT 5");
+    while (builds.step()) r.builds_present.emplace_back(builds.textAt(0), builds.int64At(1));
+  }
   if (settings.compact) r.blobs_rewritten = db.write([&] { return rewriteOlderBlobs(db); });
   // A curate that changed no rows says so too.
   db.write([&] { store.history().record(db, store.schemaVersion(), 0, 0, true); });

@@ -60,6 +60,13 @@ PY
 "$DB" curate --db "$WORK/b.db" --drop-made-by "$build" -o "$WORK/none.db" > "$WORK/out" || fail "curate --drop-made-by exited $?"
 grep -q "40 of the builds named removed, 0 rows after" "$WORK/out" || fail "curate --drop-made-by said: $(cat "$WORK/out")"
 [ "$(count "$WORK/b.db")" = 40 ] || fail "curate -o changed the original"
+# A build name that matches no row (a typo) is said, with the builds the
+# rows do name; nothing is removed.
+"$DB" curate --db "$WORK/b.db" --drop-made-by "${build%?}" -o "$WORK/typo.db" -q > "$WORK/out" 2> "$WORK/err" ||
+  fail "curate --drop-made-by with a typo exited $?"
+grep -qF "warning: --drop-made-by \"${build%?}\": no row of $WORK/typo.db was made by such a build; its rows name $build (40 rows)" \
+  "$WORK/err" || fail "curate --drop-made-by with a typo said: $(cat "$WORK/err")"
+[ "$(count "$WORK/typo.db")" = 40 ] || fail "curate --drop-made-by with a typo removed rows"
 "$DB" inspect --db "$WORK/none.db" --history 1 > "$WORK/out" || fail "inspect of the curated copy exited $?"
 grep -q "^history (last 1 of 3):$" "$WORK/out" || fail "inspect --history 1: $(cat "$WORK/out")"
 grep -q "  curate  by $build, +0 -40 rows: copy of " "$WORK/out" || fail "inspect: no curate in the copy's history: $(cat "$WORK/out")"

@@ -24,6 +24,17 @@ void runCurate(const CurateOptions& opt, std::ostream& out) {
   earc::requireDistinctFiles(files);
   earc::requireWritableOutput({"-o", opt.settings.output});
   const auto r = earc::exp::withInputErrors(opt.db, [&] { return earc::exp::curateDatabase(opt.db, opt.settings); });
+  // A build name that matched nothing is most likely mistyped: said even
+  // under -q, with the builds the rows do name.
+  for (const std::string& build : r.made_by_unmatched) {
+    std::cerr << "earc-db: warning: --drop-made-by \"" << build << "\": no row of " << r.curated_path
+              << " was made by such a build; its rows name ";
+    if (r.builds_present.empty()) std::cerr << "none (it has no rows)";
+    for (std::size_t i = 0; i < r.builds_present.size(); ++i)
+      std::cerr << (i ? ", " : "") << (r.builds_present[i].first.empty() ? "(not known)" : r.builds_present[i].first)
+                << " (" << r.builds_present[i].second << " rows)";
+    std::cerr << "\n";
+  }
   out << "curated " << r.curated_path << ": " << r.rows_before << " rows before";
   if (!opt.settings.merge.empty()) out << ", " << r.merged << " merged";
   if (opt.settings.dedupe_eps >= 0) out << ", " << r.duplicates_removed << " near-duplicates removed";

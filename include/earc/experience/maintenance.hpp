@@ -92,6 +92,10 @@ struct CurateReport {
   std::int64_t duplicates_removed = 0;
   std::int64_t unused_removed = 0;
   std::int64_t made_by_removed = 0;
+  // --drop-made-by names that matched no row (a typo, most likely), and
+  // then the builds the file's rows do name, most rows first (up to 5).
+  std::vector<std::string> made_by_unmatched;
+  std::vector<std::pair<std::string, std::int64_t>> builds_present;
   std::int64_t rows_after = 0;
   std::int64_t blobs_rewritten = 0;  // compact: older path blobs now in the current format
   // Rows kept as they were whose key or path blob cannot be read (verify
