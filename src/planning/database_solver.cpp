@@ -7,6 +7,7 @@
 #include <random>
 #include <string_view>
 
+#include "earc/experience/keys.hpp"
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/retrieval.hpp"
 #include "earc/experience/sqlite.hpp"
@@ -383,13 +384,20 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
 
 void DatabaseSolver::accepted(const SolverContext& ctx, const LocalSolution& sol, const SolverOutcome& by) {
   if (!settings_.learn || by.how == "database" || by.how == "repair") return;
-  if (ctx.sub.robots.size() < 2 || ctx.sub.robots.size() > kMaxRobots) return;
   Pending p;
   for (int r : ctx.sub.robots) p.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
   // A stored path holds at most kMaxBlobDim coordinates a state: an arm of
   // more joints is planned, not learned (inserting it ended the plan).
-  for (const RobotModel* m : p.robots)
-    if (m->dim() > exp::kMaxBlobDim) return;
+  std::vector<exp::RobotTraits> traits;
+  for (const RobotModel* m : p.robots) traits.push_back(exp::traitsOf(*m));
+  const bool storable =
+      p.robots.size() >= 2 && p.robots.size() <= kMaxRobots &&
+      std::none_of(p.robots.begin(), p.robots.end(), [](const RobotModel* m) { return m->dim() > exp::kMaxBlobDim; }) &&
+      exp::hasExperienceClass(traits);
+  if (!storable) {
+    ++unstorable_;
+    return;
+  }
   // Trailing steps where every robot waits at its goal say nothing about
   // how the conflict was resolved: store the solution without them.
   std::size_t len = sol.length();
@@ -433,6 +441,7 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   stats["db_learned"] = learned;
   stats["db_learned_ids"] = std::move(learned_ids);
   stats["db_learn_candidates"] = pending_.size();
+  stats["db_learn_unstorable"] = unstorable_;
   stats["db_learn_time_s"] = sw.seconds();
   if (settings_.shadow_decoupled) {
     const Shadow& s = shadow_;

@@ -43,6 +43,10 @@ manyLinkArms 100 0.02 > "$WORK/a100.json"
   2> "$WORK/a100.err" || fail "E-ARC learning on arms of 100 joints: exit $?: $(cat "$WORK/a100.err")"
 [ "$(stat_of "$WORK/a100.sol.json" subproblems)" -gt 0 ] || fail "no subproblem on arms of 100 joints: nothing tested"
 [ "$(stat_of "$WORK/a100.sol.json" db_learned)" = 0 ] || fail "learned arms of 100 joints"
+# ...and says why: each subproblem it solved from scratch was of a kind no
+# class holds.
+[ "$(stat_of "$WORK/a100.sol.json" db_learn_unstorable)" -gt 0 ] ||
+  fail "arms of 100 joints: no subproblem counted as not storable"
 
 # Learning: one more session, the counters of what was retrieved.
 "$PLAN" plan "$SCEN" -o "$WORK/a.json" --method earc --db "$F" --seed 1 -q 2> "$WORK/a.err" || fail "plan: exit $?"

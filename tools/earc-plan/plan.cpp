@@ -142,9 +142,22 @@ class ProgressLine {
 std::string databaseSummary(const nlohmann::json& st) {
   if (!st.contains("db_queries")) return "";
   const DatabaseAnswers a = databaseAnswers(st);
-  return "; database answered " + std::to_string(a.answered()) + " of " + std::to_string(a.solved) +
-         " subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
-         std::to_string(st.value("db_learned", 0));
+  std::string line = "; database answered " + std::to_string(a.answered()) + " of " + std::to_string(a.solved) +
+                     " subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
+                     std::to_string(st.value("db_learned", 0));
+  // Why subproblems solved from scratch were not learned, when some were.
+  const int unstorable = st.value("db_learn_unstorable", 0);
+  const int near_duplicates = st.contains("db_learn_error")
+                                  ? 0
+                                  : st.value("db_learn_candidates", 0) - st.value("db_learned", 0);
+  std::vector<std::string> why;
+  if (near_duplicates > 0)
+    why.push_back(std::to_string(near_duplicates) + " near-duplicate" + (near_duplicates == 1 ? "" : "s"));
+  if (unstorable > 0)
+    why.push_back(std::to_string(unstorable) + (unstorable == 1 ? " group" : " groups") +
+                  " of a kind no class holds (3+ arms, 5+ robots)");
+  for (std::size_t i = 0; i < why.size(); ++i) line += (i ? ", " : "; not stored: ") + why[i];
+  return line;
 }
 
 int runPlan(const PlanOptions& o) {

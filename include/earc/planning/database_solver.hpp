@@ -96,6 +96,9 @@ class DatabaseSolver : public SubproblemSolver {
   int crowded_ = 0;  // valid candidates refused for running into other robots
   int too_long_ = 0;  // answers refused for max_stretch
   int unusable_ = 0;  // candidates passed over: no step count joins or follows them (NoStepCountError)
+  // Subproblems solved from scratch that no class can hold (3 or more arms,
+  // 5 or more robots, arms of unequal joints or too many): never learned.
+  int unstorable_ = 0;
   // What became of the last query's candidates (its trace detail), and why
   // it failed; why is empty when the subproblem's size has no class.
   struct Tally {
