@@ -94,6 +94,11 @@ bad_step "s.sol.json: --step: step 21 is beyond the solution's makespan 20 (step
 bad_step "--strip: step 99 is beyond the solution's makespan 20" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,99
 bad_step "--strip: '-1' is not a whole number" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,-1
 bad_step "--strip: a time step needs a SOLUTION file" "$WORK/s.json" -o "$WORK/x.svg" --strip 1,2
+# Panels go left to right in the order given: a strip out of order drew
+# the robots moving back, and a repeated step drew the same panel twice.
+bad_step "--strip: step 5 after step 10: the steps must increase from left to right" \
+  "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,10,5
+bad_step "--strip: step 10 after step 10: the steps must increase" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 10,10
 "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/last.svg" --step 20 > /dev/null || fail "--step 20 (the makespan) exited $?"
 # An unsolved solution without paths: the picture says so under the title
 # (it once came out byte for byte the scenario's), and a time step is

@@ -95,10 +95,19 @@ void setupRender(CLI::App& app) {
                                 for (const std::string& item : earc::bench::splitOptionList(list, "--strip")) {
                                   if (!earc::isDigits(item) || item.size() > 18)
                                     throw earc::InputError("", "--strip", "'" + item + "' is not a whole number");
-                                  opt->steps.push_back(std::stoull(item));
+                                  const std::size_t t = std::stoull(item);
+                                  // Panels go left to right in the order given, each titled
+                                  // with its own step: out of order, a strip reads as robots
+                                  // moving back, and a repeated step draws a panel twice.
+                                  if (!opt->steps.empty() && t <= opt->steps.back())
+                                    throw earc::InputError("", "--strip",
+                                                           "step " + item + " after step " +
+                                                               std::to_string(opt->steps.back()) +
+                                                               ": the steps must increase from left to right");
+                                  opt->steps.push_back(t);
                                 }
                               },
-                              "Draw several time steps side by side: T1,T2,...")
+                              "Draw several time steps side by side, left to right: T1,T2,... (increasing)")
                            ->excludes(step);
   sub->add_option("--width", opt->width, "Width of one panel in pixels")
       ->check(CLI::Range(100.0, 20000.0))
