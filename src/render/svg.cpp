@@ -19,11 +19,7 @@ namespace earc::render {
 namespace {
 
 constexpr double kPaddingPx = 12.0;
-constexpr double kTitlePx = 22.0;   // band above each panel for its title
 constexpr double kPanelGapPx = 16.0;
-constexpr double kPathStrokePx = 1.5;
-constexpr double kOutlinePx = 1.2;
-constexpr double kFontPx = 11.0;
 constexpr double kFadedOpacity = 0.35;  // the start pose when a later step is drawn
 
 // Pixel coordinates are written with two decimals at most: finer is
@@ -50,6 +46,33 @@ std::string robotColour(std::size_t i) {
                                          "#ff0078", "#ff7800", "#5a4b87", "#e100ff", "#87a500", "#b4965a"};
   return kPalette[i % std::size(kPalette)];
 }
+
+// The sizes of text, marks and lines, in pixels: an 800-pixel panel's,
+// scaled with the panel's width so that a picture reads alike at any
+// --width (fixed sizes made the text of a 4000-pixel picture a speck seen
+// whole, and crowded a 400-pixel one). The scale stays within 0.85 and 5,
+// and no text is smaller than 8 pixels, about the least that reads on a
+// screen.
+struct Style {
+  explicit Style(double panel_width_px) : u(std::clamp(panel_width_px / 800.0, 0.85, 5.0)) {}
+  double u;  // the scale
+  double px(double at_800) const { return at_800 * u; }
+  double text(double at_800) const { return std::max(8.0, at_800 * u); }
+
+  double font() const { return text(11.0); }      // names and the key
+  double goalFont() const { return text(8.5); }   // a goal's name
+  double titleFont() const { return text(14.0); }  // a panel's title
+  double factsFont() const { return text(12.0); }  // the plan's facts under the titles
+  double titleBand() const { return titleFont() + px(8.0); }  // above each panel, for its title
+  double factsLine() const { return factsFont() + px(3.0); }
+  double keyRow() const { return font() + px(5.0); }
+  double keyGlyph() const { return font() * 14.0 / 11.0; }  // a key mark's width
+  double keyGap() const { return keyGlyph(); }              // between key entries
+  double pathStroke() const { return px(1.5); }
+  double outline() const { return px(1.2); }
+  double halo() const { return 2.5 * font() / 11.0; }  // the white edge around a label
+  std::string dashes() const { return num(px(3)) + "," + num(px(2)); }
+};
 
 // Roughly how wide a line of text is drawn: a sans-serif glyph averages
 // about 0.6 of the font size (a code point, not a byte, is a glyph).
@@ -157,13 +180,14 @@ std::string opacityAttribute(double opacity) {
 
 // A robot at q: its bodies filled (with a thin dark edge) or outlined
 // (dashed), plus its heading (mobile) or its joints (arm).
-void writePose(std::ostream& out, const View& v, const RobotModel& m, const double* q, bool filled,
+void writePose(std::ostream& out, const View& v, const Style& st, const RobotModel& m, const double* q, bool filled,
                double opacity) {
   std::vector<geo::Body> bodies;
   m.bodies(q, bodies);
   const std::string fade = opacityAttribute(opacity);
-  const Paint paint{(filled ? "stroke=\"#222\" stroke-width=\"" + num(0.6 * kOutlinePx) + "\""
-                            : "fill=\"none\" stroke-width=\"" + num(kOutlinePx) + "\" stroke-dasharray=\"3,2\"") +
+  const Paint paint{(filled ? "stroke=\"#222\" stroke-width=\"" + num(0.6 * st.outline()) + "\""
+                            : "fill=\"none\" stroke-width=\"" + num(st.outline()) + "\" stroke-dasharray=\"" +
+                                  st.dashes() + "\"") +
                     fade};
   for (const auto& b : bodies) writeBody(out, v, b, paint);
   if (m.isMobile()) {
@@ -171,12 +195,12 @@ void writePose(std::ostream& out, const View& v, const RobotModel& m, const doub
     const double reach = s.shape == MobileShape::Disc ? s.radius : 0.5 * s.box_size.x;
     const geo::Vec2 a = v({q[0], q[1]}), b = v({q[0] + reach * std::cos(q[2]), q[1] + reach * std::sin(q[2])});
     out << "<line x1=\"" << num(a.x) << "\" y1=\"" << num(a.y) << "\" x2=\"" << num(b.x) << "\" y2=\"" << num(b.y)
-        << "\" stroke=\"#222\" stroke-width=\"" << num(kOutlinePx) << '"' << fade << "/>";
+        << "\" stroke=\"#222\" stroke-width=\"" << num(st.outline()) << '"' << fade << "/>";
     return;
   }
   std::vector<geo::Vec2> joints;
   armJointPositions(m.spec(), q, joints);
-  const double r = std::max(1.0, 0.5 * m.spec().link_radius * v.scale);
+  const double r = std::max(st.px(1.0), 0.5 * m.spec().link_radius * v.scale);
   for (std::size_t k = 0; k + 1 < joints.size(); ++k) {  // the base larger; the tip has no joint
     const geo::Vec2 c = v(joints[k]);
     out << "<circle cx=\"" << num(c.x) << "\" cy=\"" << num(c.y) << "\" r=\"" << num(k == 0 ? 2.0 * r : r)
@@ -216,47 +240,45 @@ std::string polyline(const RobotModel& m, const Path& path, const View& v, doubl
   return line.str();
 }
 
-constexpr double kGoalFontPx = 8.5;
-
 // `text` centred on `at` (its baseline), on a white halo, moved as little
 // as needed to lie inside the panel's padding.
-void writeLabel(std::ostream& out, const View& v, const std::string& text, geo::Vec2 at, double font_px,
-                const char* fill) {
+void writeLabel(std::ostream& out, const View& v, const Style& st, const std::string& text, geo::Vec2 at,
+                double font_px, const char* fill) {
   const double w = textWidth(text, font_px), right = 2.0 * v.left + v.width();
   const double x = std::max(2.0, std::min(at.x - w / 2, right - 2.0 - w));
   const double y = std::clamp(at.y, v.top + font_px, v.top + v.height() - 2.0);
   out << "<text class=\"label\" x=\"" << num(x) << "\" y=\"" << num(y) << "\"";
-  if (font_px != kFontPx) out << " font-size=\"" << num(font_px) << '"';
-  out << " fill=\"" << fill << "\" stroke=\"#fff\" stroke-width=\"2.5\" stroke-linejoin=\"round\" "
+  if (font_px != st.font()) out << " font-size=\"" << num(font_px) << '"';
+  out << " fill=\"" << fill << "\" stroke=\"#fff\" stroke-width=\"" << num(st.halo()) << "\" stroke-linejoin=\"round\" "
       << "paint-order=\"stroke\">" << xmlText(text) << "</text>";
 }
 
 // One robot's group in one panel: its path, goal (outlined), start (solid,
 // faded when a step is drawn), its pose at *step if given, and its name.
-void writeRobot(std::ostream& out, const View& v, const RobotModel& m, std::size_t index, const std::string& polyline,
-                const Path* path, const std::size_t* step, bool labels) {
+void writeRobot(std::ostream& out, const View& v, const Style& st, const RobotModel& m, std::size_t index,
+                const std::string& polyline, const Path* path, const std::size_t* step, bool labels) {
   const RobotSpec& r = m.spec();
   const std::string colour = robotColour(index);
   out << "<g class=\"robot\" data-robot=\"" << xmlText(r.name) << "\" fill=\"" << colour << "\" stroke=\"" << colour
       << "\">\n";
   if (!polyline.empty())
-    out << "<polyline class=\"path\" fill=\"none\" stroke-width=\"" << num(kPathStrokePx)
+    out << "<polyline class=\"path\" fill=\"none\" stroke-width=\"" << num(st.pathStroke())
         << "\" stroke-linejoin=\"round\" points=\"" << polyline << "\"/>\n";
-  writePose(out, v, m, r.goal.data(), false, 1.0);
-  writePose(out, v, m, r.start.data(), true, step ? kFadedOpacity : 1.0);
+  writePose(out, v, st, m, r.goal.data(), false, 1.0);
+  writePose(out, v, st, m, r.start.data(), true, step ? kFadedOpacity : 1.0);
   const double* now = r.start.data();  // where the name goes
   if (step) {
     if (path) now = path->at(*step);
-    writePose(out, v, m, now, true, 1.0);
+    writePose(out, v, st, m, now, true, 1.0);
   }
   if (labels) {
     // The name above the robot (an arm: above its base), its goal's small
     // below the goal, each on a white halo so that it reads over dark
     // paint, and moved inside the panel near its edges.
     const double body = m.isMobile() ? m.boundingRadius() * v.scale : 0.0;
-    writeLabel(out, v, r.name, v(m.boundingCenter(now)) - geo::Vec2{0, body + 3.0}, kFontPx, "#000");
-    writeLabel(out, v, r.name, v(m.boundingCenter(r.goal.data())) + geo::Vec2{0, body + kGoalFontPx + 1.0},
-               kGoalFontPx, "#333");
+    writeLabel(out, v, st, r.name, v(m.boundingCenter(now)) - geo::Vec2{0, body + st.px(3.0)}, st.font(), "#000");
+    writeLabel(out, v, st, r.name, v(m.boundingCenter(r.goal.data())) + geo::Vec2{0, body + st.goalFont() + st.px(1.0)},
+               st.goalFont(), "#333");
   }
   out << "\n</g>\n";
 }
@@ -302,11 +324,6 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
   return facts;
 }
 
-constexpr double kSubtitleFontPx = kFontPx + 1;
-constexpr double kSubtitleLinePx = 15.0;
-constexpr double kKeyRowPx = 16.0;
-constexpr double kKeyGlyphPx = 14.0;
-
 // The key's entries: what each mark of the picture means.
 enum class KeyMark { Start, Now, FadedStart, Goal, Path, Heading, Joint };
 
@@ -329,12 +346,12 @@ std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool
   return keys;
 }
 
-// One key mark, kKeyGlyphPx wide, its middle at (x, y).
-void writeKeyMark(std::ostream& out, KeyMark mark, double x, double y) {
-  const double w = kKeyGlyphPx, h = 9.0, top = y - h / 2;
+// One key mark, st.keyGlyph() wide, its middle at (x, y).
+void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, double y) {
+  const double w = st.keyGlyph(), h = st.font() * 9.0 / 11.0, top = y - h / 2;
   const std::string box = "<rect x=\"" + num(x) + "\" y=\"" + num(top) + "\" width=\"" + num(w) + "\" height=\"" +
                           num(h) + "\" ";
-  const std::string solid = "fill=\"#999\" stroke=\"#222\" stroke-width=\"" + num(0.6 * kOutlinePx) + "\"";
+  const std::string solid = "fill=\"#999\" stroke=\"#222\" stroke-width=\"" + num(0.6 * st.outline()) + "\"";
   switch (mark) {
     case KeyMark::Start:
     case KeyMark::Now:
@@ -344,25 +361,28 @@ void writeKeyMark(std::ostream& out, KeyMark mark, double x, double y) {
       out << box << solid << opacityAttribute(kFadedOpacity) << "/>";
       break;
     case KeyMark::Goal:
-      out << box << "fill=\"none\" stroke=\"#555\" stroke-width=\"" << num(kOutlinePx) << "\" stroke-dasharray=\"3,2\"/>";
+      out << box << "fill=\"none\" stroke=\"#555\" stroke-width=\"" << num(st.outline()) << "\" stroke-dasharray=\""
+          << st.dashes() << "\"/>";
       break;
     case KeyMark::Path:
       out << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w) << "\" y2=\"" << num(y)
-          << "\" stroke=\"#555\" stroke-width=\"" << num(kPathStrokePx) << "\"/>";
+          << "\" stroke=\"#555\" stroke-width=\"" << num(st.pathStroke()) << "\"/>";
       break;
     case KeyMark::Heading:
       out << box << solid << "/><line x1=\"" << num(x + w / 2) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w)
-          << "\" y2=\"" << num(y) << "\" stroke=\"#222\" stroke-width=\"" << num(kOutlinePx) << "\"/>";
+          << "\" y2=\"" << num(y) << "\" stroke=\"#222\" stroke-width=\"" << num(st.outline()) << "\"/>";
       break;
     case KeyMark::Joint:
-      out << "<circle cx=\"" << num(x + 4) << "\" cy=\"" << num(y) << "\" r=\"3\" fill=\"#222\"/><circle cx=\""
-          << num(x + 11) << "\" cy=\"" << num(y) << "\" r=\"1.5\" fill=\"#222\"/>";
+      out << "<circle cx=\"" << num(x + w * 4 / 14) << "\" cy=\"" << num(y) << "\" r=\"" << num(w * 3 / 14)
+          << "\" fill=\"#222\"/><circle cx=\"" << num(x + w * 11 / 14) << "\" cy=\"" << num(y) << "\" r=\""
+          << num(w * 1.5 / 14) << "\" fill=\"#222\"/>";
       break;
   }
 }
 
 std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o) {
   const auto models = makeRobotModels(sc);
+  const Style st(o.panel_width_px);
   std::vector<std::size_t> steps = sol ? o.steps : std::vector<std::size_t>{};
   const bool timed = !steps.empty();
   if (!timed) steps.push_back(0);
@@ -372,14 +392,14 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   // A plan's facts under the panel titles, as many lines as they need.
   const auto facts = sol ? solutionFacts(*sol) : std::vector<std::pair<std::string, bool>>{};
   std::vector<double> fact_w;
-  for (const auto& f : facts) fact_w.push_back(textWidth(f.first, kSubtitleFontPx));
-  const auto fact_rows = flowRows(fact_w, textWidth(kFactGap, kSubtitleFontPx), text_w);
+  for (const auto& f : facts) fact_w.push_back(textWidth(f.first, st.factsFont()));
+  const auto fact_rows = flowRows(fact_w, textWidth(kFactGap, st.factsFont()), text_w);
 
   View v;
   v.world = sc.workspace;
   v.scale = (o.panel_width_px - 2.0 * kPaddingPx) / (sc.workspace.hi.x - sc.workspace.lo.x);
   v.left = kPaddingPx;  // in panel coordinates: each panel is translated into place
-  v.top = kTitlePx + static_cast<double>(fact_rows.size()) * kSubtitleLinePx + kPaddingPx;
+  v.top = st.titleBand() + static_cast<double>(fact_rows.size()) * st.factsLine() + kPaddingPx;
   const std::vector<const Path*> paths = sol ? pathsByRobot(sc, *sol) : std::vector<const Path*>(sc.robots.size());
   std::vector<std::string> polylines(sc.robots.size());  // the same in every panel
   for (std::size_t i = 0; i < sc.robots.size(); ++i)
@@ -388,19 +408,20 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   // The key below the drawing, never over it.
   const auto keys = keyEntries(sc, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed);
   std::vector<double> key_w;
-  for (const auto& k : keys) key_w.push_back(kKeyGlyphPx + 4.0 + textWidth(k.second, kFontPx));
-  const auto key_rows = flowRows(key_w, 14.0, text_w);
-  const double key_top = v.top + v.height() + 8.0;
-  const double panel_h = key_top + static_cast<double>(key_rows.size()) * kKeyRowPx + kPaddingPx - 8.0;
+  for (const auto& k : keys) key_w.push_back(st.keyGlyph() + st.px(4.0) + textWidth(k.second, st.font()));
+  const auto key_rows = flowRows(key_w, st.keyGap(), text_w);
+  const double key_top = v.top + v.height() + st.px(8.0);
+  const double panel_h = key_top + static_cast<double>(key_rows.size()) * st.keyRow() + kPaddingPx - st.px(8.0);
 
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(total_w) << "\" height=\"" << num(panel_h)
       << "\" viewBox=\"0 0 " << num(total_w) << ' ' << num(panel_h) << "\" font-family=\"sans-serif\" font-size=\""
-      << num(kFontPx) << "\">\n<title>" << xmlText(sc.name) << "</title>\n"
+      << num(st.font()) << "\">\n<title>" << xmlText(sc.name) << "</title>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (std::size_t r = 0; r < fact_rows.size(); ++r) {
-    out << "<text class=\"facts\" x=\"" << num(kPaddingPx) << "\" y=\"" << num(kTitlePx - 6.0 + kSubtitleLinePx * (r + 1.0))
-        << "\" font-size=\"" << num(kSubtitleFontPx) << "\" fill=\"#444\">";
+    out << "<text class=\"facts\" x=\"" << num(kPaddingPx) << "\" y=\""
+        << num(st.titleBand() - st.px(6.0) + st.factsLine() * (r + 1.0)) << "\" font-size=\"" << num(st.factsFont())
+        << "\" fill=\"#444\">";
     for (std::size_t k = 0; k < fact_rows[r].size(); ++k) {
       const auto& [text, failure] = facts[fact_rows[r][k]];
       if (k) out << kFactGap;
@@ -413,12 +434,12 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   }
   for (std::size_t k = 0; k < steps.size(); ++k) {
     out << "<g class=\"panel\" transform=\"translate(" << num(static_cast<double>(k) * (o.panel_width_px + kPanelGapPx))
-        << ",0)\">\n<text x=\"" << num(v.left) << "\" y=\"" << num(kTitlePx - 6.0) << "\" font-size=\""
-        << num(kFontPx + 3) << "\">" << xmlText(sc.name);
+        << ",0)\">\n<text x=\"" << num(v.left) << "\" y=\"" << num(st.titleBand() - st.px(6.0)) << "\" font-size=\""
+        << num(st.titleFont()) << "\">" << xmlText(sc.name);
     if (timed) out << kFactGap << "t = " << steps[k] << " of " << sol->makespan();
     out << "</text>\n<rect class=\"workspace\" x=\"" << num(v.left) << "\" y=\"" << num(v.top) << "\" width=\""
         << num(v.width()) << "\" height=\"" << num(v.height()) << "\" fill=\"#fafafa\" stroke=\"#000\" stroke-width=\""
-        << num(kOutlinePx) << "\"/>\n";
+        << num(st.outline()) << "\"/>\n";
     // All obstacles are one path, filled as their union: filled one by
     // one, adjacent boxes (merged map cells) each anti-alias their shared
     // edge and leave a light hairline seam along it, stroke or not. The
@@ -429,19 +450,19 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
       out << "\"/>\n";
     }
     for (std::size_t i = 0; i < sc.robots.size(); ++i)
-      writeRobot(out, v, *models[i], i, polylines[i], paths[i], timed ? &steps[k] : nullptr, o.labels);
+      writeRobot(out, v, st, *models[i], i, polylines[i], paths[i], timed ? &steps[k] : nullptr, o.labels);
     out << "</g>\n";
   }
   if (!keys.empty()) {
     out << "<g class=\"key\" fill=\"#222\">\n";
     for (std::size_t r = 0; r < key_rows.size(); ++r) {
-      const double y = key_top + kKeyRowPx * (r + 0.5);
+      const double y = key_top + st.keyRow() * (r + 0.5);
       double x = kPaddingPx;
       for (std::size_t k : key_rows[r]) {
-        writeKeyMark(out, keys[k].first, x, y);
-        out << "<text x=\"" << num(x + kKeyGlyphPx + 4.0) << "\" y=\"" << num(y + 4.0) << "\">" << keys[k].second
-            << "</text>\n";
-        x += key_w[k] + 14.0;
+        writeKeyMark(out, st, keys[k].first, x, y);
+        out << "<text x=\"" << num(x + st.keyGlyph() + st.px(4.0)) << "\" y=\"" << num(y + st.font() * 4.0 / 11.0) << "\">"
+            << keys[k].second << "</text>\n";
+        x += key_w[k] + st.keyGap();
       }
     }
     out << "</g>\n";

@@ -418,6 +418,35 @@ TEST_CASE("names label the robot and, small, its goal, on a white halo, inside t
                      "paint-order=\"stroke\">m1</text>") == 1);  // m1's goal
 }
 
+TEST_CASE("text grows with the panel's width, within bounds that keep it readable") {
+  // Fixed sizes made the names of a 4000-pixel picture specks seen whole.
+  const Scenario s = oneDisc({2, 2}, {8, 8});
+  auto fontOf = [](const std::string& svg, const std::string& tag) {
+    return svgAttribute(svg, svg.find(tag), "font-size");
+  };
+  auto sizes = [&](double width) {
+    SvgOptions o;
+    o.panel_width_px = width;
+    o.steps = {5};
+    const std::string svg = solutionSvg(s, straightSolution(s, 10), o);
+    auto goal_label = svg.find("<text class=\"label\"");
+    while (svg.find(" font-size=", goal_label) > svg.find('>', goal_label))
+      goal_label = svg.find("<text class=\"label\"", goal_label + 1);
+    // The picture's size is the names' and the key's; the title, the
+    // facts and a goal's name have their own.
+    return std::array<double, 4>{fontOf(svg, "<svg"), fontOf(svg, "<text x="), fontOf(svg, "<text class=\"facts\""),
+                                 svgAttribute(svg, goal_label, "font-size")};
+  };
+  const auto small = sizes(400), usual = sizes(800), large = sizes(3200), huge = sizes(20000);
+  CHECK(usual == std::array<double, 4>{11, 14, 12, 8.5});
+  for (std::size_t k = 0; k < usual.size(); ++k) {
+    CHECK(large[k] == doctest::Approx(4 * usual[k]));
+    CHECK(huge[k] == doctest::Approx(5 * usual[k]));  // at most five times
+    CHECK(small[k] < usual[k]);
+    CHECK(small[k] >= 8);
+  }
+}
+
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
   std::vector<geo::Vec2> line, corner;
   for (int k = 0; k <= 1000; ++k) line.push_back({0.01 * k, 0.02 * k});
