@@ -72,6 +72,12 @@ struct Style {
   double outline() const { return px(1.2); }
   double halo() const { return 2.5 * font() / 11.0; }  // the white edge around a label
   std::string dashes() const { return num(px(3)) + "," + num(px(2)); }
+  // The least a robot is drawn, in whole pixels, so that robots do not
+  // vanish on a large map (on den520d at 800 pixels a 0.6 x 0.4 box is
+  // 2 pixels long): a mobile robot this wide across its bounding circle,
+  // an arm's links this thick. Larger ones are drawn true to scale.
+  double minRobotAcross() const { return std::round(px(9.0)); }
+  double minLinkWidth() const { return std::max(1.0, std::round(px(2.0))); }
 };
 
 // Roughly how wide a line of text is drawn: a sans-serif glyph averages
@@ -178,12 +184,42 @@ std::string opacityAttribute(double opacity) {
   return opacity < 1.0 ? " opacity=\"" + num(opacity) + "\"" : std::string();
 }
 
+// How many times its true size a mobile robot is drawn: 1, or more for
+// one smaller than st.minRobotAcross().
+double mobileGrowth(const RobotModel& m, const View& v, const Style& st) {
+  const double across = 2.0 * m.boundingRadius() * v.scale;
+  return m.isMobile() && across < st.minRobotAcross() ? st.minRobotAcross() / across : 1.0;
+}
+
+// The radius an arm's links are drawn with: their own, or more for links
+// thinner than st.minLinkWidth().
+double drawnLinkRadius(const RobotModel& m, const View& v, const Style& st) {
+  return std::max(m.spec().link_radius, 0.5 * st.minLinkWidth() / v.scale);
+}
+
+// Whether a robot is drawn larger than it is (see Style::minRobotAcross).
+bool drawnEnlarged(const RobotModel& m, const View& v, const Style& st) {
+  return m.isMobile() ? mobileGrowth(m, v, st) > 1.0 : drawnLinkRadius(m, v, st) > m.spec().link_radius;
+}
+
 // A robot at q: its bodies filled (with a thin dark edge) or outlined
-// (dashed), plus its heading (mobile) or its joints (arm).
+// (dashed), plus its heading (mobile) or its joints (arm); no smaller
+// than the style's least sizes.
 void writePose(std::ostream& out, const View& v, const Style& st, const RobotModel& m, const double* q, bool filled,
                double opacity) {
   std::vector<geo::Body> bodies;
   m.bodies(q, bodies);
+  const double growth = mobileGrowth(m, v, st), link_radius = m.isMobile() ? 0.0 : drawnLinkRadius(m, v, st);
+  for (auto& b : bodies) {
+    if (growth > 1.0) {  // about the robot's centre
+      const geo::Vec2 c = m.boundingCenter(q);
+      b.p0 = c + (b.p0 - c) * growth;
+      b.p1 = c + (b.p1 - c) * growth;
+      b.half = b.half * growth;
+      b.radius *= growth;
+    }
+    if (!m.isMobile()) b.radius = link_radius;
+  }
   const std::string fade = opacityAttribute(opacity);
   const Paint paint{(filled ? "stroke=\"#222\" stroke-width=\"" + num(0.6 * st.outline()) + "\""
                             : "fill=\"none\" stroke-width=\"" + num(st.outline()) + "\" stroke-dasharray=\"" +
@@ -192,7 +228,7 @@ void writePose(std::ostream& out, const View& v, const Style& st, const RobotMod
   for (const auto& b : bodies) writeBody(out, v, b, paint);
   if (m.isMobile()) {
     const RobotSpec& s = m.spec();
-    const double reach = s.shape == MobileShape::Disc ? s.radius : 0.5 * s.box_size.x;
+    const double reach = growth * (s.shape == MobileShape::Disc ? s.radius : 0.5 * s.box_size.x);
     const geo::Vec2 a = v({q[0], q[1]}), b = v({q[0] + reach * std::cos(q[2]), q[1] + reach * std::sin(q[2])});
     out << "<line x1=\"" << num(a.x) << "\" y1=\"" << num(a.y) << "\" x2=\"" << num(b.x) << "\" y2=\"" << num(b.y)
         << "\" stroke=\"#222\" stroke-width=\"" << num(st.outline()) << '"' << fade << "/>";
@@ -200,7 +236,7 @@ void writePose(std::ostream& out, const View& v, const Style& st, const RobotMod
   }
   std::vector<geo::Vec2> joints;
   armJointPositions(m.spec(), q, joints);
-  const double r = std::max(st.px(1.0), 0.5 * m.spec().link_radius * v.scale);
+  const double r = std::max(st.px(1.0), 0.5 * link_radius * v.scale);
   for (std::size_t k = 0; k + 1 < joints.size(); ++k) {  // the base larger; the tip has no joint
     const geo::Vec2 c = v(joints[k]);
     out << "<circle cx=\"" << num(c.x) << "\" cy=\"" << num(c.y) << "\" r=\"" << num(k == 0 ? 2.0 * r : r)
@@ -275,7 +311,7 @@ void writeRobot(std::ostream& out, const View& v, const Style& st, const RobotMo
     // The name above the robot (an arm: above its base), its goal's small
     // below the goal, each on a white halo so that it reads over dark
     // paint, and moved inside the panel near its edges.
-    const double body = m.isMobile() ? m.boundingRadius() * v.scale : 0.0;
+    const double body = m.isMobile() ? mobileGrowth(m, v, st) * m.boundingRadius() * v.scale : 0.0;
     writeLabel(out, v, st, r.name, v(m.boundingCenter(now)) - geo::Vec2{0, body + st.px(3.0)}, st.font(), "#000");
     writeLabel(out, v, st, r.name, v(m.boundingCenter(r.goal.data())) + geo::Vec2{0, body + st.goalFont() + st.px(1.0)},
                st.goalFont(), "#333");
@@ -325,9 +361,12 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
 }
 
 // The key's entries: what each mark of the picture means.
-enum class KeyMark { Start, Now, FadedStart, Goal, Path, Heading, Joint };
+enum class KeyMark { Start, Now, FadedStart, Goal, Path, Heading, Joint, LeastRobot, LeastLink };
 
-std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool paths, bool timed) {
+// `enlarged`: whether some robots are drawn larger than true, mobile
+// robots and arms.
+std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool paths, bool timed, const Style& st,
+                                                        std::pair<bool, bool> enlarged) {
   std::vector<std::pair<KeyMark, std::string>> keys;
   if (sc.robots.empty()) return keys;
   auto isMobile = [](const RobotSpec& r) { return r.kind == RobotKind::Mobile; };
@@ -343,6 +382,12 @@ std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool
   if (paths) keys.emplace_back(KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip");
   if (mobile) keys.emplace_back(KeyMark::Heading, "heading");
   if (arms) keys.emplace_back(KeyMark::Joint, "base and joints");
+  if (enlarged.first)
+    keys.emplace_back(KeyMark::LeastRobot, "robots under " + num(st.minRobotAcross()) + " px drawn " +
+                                               num(st.minRobotAcross()) + " px across");
+  if (enlarged.second)
+    keys.emplace_back(KeyMark::LeastLink,
+                      "links under " + num(st.minLinkWidth()) + " px drawn " + num(st.minLinkWidth()) + " px wide");
   return keys;
 }
 
@@ -377,6 +422,14 @@ void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, do
           << "\" fill=\"#222\"/><circle cx=\"" << num(x + w * 11 / 14) << "\" cy=\"" << num(y) << "\" r=\""
           << num(w * 1.5 / 14) << "\" fill=\"#222\"/>";
       break;
+    case KeyMark::LeastRobot:  // a disc that size
+      out << "<circle cx=\"" << num(x + w / 2) << "\" cy=\"" << num(y) << "\" r=\"" << num(st.minRobotAcross() / 2)
+          << "\" " << solid << "/>";
+      break;
+    case KeyMark::LeastLink:  // a link that thick
+      out << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w) << "\" y2=\"" << num(y)
+          << "\" stroke=\"#999\" stroke-width=\"" << num(st.minLinkWidth()) << "\" stroke-linecap=\"round\"/>";
+      break;
   }
 }
 
@@ -406,7 +459,10 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
     if (paths[i]) polylines[i] = polyline(*models[i], *paths[i], v, o.tolerance_px);
 
   // The key below the drawing, never over it.
-  const auto keys = keyEntries(sc, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed);
+  std::pair<bool, bool> enlarged{false, false};
+  for (const auto& m : models) (m->isMobile() ? enlarged.first : enlarged.second) |= drawnEnlarged(*m, v, st);
+  const auto keys = keyEntries(sc, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed,
+                               st, enlarged);
   std::vector<double> key_w;
   for (const auto& k : keys) key_w.push_back(st.keyGlyph() + st.px(4.0) + textWidth(k.second, st.font()));
   const auto key_rows = flowRows(key_w, st.keyGap(), text_w);

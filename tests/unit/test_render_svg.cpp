@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 #include <string>
@@ -445,6 +446,50 @@ TEST_CASE("text grows with the panel's width, within bounds that keep it readabl
     CHECK(small[k] < usual[k]);
     CHECK(small[k] >= 8);
   }
+}
+
+TEST_CASE("robots too small to see are drawn at a least size, and the key says so") {
+  // den520d is 256 cells wide: at 800 pixels its 0.6 x 0.4 boxes were 2
+  // pixels long and vanished.
+  Scenario s;
+  s.name = "large";
+  s.workspace = {{0, 0}, {256, 256}};
+  RobotSpec box = gen::mobileRobot(0, {});
+  box.start = {100, 100, 0};
+  box.goal = {150, 150, 0};
+  s.robots.push_back(box);
+  const std::string svg = scenarioSvg(s);
+  // The box keeps its shape, its diagonal (the bounding circle) 9 pixels.
+  const auto at = svg.find("<polygon points=\"", svg.find("class=\"robot\""));
+  REQUIRE(at != std::string::npos);
+  double x[4], y[4];
+  REQUIRE(std::sscanf(svg.c_str() + at, "<polygon points=\"%lf,%lf %lf,%lf %lf,%lf %lf,%lf", &x[0], &y[0], &x[1], &y[1],
+                      &x[2], &y[2], &x[3], &y[3]) == 8);
+  CHECK(std::hypot(x[2] - x[0], y[2] - y[0]) == doctest::Approx(9).epsilon(0.01));
+  CHECK(std::hypot(x[1] - x[0], y[1] - y[0]) / std::hypot(x[3] - x[0], y[3] - y[0]) == doctest::Approx(0.6 / 0.4).epsilon(0.01));
+  const auto key = svg.find("<g class=\"key\"");
+  auto keyTexts = [](const std::string& picture) {
+    const auto k = picture.find("<g class=\"key\"");
+    return svgTexts(picture, k, picture.find("</g>", k));
+  };
+  REQUIRE(key != std::string::npos);
+  CHECK(keyTexts(svg).back() == "robots under 9 px drawn 9 px across");
+  // On a small workspace the same box is drawn true to scale, with no such key.
+  s.workspace = {{0, 0}, {20, 20}};
+  s.robots[0].start = {10, 10, 0};
+  s.robots[0].goal = {12, 12, 0};
+  const std::string true_size = scenarioSvg(s);
+  CHECK(true_size.find("drawn") == std::string::npos);
+  // Arms far apart: their links are drawn 2 pixels thick, not 0.2.
+  gen::ArmSettings as;
+  as.robots = 2;
+  Scenario arms = gen::generateArms(as);
+  arms.workspace.hi = arms.workspace.lo + geo::Vec2{400, 400};
+  const std::string wide = scenarioSvg(arms);
+  CHECK(countOf(wide, "<path d=\"M") == 2 * 2 * 5);
+  CHECK(countOf(wide, " A1,1 0 0 0 ") == 2 * 2 * 2 * 5);  // each capsule's two half circles
+  CHECK(keyTexts(wide).back() == "links under 2 px drawn 2 px wide");
+  CHECK(scenarioSvg(gen::generateArms(as)).find("drawn") == std::string::npos);
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
