@@ -180,6 +180,18 @@ void writeBody(std::ostream& out, const View& v, const geo::Body& b, const Paint
   }
 }
 
+// A heading mark: an arrowhead inside the body's front, pointing along
+// `dir` (a unit vector on the picture), its tip `reach` pixels from the
+// centre and its base 0.45 of that: it stays clear of the centre, where
+// the path ends, so that it does not read as the path's last bend (a
+// line from the centre did).
+std::string arrowhead(geo::Vec2 centre, geo::Vec2 dir, double reach) {
+  const geo::Vec2 tip = centre + dir * reach, base = centre + dir * (0.45 * reach), side = geo::perp(dir) * (0.3 * reach);
+  std::ostringstream points;
+  points << Pt{tip} << ' ' << Pt{base + side} << ' ' << Pt{base - side};
+  return points.str();
+}
+
 std::string opacityAttribute(double opacity) {
   return opacity < 1.0 ? " opacity=\"" + num(opacity) + "\"" : std::string();
 }
@@ -229,9 +241,9 @@ void writePose(std::ostream& out, const View& v, const Style& st, const RobotMod
   if (m.isMobile()) {
     const RobotSpec& s = m.spec();
     const double reach = growth * (s.shape == MobileShape::Disc ? s.radius : 0.5 * s.box_size.x);
-    const geo::Vec2 a = v({q[0], q[1]}), b = v({q[0] + reach * std::cos(q[2]), q[1] + reach * std::sin(q[2])});
-    out << "<line x1=\"" << num(a.x) << "\" y1=\"" << num(a.y) << "\" x2=\"" << num(b.x) << "\" y2=\"" << num(b.y)
-        << "\" stroke=\"#222\" stroke-width=\"" << num(st.outline()) << '"' << fade << "/>";
+    out << "<polygon class=\"heading\" points=\""
+        << arrowhead(v({q[0], q[1]}), {std::cos(q[2]), -std::sin(q[2])}, reach * v.scale)
+        << "\" fill=\"#222\" stroke=\"none\"" << fade << "/>";
     return;
   }
   std::vector<geo::Vec2> joints;
@@ -414,8 +426,8 @@ void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, do
           << "\" stroke=\"#555\" stroke-width=\"" << num(st.pathStroke()) << "\"/>";
       break;
     case KeyMark::Heading:
-      out << box << solid << "/><line x1=\"" << num(x + w / 2) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w)
-          << "\" y2=\"" << num(y) << "\" stroke=\"#222\" stroke-width=\"" << num(st.outline()) << "\"/>";
+      out << box << solid << "/><path d=\"M" << arrowhead({x + w / 2, y}, {1, 0}, w / 2)
+          << "Z\" fill=\"#222\" stroke=\"none\"/>";
       break;
     case KeyMark::Joint:
       out << "<circle cx=\"" << num(x + w * 4 / 14) << "\" cy=\"" << num(y) << "\" r=\"" << num(w * 3 / 14)

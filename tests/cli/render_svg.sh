@@ -39,7 +39,7 @@ wellformed "$WORK/scenario.svg" || fail "scenario SVG is not well-formed"
 "$PLAN" render "$WORK/map.json" -o "$WORK/map.svg" > /dev/null || fail "map render exited $?"
 wellformed "$WORK/map.svg" || fail "map SVG is not well-formed"
 [ "$(count "$WORK/map.svg" '<path class="obstacles"')" -eq 1 ] || fail "the map's obstacles are not one path"
-[ "$(count "$WORK/map.svg" '<polygon')" -eq 4 ] || fail "the map's obstacles are drawn one by one (or robots are missing)"
+[ "$(count "$WORK/map.svg" '<polygon points')" -eq 4 ] || fail "the map's obstacles are drawn one by one (or robots are missing)"
 
 # Names may hold any character JSON can escape; the picture still parses:
 # what XML 1.0 forbids (C0 controls, even as &#1;; U+FFFF) is drawn as U+FFFD.

@@ -108,7 +108,7 @@ TEST_CASE("a scenario SVG is well-formed with one group per robot") {
   const std::string svg = scenarioSvg(s);
   CHECK(wellFormed(svg));
   CHECK(countOf(svg, "<g class=\"robot\"") == 8);
-  CHECK(countOf(svg, "<polygon") == 2 * 8);  // box robots at start and goal; obstacles are one path
+  CHECK(countOf(svg, "<polygon points") == 2 * 8);  // box robots at start and goal; obstacles are one path
   CHECK(countOf(svg, ">m7</text>") == 2);  // at its start and its goal
 }
 
@@ -154,7 +154,7 @@ TEST_CASE("a solution SVG draws each robot's path as a polyline and the robots a
   CHECK(wellFormed(svg));
   CHECK(countOf(svg, "<polyline class=\"path\"") == 4);
   CHECK(countOf(svg, "t = 10") == 1);
-  CHECK(countOf(svg, "<polygon") == 3 * 4);  // start, goal and step 10
+  CHECK(countOf(svg, "<polygon points") == 3 * 4);  // start, goal and step 10
 }
 
 TEST_CASE("a strip draws one panel per step, each with every robot") {
@@ -490,6 +490,36 @@ TEST_CASE("robots too small to see are drawn at a least size, and the key says s
   CHECK(countOf(wide, " A1,1 0 0 0 ") == 2 * 2 * 2 * 5);  // each capsule's two half circles
   CHECK(keyTexts(wide).back() == "links under 2 px drawn 2 px wide");
   CHECK(scenarioSvg(gen::generateArms(as)).find("drawn") == std::string::npos);
+}
+
+TEST_CASE("a heading is an arrowhead in the body's front, clear of the centre where the path ends") {
+  // A line from the centre to the front, at the goal, read as the path's
+  // last bend.
+  Scenario s = oneDisc({2, 2}, {8, 8});
+  s.robots[0].goal[2] = std::numbers::pi / 2;  // facing up
+  const std::string svg = solutionSvg(s, straightSolution(s, 10));
+  const double scale = (800.0 - 2 * 12) / 10, radius = 0.5 * scale;
+  std::vector<std::array<double, 6>> arrows;
+  for (auto at = svg.find("<polygon class=\"heading\""); at != std::string::npos;
+       at = svg.find("<polygon class=\"heading\"", at + 1)) {
+    std::array<double, 6> p{};
+    REQUIRE(std::sscanf(svg.c_str() + svg.find("points=\"", at), "points=\"%lf,%lf %lf,%lf %lf,%lf", &p[0], &p[1], &p[2],
+                        &p[3], &p[4], &p[5]) == 6);
+    arrows.push_back(p);
+  }
+  REQUIRE(arrows.size() == 2);  // the goal's, then the start's
+  const auto ws = svg.find("<rect class=\"workspace\"");
+  const double left = svgAttribute(svg, ws, "x"), top = svgAttribute(svg, ws, "y");
+  const geo::Vec2 goal{left + 8 * scale, top + 2 * scale};
+  const auto& a = arrows[0];
+  CHECK(a[0] == doctest::Approx(goal.x));  // the tip at the front edge, straight up
+  CHECK(a[1] == doctest::Approx(goal.y - radius));
+  for (int k = 0; k < 3; ++k) {
+    const double d = std::hypot(a[2 * k] - goal.x, a[2 * k + 1] - goal.y);
+    CHECK(d > 0.4 * radius);
+    CHECK(d <= radius + 1e-6);
+  }
+  CHECK(svg.find("<line") > svg.find("<g class=\"key\""));  // no tick from the centre
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
