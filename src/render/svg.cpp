@@ -21,6 +21,7 @@ namespace {
 constexpr double kPaddingPx = 12.0;
 constexpr double kPanelGapPx = 16.0;
 constexpr double kFadedOpacity = 0.35;  // the start pose when a later step is drawn
+constexpr double kAheadOpacity = 0.5;   // a path's part still to go at a step
 
 // Pixel coordinates are written with two decimals at most: finer is
 // invisible and only makes the file bigger.
@@ -72,6 +73,7 @@ struct Style {
   double outline() const { return px(1.2); }
   double halo() const { return 2.5 * font() / 11.0; }  // the white edge around a label
   std::string dashes() const { return num(px(3)) + "," + num(px(2)); }
+  std::string aheadDashes() const { return num(px(5)) + "," + num(px(3.5)); }  // a path's part to go
   // The least a robot is drawn, in whole pixels, so that robots do not
   // vanish on a large map (on den520d at 800 pixels a 0.6 x 0.4 box is
   // 2 pixels long): a mobile robot this wide across its bounding circle,
@@ -278,14 +280,27 @@ std::vector<const Path*> pathsByRobot(const Scenario& sc, const Solution& sol) {
   return out;
 }
 
-// A path as a polyline in picture coordinates ("x,y x,y ...").
-std::string polyline(const RobotModel& m, const Path& path, const View& v, double tolerance) {
+// The point a path follows at each step, in picture coordinates.
+std::vector<geo::Vec2> tracePoints(const RobotModel& m, const Path& path, const View& v) {
   std::vector<geo::Vec2> pts, scratch;
   pts.reserve(path.size());
   for (std::size_t t = 0; t < path.size(); ++t) pts.push_back(v(tracePoint(m, path.at(t), scratch)));
-  std::ostringstream line;
-  for (const auto& p : decimatePolyline(pts, tolerance)) line << (line.tellp() > 0 ? " " : "") << Pt{p};
-  return line.str();
+  return pts;
+}
+
+// Steps [from, to] of a path as a polyline (`cls` "path" or, dashed and
+// faded, "path-ahead"), points within `tolerance` of the line dropped.
+void writePathLine(std::ostream& out, const Style& st, const std::vector<geo::Vec2>& pts, std::size_t from,
+                   std::size_t to, const char* cls, double tolerance) {
+  const bool ahead = std::string_view(cls) == "path-ahead";
+  out << "<polyline class=\"" << cls << "\" fill=\"none\" stroke-width=\"" << num(st.pathStroke()) << '"';
+  if (ahead) out << " stroke-dasharray=\"" << st.aheadDashes() << '"' << opacityAttribute(kAheadOpacity);
+  out << " stroke-linejoin=\"round\" points=\"";
+  const std::vector<geo::Vec2> part(pts.begin() + static_cast<std::ptrdiff_t>(from),
+                                    pts.begin() + static_cast<std::ptrdiff_t>(to) + 1);
+  const char* gap = "";
+  for (const auto& p : decimatePolyline(part, tolerance)) out << std::exchange(gap, " ") << Pt{p};
+  out << "\"/>\n";
 }
 
 // `text` centred on `at` (its baseline), on a white halo, moved as little
@@ -301,17 +316,22 @@ void writeLabel(std::ostream& out, const View& v, const Style& st, const std::st
       << "paint-order=\"stroke\">" << xmlText(text) << "</text>";
 }
 
-// One robot's group in one panel: its path, goal (outlined), start (solid,
+// One robot's group in one panel: its path (at a step: the part travelled
+// solid, the part to go dashed and faded), goal (outlined), start (solid,
 // faded when a step is drawn), its pose at *step if given, and its name.
+// `trace`: tracePoints of its path, empty when it has none.
 void writeRobot(std::ostream& out, const View& v, const Style& st, const RobotModel& m, std::size_t index,
-                const std::string& polyline, const Path* path, const std::size_t* step, bool labels) {
+                const std::vector<geo::Vec2>& trace, const Path* path, const std::size_t* step, bool labels,
+                double tolerance) {
   const RobotSpec& r = m.spec();
   const std::string colour = robotColour(index);
   out << "<g class=\"robot\" data-robot=\"" << xmlText(r.name) << "\" fill=\"" << colour << "\" stroke=\"" << colour
       << "\">\n";
-  if (!polyline.empty())
-    out << "<polyline class=\"path\" fill=\"none\" stroke-width=\"" << num(st.pathStroke())
-        << "\" stroke-linejoin=\"round\" points=\"" << polyline << "\"/>\n";
+  if (!trace.empty()) {
+    const std::size_t last = trace.size() - 1, t = step ? std::min(*step, last) : last;
+    if (t > 0 || !step) writePathLine(out, st, trace, 0, t, "path", tolerance);
+    if (t < last) writePathLine(out, st, trace, t, last, "path-ahead", tolerance);
+  }
   writePose(out, v, st, m, r.goal.data(), false, 1.0);
   writePose(out, v, st, m, r.start.data(), true, step ? kFadedOpacity : 1.0);
   const double* now = r.start.data();  // where the name goes
@@ -373,7 +393,7 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
 }
 
 // The key's entries: what each mark of the picture means.
-enum class KeyMark { Start, Now, FadedStart, Goal, Path, Heading, Joint, LeastRobot, LeastLink };
+enum class KeyMark { Start, Now, FadedStart, Goal, Path, PathAhead, Heading, Joint, LeastRobot, LeastLink };
 
 // `enlarged`: whether some robots are drawn larger than true, mobile
 // robots and arms.
@@ -391,7 +411,13 @@ std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool
     keys.emplace_back(KeyMark::Start, "start");
   }
   keys.emplace_back(KeyMark::Goal, "goal");
-  if (paths) keys.emplace_back(KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip");
+  if (paths && !timed) keys.emplace_back(KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip");
+  if (paths && timed) {
+    keys.emplace_back(KeyMark::Path, !arms     ? "path travelled"
+                                     : mobile ? "path travelled (arm: its tip)"
+                                              : "tip's path travelled");
+    keys.emplace_back(KeyMark::PathAhead, arms && !mobile ? "tip's path to go" : "path to go");
+  }
   if (mobile) keys.emplace_back(KeyMark::Heading, "heading");
   if (arms) keys.emplace_back(KeyMark::Joint, "base and joints");
   if (enlarged.first)
@@ -422,8 +448,11 @@ void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, do
           << st.dashes() << "\"/>";
       break;
     case KeyMark::Path:
+    case KeyMark::PathAhead:
       out << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w) << "\" y2=\"" << num(y)
-          << "\" stroke=\"#555\" stroke-width=\"" << num(st.pathStroke()) << "\"/>";
+          << "\" stroke=\"#555\" stroke-width=\"" << num(st.pathStroke()) << '"';
+      if (mark == KeyMark::PathAhead) out << " stroke-dasharray=\"" << st.aheadDashes() << '"' << opacityAttribute(kAheadOpacity);
+      out << "/>";
       break;
     case KeyMark::Heading:
       out << box << solid << "/><path d=\"M" << arrowhead({x + w / 2, y}, {1, 0}, w / 2)
@@ -466,9 +495,9 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   v.left = kPaddingPx;  // in panel coordinates: each panel is translated into place
   v.top = st.titleBand() + static_cast<double>(fact_rows.size()) * st.factsLine() + kPaddingPx;
   const std::vector<const Path*> paths = sol ? pathsByRobot(sc, *sol) : std::vector<const Path*>(sc.robots.size());
-  std::vector<std::string> polylines(sc.robots.size());  // the same in every panel
+  std::vector<std::vector<geo::Vec2>> traces(sc.robots.size());
   for (std::size_t i = 0; i < sc.robots.size(); ++i)
-    if (paths[i]) polylines[i] = polyline(*models[i], *paths[i], v, o.tolerance_px);
+    if (paths[i]) traces[i] = tracePoints(*models[i], *paths[i], v);
 
   // The key below the drawing, never over it.
   std::pair<bool, bool> enlarged{false, false};
@@ -518,7 +547,7 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
       out << "\"/>\n";
     }
     for (std::size_t i = 0; i < sc.robots.size(); ++i)
-      writeRobot(out, v, st, *models[i], i, polylines[i], paths[i], timed ? &steps[k] : nullptr, o.labels);
+      writeRobot(out, v, st, *models[i], i, traces[i], paths[i], timed ? &steps[k] : nullptr, o.labels, o.tolerance_px);
     out << "</g>\n";
   }
   if (!keys.empty()) {

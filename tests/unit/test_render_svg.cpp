@@ -317,7 +317,7 @@ TEST_CASE("the key names every mark and lies below the drawing, whatever the rob
     REQUIRE(key != std::string::npos);
     const auto key_end = svg.find("</g>", key);
     const auto texts = svgTexts(svg, key, key_end);
-    CHECK(texts == std::vector<std::string>{"robot at t", "start", "goal", "path", "heading"});
+    CHECK(texts == std::vector<std::string>{"robot at t", "start", "goal", "path travelled", "path to go", "heading"});
     const double height = svgAttribute(svg, svg.find("<svg"), "height");
     for (auto at = svg.find(" y=\"", key); at < key_end; at = svg.find(" y=\"", at + 1)) {
       const double y = std::stod(svg.substr(at + 4));
@@ -520,6 +520,53 @@ TEST_CASE("a heading is an arrowhead in the body's front, clear of the centre wh
     CHECK(d <= radius + 1e-6);
   }
   CHECK(svg.find("<line") > svg.find("<g class=\"key\""));  // no tick from the centre
+}
+
+TEST_CASE("at a step, the path travelled is solid and the path to go dashed and faded, meeting at the robot") {
+  // Both were one line alike, so a panel did not show how far a robot had come.
+  const Scenario s = oneDisc({1, 1}, {9, 1});
+  SvgOptions o;
+  o.steps = {0, 4, 10};
+  const std::string svg = solutionSvg(s, straightSolution(s, 10), o);
+  auto lines = [&](std::size_t panel, const std::string& cls) {
+    std::vector<std::string> found;
+    const auto from = svg.find("<g class=\"panel\"", panel), to = svg.find("</g>\n</g>", from);
+    for (auto at = svg.find("<polyline class=\"" + cls + "\"", from); at < to;
+         at = svg.find("<polyline class=\"" + cls + "\"", at + 1))
+      found.push_back(svg.substr(at, svg.find("/>", at) - at));
+    return found;
+  };
+  const auto p0 = svg.find("<g class=\"panel\""), p4 = svg.find("<g class=\"panel\"", p0 + 1),
+             p10 = svg.find("<g class=\"panel\"", p4 + 1);
+  auto points = [](const std::string& line) {
+    const auto at = line.find("points=\"") + 8;
+    return line.substr(at, line.find('"', at) - at);
+  };
+  // At 0 all is to go, at 10 all travelled.
+  CHECK(lines(p0, "path").empty());
+  REQUIRE(lines(p0, "path-ahead").size() == 1);
+  REQUIRE(lines(p10, "path").size() == 1);
+  CHECK(lines(p10, "path-ahead").empty());
+  CHECK(points(lines(p0, "path-ahead")[0]) == points(lines(p10, "path")[0]));
+  // At 4 the two meet where the robot is, 4/10 of the way from x = 1 to 9.
+  REQUIRE(lines(p4, "path").size() == 1);
+  REQUIRE(lines(p4, "path-ahead").size() == 1);
+  const std::string done = points(lines(p4, "path")[0]), to_go = points(lines(p4, "path-ahead")[0]);
+  const std::string meet = done.substr(done.rfind(' ') + 1);
+  CHECK(to_go.substr(0, to_go.find(' ')) == meet);
+  const double scale = (800.0 - 2 * 12) / 10;
+  CHECK(std::stod(meet) == doctest::Approx(12 + (1 + 0.4 * 8) * scale));
+  const auto circle = svg.find("<circle", svg.find("<circle", svg.find("<circle", p4) + 1) + 1);  // goal, start, now
+  CHECK(svgAttribute(svg, circle, "cx") == doctest::Approx(std::stod(meet)));
+  const std::string ahead = lines(p4, "path-ahead")[0];
+  CHECK(ahead.find("stroke-dasharray=") != std::string::npos);
+  CHECK(ahead.find("opacity=\"0.5\"") != std::string::npos);
+  CHECK(lines(p4, "path")[0].find("stroke-dasharray=") == std::string::npos);
+  CHECK(lines(p4, "path")[0].find("opacity") == std::string::npos);
+  // Without a step the whole path is one solid line, as the key says.
+  const std::string whole = solutionSvg(s, straightSolution(s, 10));
+  CHECK(countOf(whole, "<polyline class=\"path\"") == 1);
+  CHECK(countOf(whole, "path-ahead") == 0);
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
