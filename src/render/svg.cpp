@@ -393,45 +393,63 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
 }
 
 // The key's entries: what each mark of the picture means.
-enum class KeyMark { Start, Now, FadedStart, Goal, Path, PathAhead, Heading, Joint, LeastRobot, LeastLink };
+enum class KeyMark { Start, Now, FadedStart, Goal, Path, PathAhead, Heading, Joint, LeastRobot, LeastLink, Scale };
 
-// `enlarged`: whether some robots are drawn larger than true, mobile
-// robots and arms.
-std::vector<std::pair<KeyMark, std::string>> keyEntries(const Scenario& sc, bool paths, bool timed, const Style& st,
-                                                        std::pair<bool, bool> enlarged) {
-  std::vector<std::pair<KeyMark, std::string>> keys;
-  if (sc.robots.empty()) return keys;
+struct KeyEntry {
+  KeyMark mark;
+  std::string text;
+  double glyph_px = 0.0;  // the mark's width; 0: st.keyGlyph()
+};
+
+// The scale bar's length: the longest 1, 2 or 5 times a power of ten that
+// is at most a quarter of the workspace's width.
+double scaleBarLength(double world_width) {
+  const double most = world_width / 4, power = std::pow(10.0, std::floor(std::log10(most)));
+  for (double f : {5.0, 2.0})
+    if (f * power <= most * (1 + 1e-9)) return f * power;
+  return power;
+}
+
+// What each mark of the picture means, and last a scale bar. `enlarged`:
+// whether some robots are drawn larger than true, mobile robots and arms.
+std::vector<KeyEntry> keyEntries(const Scenario& sc, const View& v, bool paths, bool timed, const Style& st,
+                                 std::pair<bool, bool> enlarged) {
+  std::vector<KeyEntry> keys;
+  const double bar = scaleBarLength(v.world.hi.x - v.world.lo.x);
+  const KeyEntry scale{KeyMark::Scale, formatNumber("%g", bar) + (bar == 1.0 ? " unit" : " units"), bar * v.scale};
+  if (sc.robots.empty()) return {scale};
   auto isMobile = [](const RobotSpec& r) { return r.kind == RobotKind::Mobile; };
   const bool mobile = std::any_of(sc.robots.begin(), sc.robots.end(), isMobile);
   const bool arms = !std::all_of(sc.robots.begin(), sc.robots.end(), isMobile);
   if (timed) {
-    keys.emplace_back(KeyMark::Now, "robot at t");
-    keys.emplace_back(KeyMark::FadedStart, "start");
+    keys.push_back({KeyMark::Now, "robot at t"});
+    keys.push_back({KeyMark::FadedStart, "start"});
   } else {
-    keys.emplace_back(KeyMark::Start, "start");
+    keys.push_back({KeyMark::Start, "start"});
   }
-  keys.emplace_back(KeyMark::Goal, "goal");
-  if (paths && !timed) keys.emplace_back(KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip");
+  keys.push_back({KeyMark::Goal, "goal"});
+  if (paths && !timed) keys.push_back({KeyMark::Path, !arms ? "path" : mobile ? "path (arm: its tip)" : "path of the tip"});
   if (paths && timed) {
-    keys.emplace_back(KeyMark::Path, !arms     ? "path travelled"
-                                     : mobile ? "path travelled (arm: its tip)"
-                                              : "tip's path travelled");
-    keys.emplace_back(KeyMark::PathAhead, arms && !mobile ? "tip's path to go" : "path to go");
+    keys.push_back({KeyMark::Path, !arms     ? "path travelled"
+                                   : mobile ? "path travelled (arm: its tip)"
+                                            : "tip's path travelled"});
+    keys.push_back({KeyMark::PathAhead, arms && !mobile ? "tip's path to go" : "path to go"});
   }
-  if (mobile) keys.emplace_back(KeyMark::Heading, "heading");
-  if (arms) keys.emplace_back(KeyMark::Joint, "base and joints");
+  if (mobile) keys.push_back({KeyMark::Heading, "heading"});
+  if (arms) keys.push_back({KeyMark::Joint, "base and joints"});
   if (enlarged.first)
-    keys.emplace_back(KeyMark::LeastRobot, "robots under " + num(st.minRobotAcross()) + " px drawn " +
-                                               num(st.minRobotAcross()) + " px across");
+    keys.push_back({KeyMark::LeastRobot,
+                    "robots under " + num(st.minRobotAcross()) + " px drawn " + num(st.minRobotAcross()) + " px across"});
   if (enlarged.second)
-    keys.emplace_back(KeyMark::LeastLink,
-                      "links under " + num(st.minLinkWidth()) + " px drawn " + num(st.minLinkWidth()) + " px wide");
+    keys.push_back({KeyMark::LeastLink,
+                    "links under " + num(st.minLinkWidth()) + " px drawn " + num(st.minLinkWidth()) + " px wide"});
+  keys.push_back(scale);
   return keys;
 }
 
-// One key mark, st.keyGlyph() wide, its middle at (x, y).
-void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, double y) {
-  const double w = st.keyGlyph(), h = st.font() * 9.0 / 11.0, top = y - h / 2;
+// One key mark, `w` wide, its middle at (x, y).
+void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, double y, double w) {
+  const double h = st.font() * 9.0 / 11.0, top = y - h / 2;
   const std::string box = "<rect x=\"" + num(x) + "\" y=\"" + num(top) + "\" width=\"" + num(w) + "\" height=\"" +
                           num(h) + "\" ";
   const std::string solid = "fill=\"#999\" stroke=\"#222\" stroke-width=\"" + num(0.6 * st.outline()) + "\"";
@@ -471,6 +489,11 @@ void writeKeyMark(std::ostream& out, const Style& st, KeyMark mark, double x, do
       out << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + w) << "\" y2=\"" << num(y)
           << "\" stroke=\"#999\" stroke-width=\"" << num(st.minLinkWidth()) << "\" stroke-linecap=\"round\"/>";
       break;
+    case KeyMark::Scale:  // a bar with ends
+      out << "<path class=\"scale-bar\" d=\"M" << Pt{{x, top}} << " V" << num(top + h) << " M" << Pt{{x, y}} << " H"
+          << num(x + w) << " M" << Pt{{x + w, top}} << " V" << num(top + h) << "\" fill=\"none\" stroke=\"#222\" stroke-width=\""
+          << num(st.outline()) << "\"/>";
+      break;
   }
 }
 
@@ -502,10 +525,13 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   // The key below the drawing, never over it.
   std::pair<bool, bool> enlarged{false, false};
   for (const auto& m : models) (m->isMobile() ? enlarged.first : enlarged.second) |= drawnEnlarged(*m, v, st);
-  const auto keys = keyEntries(sc, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed,
-                               st, enlarged);
+  auto keys = keyEntries(sc, v, std::any_of(paths.begin(), paths.end(), [](const Path* p) { return p; }), timed, st,
+                         enlarged);
   std::vector<double> key_w;
-  for (const auto& k : keys) key_w.push_back(st.keyGlyph() + st.px(4.0) + textWidth(k.second, st.font()));
+  for (auto& k : keys) {
+    if (k.glyph_px == 0.0) k.glyph_px = st.keyGlyph();
+    key_w.push_back(k.glyph_px + st.px(4.0) + textWidth(k.text, st.font()));
+  }
   const auto key_rows = flowRows(key_w, st.keyGap(), text_w);
   const double key_top = v.top + v.height() + st.px(8.0);
   const double panel_h = key_top + static_cast<double>(key_rows.size()) * st.keyRow() + kPaddingPx - st.px(8.0);
@@ -550,20 +576,18 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
       writeRobot(out, v, st, *models[i], i, traces[i], paths[i], timed ? &steps[k] : nullptr, o.labels, o.tolerance_px);
     out << "</g>\n";
   }
-  if (!keys.empty()) {
-    out << "<g class=\"key\" fill=\"#222\">\n";
-    for (std::size_t r = 0; r < key_rows.size(); ++r) {
-      const double y = key_top + st.keyRow() * (r + 0.5);
-      double x = kPaddingPx;
-      for (std::size_t k : key_rows[r]) {
-        writeKeyMark(out, st, keys[k].first, x, y);
-        out << "<text x=\"" << num(x + st.keyGlyph() + st.px(4.0)) << "\" y=\"" << num(y + st.font() * 4.0 / 11.0) << "\">"
-            << keys[k].second << "</text>\n";
-        x += key_w[k] + st.keyGap();
-      }
+  out << "<g class=\"key\" fill=\"#222\">\n";
+  for (std::size_t r = 0; r < key_rows.size(); ++r) {
+    const double y = key_top + st.keyRow() * (r + 0.5);
+    double x = kPaddingPx;
+    for (std::size_t k : key_rows[r]) {
+      writeKeyMark(out, st, keys[k].mark, x, y, keys[k].glyph_px);
+      out << "<text x=\"" << num(x + keys[k].glyph_px + st.px(4.0)) << "\" y=\"" << num(y + st.font() * 4.0 / 11.0)
+          << "\">" << keys[k].text << "</text>\n";
+      x += key_w[k] + st.keyGap();
     }
-    out << "</g>\n";
   }
+  out << "</g>\n";
   out << "</svg>\n";
   return out.str();
 }

@@ -317,7 +317,8 @@ TEST_CASE("the key names every mark and lies below the drawing, whatever the rob
     REQUIRE(key != std::string::npos);
     const auto key_end = svg.find("</g>", key);
     const auto texts = svgTexts(svg, key, key_end);
-    CHECK(texts == std::vector<std::string>{"robot at t", "start", "goal", "path travelled", "path to go", "heading"});
+    CHECK(texts == std::vector<std::string>{"robot at t", "start", "goal", "path travelled", "path to go", "heading",
+                                            "2 units"});
     const double height = svgAttribute(svg, svg.find("<svg"), "height");
     for (auto at = svg.find(" y=\"", key); at < key_end; at = svg.find(" y=\"", at + 1)) {
       const double y = std::stod(svg.substr(at + 4));
@@ -336,7 +337,7 @@ TEST_CASE("the key names every mark and lies below the drawing, whatever the rob
   const std::string svg = solutionSvg(arms, straightSolution(arms, 5));
   const auto key = svg.find("<g class=\"key\"");
   CHECK(svgTexts(svg, key, svg.find("</g>", key)) ==
-        std::vector<std::string>{"start", "goal", "path of the tip", "base and joints"});
+        std::vector<std::string>{"start", "goal", "path of the tip", "base and joints", "1 unit"});
 }
 
 namespace {
@@ -473,7 +474,8 @@ TEST_CASE("robots too small to see are drawn at a least size, and the key says s
     return svgTexts(picture, k, picture.find("</g>", k));
   };
   REQUIRE(key != std::string::npos);
-  CHECK(keyTexts(svg).back() == "robots under 9 px drawn 9 px across");
+  CHECK(keyTexts(svg) == std::vector<std::string>{"start", "goal", "heading", "robots under 9 px drawn 9 px across",
+                                                  "50 units"});
   // On a small workspace the same box is drawn true to scale, with no such key.
   s.workspace = {{0, 0}, {20, 20}};
   s.robots[0].start = {10, 10, 0};
@@ -488,7 +490,7 @@ TEST_CASE("robots too small to see are drawn at a least size, and the key says s
   const std::string wide = scenarioSvg(arms);
   CHECK(countOf(wide, "<path d=\"M") == 2 * 2 * 5);
   CHECK(countOf(wide, " A1,1 0 0 0 ") == 2 * 2 * 2 * 5);  // each capsule's two half circles
-  CHECK(keyTexts(wide).back() == "links under 2 px drawn 2 px wide");
+  CHECK(keyTexts(wide)[keyTexts(wide).size() - 2] == "links under 2 px drawn 2 px wide");
   CHECK(scenarioSvg(gen::generateArms(as)).find("drawn") == std::string::npos);
 }
 
@@ -567,6 +569,38 @@ TEST_CASE("at a step, the path travelled is solid and the path to go dashed and 
   const std::string whole = solutionSvg(s, straightSolution(s, 10));
   CHECK(countOf(whole, "<polyline class=\"path\"") == 1);
   CHECK(countOf(whole, "path-ahead") == 0);
+}
+
+TEST_CASE("the key ends with a scale bar of a round length, at most a quarter of the workspace wide") {
+  // Without one, a picture did not say how large anything was.
+  auto bar = [](const Scenario& s, double width) {
+    SvgOptions o;
+    o.panel_width_px = width;
+    const std::string svg = scenarioSvg(s, o);
+    const auto key = svg.find("<g class=\"key\"");
+    REQUIRE(key != std::string::npos);
+    const auto at = svg.find("<path class=\"scale-bar\"", key);
+    REQUIRE(at < svg.find("</g>", key));
+    double x0 = 0, y0 = 0, x1 = 0;
+    REQUIRE(std::sscanf(svg.c_str() + svg.find(" M", at + 20), " M%lf,%lf H%lf", &x0, &y0, &x1) == 3);
+    const double scale = (width - 2 * 12) / (s.workspace.hi.x - s.workspace.lo.x);
+    return std::make_pair(svgTexts(svg, key, svg.find("</g>", key)).back(), (x1 - x0) / scale);
+  };
+  auto barIs = [&](const Scenario& sc, double width, const std::string& text, double length) {
+    const auto [shown, drawn] = bar(sc, width);
+    CHECK(shown == text);
+    CHECK(drawn == doctest::Approx(length).epsilon(1e-4));  // pixels have two decimals
+  };
+  Scenario s = oneDisc({2, 2}, {8, 8});  // 10 wide
+  barIs(s, 800, "2 units", 2.0);
+  barIs(s, 300, "2 units", 2.0);  // a length in the world, whatever the picture's width
+  s.workspace = {{0, 0}, {256, 257}};  // den520d
+  barIs(s, 800, "50 units", 50.0);
+  s.workspace = {{-1, 0}, {3, 4}};
+  s.robots.clear();  // an empty scenario has a scale too
+  barIs(s, 800, "1 unit", 1.0);
+  s.workspace = {{0, 0}, {1.5, 1}};
+  barIs(s, 800, "0.2 units", 0.2);
 }
 
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
