@@ -316,13 +316,18 @@ void writeLabel(std::ostream& out, const View& v, const Style& st, const std::st
       << "paint-order=\"stroke\">" << xmlText(text) << "</text>";
 }
 
+// Where a robot is drawn at *step: on its path, or at its start when no
+// step is drawn or it has no path.
+const double* poseAt(const RobotSpec& r, const Path* path, const std::size_t* step) {
+  return step && path ? path->at(*step) : r.start.data();
+}
+
 // One robot's group in one panel: its path (at a step: the part travelled
 // solid, the part to go dashed and faded), goal (outlined), start (solid,
-// faded when a step is drawn), its pose at *step if given, and its name.
+// faded when a step is drawn) and its pose at *step if given.
 // `trace`: tracePoints of its path, empty when it has none.
 void writeRobot(std::ostream& out, const View& v, const Style& st, const RobotModel& m, std::size_t index,
-                const std::vector<geo::Vec2>& trace, const Path* path, const std::size_t* step, bool labels,
-                double tolerance) {
+                const std::vector<geo::Vec2>& trace, const Path* path, const std::size_t* step, double tolerance) {
   const RobotSpec& r = m.spec();
   const std::string colour = robotColour(index);
   out << "<g class=\"robot\" data-robot=\"" << xmlText(r.name) << "\" fill=\"" << colour << "\" stroke=\"" << colour
@@ -334,21 +339,54 @@ void writeRobot(std::ostream& out, const View& v, const Style& st, const RobotMo
   }
   writePose(out, v, st, m, r.goal.data(), false, 1.0);
   writePose(out, v, st, m, r.start.data(), true, step ? kFadedOpacity : 1.0);
-  const double* now = r.start.data();  // where the name goes
-  if (step) {
-    if (path) now = path->at(*step);
-    writePose(out, v, st, m, now, true, 1.0);
-  }
-  if (labels) {
-    // The name above the robot (an arm: above its base), its goal's small
-    // below the goal, each on a white halo so that it reads over dark
-    // paint, and moved inside the panel near its edges.
-    const double body = m.isMobile() ? mobileGrowth(m, v, st) * m.boundingRadius() * v.scale : 0.0;
-    writeLabel(out, v, st, r.name, v(m.boundingCenter(now)) - geo::Vec2{0, body + st.px(3.0)}, st.font(), "#000");
+  if (step) writePose(out, v, st, m, poseAt(r, path, step), true, 1.0);
+  out << "\n</g>\n";
+}
+
+// The centre of a box w by h pixels that lies `gap` pixels beyond `from`
+// in the direction `dir` (a unit vector on the picture).
+geo::Vec2 besideAt(geo::Vec2 from, geo::Vec2 dir, double gap, double w, double h) {
+  return from + dir * (gap + std::abs(dir.x) * w / 2 + std::abs(dir.y) * h / 2);
+}
+
+// A robot's names in one panel, each on a white halo so that it reads
+// over paint, moved inside the panel near its edges. A mobile robot's
+// name is above it (at q) and, small, below its goal. An arm's name is
+// beside its base on the side away from its links at its start, goal and
+// q (above the base, the links ran through it), and its goal's name
+// past the goal pose's tip, along the last link.
+void writeLabels(std::ostream& out, const View& v, const Style& st, const RobotModel& m, const double* q) {
+  const RobotSpec& r = m.spec();
+  if (m.isMobile()) {
+    const double body = mobileGrowth(m, v, st) * m.boundingRadius() * v.scale;
+    writeLabel(out, v, st, r.name, v(m.boundingCenter(q)) - geo::Vec2{0, body + st.px(3.0)}, st.font(), "#000");
     writeLabel(out, v, st, r.name, v(m.boundingCenter(r.goal.data())) + geo::Vec2{0, body + st.goalFont() + st.px(1.0)},
                st.goalFont(), "#333");
+    return;
   }
-  out << "\n</g>\n";
+  std::vector<geo::Vec2> joints;
+  geo::Vec2 links{0, 0};  // the sum of the joints' offsets from the base, on the picture
+  for (const double* pose : {r.start.data(), r.goal.data(), q}) {
+    armJointPositions(r, pose, joints);
+    for (std::size_t k = 1; k < joints.size(); ++k) links = links + (v(joints[k]) - v(joints[0]));
+  }
+  const double far = geo::norm(links), thick = drawnLinkRadius(m, v, st) * v.scale;
+  const geo::Vec2 away = far > 1e-9 ? links * (-1.0 / far) : geo::Vec2{0, 1};
+  // A label's box: its width, and its height from the baseline up (names
+  // mostly lack descenders); `at` below is the baseline's middle.
+  auto placed = [&](const std::string& text, double font, geo::Vec2 from, geo::Vec2 dir, double gap) {
+    const double h = 0.75 * font;
+    return besideAt(from, dir, gap, textWidth(text, font), h) + geo::Vec2{0, h / 2};
+  };
+  // The base's disc is twice a joint's (writePose).
+  const double base_r = 2.0 * std::max(st.px(1.0), 0.5 * thick);
+  writeLabel(out, v, st, r.name, placed(r.name, st.font(), v(r.base_position), away, base_r + st.px(3.0)), st.font(),
+             "#000");
+  armJointPositions(r, r.goal.data(), joints);
+  const geo::Vec2 tip = v(joints.back()), last = tip - v(joints[joints.size() - 2]);
+  const double len = geo::norm(last);
+  const geo::Vec2 along = len > 1e-9 ? last * (1.0 / len) : away;
+  writeLabel(out, v, st, r.name, placed(r.name, st.goalFont(), tip, along, thick + st.px(2.0)), st.goalFont(), "#333");
 }
 
 // Items of the given widths laid out in rows no wider than `width`, `gap`
@@ -572,8 +610,17 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
       for (std::size_t i = 0; i < sc.obstacles.size(); ++i) out << (i ? "\n" : "") << outlinePath(v, sc.obstacles[i].body());
       out << "\"/>\n";
     }
+    const std::size_t* step = timed ? &steps[k] : nullptr;
     for (std::size_t i = 0; i < sc.robots.size(); ++i)
-      writeRobot(out, v, st, *models[i], i, traces[i], paths[i], timed ? &steps[k] : nullptr, o.labels, o.tolerance_px);
+      writeRobot(out, v, st, *models[i], i, traces[i], paths[i], step, o.tolerance_px);
+    // The names over every robot: in each robot's group, a later robot's
+    // body covered them.
+    if (o.labels && !sc.robots.empty()) {
+      out << "<g class=\"labels\">\n";
+      for (std::size_t i = 0; i < sc.robots.size(); ++i)
+        writeLabels(out, v, st, *models[i], poseAt(sc.robots[i], paths[i], step));
+      out << "\n</g>\n";
+    }
     out << "</g>\n";
   }
   out << "<g class=\"key\" fill=\"#222\">\n";

@@ -603,6 +603,66 @@ TEST_CASE("the key ends with a scale bar of a round length, at most a quarter of
   barIs(s, 800, "0.2 units", 0.2);
 }
 
+TEST_CASE("an arm's name is beside its base, away from its links, and its goal's past the goal's tip") {
+  // The name sat just above the base, where links pointing up ran through it.
+  for (const double angle : {std::numbers::pi / 2, 0.0}) {  // links up, links right
+    Scenario s;
+    s.name = "arm";
+    s.workspace = {{0, 0}, {10, 10}};
+    RobotSpec arm = RobotSpec::arm("a0", {5, 5}, angle, {0.5, 0.5, 0.5, 0.5, 0.5}, 0.05);
+    arm.start = {0, 0, 0, 0, 0};
+    arm.goal = {0.1, 0, 0, 0, 0};
+    s.robots.push_back(arm);
+    const std::string svg = scenarioSvg(s);
+    const double scale = (800.0 - 2 * 12) / 10, left = 12;
+    const double top = svgAttribute(svg, svg.find("<rect class=\"workspace\""), "y");
+    const geo::Vec2 base{left + 5 * scale, top + 5 * scale};
+    const auto name = svg.find("<text class=\"label\"");
+    REQUIRE(name != std::string::npos);
+    const double x = svgAttribute(svg, name, "x"), y = svgAttribute(svg, name, "y");
+    const double w = 0.6 * 11 * 2, h = 0.75 * 11;  // "a0": its box from the baseline up
+    const double clear = 0.05 * scale;              // a link's radius
+    if (angle > 0) {
+      CHECK(y - h > base.y + clear);  // below the base, the links going up
+      CHECK(x < base.x);
+      CHECK(x + w > base.x);
+    } else {
+      CHECK(x + w < base.x - clear);  // left of the base, the links going right
+      CHECK(y > base.y);
+      CHECK(y - h < base.y);
+    }
+    // The goal's name: past the tip, 2.5 out along the goal's links.
+    const auto goal = svg.find("<text class=\"label\"", name + 1);
+    REQUIRE(goal != std::string::npos);
+    const double gx = svgAttribute(svg, goal, "x"), gy = svgAttribute(svg, goal, "y");
+    const geo::Vec2 tip = base + geo::Vec2{std::cos(angle + 0.1), -std::sin(angle + 0.1)} * (2.5 * scale);
+    if (angle > 0)
+      CHECK(gy < tip.y);
+    else
+      CHECK(gx > tip.x);
+  }
+}
+
+TEST_CASE("names are drawn over every robot, after all the robots of their panel") {
+  // In each robot's group, a later robot's body covered an earlier name.
+  const Scenario s = twoDiscs({5, 5}, {9, 9}, {5, 5.4}, {1, 1});
+  SvgOptions o;
+  o.steps = {0, 10};
+  const std::string svg = solutionSvg(s, straightSolution(s, 10), o);
+  for (auto panel = svg.find("<g class=\"panel\""); panel != std::string::npos;
+       panel = svg.find("<g class=\"panel\"", panel + 1)) {
+    const auto next = svg.find("<g class=\"panel\"", panel + 1);
+    const auto labels = svg.find("<g class=\"labels\"", panel);
+    REQUIRE(labels < next);
+    const auto last_robot = svg.rfind("<g class=\"robot\"", std::min(next, svg.size()));
+    CHECK(svg.find("<text class=\"label\"", panel) > labels);
+    CHECK(svg.find("</g>", last_robot) < labels);
+    CHECK(countOf(svg.substr(labels, std::min(next, svg.size()) - labels), "<text class=\"label\"") == 4);
+  }
+  o.labels = false;
+  CHECK(solutionSvg(s, straightSolution(s, 10), o).find("class=\"label") == std::string::npos);
+}
+
 TEST_CASE("decimation drops points on straight runs and waits, and keeps corners") {
   std::vector<geo::Vec2> line, corner;
   for (int k = 0; k <= 1000; ++k) line.push_back({0.01 * k, 0.02 * k});
