@@ -7,7 +7,8 @@
 Writes, per suite, time_<suite> (median planning time of solved trials
 against robot count per method, the band spanning the quartiles, log scale;
 a cell where some trials failed drawn hollow and labelled "k/n", one where
-all failed an x on the time limit's dotted line)
+all failed an x on the time limit's dotted line; each method with its own
+marker, its points moved a little aside so that equal times both show)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
 that serves every robot count, like E-ARC's, is a horizontal line).
@@ -71,6 +72,11 @@ SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", 
                 "files": ((0, (3, 1, 1, 1, 1, 1)), "X")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
           "coupled": "tab:orange"}
+# Marker per method in the time figures, and how far apart (in octaves of
+# the robot count) the methods' points of one count are drawn: E-ARC and
+# ARC often take the same time, and one point hid the other.
+MARKERS = {"earc": "o", "arc": "s", "lightning": "^", "prioritized": "D", "coupled": "v"}
+DODGE_OCTAVES = 0.05
 
 
 # One trial as the figures need it; args: the planner arguments it ran
@@ -297,14 +303,19 @@ def plot_times(rows, name, title, out):
     fig, ax = plt.subplots(figsize=(6, 4))
     limit = max(t.time_limit for t in rows)
     drawn = partial = unsolved = False
-    for method in ordered({t.method for t in rows}, METHODS):
+    methods = ordered({t.method for t in rows}, METHODS)
+    for place, method in enumerate(methods):
         color = COLORS.get(method)
+        marker = MARKERS.get(method, "o")
+        # Each method's points moved a little aside, in order, so that
+        # methods of equal times show side by side.
+        shift = 2 ** ((place - (len(methods) - 1) / 2) * DODGE_OCTAVES)
         cells = time_cells(rows, method)
         solved = [(n, k, total, q) for n, k, total, q in cells if q]
         if solved:
-            xs = [n for n, _, _, _ in solved]
+            xs = [n * shift for n, _, _, _ in solved]
             lo, med, hi = ([max(q[i], 1e-4) for _, _, _, q in solved] for i in range(3))
-            ax.plot(xs, med, marker="o", label=label(method, rows), color=color)
+            ax.plot(xs, med, marker=marker, label=label(method, rows), color=color)
             ax.fill_between(xs, lo, hi, alpha=0.2, color=color)
             drawn = True
         for n, k, total, q in cells:
@@ -312,14 +323,14 @@ def plot_times(rows, name, title, out):
                 continue
             y = max(q[1], 1e-4) if q else limit
             if q:
-                ax.plot([n], [y], marker="o", markerfacecolor="white", markeredgecolor=color, color=color)
+                ax.plot([n * shift], [y], marker=marker, markerfacecolor="white", markeredgecolor=color, color=color)
                 partial = True
             else:
-                ax.plot([n], [y], marker="x", markersize=8, color=color, linestyle="none")
+                ax.plot([n * shift], [y], marker="x", markersize=8, color=color, linestyle="none")
                 unsolved = True
             # Left of the point at the last robot count, so as not to run off the axes.
             last = n == max(t.robots for t in rows)
-            ax.annotate("%d/%d" % (k, total), (n, y), textcoords="offset points", xytext=(-6 if last else 6, 4),
+            ax.annotate("%d/%d" % (k, total), (n * shift, y), textcoords="offset points", xytext=(-6 if last else 6, 4),
                         ha="right" if last else "left", fontsize="x-small", color=color)
     ax.axhline(limit, color="0.4", linestyle=":", linewidth=1, label="time limit %g s" % limit)
     if partial:
