@@ -1,7 +1,9 @@
 // Pictures of scenarios and solutions as SVG: the workspace, the obstacles,
 // every robot's start (solid) and goal (outlined), and for a solution each
-// robot's path and the robots at chosen time steps. The world's y axis
-// points up; the picture's points down, so y is flipped.
+// robot's path and the robots at chosen time steps, with the robots' names
+// and a key that ends with a scale bar. Robots too small to see are drawn
+// at a least size, which the key then states. The world's y axis points
+// up; the picture's points down, so y is flipped.
 #pragma once
 
 #include <cstddef>
@@ -16,8 +18,11 @@ namespace earc::render {
 
 struct SvgOptions {
   // Time steps at which every robot is drawn, one panel per step side by
-  // side. Empty: one panel without a time step (starts and goals only).
+  // side, left to right in this order (earc-plan render refuses steps that
+  // do not increase). Empty: one panel without a time step.
   std::vector<std::size_t> steps;
+  // Text, marks and lines are those of an 800-pixel panel scaled with the
+  // width (0.85 to 5 times, no text under 8 pixels).
   double panel_width_px = 800.0;
   // Path polylines drop points that lie within this distance of the
   // simplified line: a 5000-step path becomes a few dozen points.
@@ -30,7 +35,9 @@ std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options = {}
 
 // Paths as polylines in one colour per robot (mobile robots: the reference
 // point; arms: the end of the last link), starts and goals, and the robots
-// at options.steps (a robot past its last state stays there).
+// at options.steps (a robot past its last state stays there), each step's
+// panel drawing the part of a path travelled solid and the part to go
+// dashed and faded.
 std::string solutionSvg(const Scenario& scenario, const Solution& solution, const SvgOptions& options = {});
 
 // Douglas-Peucker simplification: keeps the first and last point and every
