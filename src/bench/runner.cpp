@@ -1062,6 +1062,15 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   std::vector<const Suite*> suites;
   if (!files.empty() && o.cutoff)
     throw InputError("", "--cutoff", "is for suites (robot counts that grow), not scenario files");
+  // A database that was given is not the run's to build: one that is there
+  // is used as it is, one that is missing is built with earc-db's default
+  // count. A count beside it would be ignored for it, silently.
+  if (o.earc_db_count && (!o.db_mobile.empty() || !o.db_arms.empty()))
+    throw InputError("", "--earc-db-count",
+                     "is for the E-ARC databases the run builds itself, and " +
+                         std::string(o.db_mobile.empty() ? "--db-arms" : "--db-mobile") +
+                         " names one instead (used as it is; built with earc-db's default count when missing): "
+                         "give one or the other");
   std::string counts;  // "mobile: 2, 4, 8, 16, 32; arms: 2, 4, 8, 16"
   for (const std::string& name : files.empty() ? o.suites : std::vector<std::string>{}) {
     const Suite& s = suiteByName(name);

@@ -44,12 +44,12 @@ refusedInOneLine "r.sqlite: --earc-db-count: its E-ARC database $BUILT was built
 # Another database, built by the very command that built the first.
 "$BUILD/earc-db" build --db other.sqlite --kind mobile --count 20 --seed 3 -q || fail "earc-db build exited $?"
 refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database $BUILT; other.sqlite is another$tail" \
-  "$BENCH" "${RUN[@]}" --trials 2 --db-mobile other.sqlite --results r.sqlite
+  "$BENCH" "${NO_COUNT[@]}" --trials 2 --db-mobile other.sqlite --results r.sqlite
 trials 1
 # The same database by another path: its trials go on, recording it so.
 cp $BUILT moved.sqlite
 [ -e $BUILT-wal ] && cp $BUILT-wal moved.sqlite-wal
-"$BENCH" "${RUN[@]}" --trials 2 --db-mobile moved.sqlite --results r.sqlite > out 2> err || fail "moved: exit $?"
+"$BENCH" "${NO_COUNT[@]}" --trials 2 --db-mobile moved.sqlite --results r.sqlite > out 2> err || fail "moved: exit $?"
 trials 2
 [ "$(count r.sqlite "SELECT count(DISTINCT earc_db_state) || ' ' || group_concat(earc_db, ' ') FROM
      (SELECT * FROM trials ORDER BY id)")" = "1 $BUILT moved.sqlite" ] || fail "the moved database is not recorded as it is"
@@ -59,7 +59,7 @@ trials 2
 cp moved.sqlite learned.sqlite
 "$BUILD/earc-db" curate --db moved.sqlite --dedupe 1000 -q || fail "earc-db curate exited $?"
 refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database $BUILT; moved.sqlite has changed since (curate)$tail" \
-  "$BENCH" "${RUN[@]}" --trials 3 --db-mobile moved.sqlite --results r.sqlite
+  "$BENCH" "${NO_COUNT[@]}" --trials 3 --db-mobile moved.sqlite --results r.sqlite
 learnLine() {  # DB TOKEN: a line as a planning session that learned leaves one
   "$PY" - "$1" "$2" <<'PY' || fail "could not add a learn line to $1"
 import sqlite3, sys
@@ -71,7 +71,7 @@ PY
 }
 learnLine learned.sqlite 77
 refusedInOneLine "learned.sqlite has changed since (learn)" \
-  "$BENCH" "${RUN[@]}" --trials 3 --db-mobile learned.sqlite --results r.sqlite
+  "$BENCH" "${NO_COUNT[@]}" --trials 3 --db-mobile learned.sqlite --results r.sqlite
 trials 2
 "$BENCH" "${RUN[@]}" --trials 1 --learn --results l.sqlite > out 2> err || fail "a --learn run exited $?"
 [ "$(count l.sqlite "SELECT learn FROM trials")" = 1 ] || fail "a --learn trial does not record it"
@@ -90,10 +90,11 @@ mv kept.sqlite $BUILT
 
 # Scenario files: their trials' database is held to as well.
 file=$(ls r.sqlite.work/scenarios/*.json | head -n 1)
-FILES=(run --methods earc --time-limit 5 --seed 3 --earc-db-count 20)
+FILES_NO_COUNT=(run --methods earc --time-limit 5 --seed 3)
+FILES=("${FILES_NO_COUNT[@]}" --earc-db-count 20)
 "$BENCH" "${FILES[@]}" --results f.sqlite "$file" > out 2> err || fail "run of a file exited $?"
 refusedInOneLine "f.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database f.sqlite.work/earc-files-mobile.sqlite; other.sqlite is another" \
-  "$BENCH" "${FILES[@]}" --db-mobile other.sqlite --results f.sqlite "$file"
+  "$BENCH" "${FILES_NO_COUNT[@]}" --db-mobile other.sqlite --results f.sqlite "$file"
 
 # A version 7 file (nothing recorded) resumes on any database and with
 # any --learn, and is migrated; the count its databases rows record holds.
@@ -108,7 +109,7 @@ dst.commit()
 PY
 refusedInOneLine "old.sqlite: --earc-db-count: its E-ARC database $BUILT was built from 20 problems; this run gives 30 problems" \
   "$BENCH" "${NO_COUNT[@]}" --trials 2 --earc-db-count 30 --results old.sqlite --work-dir r.sqlite.work
-"$BENCH" "${RUN[@]}" --trials 2 --learn --db-mobile other.sqlite --results old.sqlite > out 2> err ||
+"$BENCH" "${NO_COUNT[@]}" --trials 2 --learn --db-mobile other.sqlite --results old.sqlite > out 2> err ||
   fail "a version 7 file resumed on another database with --learn: exit $?"
 grep -q "^nothing to run" out || fail "the version 7 file's trials were not skipped"
 [ "$(count old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 7 file was not migrated"

@@ -98,6 +98,14 @@ for bad in "--memory-limit-mb 0" "--memory-limit-mb -5" "--wall-margin -5" "--wa
   # shellcheck disable=SC2086  # "--option value" splits in two
   refused "${bad% *}:" "${R[@]}" --robots 2 $bad
 done
+# A count for the E-ARC databases the run builds, beside one it is given
+# (which it uses as it is, or builds with earc-db's default count): it
+# would be ignored for that one, so the pair is refused.
+for db in --db-mobile --db-arms; do
+  refused "--earc-db-count: is for the E-ARC databases the run builds itself, and $db names one instead" \
+    "${R[@]}" --robots 2 $db "$WORK/given.db" --earc-db-count 5
+done
+[ -e "$WORK/given.db" ] && fail "a refused run built the E-ARC database it was given"
 [ -e "$WORK/bad.sqlite" ] && fail "a refused run created its results database"
 [ -e "$WORK/bad.sqlite.work" ] && fail "a refused run created its work directory"
 

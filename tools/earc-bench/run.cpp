@@ -91,7 +91,9 @@ void setupRun(CLI::App& app) {
                   "E-ARC database for the mobile suites (earc-plan --db); built with earc-db build when missing "
                   "(default WORK/earc-mobile.sqlite)");
   cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites (default WORK/earc-arms.sqlite)");
-  cmd->add_option("--earc-db-count", r.earc_db_count, "Problems for an E-ARC database built here (default: earc-db's)")
+  cmd->add_option("--earc-db-count", r.earc_db_count,
+                  "Problems for the E-ARC databases the run builds itself (default: earc-db's); not with "
+                  "--db-mobile or --db-arms")
       ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--lightning-dir", r.lightning_dir,
                   "Lightning databases, built here when missing and named by what grows them: "

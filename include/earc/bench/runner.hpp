@@ -37,7 +37,10 @@ struct RunOptions {
   // E-ARC databases (earc-plan --db); empty: <work_dir>/earc-FAMILY.sqlite.
   // Built with `earc-db build --kind FAMILY` (timed) when missing.
   std::string db_mobile, db_arms;
-  std::optional<int> earc_db_count;      // earc-db build --count (unset: earc-db's default)
+  // earc-db build --count for the databases the run builds itself (unset:
+  // earc-db's default); refused beside db_mobile or db_arms, which are used
+  // as they are (built with earc-db's default count when missing).
+  std::optional<int> earc_db_count;
   std::string earc_db_program;           // empty: earc-db next to this program
   std::string lightning_dir;             // empty: <work_dir>/lightning
   // Lightning databases built when missing: problems = per_robot x robots
@@ -117,7 +120,8 @@ struct RunSummary {
 // Runs what is missing; progress on a terminal, `log` gets per-trial lines
 // (verbose) and the table of this run's cells at the end. Bad options
 // (a robot count no suite of the run has, a --plan-program that cannot
-// run, an E-ARC database that was given but cannot be read, a
+// run, an E-ARC database that was given but cannot be read, or given
+// beside --earc-db-count, a
 // --method-arg for a method not run or that plannerArgsProblem refuses,
 // or that differs from the one the results file's trials of that method
 // ran with; Lightning settings or a --learn other than the file's trials
