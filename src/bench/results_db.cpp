@@ -690,14 +690,11 @@ std::optional<LightningSettingDifference> lightningSettingDifference(const Light
   if (!stored.problems && stored.problems_per_robot != given.problems_per_robot)
     return {{"--lightning-problems-per-robot", std::to_string(stored.problems_per_robot.value_or(0)),
              std::to_string(given.problems_per_robot.value_or(0))}};
-  if (stored.problem_time_limit_s != given.problem_time_limit_s) {
-    // Digits enough to tell the two apart.
-    const char* format = formatNumber(stored.problem_time_limit_s) == formatNumber(given.problem_time_limit_s)
-                             ? "%.17g"
-                             : "%.6g";
-    return {{"--lightning-problem-time-limit", formatNumber(format, stored.problem_time_limit_s),
-             formatNumber(format, given.problem_time_limit_s)}};
-  }
+  // Each as a run gives it, and so always told apart: 1.0000001, not
+  // %.17g's 1.0000001000000001.
+  if (stored.problem_time_limit_s != given.problem_time_limit_s)
+    return {{"--lightning-problem-time-limit", exactNumber(stored.problem_time_limit_s),
+             exactNumber(given.problem_time_limit_s)}};
   return std::nullopt;
 }
 

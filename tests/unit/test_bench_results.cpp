@@ -430,8 +430,12 @@ TEST_CASE("Lightning settings differ in the first option that says so, each valu
   CHECK(says(perRobotLightning(4, 10), perRobotLightning(4, 10)) == "same");
   CHECK(says(perRobotLightning(4, 10), perRobotLightning(2, 10)) == "--lightning-problems-per-robot: 4 / 2");
   CHECK(says(perRobotLightning(4, 10), perRobotLightning(4, 2.5)) == "--lightning-problem-time-limit: 10 / 2.5");
+  // The shortest text that reads back as each: as the run was given it.
   CHECK(says(perRobotLightning(4, 1.0000001), perRobotLightning(4, 1.0000002)) ==
-        "--lightning-problem-time-limit: 1.0000001000000001 / 1.0000001999999999");
+        "--lightning-problem-time-limit: 1.0000001 / 1.0000002");
+  CHECK(says(perRobotLightning(4, 1.2345678), perRobotLightning(4, 2)) ==
+        "--lightning-problem-time-limit: 1.2345678 / 2");
+  CHECK(says(perRobotLightning(4, 1e-7), perRobotLightning(4, 0.1)) == "--lightning-problem-time-limit: 1e-07 / 0.1");
   CHECK(says(perRobotLightning(4, 10), twenty) == "--lightning-problems: none (4 per robot) / 20");
   CHECK(says(twenty, perRobotLightning(4, 10)) == "--lightning-problems: 20 / none (4 per robot)");
   LightningSettings eight = twenty;

@@ -119,7 +119,8 @@ struct LightningSettings {
 };
 
 // The first option in which two settings differ, with each one's value as
-// messages give it ("none (4 per robot)" for --lightning-problems unset).
+// messages give it ("none (4 per robot)" for --lightning-problems unset;
+// a limit as exactNumber writes it, "1.0000001").
 struct LightningSettingDifference {
   std::string option, stored, given;
 };
