@@ -523,8 +523,10 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
-         "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file\n";
+         "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file,lightning_problems,"
+         "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state\n";
   for (const auto& t : trials) {
+    const std::optional<LightningSettings>& l = t.lightning;
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
         << ',' << opt(std::optional<double>(t.time_limit_s)) << ',' << t.scenario_seed << ',' << t.planner_seed
         << ',' << (t.success ? 1 : 0) << ',' << opt(t.planning_time_s) << ','
@@ -532,7 +534,11 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(t.conflicts) << ',' << opt(t.db_hits) << ',' << opt(t.peak_memory_kb) << ',' << opt(t.exit_status)
         << ',' << opt(t.term_signal) << ',' << csvField(t.failure) << ',' << t.finished_at << ',' << opt(t.jobs)
         << ',' << csvField(t.planner_version) << ',' << csvField(t.bench_version) << ','
-        << csvField(plannerArgsText(t.planner_args)) << ',' << csvField(t.scenario_file) << "\n";
+        << csvField(plannerArgsText(t.planner_args)) << ',' << csvField(t.scenario_file) << ','
+        << opt(l ? l->problems : std::nullopt) << ',' << opt(l ? l->problems_per_robot : std::nullopt) << ','
+        << opt(l ? std::optional<double>(l->problem_time_limit_s) : std::nullopt) << ','
+        << opt(t.learn) << ',' << csvField(t.earc_db) << ','
+        << opt(t.earc_db_state) << "\n";
   }
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <iterator>
 #include <optional>
 #include <set>
@@ -70,6 +71,38 @@ std::vector<std::string> lines(const std::string& path) {
   std::ifstream in(path);
   std::vector<std::string> out;
   for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// writeCsv's text as rows of (column name, field), the header's names,
+// the fields unquoted (RFC 4180: "" in quotes is "); every row as wide as
+// the header.
+std::vector<std::map<std::string, std::string>> csvByColumn(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+      rows.back().back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (!quoted && c == ',') {
+      rows.back().emplace_back();
+    } else if (!quoted && c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      rows.back().back() += c;
+    }
+  }
+  if (rows.back() == std::vector<std::string>(1)) rows.pop_back();  // after the last line's end
+  std::vector<std::map<std::string, std::string>> out;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    REQUIRE(rows[r].size() == rows[0].size());
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < rows[0].size(); ++c) row[rows[0][c]] = rows[r][c];
+    out.push_back(row);
+  }
   return out;
 }
 
@@ -241,7 +274,10 @@ TEST_CASE("a results database records which build planned each trial, and reads 
   std::ostringstream csv;
   writeCsv(all, csv);
   CHECK(csv.str().find(",jobs,planner_version,") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+bbbbbbb.dirty,,,\n") != std::string::npos);
+  const auto rows = csvByColumn(csv.str());
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[1].at("planner_version") == "0.1.0+bbbbbbb.dirty");
+  CHECK(rows[1].at("bench_version").empty());
 }
 
 TEST_CASE("a results database records which earc-bench ran each trial, and reads and migrates version 3 files") {
@@ -257,8 +293,8 @@ TEST_CASE("a results database records which earc-bench ran each trial, and reads
   CHECK(trialsNotes(all).find("\nPlanned by earc 0.1.0+ccccccc.\nTimed by 2 builds: ") != std::string::npos);
   std::ostringstream csv;
   writeCsv(all, csv);
-  CHECK(csv.str().find(",jobs,planner_version,bench_version,planner_args,scenario_file\n") != std::string::npos);
-  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty,,\n") != std::string::npos);
+  CHECK(csv.str().find(",jobs,planner_version,bench_version,planner_args,scenario_file,") != std::string::npos);
+  CHECK(csv.str().find(",0.1.0+ccccccc,0.1.0+bbbbbbb.dirty,,,") != std::string::npos);
 }
 
 TEST_CASE("a results database records each trial's planner arguments, and reads and migrates version 4 files") {
@@ -308,19 +344,17 @@ TEST_CASE("a results database records a scenario file trial's file, and reads an
     REQUIRE(all.size() == 2);
     CHECK(all[0].scenario_file == "cell/a, b.json");
     CHECK(all[1].scenario_file.empty());
-    // The CSV's last column: the path as given (quoted as needed), empty
-    // for a suite's trial.
+    // The CSV's column after planner_args: the path as given (quoted as
+    // needed), empty for a suite's trial.
     std::ostringstream csv;
     writeCsv(all, csv);
-    std::istringstream in(csv.str());
-    std::string header, row0, row1;
-    std::getline(in, header);
-    std::getline(in, row0);
-    std::getline(in, row1);
-    CHECK(header.substr(header.size() - 14) == ",scenario_file");
-    CHECK(row0.rfind("files,3,arc,0,", 0) == 0);
-    CHECK(row0.substr(row0.size() - 17) == ",\"cell/a, b.json\"");
-    CHECK(row1.back() == ',');
+    CHECK(csv.str().find(",planner_args,scenario_file,") != std::string::npos);
+    CHECK(csv.str().find(",,\"cell/a, b.json\",") != std::string::npos);
+    const auto rows = csvByColumn(csv.str());
+    REQUIRE(rows.size() == 2);
+    CHECK(rows[0].at("suite") == "files");
+    CHECK(rows[0].at("scenario_file") == "cell/a, b.json");
+    CHECK(rows[1].at("scenario_file").empty());
   }
   {
     // As stored: the path; NULL for none.
@@ -532,6 +566,41 @@ TEST_CASE("a results database records --learn and the E-ARC database of each tri
   CHECK(all[3].earc_db == "e.sqlite");
   CHECK_FALSE(all[3].earc_db_state.has_value());
   CHECK(ResultsDb(file.path, true).learn("earc") == true);
+}
+
+TEST_CASE("the CSV has the Lightning settings, --learn and the E-ARC database after the older columns") {
+  TrialRecord earc = earcTrial(0, false, "w/e, mobile.sqlite", -5);
+  TrialRecord lightning = lightningTrial(0, perRobotLightning(4, 2.5));
+  lightning.learn = true;
+  LightningSettings twenty;
+  twenty.problems = 20;
+  twenty.problem_time_limit_s = 1.0000001;
+  const std::vector<TrialRecord> all = {trial("arc", 0, true, 1.5), earc, lightning, lightningTrial(1, twenty),
+                                        earcTrial(1, true, "e.sqlite", std::nullopt)};
+  std::ostringstream csv;
+  writeCsv(all, csv);
+  // Schema 7's and 8's columns last, in their order: a script that read
+  // the columns up to scenario_file by position reads them still.
+  const std::string header = csv.str().substr(0, csv.str().find('\n'));
+  CHECK(header ==
+        "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
+        "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
+        "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file,lightning_problems,"
+        "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state");
+  const auto rows = csvByColumn(csv.str());
+  REQUIRE(rows.size() == 5);
+  const auto fields = [&](std::size_t r) {
+    const auto& row = rows[r];
+    return row.at("lightning_problems") + "|" + row.at("lightning_problems_per_robot") + "|" +
+           row.at("lightning_problem_time_limit_s") + "|" + row.at("learn") + "|" + row.at("earc_db") + "|" +
+           row.at("earc_db_state");
+  };
+  CHECK(fields(0) == "|||||");  // another method's trial records none
+  CHECK(fields(1) == "|||0|w/e, mobile.sqlite|-5");
+  CHECK(fields(2) == "|4|2.5|1||");
+  CHECK(fields(3) == "20||1.0000001|||");  // recorded before schema 8: no --learn
+  CHECK(fields(4) == "|||1|e.sqlite|");    // a database without a history
+  CHECK(csv.str().find(",\"w/e, mobile.sqlite\",-5\n") != std::string::npos);
 }
 
 TEST_CASE("a results file keeps one --learn per method: a trial run with the other is not added") {
@@ -911,10 +980,12 @@ TEST_CASE("a method run with planner arguments is named with them in the tables,
     return out;
   }();
   REQUIRE(csv_lines.size() == 5);
-  CHECK(csv_lines[0].substr(csv_lines[0].size() - 27) == ",planner_args,scenario_file");
-  CHECK(csv_lines[1].substr(csv_lines[1].size() - 21) == ",--db-k=5 --window 4,");
+  CHECK(csv_lines[0].find(",planner_args,scenario_file,") != std::string::npos);
+  CHECK(csv_lines[1].find(",--db-k=5 --window 4,") != std::string::npos);
   CHECK(csv_lines[1].rfind("mobile,4,earc,0,", 0) == 0);  // the method column stays the method
-  CHECK(csv_lines[3].back() == ',');
+  const auto rows = csvByColumn(csv.str());
+  CHECK(rows[0].at("planner_args") == "--db-k=5 --window 4");
+  CHECK(rows[2].at("planner_args").empty());
   TempPath dir("earc-ompl-logs-args");
   writeOmplLogs(t, dir.path);
   const auto log = lines(dir.path + "/mobile-4.log");

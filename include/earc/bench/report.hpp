@@ -114,8 +114,11 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
 // conflicts); then trialsNotes.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
-// One row per trial, RFC 4180 quoting, a header line first; the last
-// column, planner_args, as plannerArgsText writes them ("" for none).
+// One row per trial, RFC 4180 quoting, a header line first: the columns
+// of the trials table but its id, each version's added last (so that a
+// script that reads the first columns by position reads them still);
+// planner_args as plannerArgsText writes them, learn as 1 or 0, and ""
+// for what a trial does not record (NULL).
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
 void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
 
