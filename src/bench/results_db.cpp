@@ -438,6 +438,9 @@ struct ResultsDb::Impl {
   std::string path;
   Connection conn;
   int version = kResultsSchemaVersion;
+  // The trials as trials() last read them (at open, to check every row),
+  // until addTrial adds one: recordedTrials() and the queries on them.
+  std::optional<std::vector<TrialRecord>> trials_read;
   Impl(const std::string& p, bool read_only)
       : path(p), conn(p, read_only ? OpenMode::ReadOnly : OpenMode::ReadWrite, settings()) {}
   static exp::ConnectionSettings settings() {
@@ -579,7 +582,9 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     s.bind(30, std::string_view(t.earc_db));
     bindOpt(s, 31, t.earc_db_state);
     s.run();
-    return sqlite3_changes(c.handle()) > 0;
+    const bool added = sqlite3_changes(c.handle()) > 0;
+    if (added) impl_->trials_read.reset();
+    return added;
   });
 }
 
@@ -642,7 +647,13 @@ std::vector<TrialRecord> ResultsDb::trials() const {
                     " of method " + t.method + " in row id " + std::to_string(first->second.second) +
                     ": a results file holds one set of planner arguments per method");
   }
+  impl_->trials_read = out;
   return out;
+}
+
+const std::vector<TrialRecord>& ResultsDb::recordedTrials() const {
+  if (!impl_->trials_read) trials();
+  return *impl_->trials_read;
 }
 
 std::vector<DatabaseRecord> ResultsDb::databases() const {
@@ -653,22 +664,25 @@ std::vector<DatabaseRecord> ResultsDb::databases() const {
 }
 
 std::optional<LightningSettings> ResultsDb::lightningSettings() const {
-  // Every row was checked at open: the first that has them tells for all.
-  for (const TrialRecord& t : trials())
+  // Every row was checked as it was read: the first that has them tells
+  // for all.
+  for (const TrialRecord& t : recordedTrials())
     if (t.lightning) return t.lightning;
   return std::nullopt;
 }
 
 std::optional<bool> ResultsDb::learn(const std::string& method) const {
-  // Every row was checked at open: the first that has it tells for all.
-  for (const TrialRecord& t : trials())
+  // Every row was checked as it was read: the first that has it tells for
+  // all.
+  for (const TrialRecord& t : recordedTrials())
     if (t.method == method && t.learn) return t.learn;
   return std::nullopt;
 }
 
 std::optional<std::vector<std::string>> ResultsDb::plannerArgs(const std::string& method) const {
-  // Every row was checked at open: the method's first tells for all.
-  for (const TrialRecord& t : trials())
+  // Every row was checked as it was read: the method's first tells for
+  // all.
+  for (const TrialRecord& t : recordedTrials())
     if (t.method == method) return t.planner_args;
   return std::nullopt;
 }

@@ -370,7 +370,7 @@ class Runner {
     if (!runs("earc")) return;
     const std::set<std::string> ours = families();
     std::set<std::pair<std::string, std::int64_t>> checked;
-    for (const TrialRecord& t : db_.trials()) {
+    for (const TrialRecord& t : db_.recordedTrials()) {
       if (t.method != "earc" || !t.earc_db_state) continue;
       const auto family = familyOf(t);
       if (!family || !ours.count(*family) || !checked.insert({*family, *t.earc_db_state}).second) continue;
@@ -434,7 +434,7 @@ class Runner {
   void requireSameFiles() const {
     if (files_.empty()) return;
     const TrialFilter f{o_.seed, o_.time_limit_s};
-    for (const TrialRecord& t : f.apply(db_.trials())) {
+    for (const TrialRecord& t : f.apply(db_.recordedTrials())) {
       if (t.suite != kFilesSuite) continue;
       for (const ScenarioFile& file : files_)
         if (file.robots() == t.robots && file.trial == t.trial && file.hash != t.scenario_seed)

@@ -603,6 +603,39 @@ TEST_CASE("the CSV has the Lightning settings, --learn and the E-ARC database af
   CHECK(csv.str().find(",\"w/e, mobile.sqlite\",-5\n") != std::string::npos);
 }
 
+TEST_CASE("one read of the trials, at open, serves the queries a resumed run asks before it starts") {
+  TempPath file("earc-results-one-read");
+  TrialRecord args = trial("arc", 0, true, 1.0);
+  args.planner_args = {"--window=4"};
+  {
+    ResultsDb db(file.path);
+    CHECK(db.addTrial(args));
+  }
+  ResultsDb db(file.path);
+  TrialRecord lightning = lightningTrial(0, perRobotLightning(4, 2.5));
+  lightning.learn = false;
+  {
+    // Added by another process once this one has read the file: not in
+    // what it read, which every query answers from, not read again.
+    ResultsDb other(file.path);
+    CHECK(other.addTrial(lightning));
+  }
+  CHECK(db.plannerArgs("arc") == args.planner_args);
+  CHECK_FALSE(db.lightningSettings().has_value());
+  CHECK_FALSE(db.learn("lightning").has_value());
+  CHECK(db.recordedTrials().size() == 1);
+  // trials() reads now, and the queries answer from that.
+  CHECK(db.trials().size() == 2);
+  CHECK(db.recordedTrials().size() == 2);
+  CHECK(db.lightningSettings() == lightning.lightning);
+  CHECK(db.learn("lightning") == false);
+  // A trial added through it is in the next answers.
+  CHECK(db.addTrial(earcTrial(0, true, "e.sqlite", 1)));
+  CHECK(db.learn("earc") == true);
+  CHECK(db.plannerArgs("earc") == std::vector<std::string>{});
+  CHECK(db.recordedTrials().size() == 3);
+}
+
 TEST_CASE("a results file keeps one --learn per method: a trial run with the other is not added") {
   TempPath file("earc-results-learn-one");
   ResultsDb db(file.path);

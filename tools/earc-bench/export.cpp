@@ -39,7 +39,7 @@ void setupExport(CLI::App& app) {
     if (o->csv.empty() && o->databases_csv.empty() && o->ompl_dir.empty())
       throw InputError("", "--csv/--databases-csv/--ompl-log", "nothing to export: give at least one");
     bench::ResultsDb db(o->results, true);
-    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.trials(), o->results);
+    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.recordedTrials(), o->results);
     // Before anything is written: no output may overwrite the results or
     // another output.
     std::vector<std::pair<std::string, std::string>> outputs = {

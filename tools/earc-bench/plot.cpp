@@ -46,7 +46,7 @@ void setupPlot(CLI::App& app) {
     // row no run writes), with their messages, before Python runs.
     {
       const bench::ResultsDb check(o->results, true);
-      o->filter.applyRequired(check.trials(), o->results);
+      o->filter.applyRequired(check.recordedTrials(), o->results);
     }
     bench::requireOutputDirectory(o->output, "-o");
     if (!std::filesystem::exists(o->script)) throw InputError(o->script, "--script", "no such file");

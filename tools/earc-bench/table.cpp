@@ -30,7 +30,7 @@ void setupTable(CLI::App& app) {
                 "the paired E-ARC/ARC ratio and E-ARC's hit rate");
   cmd->callback([o] {
     bench::ResultsDb db(o->results, true);
-    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.trials(), o->results);
+    const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.recordedTrials(), o->results);
     std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()));
   });
 }

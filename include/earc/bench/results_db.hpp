@@ -209,6 +209,13 @@ class ResultsDb {
   void addDatabase(const DatabaseRecord& d);
 
   std::set<TrialKey> finishedTrials(std::uint64_t seed, double time_limit_s) const;
+  // Every trial, read (and checked) now.
+  std::vector<TrialRecord> trials() const;
+  // The trials as trials() last read them: at open, which reads every row
+  // to check it, or again once addTrial has added one. One read serves a
+  // resumed run's checks (runner.cpp) and the queries below, which answer
+  // from it; what another process adds meanwhile is not in it.
+  const std::vector<TrialRecord>& recordedTrials() const;
   // The planner arguments the file's trials of `method` ran with; nothing
   // when it has none of them.
   std::optional<std::vector<std::string>> plannerArgs(const std::string& method) const;
@@ -218,7 +225,6 @@ class ResultsDb {
   // The Lightning settings the file's lightning trials ran with; nothing
   // when none of them recorded any (none yet, or all before schema 7).
   std::optional<LightningSettings> lightningSettings() const;
-  std::vector<TrialRecord> trials() const;
   std::vector<DatabaseRecord> databases() const;
   bool hasDatabase(const std::string& method, const std::string& path) const;
 
