@@ -35,6 +35,7 @@
 #include "earc/planning/database_solver.hpp"
 #include "earc/scene/solution.hpp"
 #include "earc/util/format.hpp"
+#include "earc/util/hash.hpp"
 #include "earc/util/progress.hpp"
 #include "earc/util/version.hpp"
 
@@ -89,13 +90,11 @@ std::int64_t fileSize(const std::string& path) {
 // Scenarios, logs and built databases: the one given, or RESULTS.work.
 std::string workDir(const RunOptions& o) { return o.work_dir.empty() ? o.results + ".work" : o.work_dir; }
 
-// The E-ARC database of a family: the one given, or WORK/earc-FAMILY.sqlite
-// (WORK/earc-files-FAMILY.sqlite for scenario files: built for their
-// robots, not the suites').
-std::string earcDbPath(const RunOptions& o, const std::string& family) {
-  const std::string& given = family == "arms" ? o.db_arms : o.db_mobile;
-  if (!given.empty()) return given;
-  return workDir(o) + (o.scenario_files.empty() ? "/earc-" : "/earc-files-") + family + ".sqlite";
+// 16 hex digits, for names.
+std::string hex16(std::uint64_t v) {
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(v));
+  return hex;
 }
 
 // What an E-ARC database built from a file covers: its robots' geometry,
@@ -112,6 +111,58 @@ std::string earcBuildKey(const ScenarioFile& f) {
   return key;
 }
 
+// Why `earc-db build --scenario` would refuse a file's robots (its arms
+// have no pair of one class), or "".
+std::string unbuildableReason(const ScenarioFile& f) {
+  std::vector<RobotSpec> arms;
+  for (const RobotSpec& r : f.scenario.robots)
+    if (r.kind == RobotKind::Manipulator) arms.push_back(r);
+  if (arms.size() < 2 || !exp::armPairClasses(arms, f.scenario.resolution).empty()) return "";
+  return exp::noArmPairClassReason(arms);
+}
+
+// The files of a family that its E-ARC database is built from, one
+// `earc-db build --scenario` each: the first of each build key, in the
+// order given. An arm layout with no pair the database can hold has
+// nothing to build, and its E-ARC trials plan as ARC (the run warns why).
+std::vector<const ScenarioFile*> earcBuildFiles(const std::vector<ScenarioFile>& files, const std::string& family) {
+  std::vector<const ScenarioFile*> out;
+  std::set<std::string> keys;
+  for (const ScenarioFile& f : files)
+    if (f.family == family && keys.insert(earcBuildKey(f)).second && unbuildableReason(f).empty())
+      out.push_back(&f);
+  return out;
+}
+
+// The E-ARC database of a family: the one given, or one the run builds in
+// its work directory, named by what its rows come of, as a Lightning
+// database is: WORK/earc-FAMILY[-pCOUNT]-sSEED[-learn].sqlite, COUNT as
+// --earc-db-count gives it (none: earc-db's default), SEED the run's, and
+// -learn when trials add to it; for scenario files
+// WORK/earc-files-FAMILY-ROBOTS-..., ROBOTS a hash of the robot geometries
+// (and arm layouts) it is built for. So a run takes a database only where
+// it would have built the same one: another --seed, count or --learn, a
+// run into another results file sharing the work directory, files of
+// other robots, each build their own.
+std::string earcDbPath(const RunOptions& o, const std::vector<ScenarioFile>& files, const std::string& family) {
+  const std::string& given = family == "arms" ? o.db_arms : o.db_mobile;
+  if (!given.empty()) return given;
+  std::string name = (files.empty() ? "earc-" : "earc-files-") + family;
+  if (!files.empty()) {
+    // Of the builds' keys, not the files: in any order, and whichever
+    // file of a key stands for it, the builds are the same.
+    std::set<std::string> keys;
+    for (const ScenarioFile* f : earcBuildFiles(files, family)) keys.insert(earcBuildKey(*f));
+    std::string all;
+    for (const std::string& key : keys) all += key + "\n";
+    name += "-" + hex16(fnv1a64(all));
+  }
+  if (o.earc_db_count) name += "-p" + std::to_string(*o.earc_db_count);
+  name += "-s" + std::to_string(o.seed);
+  if (o.learn) name += "-learn";
+  return workDir(o) + "/" + name + ".sqlite";
+}
+
 // What the run reads of an E-ARC database that is there: its entries, and
 // its history, oldest line first (none before experience schema 5).
 struct EarcDbFacts {
@@ -123,8 +174,8 @@ struct EarcDbFacts {
 // --no-learn` opens it. One that cannot be read (a foreign file, a newer
 // schema version) is bad input: every earc trial would fail on it, and be
 // recorded, and be skipped when resumed.
-EarcDbFacts earcDbFacts(const RunOptions& o, const std::string& family) {
-  const std::string path = earcDbPath(o, family);
+EarcDbFacts earcDbFacts(const RunOptions& o, const std::vector<ScenarioFile>& files, const std::string& family) {
+  const std::string path = earcDbPath(o, files, family);
   const bool given = !(family == "arms" ? o.db_arms : o.db_mobile).empty();
   const std::string option = given ? "--db-" + family : "";
   if (fs::is_directory(path)) throw InputError(path, option, "a directory, not an E-ARC database");
@@ -178,8 +229,9 @@ class Runner {
     requireSameLightningSettings();
     requireSameLearn();
     requireSameFiles();
-    requireSameEarcDb();
+    for (const std::string& family : families()) earc_dbs_[family] = earcDbPath(o_, files_, family);
     requireSameEarcDbCount();
+    requireSameEarcDb();
     for (const auto& [family, facts] : existing_) earc_states_[family] = earcDbState(facts);
     for (const char* sub : {"scenarios", "solutions", "logs"}) fs::create_directories(work_ + "/" + sub);
   }
@@ -354,33 +406,37 @@ class Runner {
     return std::nullopt;
   }
 
-  // The earc trials of one family of robots plan with one E-ARC database,
-  // as they found it: a resumed run on another would put trials of two
-  // databases in one cell. "The same" is the same file wherever it lies
-  // now (moved or copied, given by another path) and changed since only
-  // by the trials' own learning (--learn): the token of the last line of
-  // its history, which each earc trial records, is still in its history,
-  // and no line after it added or removed rows but those. Another
-  // database, built again in its place (even by the same command: what it
-  // holds depends on the earc build too), curated or added to since, or
-  // one this run would build because it is gone, is refused before
-  // anything runs. Files from before schema 8, and databases without a
-  // history (experience schema before 5), have none to tell by.
+  // The earc trials of one family of robots and one --seed plan with one
+  // E-ARC database, as they found it: a resumed run on another would put
+  // trials of two databases in one cell. (Another seed's is another: the
+  // run builds one per seed, as it draws other scenarios per seed.) "The
+  // same" is the same file wherever it lies now (moved or copied, given
+  // by another path) and changed since only by the trials' own learning
+  // (--learn): the token of the last line of its history, which each earc
+  // trial records, is still in its history, and no line after it added
+  // or removed rows but those. Another database, built again in its place
+  // (even by the same command: what it holds depends on the earc build
+  // too), curated or added to since, or one this run would build because
+  // it is gone (or because the trials ran on one named as before
+  // earcDbPath's names), is refused before anything runs. Files from
+  // before schema 8, and databases without a history (experience schema
+  // before 5), have none to tell by.
   void requireSameEarcDb() const {
     if (!runs("earc")) return;
     const std::set<std::string> ours = families();
     std::set<std::pair<std::string, std::int64_t>> checked;
     for (const TrialRecord& t : db_.recordedTrials()) {
-      if (t.method != "earc" || !t.earc_db_state) continue;
+      if (t.method != "earc" || !t.earc_db_state || t.seed != o_.seed) continue;
       const auto family = familyOf(t);
       if (!family || !ours.count(*family) || !checked.insert({*family, *t.earc_db_state}).second) continue;
       const std::string path = earcDb(*family);
       const auto refuse = [&](const std::string& now) {
         return InputError(o_.results, "--db-" + *family,
                           "its earc trials of " + (*family == "arms" ? std::string("arms") : *family + " robots") +
-                              " ran on the E-ARC database " + t.earc_db + "; " + now +
-                              ": a results file holds the earc trials of one E-ARC database per kind of robot, as "
-                              "they found it (give that one, or another --results)");
+                              " with --seed " + std::to_string(o_.seed) + " ran on the E-ARC database " + t.earc_db +
+                              "; " + now +
+                              ": a results file holds the earc trials of one E-ARC database per kind of robot and "
+                              "seed, as they found it (give that one, or another --results)");
       };
       const auto facts = existing_.find(*family);
       if (facts == existing_.end()) throw refuse("this run would build a new one at " + path);
@@ -401,29 +457,33 @@ class Runner {
     }
   }
 
-  // An E-ARC database that is there is used as it is: one a run built into
-  // this file (its databases row has a construction time) from another
-  // --earc-db-count would not be built again, and the run's trials would
-  // not be of the count it gives. Older files recorded the count too.
+  // The E-ARC databases runs built into this file (databases rows with a
+  // construction time, which have recorded the count since schema 1) were
+  // built from one --earc-db-count: a run that builds its own from another
+  // (by its name, another database; for another --seed too) would put
+  // trials of databases built from two counts in one cell, as other
+  // Lightning settings would. A database given (--db-mobile) is used as it
+  // is, and no count goes with it.
   void requireSameEarcDbCount() const {
     if (!runs("earc")) return;
     const std::vector<DatabaseRecord> recorded = db_.databases();
     const auto count = [](std::optional<std::int64_t> n) {
       return n ? std::to_string(*n) + " problems" : std::string("earc-db's default count");
     };
+    const std::optional<std::int64_t> given = o_.earc_db_count;
     for (const std::string& family : families()) {
-      if (!existing_.count(family)) continue;  // built by this run, from its count
-      const std::string path = earcDb(family);
-      std::optional<DatabaseRecord> built;
-      for (const DatabaseRecord& d : recorded)
-        if (d.method == "earc" && d.path == path && d.construction_time_s) built = d;
-      const std::optional<std::int64_t> given = o_.earc_db_count;
-      if (!built || built->problems == given) continue;
-      throw InputError(o_.results, "--earc-db-count",
-                       "its E-ARC database " + path + " was built from " + count(built->problems) +
-                           "; this run gives " + count(given) +
-                           ": a database that is there is used as it is, not built again (give the same, or "
-                           "another --results)");
+      if (!(family == "arms" ? o_.db_arms : o_.db_mobile).empty()) continue;
+      // Scenario files' rows are of suite files, whichever their kind: a
+      // cell pools the files of one robot count, mobile or arms.
+      const std::string suite = files_.empty() ? family : std::string(kFilesSuite);
+      for (const DatabaseRecord& d : recorded) {
+        if (d.method != "earc" || d.suite != suite || !d.construction_time_s || d.problems == given) continue;
+        throw InputError(o_.results, "--earc-db-count",
+                         "its E-ARC database " + d.path + " was built from " + count(d.problems) +
+                             "; this run gives " + count(given) +
+                             ": a results file holds the earc trials of E-ARC databases built from one count (give "
+                             "the same, or another --results)");
+      }
     }
   }
 
@@ -526,18 +586,15 @@ class Runner {
   std::string lightningDb(const Cell& c) const {
     std::string name = c.file ? std::string(kFilesSuite) : c.suite->name;
     name += "-" + std::to_string(c.robots);
-    if (c.file) {
-      char hex[20];
-      std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(c.file->world));
-      name += std::string("-") + hex;
-    }
+    if (c.file) name += "-" + hex16(c.file->world);
     name += "-p" + std::to_string(lightningProblems(c.robots)) + "-t" +
             exactNumber(o_.lightning_problem_time_limit_s) + "-s" + std::to_string(o_.seed);
     if (o_.learn) name += "-learn";
     return lightning_dir_ + "/" + name + ".lightning";
   }
 
-  std::string earcDb(const std::string& family) const { return earcDbPath(o_, family); }
+  // earcDbPath's, worked out once per family.
+  const std::string& earcDb(const std::string& family) const { return earc_dbs_.at(family); }
 
   // One line for a database whose build (a child, logs at STEM.out and
   // .err) failed; the method's trials then fail with its planner's own
@@ -616,7 +673,7 @@ class Runner {
       // One built here is new: opened now, for the first time.
       const auto checked = existing_.find(family);
       const EarcDbFacts facts =
-          construction || checked == existing_.end() ? earcDbFacts(o_, family) : checked->second;
+          construction || checked == existing_.end() ? earcDbFacts(o_, files_, family) : checked->second;
       d.entries = facts.entries;
       earc_states_[family] = earcDbState(facts);
       db_.addDatabase(d);
@@ -650,16 +707,6 @@ class Runner {
       }
   }
 
-  // Why `earc-db build --scenario` would refuse a file's robots (its arms
-  // have no pair of one class), or "".
-  static std::string unbuildableReason(const ScenarioFile& f) {
-    std::vector<RobotSpec> arms;
-    for (const RobotSpec& r : f.scenario.robots)
-      if (r.kind == RobotKind::Manipulator) arms.push_back(r);
-    if (arms.size() < 2 || !exp::armPairClasses(arms, f.scenario.resolution).empty()) return "";
-    return exp::noArmPairClassReason(arms);
-  }
-
   // Runs `earc-db build` for one family; its wall time is the construction
   // time (nullopt when it failed: the earc trials then fail with
   // earc-plan's own message about the database).
@@ -672,17 +719,12 @@ class Runner {
     if (files_.empty()) {
       builds.push_back({"--kind=" + family, work_ + "/logs/earc-db-" + family});
     } else {
-      std::set<std::string> keys;
-      for (const ScenarioFile& f : files_) {
-        if (f.family != family || !keys.insert(earcBuildKey(f)).second) continue;
-        // An arm layout with no pair the database can hold has nothing to
-        // build, and its E-ARC trials plan as ARC (warnNoClassFits says
-        // why). Failing its build would take the other files' rows and
-        // E-ARC trials with it.
-        if (!unbuildableReason(f).empty()) continue;
-        builds.push_back({"--scenario=" + scenarioFile(f),
+      // Not an arm layout with no pair the database can hold
+      // (warnNoClassFits says why): failing its build would take the
+      // other files' rows and E-ARC trials with it.
+      for (const ScenarioFile* f : earcBuildFiles(files_, family))
+        builds.push_back({"--scenario=" + scenarioFile(*f),
                           work_ + "/logs/earc-db-" + family + "-" + std::to_string(builds.size())});
-      }
       // Every layout unbuildable: an empty database, which E-ARC opens.
       if (builds.empty()) exp::ExperienceStore created(path);
     }
@@ -721,9 +763,7 @@ class Runner {
   // The trial's scenario in WORK/scenarios, written once: a suite's
   // generated, a file's copied as it was read.
   std::string scenarioFile(const Cell& c) {
-    char hex[20];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(seedsOf(c).scenario));
-    const std::string path = work_ + "/scenarios/" + c.trialName() + "-" + hex + ".json";
+    const std::string path = work_ + "/scenarios/" + c.trialName() + "-" + hex16(seedsOf(c).scenario) + ".json";
     std::lock_guard lock(scenario_mutex_);
     if (!fs::exists(path))
       writeTextFileAtomic(path, scenarioToJson(c.file ? c.file->scenario : trialScenario(*c.suite, c.robots, c.trial, o_.seed))
@@ -970,8 +1010,10 @@ class Runner {
   std::ostream& log_;
   ResultsDb db_;
   const ExistingEarcDbs existing_;
-  // Where each family's E-ARC database stood when the run began, for its
-  // earc trials to record: those there before, and those built here.
+  // Each family's E-ARC database (earcDbPath), and where it stood when the
+  // run began, for its earc trials to record: those there before, and
+  // those built here.
+  std::map<std::string, std::string> earc_dbs_;
   std::map<std::string, std::optional<std::int64_t>> earc_states_;
   std::string work_, lightning_dir_, plan_, bench_;
   RunSummary summary_;
@@ -1095,7 +1137,7 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   ExistingEarcDbs existing;
   if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
     for (const std::string& family : runFamilies(o, files))
-      if (fs::exists(earcDbPath(o, family))) existing[family] = earcDbFacts(o, family);
+      if (fs::exists(earcDbPath(o, files, family))) existing[family] = earcDbFacts(o, files, family);
   return existing;
 }
 

@@ -33,7 +33,7 @@ PYEOF
 # A database that was given is recorded with the entries counted when it
 # was checked, and without a construction time.
 "$BENCH" run --suites mobile --robots 2 --methods earc --trials 1 --time-limit 10 --seed 9 \
-  --db-mobile "$WORK/r.sqlite.work/earc-mobile.sqlite" --results "$WORK/given.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
+  --db-mobile "$WORK/r.sqlite.work/earc-mobile-p30-s9.sqlite" --results "$WORK/given.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
   fail "run with a given database exited $?"
 "$PY" - "$WORK/r.sqlite" "$WORK/given.sqlite" <<'PYEOF' || fail "given database"
 import sqlite3, sys
@@ -58,7 +58,7 @@ json.dump(d, open(sys.argv[1], "w"))' "\$out"
 FAKE
 chmod +x "$WORK/hits-plan"
 "$BENCH" run --suites mobile --robots 2 --methods earc --trials 1 --time-limit 10 --seed 9 --plan-program "$WORK/hits-plan" \
-  --db-mobile "$WORK/r.sqlite.work/earc-mobile.sqlite" --results "$WORK/hits.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
+  --db-mobile "$WORK/r.sqlite.work/earc-mobile-p30-s9.sqlite" --results "$WORK/hits.sqlite" > "$WORK/run.out" 2> "$WORK/run.err" ||
   fail "run with the stand-in planner exited $?"
 got=$("$PY" -c 'import sqlite3, sys
 print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute("SELECT db_hits FROM trials").fetchone()[0])' "$WORK/hits.sqlite")

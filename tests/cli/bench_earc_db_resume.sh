@@ -5,12 +5,14 @@
 # and where that database's history stood (results schema 8). A run
 # resumed into the same --results is refused before anything runs, in one
 # line naming the option (exit 2), when it gives another --learn, another
-# --earc-db-count than its database was built from, or an E-ARC database
-# that is not the one its earc trials found: another file (even one built
-# by the same command), one changed since (but by their own learning
-# under --learn), or none, so that the run would build one. The same
-# database by another path resumes. A file from before schema 8 resumes
-# on any database. Skipped (77) without /usr/bin/python3.
+# --earc-db-count than its databases were built from, or an E-ARC database
+# that is not the one its earc trials of that --seed found: another file
+# (even one built by the same command), one changed since (but by their
+# own learning under --learn), or none, so that the run would build one.
+# The same database by another path resumes. A file from before schema 8
+# resumes on any database. (bench_earc_db_names.sh: the names of the
+# databases the run builds, and files from before them.) Skipped (77)
+# without /usr/bin/python3.
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
@@ -25,11 +27,12 @@ lastToken() { count "$1" "SELECT token FROM history ORDER BY id DESC LIMIT 1"; }
 
 NO_COUNT=(run --suites mobile --robots 2 --methods earc --time-limit 5 --seed 3)
 RUN=("${NO_COUNT[@]}" --earc-db-count 20)
-BUILT=r.sqlite.work/earc-mobile.sqlite
+BUILT=r.sqlite.work/earc-mobile-p20-s3.sqlite
 "$BENCH" "${RUN[@]}" --trials 1 --results r.sqlite > out 2> err || fail "run exited $?"
 [ "$(count r.sqlite "SELECT learn || ' ' || earc_db || ' ' || earc_db_state FROM trials")" = \
   "0 $BUILT $(lastToken $BUILT)" ] || fail "the earc trial does not record --learn, its database and its state"
-tail=": a results file holds the earc trials of one E-ARC database per kind of robot, as they found it (give that one, or another --results)"
+tail=": a results file holds the earc trials of one E-ARC database per kind of robot and seed, as they found it (give that one, or another --results)"
+counts=": a results file holds the earc trials of E-ARC databases built from one count"
 trials() { [ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq "$1" ] || fail "not $1 trials: a refused run recorded some"; }
 
 # The same options: nothing to run. Another --learn or count: refused.
@@ -37,13 +40,13 @@ trials() { [ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq "$1" ] || fai
 grep -q "^nothing to run" out || fail "resumed with the same options ran trials"
 refusedInOneLine "r.sqlite: --learn: its earc trials ran with no --learn (fixed databases); this run gives --learn: a results file holds one --learn setting per method" \
   "$BENCH" "${RUN[@]}" --trials 2 --learn --results r.sqlite
-refusedInOneLine "r.sqlite: --earc-db-count: its E-ARC database $BUILT was built from 20 problems; this run gives 30 problems: a database that is there is used as it is" \
+refusedInOneLine "r.sqlite: --earc-db-count: its E-ARC database $BUILT was built from 20 problems; this run gives 30 problems$counts" \
   "$BENCH" "${NO_COUNT[@]}" --trials 2 --earc-db-count 30 --results r.sqlite
-refusedInOneLine "r.sqlite: --earc-db-count: its E-ARC database $BUILT was built from 20 problems; this run gives earc-db's default count" \
+refusedInOneLine "r.sqlite: --earc-db-count: its E-ARC database $BUILT was built from 20 problems; this run gives earc-db's default count$counts" \
   "$BENCH" "${NO_COUNT[@]}" --trials 2 --results r.sqlite
 # Another database, built by the very command that built the first.
 "$BUILD/earc-db" build --db other.sqlite --kind mobile --count 20 --seed 3 -q || fail "earc-db build exited $?"
-refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database $BUILT; other.sqlite is another$tail" \
+refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots with --seed 3 ran on the E-ARC database $BUILT; other.sqlite is another$tail" \
   "$BENCH" "${NO_COUNT[@]}" --trials 2 --db-mobile other.sqlite --results r.sqlite
 trials 1
 # The same database by another path: its trials go on, recording it so.
@@ -58,7 +61,7 @@ trials 2
 # learning, but under --learn, where the trials' own learning is no change.
 cp moved.sqlite learned.sqlite
 "$BUILD/earc-db" curate --db moved.sqlite --dedupe 1000 -q || fail "earc-db curate exited $?"
-refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database $BUILT; moved.sqlite has changed since (curate)$tail" \
+refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots with --seed 3 ran on the E-ARC database $BUILT; moved.sqlite has changed since (curate)$tail" \
   "$BENCH" "${NO_COUNT[@]}" --trials 3 --db-mobile moved.sqlite --results r.sqlite
 learnLine() {  # DB TOKEN: a line as a planning session that learned leaves one
   "$PY" - "$1" "$2" <<'PY' || fail "could not add a learn line to $1"
@@ -75,7 +78,7 @@ refusedInOneLine "learned.sqlite has changed since (learn)" \
 trials 2
 "$BENCH" "${RUN[@]}" --trials 1 --learn --results l.sqlite > out 2> err || fail "a --learn run exited $?"
 [ "$(count l.sqlite "SELECT learn FROM trials")" = 1 ] || fail "a --learn trial does not record it"
-learnLine l.sqlite.work/earc-mobile.sqlite 78
+learnLine l.sqlite.work/earc-mobile-p20-s3-learn.sqlite 78
 "$BENCH" "${RUN[@]}" --trials 2 --learn --results l.sqlite > out 2> err || fail "a --learn run resumed after learning: exit $?"
 [ "$(count l.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "the --learn run did not go on"
 refusedInOneLine "l.sqlite: --learn: its earc trials ran with --learn; this run gives no --learn (fixed databases)" \
@@ -83,7 +86,7 @@ refusedInOneLine "l.sqlite: --learn: its earc trials ran with --learn; this run 
 
 # Gone: the run would build another in its place.
 mv $BUILT kept.sqlite
-refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database $BUILT; this run would build a new one at $BUILT$tail" \
+refusedInOneLine "r.sqlite: --db-mobile: its earc trials of mobile robots with --seed 3 ran on the E-ARC database $BUILT; this run would build a new one at $BUILT$tail" \
   "$BENCH" "${RUN[@]}" --trials 3 --results r.sqlite
 [ -e $BUILT ] && fail "a refused run built a database"
 mv kept.sqlite $BUILT
@@ -93,8 +96,9 @@ file=$(ls r.sqlite.work/scenarios/*.json | head -n 1)
 FILES_NO_COUNT=(run --methods earc --time-limit 5 --seed 3)
 FILES=("${FILES_NO_COUNT[@]}" --earc-db-count 20)
 "$BENCH" "${FILES[@]}" --results f.sqlite "$file" > out 2> err || fail "run of a file exited $?"
-refusedInOneLine "f.sqlite: --db-mobile: its earc trials of mobile robots ran on the E-ARC database f.sqlite.work/earc-files-mobile.sqlite; other.sqlite is another" \
+refusedInOneLine "f.sqlite: --db-mobile: its earc trials of mobile robots with --seed 3 ran on the E-ARC database f.sqlite.work/earc-files-mobile-" \
   "$BENCH" "${FILES_NO_COUNT[@]}" --db-mobile other.sqlite --results f.sqlite "$file"
+grep -qF "; other.sqlite is another$tail" err || fail "not refused as another database: $(cat err)"
 
 # A version 7 file (nothing recorded) resumes on any database and with
 # any --learn, and is migrated; the count its databases rows record holds.

@@ -54,10 +54,11 @@ assert len(rows) == 12, len(rows)
 for r in rows:
     assert r["scenario_file"] == want[(r["robots"], r["trial"])], r
 PY
-# One E-ARC database per kind, built for the files' robots: no warning.
+# One E-ARC database per kind, built for the files' robots (named by them,
+# the count and the seed): no warning.
 for f in d3 a2; do
-  db=r.sqlite.work/earc-files-$([ $f = a2 ] && echo arms || echo mobile).sqlite
-  [ -s "$db" ] || fail "no $db"
+  db=$(echo r.sqlite.work/earc-files-$([ $f = a2 ] && echo arms || echo mobile)-????????????????-p200-s1.sqlite)
+  [ -s "$db" ] || fail "no $db: $(ls r.sqlite.work)"
   "$BUILD/earc-plan" plan $f.json -o /dev/null --method earc --db "$db" --no-learn -q 2> err || fail "plan $f"
   [ -s err ] && fail "E-ARC's database does not fit $f: $(cat err)"
 done
@@ -74,7 +75,7 @@ refusedInOneLine "--trials: is for the suites" "$BENCH" run --trials 3 d3.json -
 
 # A database given for files whose robots it does not serve: one warning
 # per geometry, and the run goes on.
-"$BENCH" run --methods earc --time-limit 5 --db-mobile r.sqlite.work/earc-files-arms.sqlite --results w.sqlite \
+"$BENCH" run --methods earc --time-limit 5 --db-mobile r.sqlite.work/earc-files-arms-*.sqlite --results w.sqlite \
   d3.json d4.json > out 2> err || fail "run with another kind's database exited $?"
 [ "$(grep -c 'earc-bench: warning: d3.json: .*none for these robots' err)" = 1 ] || fail "no one warning: $(cat err)"
 grep -q 'd4.json' err && fail "warned twice for one geometry: $(cat err)"
@@ -103,7 +104,7 @@ PY
 [ "$(grep -c "earc-bench: warning: far.json: no two arms .* can reach each other.*E-ARC plans as ARC does" err)" = 1 ] ||
   fail "no one warning for the far arms: $(cat err)"
 [ "$(sqlite3 f.sqlite "select count(*) from trials where success = 1")" = 2 ] || fail "an E-ARC arm trial failed"
-"$BUILD/earc-db" inspect --db f.sqlite.work/earc-files-arms.sqlite --json > inspect.json || fail "inspect"
+"$BUILD/earc-db" inspect --db f.sqlite.work/earc-files-arms-*-p50-s1.sqlite --json > inspect.json || fail "inspect"
 [ "$("$PY" -c 'import json; print(json.load(open("inspect.json"))["entries"])')" -gt 0 ] ||
   fail "a2's database rows are gone: $(head -c 300 inspect.json)"
 "$BENCH" run --methods earc --time-limit 5 --results g.sqlite far.json > out 2> err || fail "far arms alone exited $?"

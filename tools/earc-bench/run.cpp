@@ -89,8 +89,10 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--work-dir", r.work_dir, "Scenarios, failed trials' solutions and logs (default RESULTS.work)");
   cmd->add_option("--db-mobile", r.db_mobile,
                   "E-ARC database for the mobile suites (earc-plan --db); built with earc-db build when missing "
-                  "(default WORK/earc-mobile.sqlite)");
-  cmd->add_option("--db-arms", r.db_arms, "E-ARC database for the arm suites (default WORK/earc-arms.sqlite)");
+                  "(default: one built in the work directory, named by what its rows come of: "
+                  "WORK/earc-mobile[-pCOUNT]-sSEED[-learn].sqlite)");
+  cmd->add_option("--db-arms", r.db_arms,
+                  "E-ARC database for the arm suites (default WORK/earc-arms[-pCOUNT]-sSEED[-learn].sqlite)");
   cmd->add_option("--earc-db-count", r.earc_db_count,
                   "Problems for the E-ARC databases the run builds itself (default: earc-db's); not with "
                   "--db-mobile or --db-arms")

@@ -49,8 +49,8 @@
 //     recorded before it. A run resumed with another --learn for one of
 //     its database methods is refused, as is a trial added beside others
 //     of its method with another; so is a run whose E-ARC database is not
-//     the one the file's earc trials of that kind of robot used, as they
-//     found it (runner.cpp).
+//     the one the file's earc trials of that kind of robot and --seed
+//     used, as they found it (runner.cpp).
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.

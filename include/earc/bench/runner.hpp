@@ -20,9 +20,10 @@ namespace earc::bench {
 struct RunOptions {
   // Scenario files to run instead of the suites (suite kFilesSuite, one
   // trial per file; suites, robots and trials are then not used). Their
-  // E-ARC databases default to WORK/earc-files-FAMILY.sqlite, built with
-  // `earc-db build --scenario` from the files (once per robot geometry,
-  // and for arms per layout); their Lightning databases are per world
+  // E-ARC databases default to WORK/earc-files-FAMILY-ROBOTS-...sqlite
+  // (ROBOTS a hash of what they are built for), built with `earc-db build
+  // --scenario` from the files (once per robot geometry, and for arms per
+  // layout); their Lightning databases are per world
   // (files that differ only in starts and goals share one), grown from
   // the file's robots at random starts and goals.
   std::vector<std::string> scenario_files;
@@ -34,8 +35,10 @@ struct RunOptions {
   std::uint64_t seed = 1;
   std::string results = "bench-results.sqlite";
   std::string work_dir;                  // empty: <results>.work
-  // E-ARC databases (earc-plan --db); empty: <work_dir>/earc-FAMILY.sqlite.
-  // Built with `earc-db build --kind FAMILY` (timed) when missing.
+  // E-ARC databases (earc-plan --db); empty: one the run builds with
+  // `earc-db build --kind FAMILY` (timed) when missing, named by what its
+  // rows come of: <work_dir>/earc-FAMILY[-pCOUNT]-sSEED[-learn].sqlite
+  // (COUNT: earc_db_count, when set). One given is built when missing too.
   std::string db_mobile, db_arms;
   // earc-db build --count for the databases the run builds itself (unset:
   // earc-db's default); refused beside db_mobile or db_arms, which are used
@@ -125,8 +128,9 @@ struct RunSummary {
 // --method-arg for a method not run or that plannerArgsProblem refuses,
 // or that differs from the one the results file's trials of that method
 // ran with; Lightning settings or a --learn other than the file's trials
-// ran with, an E-ARC database other than the one its earc trials found,
-// or an --earc-db-count other than the one its database was built from)
+// ran with, an E-ARC database other than the one its earc trials of the
+// run's seed found, or an --earc-db-count other than the one its
+// databases were built from)
 // throw InputError before anything is run or recorded: they are
 // not trial failures. So does, once the run has begun, a trial of a
 // method given --method-arg that the planner refused (refusedItsCommand):
