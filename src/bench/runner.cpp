@@ -639,7 +639,14 @@ class Runner {
         problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
     spec.memory_limit_mb = o_.memory_limit_mb;
     ChildOutcome out = runChild(spec, &interruptFlag());
-    if (out.exit_code != 0) buildFailed(path, out, stem, "Lightning");
+    if (out.exit_code != 0) {
+      buildFailed(path, out, stem, "Lightning");
+      return;
+    }
+    // What the minutes bought: entries, and how many problems it solved
+    // (none, for robots too many for it: its trials then plan from scratch).
+    log_ << "  " << lastLine(stem + ".out") << "\n";
+    log_.flush();
   }
 
   // Databases are built (in a child, timed) when missing and recorded in

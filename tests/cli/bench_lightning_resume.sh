@@ -93,6 +93,9 @@ SHARED=(run --suites mobile --robots 2 --methods lightning --trials 1 --time-lim
 ONE=(--lightning-problems 1 --lightning-problem-time-limit 1)
 "$BENCH" "${SHARED[@]}" --seed 3 "${ONE[@]}" --results s1.sqlite > out 2> err || fail "shared run exited $?"
 [ "$(cd shared && echo *)" = "mobile-2-p1-t1-s3.lightning" ] || fail "not named by its growth: $(ls shared)"
+# The run says what the build gave, under the line that started it.
+grep -A1 "^building Lightning database" out | grep -Eq "^  shared/mobile-2-p1-t1-s3.lightning: [0-9]+ entries .*, [01] solved" ||
+  fail "no summary of the Lightning build: $(cat out)"
 "$BENCH" "${SHARED[@]}" --seed 3 "${ONE[@]}" --results s2.sqlite > out 2> err || fail "second shared run exited $?"
 grep -q "^building Lightning database" out && fail "grown again for the same settings"
 n=0
