@@ -28,6 +28,23 @@ json.dump({"format": "earc.solution.v1", "scenario": sc["name"], "method": "line
 PYEOF
 done
 
+# A scenario whose geometry plan refuses (a start inside an obstacle) is
+# still drawn, with one warning line that says what plan would say.
+"$PY" - "$WORK/s.json" "$WORK/broken-geometry.json" <<'PYEOF' || fail "could not write the broken scenario"
+import json, sys
+sc = json.load(open(sys.argv[1]))
+sc["obstacles"].append({"type": "circle", "center": sc["robots"][0]["start"][:2], "radius": 0.5})
+json.dump(sc, open(sys.argv[2], "w"))
+PYEOF
+"$PLAN" render "$WORK/broken-geometry.json" -o "$WORK/broken-geometry.svg" > /dev/null 2> "$WORK/err" ||
+  fail "render of a scenario with a start in an obstacle exited $?"
+grep -q "^earc-plan: warning: $WORK/broken-geometry.json: \$.robots\[0\].start: start is in collision .*(drawn as it is; plan refuses it)$" \
+  "$WORK/err" || fail "no warning for a start in an obstacle: $(cat "$WORK/err")"
+[ "$(wc -l < "$WORK/err")" -eq 1 ] || fail "more than one line: $(cat "$WORK/err")"
+wellformed "$WORK/broken-geometry.svg" || fail "the broken scenario's picture is not well-formed"
+"$PLAN" render "$WORK/s.json" -o "$WORK/clean.svg" > /dev/null 2> "$WORK/err" || fail "render of a clean scenario exited $?"
+[ -s "$WORK/err" ] && fail "a clean scenario warned: $(cat "$WORK/err")"
+
 "$PLAN" render "$WORK/s.json" -o "$WORK/scenario.svg" > /dev/null || fail "scenario render exited $?"
 wellformed "$WORK/scenario.svg" || fail "scenario SVG is not well-formed"
 [ "$(count "$WORK/scenario.svg" 'class="robot"')" -eq 4 ] || fail "scenario SVG does not have 4 robot groups"

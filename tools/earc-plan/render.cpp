@@ -42,9 +42,16 @@ void runRender(const RenderOptions& opt) {
   earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"-o", opt.output}});
   earc::requireWritableOutput({"-o", opt.output});
   earc::render::requireImageOutput(opt.output, "-o");
-  // Structure only, no geometric check: a picture helps most when the
-  // scenario is broken.
+  // Drawn even when its geometry is wrong (a start in an obstacle, robots
+  // overlapping): a picture helps most when the scenario is broken. But
+  // said, in the line plan would refuse it with, so that a picture is not
+  // taken for a scenario's clean bill of health.
   const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
+  try {
+    earc::checkScenarioGeometry(sc, opt.scenario);
+  } catch (const earc::InputError& e) {
+    std::cerr << "earc-plan: warning: " << e.what() << " (drawn as it is; plan refuses it)\n";
+  }
   earc::render::SvgOptions o;
   o.steps = opt.steps;
   o.panel_width_px = opt.width;
