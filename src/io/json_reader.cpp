@@ -1,9 +1,36 @@
 #include "json_reader.hpp"
 
+#include <errno.h>  // program_invocation_short_name
+
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
+#include <iterator>
+
+#include "earc/io/json_io.hpp"
+
+namespace earc {
+
+std::string inputWarningLine(const InputWarning& warning, std::string_view program) {
+  return std::string(program) + ": warning: " + printableText(warning.text(), 4096);
+}
+
+void printInputWarnings(const InputWarnings& warnings) {
+  // The name the program was started by (glibc's): earc-plan, earc-db,
+  // earc-bench, as their errors say.
+  for (const InputWarning& w : warnings) std::cerr << inputWarningLine(w, program_invocation_short_name) << "\n";
+}
+
+}  // namespace earc
 
 namespace earc::io {
+
+void deliverWarnings(std::vector<InputWarning>&& found, std::vector<InputWarning>* sink) {
+  if (sink == nullptr) printInputWarnings(found);
+  else sink->insert(sink->end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
+}
 
 std::string describe(const json& v) {
   switch (v.type()) {
@@ -37,9 +64,79 @@ const json& JsonReader::array(const json& v, const std::string& path) const {
   return v;
 }
 
+namespace {
+
+// Edit distance with adjacent transpositions (optimal string alignment),
+// ignoring case: "gaol" and "Goal" are both one edit from "goal".
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i)
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[n][m];
+}
+
+// How many edits still make a near miss of `word`: one for short words
+// ("min" and "max" are two apart), two from five letters on. The
+// contract's keys of one object are further apart than that.
+std::size_t nearMissEdits(const std::string& word) { return word.size() < 5 ? 1 : 2; }
+
+// Keys longer than this are no misspelling of a short one (and the
+// distance of two long strings costs their product).
+constexpr std::size_t kLongestNearMiss = 64;
+
+}  // namespace
+
+const char* nearMiss(const std::string& key, std::initializer_list<const char*> candidates) {
+  const char* best = nullptr;
+  std::size_t best_edits = 0;
+  if (key.size() > kLongestNearMiss) return nullptr;
+  for (const char* c : candidates) {
+    const std::size_t edits = editDistance(key, c);
+    if (edits <= nearMissEdits(c) && (best == nullptr || edits < best_edits)) best = c, best_edits = edits;
+  }
+  return best;
+}
+
+void JsonReader::warn(const std::string& path, const std::string& reason) const {
+  if (warnings_ != nullptr) warnings_->push_back({file_, path, reason});
+}
+
+void JsonReader::unknownKeys(const json& obj, const std::string& path, std::initializer_list<const char*> known,
+                             std::initializer_list<OtherKindKey> others, const char* kind) const {
+  for (const auto& [key, value] : obj.items()) {
+    if (std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) continue;
+    const std::string where = member(path, key.c_str());
+    const auto other = std::find_if(others.begin(), others.end(), [&](const OtherKindKey& o) { return key == o.key; });
+    if (other != others.end()) {
+      warn(where, std::string(other->owner) + " key, ignored on " + kind);
+      continue;
+    }
+    const char* near = nearMiss(key, known);
+    warn(where, "unknown key, ignored" + (near ? " (did you mean \"" + std::string(near) + "\"?)" : std::string()));
+  }
+}
+
 const json& JsonReader::required(const json& obj, const char* key, const std::string& path) const {
   auto it = obj.find(key);
-  if (it == obj.end()) fail(member(path, key), "missing required field \"" + std::string(key) + "\"");
+  if (it == obj.end()) {
+    std::string found;
+    if (obj.is_object())
+      for (const auto& [k, v] : obj.items())
+        if (nearMiss(k, {key})) {
+          found = " (found \"" + k + "\")";
+          break;
+        }
+    fail(member(path, key), "missing required field \"" + std::string(key) + "\"" + found);
+  }
   return *it;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -25,16 +26,45 @@ using earc::formatNumber;
 // A short description of a JSON value's kind for "expected X, got Y".
 std::string describe(const json& v);
 
+// The key of `candidates` that `key` is most likely a misspelling of (a
+// small edit distance, case, swapped neighbours and all: "angel" ->
+// "angle", "translaton" -> "translation", "Goal" -> "goal"), or nullptr.
+const char* nearMiss(const std::string& key, std::initializer_list<const char*> candidates);
+
+// A key that belongs to another kind of the object being read: a mobile
+// robot's "shape" on an arm is {"shape", "a mobile robot's"}.
+struct OtherKindKey {
+  const char* key;
+  const char* owner;
+};
+
+// A reader's warnings, once it has read its input whole: appended to
+// `sink`, or printed (printInputWarnings) when there is none.
+void deliverWarnings(std::vector<InputWarning>&& found, std::vector<InputWarning>* sink);
+
 class JsonReader {
  public:
-  explicit JsonReader(std::string file) : file_(std::move(file)) {}
+  // Warnings go to `warnings` (which must outlive the reader); without it
+  // they are dropped.
+  explicit JsonReader(std::string file, std::vector<InputWarning>* warnings = nullptr)
+      : file_(std::move(file)), warnings_(warnings) {}
   const std::string& file() const { return file_; }
 
   [[noreturn]] void fail(const std::string& path, const std::string& reason) const;
+  // Input read all the same, but likely a mistake.
+  void warn(const std::string& path, const std::string& reason) const;
+  // Warns of each key of obj (the object at path) that is not in `known`:
+  // the contract ignores unknown keys, but a misspelt optional field would
+  // silently become its default. A key of `others` is said to belong to
+  // that other kind, not to this `kind` ("a manipulator"); an unknown one
+  // near a known key is suggested as it.
+  void unknownKeys(const json& obj, const std::string& path, std::initializer_list<const char*> known,
+                   std::initializer_list<OtherKindKey> others = {}, const char* kind = "") const;
 
   const json& object(const json& v, const std::string& path) const;
   const json& array(const json& v, const std::string& path) const;
-  // The member `key` of object obj (at path); missing is an error.
+  // The member `key` of object obj (at path); missing is an error, which
+  // names a key of obj that looks like a misspelling of it.
   const json& required(const json& obj, const char* key, const std::string& path) const;
   // The member `key`, or nullptr when absent (or null, when null_is_absent).
   const json* optional(const json& obj, const char* key, bool null_is_absent = false) const;
@@ -54,6 +84,7 @@ class JsonReader {
 
  private:
   std::string file_;
+  std::vector<InputWarning>* warnings_ = nullptr;
 };
 
 }  // namespace earc::io

@@ -32,6 +32,10 @@ Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) 
   // no centre, and "missing center" would send the user after the wrong field.
   if (type != "box" && type != "circle")
     r.fail(member(p, "type"), "unknown obstacle type \"" + type + "\" (expected \"box\" or \"circle\")");
+  if (type == "box")
+    r.unknownKeys(v, p, {"type", "center", "size", "angle"}, {{"radius", "a circle's"}}, "a box");
+  else
+    r.unknownKeys(v, p, {"type", "center", "radius"}, {{"size", "a box's"}, {"angle", "a box's"}}, "a circle");
   o.center = r.vec2(r.required(v, "center", p), member(p, "center"));
   if (type == "box") {
     o.type = Obstacle::Type::Box;
@@ -49,13 +53,21 @@ Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) 
 
 void readMobile(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
   spec.kind = RobotKind::Mobile;
+  r.unknownKeys(v, p, {"name", "type", "shape", "start", "goal"},
+                {{"base", "a manipulator's"},
+                 {"links", "a manipulator's"},
+                 {"link_radius", "a manipulator's"},
+                 {"joint_limits", "a manipulator's"}},
+                "a mobile robot");
   const std::string sp = member(p, "shape");
   const json& shape = r.object(r.required(v, "shape", p), sp);
   const std::string type = r.string(r.required(shape, "type", sp), member(sp, "type"));
   if (type == "disc") {
+    r.unknownKeys(shape, sp, {"type", "radius"}, {{"size", "a box shape's"}}, "a disc");
     spec.shape = MobileShape::Disc;
     spec.radius = r.positive(r.required(shape, "radius", sp), member(sp, "radius"));
   } else if (type == "box") {
+    r.unknownKeys(shape, sp, {"type", "size"}, {{"radius", "a disc shape's"}}, "a box shape");
     spec.shape = MobileShape::Box;
     const std::string zp = member(sp, "size");
     const json& size = r.required(shape, "size", sp);
@@ -72,6 +84,8 @@ void readMobile(const JsonReader& r, const json& v, const std::string& p, RobotS
 
 void readManipulator(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
   spec.kind = RobotKind::Manipulator;
+  r.unknownKeys(v, p, {"name", "type", "base", "links", "link_radius", "joint_limits", "start", "goal"},
+                {{"shape", "a mobile robot's"}}, "a manipulator");
   const auto base = r.numbers(r.required(v, "base", p), 3, member(p, "base"), "x, y, theta0");
   spec.base_position = {base[0], base[1]};
   spec.base_angle = base[2];
@@ -104,14 +118,17 @@ json vec(geo::Vec2 v) { return json::array({v.x, v.y}); }
 
 }  // namespace
 
-Scenario scenarioFromJson(const json& doc, const std::string& file) {
-  const JsonReader r(file);
+Scenario scenarioFromJson(const json& doc, const std::string& file, InputWarnings* warnings) {
+  InputWarnings found;
+  const JsonReader r(file, &found);
   r.object(doc, "$");
   r.format(doc, kScenarioFormat);
+  r.unknownKeys(doc, "$", {"format", "name", "workspace", "resolution", "obstacles", "robots"});
   Scenario s;
   if (const json* name = r.optional(doc, "name", true)) s.name = r.string(*name, "$.name");
 
   const json& ws = r.object(r.required(doc, "workspace", "$"), "$.workspace");
+  r.unknownKeys(ws, "$.workspace", {"min", "max"});
   s.workspace.lo = r.vec2(r.required(ws, "min", "$.workspace"), "$.workspace.min");
   s.workspace.hi = r.vec2(r.required(ws, "max", "$.workspace"), "$.workspace.max");
   if (!(s.workspace.lo.x < s.workspace.hi.x && s.workspace.lo.y < s.workspace.hi.y))
@@ -119,6 +136,7 @@ Scenario scenarioFromJson(const json& doc, const std::string& file) {
 
   if (const json* res = r.optional(doc, "resolution", true)) {
     r.object(*res, "$.resolution");
+    r.unknownKeys(*res, "$.resolution", {"translation", "rotation", "joint"});
     // Each key defaults on its own.
     if (const json* v = r.optional(*res, "translation")) s.resolution.translation = r.positive(*v, "$.resolution.translation");
     if (const json* v = r.optional(*res, "rotation")) s.resolution.rotation = r.positive(*v, "$.resolution.rotation");
@@ -158,6 +176,7 @@ Scenario scenarioFromJson(const json& doc, const std::string& file) {
     else readManipulator(r, v, p, spec);
     s.robots.push_back(std::move(spec));
   }
+  io::deliverWarnings(std::move(found), warnings);
   return s;
 }
 
@@ -251,9 +270,12 @@ void checkScenarioGeometry(const Scenario& s, const std::string& file) {
   }
 }
 
-Scenario loadScenario(const std::string& path) {
-  Scenario s = scenarioFromJson(readJsonFile(path), path);
+Scenario loadScenario(const std::string& path, InputWarnings* warnings) {
+  // Warnings only for a scenario that is read: refused, it gets one line.
+  InputWarnings found;
+  Scenario s = scenarioFromJson(readJsonFile(path), path, &found);
   checkScenarioGeometry(s, path);
+  io::deliverWarnings(std::move(found), warnings);
   return s;
 }
 

@@ -35,10 +35,14 @@ Path readStates(const JsonReader& r, const json& states, int dim, const std::str
 
 }  // namespace
 
-Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::string& file) {
-  const JsonReader r(file);
+Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::string& file,
+                          InputWarnings* warnings) {
+  InputWarnings found;
+  const JsonReader r(file, &found);
   r.object(doc, "$");
   r.format(doc, kSolutionFormat);
+  // "stats" is free-form: its keys are the method's own.
+  r.unknownKeys(doc, "$", {"format", "scenario", "method", "solved", "stats", "paths"});
   Solution sol;
   if (const json* v = r.optional(doc, "scenario", true)) sol.scenario = r.string(*v, "$.scenario");
   if (const json* v = r.optional(doc, "method", true)) sol.method = r.string(*v, "$.method");
@@ -47,7 +51,10 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
 
   // An unsolved solution may leave "paths" out.
   const json* paths = sol.solved ? &r.required(doc, "paths", "$") : r.optional(doc, "paths");
-  if (paths == nullptr) return sol;
+  if (paths == nullptr) {
+    io::deliverWarnings(std::move(found), warnings);
+    return sol;
+  }
   r.array(*paths, "$.paths");
   std::unordered_map<std::string, int> dims;
   if (scenario != nullptr)
@@ -55,6 +62,7 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
   for (std::size_t i = 0; i < paths->size(); ++i) {
     const std::string p = element("$.paths", i);
     const json& entry = r.object((*paths)[i], p);
+    r.unknownKeys(entry, p, {"robot", "states"});
     std::string name = r.string(r.required(entry, "robot", p), member(p, "robot"));
     const json& states = r.required(entry, "states", p);
     int dim = -1;
@@ -72,6 +80,7 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
     sol.paths.push_back(readStates(r, states, dim, member(p, "states")));
     sol.robot_names.push_back(std::move(name));
   }
+  io::deliverWarnings(std::move(found), warnings);
   return sol;
 }
 
@@ -100,8 +109,8 @@ json solutionToJson(const Solution& s) {
   return doc;
 }
 
-Solution loadSolution(const std::string& path, const Scenario* scenario) {
-  return solutionFromJson(readJsonFile(path), scenario, path);
+Solution loadSolution(const std::string& path, const Scenario* scenario, InputWarnings* warnings) {
+  return solutionFromJson(readJsonFile(path), scenario, path, warnings);
 }
 
 void saveSolution(const std::string& path, const Solution& s) {

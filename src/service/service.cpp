@@ -92,7 +92,8 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
   return s;
 }
 
-Scenario scenarioFrom(const json& request) {
+// Warnings about the scenario (unknown keys and the like) go to `warnings`.
+Scenario scenarioFrom(const json& request, InputWarnings& warnings) {
   const json& inline_doc = field(request, "scenario");
   const json& file = field(request, "scenario_file");
   if (inline_doc.is_null() == file.is_null())
@@ -106,12 +107,14 @@ Scenario scenarioFrom(const json& request) {
     const auto st = std::filesystem::status(file.get<std::string>(), ec);
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) && !std::filesystem::is_directory(st))
       throw InputError(file.get<std::string>(), "scenario_file", "not a regular file (a device, FIFO or socket)");
-    return requireRobots(loadScenario(file.get<std::string>()), file.get<std::string>());
+    return requireRobots(loadScenario(file.get<std::string>(), &warnings), file.get<std::string>());
   }
   if (!inline_doc.is_object()) throw badField("scenario", "must be a scenario object (earc.scenario.v1)");
   // Errors name "scenario" and the JSON path inside it.
-  Scenario s = scenarioFromJson(inline_doc, "scenario");
+  InputWarnings found;
+  Scenario s = scenarioFromJson(inline_doc, "scenario", &found);
   checkScenarioGeometry(s, "scenario");
+  warnings.insert(warnings.end(), found.begin(), found.end());
   return requireRobots(std::move(s), "scenario");
 }
 
@@ -185,7 +188,8 @@ json Service::handle(const json& request) {
 }
 
 json Service::plan(const json& request) {
-  Scenario scenario = scenarioFrom(request);
+  InputWarnings read_warnings;
+  Scenario scenario = scenarioFrom(request, read_warnings);
   PlannerSettings s = settingsFrom(request, settings_);
   if (s.method == Method::Earc && !store_)
     throw badField("method", "method earc needs the service to have an experience database");
@@ -198,6 +202,7 @@ json Service::plan(const json& request) {
   // What earc-plan plan says on stderr, given with the answer (only when
   // there is something to say); before planning, which may learn.
   json warnings = json::array();
+  for (const InputWarning& w : read_warnings) warnings.push_back(w.text());
   if (const std::string w = passThroughWarning(scenario); !w.empty()) warnings.push_back(w);
   if (s.method == Method::Earc)
     if (const std::string w = exp::noClassFitsWarning(*store_, scenario, store_->path()); !w.empty())

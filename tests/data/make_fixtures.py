@@ -11,8 +11,9 @@ Naming: scenarios/NAME.json is a scenario; solutions/NAME__CASE.json is a
 solution of scenarios/NAME.json; bad/ holds files that are not valid input
 (bad/NAME.json a bad scenario, bad/NAME__CASE.json a bad solution of
 scenarios/NAME.json). tests/cli/validate_agrees_with_checker.sh pairs them
-by these names. The expected verdict of each solution is in its "expect"
-key (ignored by readers).
+by these names. The expected verdict of each solution is in its
+stats.expect ("stats" is free-form; a key of its own at the top would be
+an unknown key, which readers ignore but warn of).
 """
 
 import json
@@ -58,7 +59,8 @@ def through(start, legs):
 def solution(scenario, paths, expect, solved=True, **extra):
     doc = {"format": "earc.solution.v1", "scenario": scenario, "method": "hand-made",
            "solved": solved, "paths": [{"robot": n, "states": s} for n, s in paths],
-           "stats": {"planning_time_s": 0.0}, "expect": expect}
+           "stats": {"planning_time_s": 0.0, "expect": expect}}
+    doc["stats"].update(extra.pop("stats", {}))
     doc.update(extra)
     return doc
 

@@ -12,7 +12,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    earc::Scenario s = earc::scenarioFromJson(earc::parseJsonText(text, "fuzz.json"), "fuzz.json");
+    // Warnings (unknown keys, degrees) collected, not printed: they are
+    // made and dropped for every input.
+    earc::InputWarnings warnings;
+    earc::Scenario s = earc::scenarioFromJson(earc::parseJsonText(text, "fuzz.json"), "fuzz.json", &warnings);
     earc::checkScenarioGeometry(s, "fuzz.json");
     (void)earc::scenarioToJson(s).dump();
   } catch (const earc::InputError&) {

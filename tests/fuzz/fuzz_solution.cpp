@@ -46,7 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   for (const earc::Scenario* against : {static_cast<const earc::Scenario*>(nullptr), &scenario()}) {
     try {
-      earc::Solution s = earc::solutionFromJson(doc, against, "fuzz.json");
+      earc::InputWarnings warnings;  // made, not printed
+      earc::Solution s = earc::solutionFromJson(doc, against, "fuzz.json", &warnings);
       (void)s.makespan();
       (void)s.sumOfCosts();
       if (against && s.robot_names.empty()) s.nameRobots(*against);

@@ -13,7 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
+#include "support.hpp"
 
 using earc::InputError;
 using nlohmann::json;
@@ -142,7 +144,12 @@ TEST_CASE("optional scenario fields take the contract's defaults one by one") {
   doc["robots"][2].erase("joint_limits");
   doc["unknown_key"] = {{"anything", 1}};
   doc["robots"][0]["colour"] = "red";
-  const earc::Scenario s = earc::scenarioFromJson(doc, "in.json");
+  // Unknown keys are read past (the contract), with a warning each.
+  earc::InputWarnings warnings;
+  const earc::Scenario s = earc::scenarioFromJson(doc, "in.json", &warnings);
+  REQUIRE(warnings.size() == 2);
+  CHECK(warnings[0].text() == "in.json: $.unknown_key: unknown key, ignored");
+  CHECK(warnings[1].text() == "in.json: $.robots[0].colour: unknown key, ignored");
   CHECK(s.resolution.translation == 0.05);
   CHECK(s.resolution.rotation == 0.4);
   CHECK(s.resolution.joint == 0.05);
@@ -196,6 +203,109 @@ TEST_CASE("a missing required field is named by its path") {
   doc = validScenario();
   doc["obstacles"][1].erase("center");
   CHECK_ERROR(scenarioError(doc), "$.obstacles[1].center", "missing required field");
+}
+
+TEST_CASE("a missing required field names the key that looks like a misspelling of it") {
+  json doc = validScenario();
+  doc["robots"][1]["gaol"] = doc["robots"][1]["goal"];
+  doc["robots"][1].erase("goal");
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].goal", "missing required field \"goal\" (found \"gaol\")");
+  doc = validScenario();
+  doc["robot"] = doc["robots"];
+  doc.erase("robots");
+  CHECK_ERROR(scenarioError(doc), "$.robots", "missing required field \"robots\" (found \"robot\")");
+  doc = validScenario();
+  doc["robots"][0]["shape"]["Radius"] = 0.3;
+  doc["robots"][0]["shape"].erase("radius");
+  CHECK_ERROR(scenarioError(doc), "$.robots[0].shape.radius", "(found \"Radius\")");
+  // "max" is no misspelling of "min": nothing found.
+  doc = validScenario();
+  doc["workspace"].erase("min");
+  const std::string m = scenarioError(doc);
+  CHECK_ERROR(m, "$.workspace.min", "missing required field \"min\"");
+  CHECK_FALSE(has(m, "found"));
+}
+
+// The warnings reading doc gives, as "PATH: REASON" (the file is in.json).
+std::vector<std::string> ioScenarioWarnings(const json& doc) {
+  earc::InputWarnings warnings;
+  earc::scenarioFromJson(doc, "in.json", &warnings);
+  std::vector<std::string> out;
+  for (const earc::InputWarning& w : warnings) {
+    CHECK(w.file == "in.json");
+    out.push_back(w.where + ": " + w.reason);
+  }
+  return out;
+}
+
+TEST_CASE("unknown keys are read past with a warning each, a near miss suggested") {
+  CHECK(ioScenarioWarnings(validScenario()).empty());
+  json doc = validScenario();
+  doc["obstacles"][0]["angel"] = 0.5;
+  doc["obstacles"][0].erase("angle");
+  doc["resolution"] = {{"translaton", 0.1}};
+  doc["workspace"]["Max"] = {1, 1};
+  doc["robots"][0]["comment"] = "the first";
+  const auto w = ioScenarioWarnings(doc);
+  // Object keys come in order (nlohmann keeps them sorted).
+  REQUIRE(w.size() == 4);
+  CHECK(w[0] == "$.workspace.Max: unknown key, ignored (did you mean \"max\"?)");
+  CHECK(w[1] == "$.resolution.translaton: unknown key, ignored (did you mean \"translation\"?)");
+  CHECK(w[2] == "$.obstacles[0].angel: unknown key, ignored (did you mean \"angle\"?)");
+  CHECK(w[3] == "$.robots[0].comment: unknown key, ignored");
+  // Still read, with the contract's defaults where the key was misspelt.
+  earc::InputWarnings warnings;
+  const earc::Scenario s = earc::scenarioFromJson(doc, "in.json", &warnings);
+  CHECK(s.obstacles[0].angle == 0.0);
+  CHECK(s.resolution.translation == 0.05);
+}
+
+TEST_CASE("a key of another kind of robot, shape or obstacle is said to be that kind's") {
+  json doc = validScenario();
+  doc["robots"][2]["shape"] = {{"type", "disc"}, {"radius", 0.3}};
+  doc["robots"][0]["links"] = {1, 1};
+  doc["robots"][0]["shape"]["size"] = {1, 1};
+  doc["robots"][1]["shape"]["radius"] = 1;
+  doc["obstacles"][0]["radius"] = 1;
+  doc["obstacles"][1]["angle"] = 1;
+  const auto w = ioScenarioWarnings(doc);
+  REQUIRE(w.size() == 6);
+  CHECK(w[0] == "$.obstacles[0].radius: a circle's key, ignored on a box");
+  CHECK(w[1] == "$.obstacles[1].angle: a box's key, ignored on a circle");
+  CHECK(w[2] == "$.robots[0].links: a manipulator's key, ignored on a mobile robot");
+  CHECK(w[3] == "$.robots[0].shape.size: a box shape's key, ignored on a disc");
+  CHECK(w[4] == "$.robots[1].shape.radius: a disc shape's key, ignored on a box shape");
+  CHECK(w[5] == "$.robots[2].shape: a mobile robot's key, ignored on a manipulator");
+}
+
+TEST_CASE("refused input gives its error and no warnings") {
+  json doc = validScenario();
+  doc["colour"] = "red";
+  doc["robots"][0].erase("goal");
+  earc::InputWarnings warnings;
+  CHECK_THROWS_AS(earc::scenarioFromJson(doc, "in.json", &warnings), InputError);
+  CHECK(warnings.empty());
+  // Nor when the geometry is what is refused.
+  const std::string dir = tempDir();
+  doc = validScenario();
+  doc["colour"] = "red";
+  doc["robots"][0]["start"] = {-5, 1, 0};
+  std::ofstream(dir + "/outside.json") << doc.dump();
+  CHECK_THROWS_AS(earc::loadScenario(dir + "/outside.json", &warnings), InputError);
+  CHECK(warnings.empty());
+  doc["robots"][0]["start"] = {1, 1, 0};
+  std::ofstream(dir + "/fine.json") << doc.dump();
+  earc::loadScenario(dir + "/fine.json", &warnings);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].text() == dir + "/fine.json: $.colour: unknown key, ignored");
+  CHECK(earc::inputWarningLine(warnings[0], "earc-plan") ==
+        "earc-plan: warning: " + dir + "/fine.json: $.colour: unknown key, ignored");
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a warning that quotes a key shows its control characters as '?'") {
+  const earc::InputWarning w{"in.json", "$.a\nb\x1b[2J", "unknown key, ignored"};
+  CHECK(earc::inputWarningLine(w, "earc-plan") == "earc-plan: warning: in.json: $.a?b?[2J: unknown key, ignored");
 }
 
 TEST_CASE("a value of the wrong type is named with what was expected") {
@@ -509,6 +619,22 @@ TEST_CASE("a solution's own fields are checked: format, solved, paths") {
   CHECK_ERROR(error(doc), "$.format", "expected \"earc.solution.v1\"");
 }
 
+TEST_CASE("a solution's unknown keys are read past with a warning each; stats are free-form") {
+  json doc = {{"format", "earc.solution.v1"}, {"solved", true}, {"sloved", true}, {"stats", {{"anything", 1}}},
+              {"paths", {{{"robot", "m0"}, {"states", {{1, 2, 3}}}, {"colour", "red"}}}}};
+  earc::InputWarnings warnings;
+  const earc::Solution sol = earc::solutionFromJson(doc, nullptr, "s.json", &warnings);
+  CHECK(sol.paths.size() == 1);
+  REQUIRE(warnings.size() == 2);
+  CHECK(warnings[0].text() == "s.json: $.sloved: unknown key, ignored (did you mean \"solved\"?)");
+  CHECK(warnings[1].text() == "s.json: $.paths[0].colour: unknown key, ignored");
+  doc.erase("paths");
+  doc["solved"] = false;  // an unsolved solution, read as far as it goes
+  warnings.clear();
+  earc::solutionFromJson(doc, nullptr, "s.json", &warnings);
+  CHECK(warnings.size() == 1);
+}
+
 TEST_CASE("writing a solution needs the robot names") {
   earc::Solution s;
   s.paths.emplace_back(3);
@@ -618,4 +744,37 @@ TEST_CASE("makespan and sum of costs count steps, not states") {
   s.paths = {a, b, empty};
   CHECK(s.makespan() == 3);
   CHECK(s.sumOfCosts() == 3);
+}
+
+TEST_CASE("the project's own scenarios and solutions give no warnings") {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(earc::test::kData).parent_path().parent_path();
+  earc::InputWarnings warnings;
+  int files = 0;
+  for (const fs::path& dir : {root / "datasets", root / "tests" / "data" / "scenarios"})
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (entry.path().extension() != ".json") continue;
+      INFO(entry.path().string());
+      earc::loadScenario(entry.path().string(), &warnings);
+      ++files;
+    }
+  for (const auto& entry : fs::directory_iterator(root / "tests" / "data" / "solutions")) {
+    const std::string name = entry.path().stem().string();
+    INFO(name);
+    const earc::Scenario sc =
+        earc::loadScenario((root / "tests" / "data" / "scenarios" / (name.substr(0, name.find("__")) + ".json")).string());
+    earc::loadSolution(entry.path().string(), &sc, &warnings);
+    ++files;
+  }
+  CHECK(files > 20);
+  for (const earc::InputWarning& w : warnings) CHECK_MESSAGE(false, w.text());
+  // And what the generators make, as a file would hold it.
+  for (const earc::bench::Suite& suite : earc::bench::allSuites())
+    for (int robots : {4, 16}) {
+      const earc::Scenario s = earc::bench::trialScenario(suite, robots, 0, 1);
+      INFO(s.name);
+      earc::scenarioFromJson(earc::scenarioToJson(s), s.name, &warnings);
+      for (const earc::InputWarning& w : warnings) CHECK_MESSAGE(false, w.text());
+      warnings.clear();
+    }
 }

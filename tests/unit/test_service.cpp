@@ -190,6 +190,12 @@ TEST_CASE("serve protocol: an answer carries the warnings earc-plan plan would g
   r = reply(svc, json{{"scenario", scenarioToJson(discs)}, {"method", "arc"}}.dump());
   REQUIRE(r["warnings"].size() == 1);
   CHECK(r["warnings"][0].get<std::string>().rfind("resolution: robot", 0) == 0);
+  // An unknown key in the scenario, first.
+  json typo = scenarioToJson(discs);
+  typo["obstacles"][0]["angel"] = 0.5;
+  r = reply(svc, json{{"scenario", typo}, {"method", "arc"}}.dump());
+  REQUIRE(r["warnings"].size() == 2);
+  CHECK(r["warnings"][0] == "scenario: $.obstacles[0].angel: unknown key, ignored (did you mean \"angle\"?)");
   svc.close();
 }
 

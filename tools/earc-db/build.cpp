@@ -170,8 +170,11 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   earc::requireDistinctFiles({{"--scenario", opt.scenario}, {"--db", opt.db, true}, {"--report", opt.report}});
   earc::requireWritableOutput({"--report", opt.report});
   std::optional<earc::Scenario> scenario;
+  // Warnings about the scenario (unknown keys and the like), even with -q,
+  // once it is accepted as the robots to build for.
+  earc::InputWarnings read_warnings;
   if (!opt.scenario.empty()) {
-    scenario = earc::loadScenario(opt.scenario);
+    scenario = earc::loadScenario(opt.scenario, &read_warnings);
     s.resolution = scenario->resolution;
   }
   s.kind = kindToBuild(opt, scenario ? &*scenario : nullptr);
@@ -185,6 +188,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     if (earc::exp::armPairClasses(s.arms, s.resolution).empty())
       throw earc::InputError(opt.scenario, "$.robots", earc::exp::noArmPairClassReason(s.arms));
   }
+  earc::printInputWarnings(read_warnings);
   // Arms of unequal joint counts among equal ones: their pairs are left
   // out, and the summary says so.
   const std::string left_out = s.kind == earc::RobotKind::Manipulator

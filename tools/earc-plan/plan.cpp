@@ -166,7 +166,11 @@ int runPlan(const PlanOptions& o) {
   requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db, true}, {"-o", o.output}, {"--trace", o.trace}});
   requireWritableOutput({"-o", o.output});
   requireWritableOutput({"--trace", o.trace});
-  Scenario scenario = requireRobots(loadScenario(o.scenario), o.scenario);
+  // Warnings about the scenario (unknown keys and the like), even with
+  // -q: they are about the input, as the pass-through warning is.
+  InputWarnings read_warnings;
+  Scenario scenario = requireRobots(loadScenario(o.scenario, &read_warnings), o.scenario);
+  printInputWarnings(read_warnings);
   if (const std::string line = passThroughWarningLine(scenario, o.scenario, "earc-plan"); !line.empty())
     std::cerr << line << "\n";
   PlannerSettings s;

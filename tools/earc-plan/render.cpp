@@ -45,12 +45,15 @@ void runRender(const RenderOptions& opt) {
   // Drawn even when its geometry is wrong (a start in an obstacle, robots
   // overlapping): a picture helps most when the scenario is broken. But
   // said, in the line plan would refuse it with, so that a picture is not
-  // taken for a scenario's clean bill of health.
-  const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
+  // taken for a scenario's clean bill of health. Warnings about the files
+  // (unknown keys and the like) once all are read and the options agree
+  // with them: bad input gets its one line alone.
+  earc::InputWarnings warnings;
+  const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario, &warnings);
   try {
     earc::checkScenarioGeometry(sc, opt.scenario);
   } catch (const earc::InputError& e) {
-    std::cerr << "earc-plan: warning: " << e.what() << " (drawn as it is; plan refuses it)\n";
+    warnings.push_back({e.file(), e.where(), e.reason() + " (drawn as it is; plan refuses it)"});
   }
   earc::render::SvgOptions o;
   o.steps = opt.steps;
@@ -61,7 +64,7 @@ void runRender(const RenderOptions& opt) {
     if (!opt.steps.empty()) throw earc::InputError("", opt.steps_option, "a time step needs a SOLUTION file");
     svg = earc::render::scenarioSvg(sc, o);
   } else {
-    const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
+    const earc::Solution sol = earc::loadSolution(opt.solution, &sc, &warnings);
     requireKnownRobots(sc, sol, opt.solution);
     // A solution without paths (one not solved) has no time steps: a
     // picture "at t = 0" would look like a plan that had not started.
@@ -82,6 +85,7 @@ void runRender(const RenderOptions& opt) {
                                    std::to_string(sol.makespan()) + " (steps 0 to " + std::to_string(sol.makespan()) + ")");
     svg = earc::render::solutionSvg(sc, sol, o);
   }
+  earc::printInputWarnings(warnings);
   earc::render::writeImage(opt.output, svg);
   earc::summaryStream({opt.output}) << opt.output << "\n";
 }

@@ -65,16 +65,22 @@ void printText(const earc::Scenario& sc, const earc::ValidationReport& rep, std:
 // 1 invalid). Bad input throws earc::InputError (exit status 2).
 int runValidate(const ValidateOptions& opt, std::ostream& out) {
   try {
-    const earc::Scenario sc = earc::loadScenario(opt.scenario);
-    const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
+    // Warnings about either file (unknown keys and the like): said only
+    // when both are read, on stderr or in --json's "warnings".
+    earc::InputWarnings read_warnings;
+    const earc::Scenario sc = earc::loadScenario(opt.scenario, &read_warnings);
+    const earc::Solution sol = earc::loadSolution(opt.solution, &sc, &read_warnings);
     const earc::ValidationReport rep = earc::validateSolution(sc, sol);
     // Valid or not, the verdict holds only at the checked instants.
     if (opt.json) {
-      const std::string warning = earc::passThroughWarning(sc);
+      nlohmann::json warnings = nlohmann::json::array();
+      for (const earc::InputWarning& w : read_warnings) warnings.push_back(w.text());
+      if (const std::string warning = earc::passThroughWarning(sc); !warning.empty()) warnings.push_back(warning);
       nlohmann::json report = reportToJson(sc, rep);
-      report["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
-      out << report.dump() << "\n";
+      report["warnings"] = std::move(warnings);
+      out << report.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     } else {
+      earc::printInputWarnings(read_warnings);
       if (const std::string line = earc::passThroughWarningLine(sc, opt.scenario, "earc-plan"); !line.empty())
         std::cerr << line << "\n";
       printText(sc, rep, out);

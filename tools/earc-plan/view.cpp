@@ -33,10 +33,14 @@ void runView(const ViewOptions& opt) {
   earc::requireOutputExtension({"-o", opt.output}, {".html", ".htm"});
   // Structure only, as for render: the page is for looking, and the
   // planner already checked the scenario it solved.
-  const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario);
-  const earc::Solution sol = earc::loadSolution(opt.solution, &sc);
+  // Warnings about the files (unknown keys and the like) once all are
+  // read: bad input gets its one line alone.
+  earc::InputWarnings warnings;
+  const earc::Scenario sc = earc::scenarioFromJson(earc::readJsonFile(opt.scenario), opt.scenario, &warnings);
+  const earc::Solution sol = earc::loadSolution(opt.solution, &sc, &warnings);
   earc::view::checkSolutionMatches(sc, sol, opt.solution);
   const nlohmann::json trace = opt.trace.empty() ? nlohmann::json(nullptr) : earc::view::loadTrace(opt.trace, sc);
+  earc::printInputWarnings(warnings);
   earc::writeTextFileAtomic(opt.output, earc::view::viewerHtml(earc::view::viewerData(sc, sol, trace)));
   earc::summaryStream({opt.output}) << opt.output << "\n";
 }

@@ -1,6 +1,6 @@
 // Reading and writing the contract's JSON formats (shared/spec/formats.md).
-// Readers ignore unknown keys and throw InputError naming the file, the JSON
-// path and the reason for anything else that is wrong.
+// Readers ignore unknown keys (with a warning) and throw InputError naming
+// the file, the JSON path and the reason for anything else that is wrong.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -100,21 +100,37 @@ std::string requireOutputExtension(const NamedPath& output, const std::vector<st
 // contents a summary line there would corrupt: then stderr.
 std::ostream& summaryStream(const std::vector<std::string>& outputs);
 
+// Warnings about an input that is read all the same: an unknown key (the
+// contract ignores it; a misspelt optional field would otherwise become
+// its default unseen), a heading that looks like degrees, an obstacle
+// outside the workspace. Every reader below that takes an InputWarnings*
+// appends its warnings there; given nullptr, it prints each on stderr as
+// one line (printInputWarnings). Either way only once the whole input has
+// been read: refused input gets its one error line and no warnings.
+using InputWarnings = std::vector<InputWarning>;
+// "PROGRAM: warning: FILE: PATH: REASON", made printable (control
+// characters as '?'), without a line break.
+std::string inputWarningLine(const InputWarning& warning, std::string_view program);
+// Each warning as an inputWarningLine on stderr, PROGRAM being the running
+// program's name (earc-plan, earc-db, earc-bench).
+void printInputWarnings(const InputWarnings& warnings);
+
 // Structure and types only (no geometry).
-Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file);
+Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file, InputWarnings* warnings = nullptr);
 nlohmann::json scenarioToJson(const Scenario& s);
 
 // Structure, types, and the geometric validity of starts and goals (inside
 // the workspace, free of obstacles, no self-collision, within joint limits,
-// no two starts or two goals touching).
-Scenario loadScenario(const std::string& path);
+// no two starts or two goals touching; an arm's base inside the workspace).
+Scenario loadScenario(const std::string& path, InputWarnings* warnings = nullptr);
 // Throws InputError for the first geometric problem of a parsed scenario.
 void checkScenarioGeometry(const Scenario& s, const std::string& file);
 
 // Paths must match the scenario's robots (names, dimensions) when one is given.
-Solution solutionFromJson(const nlohmann::json& doc, const Scenario* scenario, const std::string& file);
+Solution solutionFromJson(const nlohmann::json& doc, const Scenario* scenario, const std::string& file,
+                          InputWarnings* warnings = nullptr);
 nlohmann::json solutionToJson(const Solution& s);
-Solution loadSolution(const std::string& path, const Scenario* scenario);
+Solution loadSolution(const std::string& path, const Scenario* scenario, InputWarnings* warnings = nullptr);
 void saveSolution(const std::string& path, const Solution& s);
 
 }  // namespace earc
