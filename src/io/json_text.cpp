@@ -55,8 +55,9 @@ class CheckedDomBuilder {
   }
   bool end_object() { return close(); }
   bool end_array() { return close(); }
-  bool parse_error(std::size_t, const std::string&, const json::exception& e) {
+  bool parse_error(std::size_t position, const std::string&, const json::exception& e) {
     error_ = e.what();
+    error_position_ = position;
     return false;
   }
 
@@ -69,8 +70,12 @@ class CheckedDomBuilder {
     }
     return p;
   }
-  // The parser's message, when it stopped at an error.
+  // The parser's message, when it stopped at an error, and how many bytes
+  // it had read then (the last one is where it stopped).
   const std::string& error() const { return error_; }
+  std::size_t errorPosition() const { return error_position_; }
+  // Which bracket closes what the parser is in: ']', '}', or 0 at the top.
+  char closer() const { return stack_.empty() ? 0 : stack_.back().array ? ']' : '}'; }
   json& document() { return root_; }
 
  private:
@@ -118,6 +123,7 @@ class CheckedDomBuilder {
   json root_;
   std::vector<Frame> stack_;
   std::string error_;
+  std::size_t error_position_ = 0;
 };
 
 // "[json.exception.parse_error.101] parse error at line 3, column 7: syntax
@@ -137,6 +143,46 @@ void splitParseError(const std::string& what, std::string& where, std::string& r
   }
 }
 
+bool isWordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+std::string lowerCase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// What the user most likely wrote instead of JSON, judged by the text
+// where the parser stopped (`position` bytes read, the last one the byte
+// it could not take; `closer` the bracket that would close what it is in),
+// as " (hint)", or "" when nothing looks familiar.
+std::string syntaxHint(const std::string& text, std::size_t position, char closer, const std::string& reason) {
+  if (position == 0 || position > text.size()) return "";
+  const std::size_t at = position - 1;
+  const char c = text[at];
+  if (c == '/' && at + 1 < text.size() && (text[at + 1] == '/' || text[at + 1] == '*'))
+    return " (JSON has no comments)";
+  if (c == '\'') return " (JSON strings use double quotes)";
+  // A comma, then the bracket that closes the array or object (another
+  // bracket is a different mistake: "{"a": 1,]" leaves an object open).
+  if (c == closer && reason.find("unexpected '") != std::string::npos) {
+    std::size_t before = at;
+    while (before > 0 && std::isspace(static_cast<unsigned char>(text[before - 1]))) --before;
+    if (before > 0 && text[before - 1] == ',')
+      return std::string(" (a trailing comma: JSON allows none before '") + c + "')";
+    return "";
+  }
+  if (!isWordChar(c)) return "";
+  // The whole word the offending byte is in: "NaN", "Infinity", "True".
+  std::size_t begin = at, end = at + 1;
+  while (begin > 0 && isWordChar(text[begin - 1])) --begin;
+  while (end < text.size() && isWordChar(text[end])) ++end;
+  const std::string word = lowerCase(text.substr(begin, std::min<std::size_t>(end - begin, 16)));
+  if (reason.find("object key") != std::string::npos) return " (keys are strings in double quotes)";
+  if (word == "nan" || word.starts_with("inf")) return " (JSON has no NaN or Infinity; numbers must be finite)";
+  if (word == "true" || word == "false" || word == "null" || word == "none")
+    return " (JSON's literals are true, false and null, in lower case)";
+  return "";
+}
+
 }  // namespace
 
 json parseJsonText(const std::string& text, const std::string& file) {
@@ -152,8 +198,7 @@ json parseJsonText(const std::string& text, const std::string& file) {
     // parser refuses it without a position, the tracker knows the path.
     const std::string path = tracker.path();
     where = where.empty() ? path : where + " (" + path + ")";
-    if (reason.find("invalid literal") != std::string::npos)
-      reason += " (JSON has no NaN or Infinity; numbers must be finite)";
+    reason += syntaxHint(text, tracker.errorPosition(), tracker.closer(), reason);
     throw InputError(file, where, "malformed JSON: " + reason);
   }
   return std::move(tracker.document());

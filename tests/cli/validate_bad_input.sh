@@ -34,6 +34,12 @@ expect "$DATA/bad/malformed.json" "$VALID" \
   '^earc-plan: error: .*bad/malformed\.json: line 4, column 35 \(.*\): malformed JSON: '
 expect "$DATA/bad/nan.json" "$VALID" \
   'bad/nan\.json: line 3, column [0-9]+ \(\$\.robots\[0\]\.start\[1\]\): malformed JSON: .*invalid literal.*NaN'
+# A hint only where the text looks like what it names: a comment is no NaN.
+expect "$DATA/bad/comment.json" "$VALID" \
+  'bad/comment\.json: line 1, column 1 \(\$\): malformed JSON: .*invalid literal.*\(JSON has no comments\)$'
+grep -q 'NaN' "$ERR" && fail "comment.json: the NaN hint: $(cat "$ERR")"
+expect "$DATA/bad/trailing-comma.json" "$VALID" \
+  "bad/trailing-comma\.json: line 52, column 2 \(\\\$\.robots\[2\]\): malformed JSON: .*unexpected ']'.*\(a trailing comma: JSON allows none before ']'\)$"
 expect "$DATA/bad/start-in-collision.json" "$VALID" \
   'bad/start-in-collision\.json: \$\.robots\[0\]\.start: start is in collision with obstacle 0 \(\$\.obstacles\[0\], box\), overlap 0\.35$'
 expect "$DATA/bad/starts-touch.json" "$VALID" \

@@ -180,6 +180,8 @@ write_text("bad/nan.json",
            ' "robots": [{"name": "m0", "type": "mobile", "shape": {"type": "disc", "radius": 0.3},\n'
            '   "start": [1, NaN, 0], "goal": [3, 3, 0]}]}\n')
 write_text("bad/byte-order-mark.json", "\ufeff" + json.dumps(SWAP))
+write_text("bad/comment.json", "// two discs\n" + json.dumps(SWAP))
+write_text("bad/trailing-comma.json", json.dumps(SWAP, indent=1).replace("\n  }\n ]", "\n  },\n ]", 1))
 write_text("bad/duplicate-key.json",
            '{"format": "earc.scenario.v1", "workspace": {"min": [0, 0], "max": [10, 10]},\n'
            ' "robots": [{"name": "m0", "type": "mobile", "shape": {"type": "disc", "radius": 0.3},\n'

@@ -179,6 +179,36 @@ TEST_CASE("NaN, Infinity and overflowing numbers are refused by the parser") {
   CHECK_ERROR(parseError(R"({"x": [0, 1e999]})"), "$.x[1]", "number overflow");
 }
 
+TEST_CASE("a syntax error's hint says what was most likely meant, and only then") {
+  const std::string nan_hint = "(JSON has no NaN or Infinity; numbers must be finite)";
+  for (const char* text : {R"({"x": [1, NaN]})", R"({"x": -Infinity})", R"({"x": nan})", R"({"x": inf})"}) {
+    INFO(text);
+    CHECK(has(parseError(text), nan_hint));
+  }
+  auto hinted = [&](const std::string& text, const std::string& hint) {
+    const std::string m = parseError(text);
+    INFO(m);
+    CHECK(m.ends_with(hint));
+    CHECK_FALSE(has(m, nan_hint));
+  };
+  hinted("// my warehouse\n{}", "(JSON has no comments)");
+  hinted(R"({"a": /* x */ 1})", "(JSON has no comments)");
+  hinted(R"({"a": 'x'})", "(JSON strings use double quotes)");
+  hinted(R"({'a': 1})", "(JSON strings use double quotes)");
+  hinted(R"({"a": 1, name: 1})", "(keys are strings in double quotes)");
+  hinted(R"({"a": True})", "(JSON's literals are true, false and null, in lower case)");
+  hinted("{\"a\": [1,\n  ]}", "(a trailing comma: JSON allows none before ']')");
+  CHECK_ERROR(parseError("{\"a\": [1,\n  ]}"), "line 2, column 3 ($.a[1])", "unexpected ']'");
+  hinted(R"({"a": 1 , })", "(a trailing comma: JSON allows none before '}')");
+  // Nothing familiar: no hint.
+  for (const char* text : {R"({"a": [1 2]})", R"({"a": ]})", R"({"a" 1})", R"({"a": x})", R"([{"a": 1,]])"}) {
+    const std::string m = parseError(text);
+    INFO(m);
+    CHECK(has(m, "malformed JSON"));
+    CHECK_FALSE(m.ends_with(")"));
+  }
+}
+
 TEST_CASE("a duplicate key is refused with its path") {
   CHECK_ERROR(parseError(R"({"a": {"b": 1, "c": [{"d": 1, "d": 2}]}})"), "$.a.c[0].d", "duplicate key \"d\"");
   CHECK_ERROR(parseError(R"({"a": 1, "a": 1})"), "$.a", "duplicate key");
