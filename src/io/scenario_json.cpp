@@ -24,6 +24,18 @@ void requireHeading(const JsonReader& r, double theta, const std::string& path) 
     r.fail(path, "heading " + io::formatNumber(theta) + " is beyond +-1e6 rad; give it modulo 2 pi");
 }
 
+// Any finite angle is allowed, but nobody means a turn of 90 rad: beyond a
+// full turn (and a little, for 2 pi rounded up) it was written in degrees.
+constexpr double kFullTurnSlack = 0.01;
+
+void warnIfDegrees(const JsonReader& r, double angle, const std::string& path, const char* what) {
+  if (!(std::abs(angle) > 2 * std::numbers::pi + kFullTurnSlack)) return;
+  r.warn(path, std::string(what) + " " + io::formatNumber(angle) +
+                   " is more than a full turn: angles are in radians, and this looks like degrees (" +
+                   io::formatNumber(angle) + " degrees is " + io::formatNumber(angle * std::numbers::pi / 180) +
+                   " rad)");
+}
+
 Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) {
   r.object(v, p);
   Obstacle o;
@@ -43,7 +55,10 @@ Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) 
     const json& size = r.required(v, "size", p);
     r.numbers(size, 2, sp);
     o.size = {r.positive(size[0], element(sp, 0)), r.positive(size[1], element(sp, 1))};
-    if (const json* a = r.optional(v, "angle")) o.angle = r.number(*a, member(p, "angle"));
+    if (const json* a = r.optional(v, "angle")) {
+      o.angle = r.number(*a, member(p, "angle"));
+      warnIfDegrees(r, o.angle, member(p, "angle"), "angle");
+    }
   } else {
     o.type = Obstacle::Type::Circle;
     o.radius = r.positive(r.required(v, "radius", p), member(p, "radius"));
@@ -78,8 +93,11 @@ void readMobile(const JsonReader& r, const json& v, const std::string& p, RobotS
   }
   spec.start = r.numbers(r.required(v, "start", p), 3, member(p, "start"), "x, y, theta");
   spec.goal = r.numbers(r.required(v, "goal", p), 3, member(p, "goal"), "x, y, theta");
-  requireHeading(r, spec.start[2], element(member(p, "start"), 2));
-  requireHeading(r, spec.goal[2], element(member(p, "goal"), 2));
+  for (const auto& [end, q] : {std::pair{"start", &spec.start}, std::pair{"goal", &spec.goal}}) {
+    const std::string theta = element(member(p, end), 2);
+    requireHeading(r, (*q)[2], theta);
+    warnIfDegrees(r, (*q)[2], theta, "heading");
+  }
 }
 
 void readManipulator(const JsonReader& r, const json& v, const std::string& p, RobotSpec& spec) {
@@ -90,6 +108,7 @@ void readManipulator(const JsonReader& r, const json& v, const std::string& p, R
   spec.base_position = {base[0], base[1]};
   spec.base_angle = base[2];
   requireHeading(r, spec.base_angle, element(member(p, "base"), 2));
+  warnIfDegrees(r, spec.base_angle, element(member(p, "base"), 2), "base angle");
   const std::string lp = member(p, "links");
   const json& links = r.array(r.required(v, "links", p), lp);
   if (links.empty()) r.fail(lp, "an arm needs at least one link");

@@ -3,7 +3,8 @@
 # on stderr naming the file and the JSON path, with a near miss suggested:
 # by earc-plan plan (with -q too, as the pass-through warning), validate
 # (--json: in "warnings", nothing on stderr), render and view, by
-# earc-db build --scenario (with -q too) and by earc-bench. Refused input gets its one
+# earc-db build --scenario (with -q too) and by earc-bench. An angle
+# beyond a full turn is warned of as likely degrees. Refused input gets its one
 # error line and no warnings; the project's own files get none.
 set -u
 BUILD=$1
@@ -65,6 +66,12 @@ if [ -x "$BUILD/earc-bench" ]; then
   sed 's/^earc-plan:/earc-bench:/' want > want-bench
   diff want-bench err > /dev/null || fail "earc-bench: not the warnings wanted: $(diff want-bench err)"
 fi
+
+# Degrees where radians are meant: read, with a warning.
+"$PY" -c 'import json; d = json.load(open("s.json")); d["robots"][0]["goal"][2] = 90; json.dump(d, open("deg.json", "w"))'
+"$PLAN" render deg.json -o deg.svg > out 2> err || fail "render deg.json exited $?"
+grep -qxF 'earc-plan: warning: deg.json: $.robots[0].goal[2]: heading 90 is more than a full turn: angles are in radians, and this looks like degrees (90 degrees is 1.5708 rad)' err ||
+  fail "render: no warning of degrees: $(cat err)"
 
 # Refused: one line, no warnings, and the misspelt key named.
 "$PY" -c 'import json; d = json.load(open("s.json")); r = d["robots"][0]; r["gaol"] = r.pop("goal"); json.dump(d, open("gaol.json", "w"))'

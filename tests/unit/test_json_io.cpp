@@ -308,6 +308,32 @@ TEST_CASE("a key of another kind of robot, shape or obstacle is said to be that 
   CHECK(w[5] == "$.robots[2].shape: a mobile robot's key, ignored on a manipulator");
 }
 
+TEST_CASE("an angle beyond a full turn is read, with a warning that it looks like degrees") {
+  json doc = validScenario();
+  doc["robots"][0]["goal"][2] = 90;
+  doc["robots"][1]["start"][2] = -270;
+  doc["robots"][2]["base"][2] = 180;
+  doc["obstacles"][0]["angle"] = 45;
+  const auto w = ioScenarioWarnings(doc);
+  REQUIRE(w.size() == 4);
+  CHECK(w[0] == "$.obstacles[0].angle: angle 45 is more than a full turn: angles are in radians, and this looks "
+                "like degrees (45 degrees is 0.785398 rad)");
+  CHECK(w[1] == "$.robots[0].goal[2]: heading 90 is more than a full turn: angles are in radians, and this looks "
+                "like degrees (90 degrees is 1.5708 rad)");
+  CHECK(has(w[2], "$.robots[1].start[2]: heading -270 is more than a full turn"));
+  CHECK(has(w[3], "$.robots[2].base[2]: base angle 180 is more than a full turn"));
+  // Still read as given (the contract allows any finite angle).
+  earc::InputWarnings warnings;
+  CHECK(earc::scenarioFromJson(doc, "in.json", &warnings).robots[0].goal[2] == 90);
+  // A full turn, also rounded up, is no mistake.
+  for (const double a : {2 * std::numbers::pi, 6.2832, -6.29, 3.15}) {
+    doc = validScenario();
+    doc["robots"][0]["goal"][2] = a;
+    doc["obstacles"][0]["angle"] = a;
+    CHECK(ioScenarioWarnings(doc).empty());
+  }
+}
+
 TEST_CASE("refused input gives its error and no warnings") {
   json doc = validScenario();
   doc["colour"] = "red";
