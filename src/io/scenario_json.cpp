@@ -240,6 +240,17 @@ json scenarioToJson(const Scenario& s) {
 }
 
 void checkScenarioGeometry(const Scenario& s, const std::string& file) {
+  // An arm's base does not move: outside the workspace, every
+  // configuration is, and "start is outside" would send the user to the
+  // joint angles.
+  for (std::size_t i = 0; i < s.robots.size(); ++i) {
+    const RobotSpec& r = s.robots[i];
+    if (r.kind != RobotKind::Manipulator) continue;
+    const double out = geo::excessOutside(geo::Body::disc(r.base_position, r.link_radius), s.workspace);
+    if (out > geo::kContactTolerance)
+      throw InputError(file, member(element("$.robots", i), "base"),
+                       "base is outside the workspace by " + io::formatNumber(out));
+  }
   const InstantChecker checker(s);
   std::vector<int> all(s.robots.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);

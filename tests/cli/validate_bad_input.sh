@@ -42,6 +42,8 @@ expect "$DATA/bad/trailing-comma.json" "$VALID" \
   "bad/trailing-comma\.json: line 52, column 2 \(\\\$\.robots\[2\]\): malformed JSON: .*unexpected ']'.*\(a trailing comma: JSON allows none before ']'\)$"
 expect "$DATA/bad/start-in-collision.json" "$VALID" \
   'bad/start-in-collision\.json: \$\.robots\[0\]\.start: start is in collision with obstacle 0 \(\$\.obstacles\[0\], box\), overlap 0\.35$'
+expect "$DATA/bad/arm-base-outside.json" "$DATA/solutions/arm-fold__valid.json" \
+  'bad/arm-base-outside\.json: \$\.robots\[0\]\.base: base is outside the workspace by 1\.06$'
 expect "$DATA/bad/starts-touch.json" "$VALID" \
   '\$\.robots\[1\]\.start: start touches the start of robot "m0"'
 expect "$DATA/bad/duplicate-key.json" "$VALID" '\$\.robots\[0\]\.start: duplicate key "start"'

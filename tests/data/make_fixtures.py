@@ -201,6 +201,9 @@ write("bad/arm-start-self-collision.json", bad)
 bad = json.loads(json.dumps(ARM))
 bad["robots"][0]["goal"] = [0, 1.5, 1.5, 0.6]
 write("bad/arm-goal-outside-limits.json", bad)
+bad = json.loads(json.dumps(ARM))
+bad["robots"][0]["base"] = [-0.96, 5, 0]
+write("bad/arm-base-outside.json", bad)
 bad = json.loads(json.dumps(SWAP))
 bad["robots"][0]["shape"] = {"type": "hexagon", "radius": 0.3}
 write("bad/unknown-shape.json", bad)

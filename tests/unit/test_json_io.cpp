@@ -509,6 +509,18 @@ TEST_CASE("a start or goal outside the workspace is invalid input") {
   CHECK_ERROR(geometryError(doc), "$.robots[2].goal", "goal is outside the workspace");
 }
 
+TEST_CASE("an arm's base outside the workspace is named as the base, not the start") {
+  json doc = validScenario();
+  doc["robots"][2]["base"] = {-1, 5, 0};  // radius 0.1
+  CHECK_ERROR(geometryError(doc), "$.robots[2].base", "base is outside the workspace by 1.1");
+  // Inside by less than its link radius: the first link sticks out whatever the joints.
+  doc["robots"][2]["base"] = {9.95, 5, 0};
+  CHECK_ERROR(geometryError(doc), "$.robots[2].base", "base is outside the workspace by 0.05");
+  // Inside, the arm reaching out is the start's fault.
+  doc["robots"][2]["base"] = {9.5, 5, 0};
+  CHECK_ERROR(geometryError(doc), "$.robots[2].start", "start is outside the workspace");
+}
+
 TEST_CASE("a start or goal in an obstacle names the obstacle") {
   json doc = validScenario();
   doc["robots"][0]["goal"] = {8, 2.5, 0};
