@@ -188,6 +188,8 @@ Scenario scenarioFromJson(const json& doc, const std::string& file, InputWarning
     if (type != "mobile" && type != "manipulator")
       r.fail(member(p, "type"), "unknown robot type \"" + type + "\" (expected \"mobile\" or \"manipulator\")");
     spec.name = r.string(r.required(v, "name", p), member(p, "name"));
+    // A solution's paths name their robots: "" names none.
+    if (spec.name.empty()) r.fail(member(p, "name"), "empty robot name (a solution names each robot's path by it)");
     if (auto [it, fresh] = seen.emplace(spec.name, i); !fresh)
       r.fail(member(p, "name"), "duplicate robot name \"" + spec.name + "\" (also " +
                                     element("$.robots", it->second) + ")");

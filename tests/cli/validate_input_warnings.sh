@@ -4,8 +4,9 @@
 # by earc-plan plan (with -q too, as the pass-through warning), validate
 # (--json: in "warnings", nothing on stderr), render and view, by
 # earc-db build --scenario (with -q too) and by earc-bench. An angle
-# beyond a full turn is warned of as likely degrees. Refused input gets its one
-# error line and no warnings; the project's own files get none.
+# beyond a full turn is warned of as likely degrees. Refused input gets
+# its one error line and no warnings (a misspelt required key named, an
+# empty robot name refused); the project's own files get none.
 set -u
 BUILD=$1
 SRC=$2
@@ -76,6 +77,8 @@ grep -qxF 'earc-plan: warning: deg.json: $.robots[0].goal[2]: heading 90 is more
 # Refused: one line, no warnings, and the misspelt key named.
 "$PY" -c 'import json; d = json.load(open("s.json")); r = d["robots"][0]; r["gaol"] = r.pop("goal"); json.dump(d, open("gaol.json", "w"))'
 refusedInOneLine 'gaol.json: $.robots[0].goal: missing required field "goal" (found "gaol")' "$PLAN" plan gaol.json -o x.json
+"$PY" -c 'import json; d = json.load(open("s.json")); d["robots"][0]["name"] = ""; json.dump(d, open("noname.json", "w"))'
+refusedInOneLine 'noname.json: $.robots[0].name: empty robot name' "$PLAN" plan noname.json -o x.json
 
 # The project's own files: no warnings.
 for f in "$SRC"/datasets/*.json; do

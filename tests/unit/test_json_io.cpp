@@ -474,6 +474,12 @@ TEST_CASE("duplicate robot names are refused naming both robots") {
   CHECK_ERROR(scenarioError(doc), "$.robots[2].name", "duplicate robot name \"m0\" (also $.robots[0])");
 }
 
+TEST_CASE("an empty robot name is refused") {
+  json doc = validScenario();
+  doc["robots"][1]["name"] = "";
+  CHECK_ERROR(scenarioError(doc), "$.robots[1].name", "empty robot name");
+}
+
 TEST_CASE("an arm's start, goal and joint limits need one entry per link") {
   json doc = validScenario();
   doc["robots"][2]["start"] = {0, 0, 0};
