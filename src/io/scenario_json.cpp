@@ -36,6 +36,23 @@ void warnIfDegrees(const JsonReader& r, double angle, const std::string& path, c
                    " rad)");
 }
 
+// "[0, 20] x [0, 12]"
+std::string extent(const geo::Aabb& b) {
+  return "[" + io::formatNumber(b.lo.x) + ", " + io::formatNumber(b.hi.x) + "] x [" + io::formatNumber(b.lo.y) +
+         ", " + io::formatNumber(b.hi.y) + "]";
+}
+
+// Robots stay inside the workspace, so an obstacle wholly outside it (or
+// only touching its edge) can never meet one: most likely a mistyped
+// center or size. Read all the same: it changes nothing.
+void warnIfOutside(const JsonReader& r, const Obstacle& o, const geo::Aabb& workspace, const std::string& p) {
+  const geo::Aabb b = geo::bounds(o.body());
+  if (b.lo.x < workspace.hi.x && workspace.lo.x < b.hi.x && b.lo.y < workspace.hi.y && workspace.lo.y < b.hi.y)
+    return;
+  r.warn(p, "obstacle entirely outside the workspace " + extent(workspace) + " (it spans " + extent(b) +
+                "): no robot can touch it; is its center right?");
+}
+
 Obstacle readObstacle(const JsonReader& r, const json& v, const std::string& p) {
   r.object(v, p);
   Obstacle o;
@@ -172,8 +189,11 @@ Scenario scenarioFromJson(const json& doc, const std::string& file, InputWarning
 
   if (const json* obs = r.optional(doc, "obstacles", true)) {
     r.array(*obs, "$.obstacles");
-    for (std::size_t i = 0; i < obs->size(); ++i)
-      s.obstacles.push_back(readObstacle(r, (*obs)[i], element("$.obstacles", i)));
+    for (std::size_t i = 0; i < obs->size(); ++i) {
+      const std::string p = element("$.obstacles", i);
+      s.obstacles.push_back(readObstacle(r, (*obs)[i], p));
+      warnIfOutside(r, s.obstacles.back(), s.workspace, p);
+    }
   }
 
   const json& robots = r.array(r.required(doc, "robots", "$"), "$.robots");

@@ -4,9 +4,10 @@
 # by earc-plan plan (with -q too, as the pass-through warning), validate
 # (--json: in "warnings", nothing on stderr), render and view, by
 # earc-db build --scenario (with -q too) and by earc-bench. An angle
-# beyond a full turn is warned of as likely degrees. Refused input gets
-# its one error line and no warnings (a misspelt required key named, an
-# empty robot name refused); the project's own files get none.
+# beyond a full turn is warned of as likely degrees, an obstacle outside
+# the workspace as unreachable. Refused input gets its one error line and
+# no warnings (a misspelt required key named, an empty robot name
+# refused); the project's own files get none.
 set -u
 BUILD=$1
 SRC=$2
@@ -73,6 +74,12 @@ fi
 "$PLAN" render deg.json -o deg.svg > out 2> err || fail "render deg.json exited $?"
 grep -qxF 'earc-plan: warning: deg.json: $.robots[0].goal[2]: heading 90 is more than a full turn: angles are in radians, and this looks like degrees (90 degrees is 1.5708 rad)' err ||
   fail "render: no warning of degrees: $(cat err)"
+
+# An obstacle that no robot can reach, outside the workspace.
+"$PY" -c 'import json; d = json.load(open("s.json")); d["obstacles"][0]["center"] = [50, 50]; json.dump(d, open("far.json", "w"))'
+"$PLAN" render far.json -o far.svg > out 2> err || fail "render far.json exited $?"
+grep -qF 'earc-plan: warning: far.json: $.obstacles[0]: obstacle entirely outside the workspace [0, 10] x [0, 10]' err ||
+  fail "render: no warning of the obstacle outside: $(cat err)"
 
 # Refused: one line, no warnings, and the misspelt key named.
 "$PY" -c 'import json; d = json.load(open("s.json")); r = d["robots"][0]; r["gaol"] = r.pop("goal"); json.dump(d, open("gaol.json", "w"))'

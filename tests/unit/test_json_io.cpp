@@ -334,6 +334,22 @@ TEST_CASE("an angle beyond a full turn is read, with a warning that it looks lik
   }
 }
 
+TEST_CASE("an obstacle entirely outside the workspace is read, with a warning") {
+  json doc = validScenario();  // the workspace is [0, 10] x [0, 10]
+  doc["obstacles"].push_back({{"type", "circle"}, {"center", {50, 50}}, {"radius", 1}});
+  // Touching the edge from outside: no robot inside can overlap it either.
+  doc["obstacles"].push_back({{"type", "box"}, {"center", {-1, 5}}, {"size", {2, 2}}});
+  // A corner inside: it counts.
+  doc["obstacles"].push_back({{"type", "box"}, {"center", {10.5, 10.5}}, {"size", {2, 2}}, {"angle", 0.7}});
+  const auto w = ioScenarioWarnings(doc);
+  REQUIRE(w.size() == 2);
+  CHECK(w[0] == "$.obstacles[2]: obstacle entirely outside the workspace [0, 10] x [0, 10] (it spans [49, 51] x "
+                "[49, 51]): no robot can touch it; is its center right?");
+  CHECK(has(w[1], "$.obstacles[3]: obstacle entirely outside the workspace"));
+  earc::InputWarnings warnings;
+  CHECK(earc::scenarioFromJson(doc, "in.json", &warnings).obstacles.size() == 5);
+}
+
 TEST_CASE("refused input gives its error and no warnings") {
   json doc = validScenario();
   doc["colour"] = "red";
