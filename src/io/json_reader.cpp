@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <iterator>
 
@@ -69,19 +70,23 @@ namespace {
 // Edit distance with adjacent transpositions (optimal string alignment),
 // ignoring case: "gaol" and "Goal" are both one edit from "goal".
 std::size_t editDistance(const std::string& a, const std::string& b) {
-  auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= n; ++i)
+  auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+  const std::size_t m = b.size();
+  // Rows i-2, i-1 and i of the table.
+  std::vector<std::size_t> before(m + 1), last(m + 1), row(m + 1);
+  for (std::size_t j = 0; j <= m; ++j) last[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    row[0] = i;
     for (std::size_t j = 1; j <= m; ++j) {
       const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      row[j] = std::min({last[j] + 1, row[j - 1] + 1, last[j - 1] + cost});
       if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        row[j] = std::min(row[j], before[j - 2] + 1);
     }
-  return d[n][m];
+    std::swap(before, last);
+    std::swap(last, row);
+  }
+  return last[m];
 }
 
 // How many edits still make a near miss of `word`: one for short words
@@ -89,17 +94,16 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 // contract's keys of one object are further apart than that.
 std::size_t nearMissEdits(const std::string& word) { return word.size() < 5 ? 1 : 2; }
 
-// Keys longer than this are no misspelling of a short one (and the
-// distance of two long strings costs their product).
-constexpr std::size_t kLongestNearMiss = 64;
-
 }  // namespace
 
 const char* nearMiss(const std::string& key, std::initializer_list<const char*> candidates) {
   const char* best = nullptr;
   std::size_t best_edits = 0;
-  if (key.size() > kLongestNearMiss) return nullptr;
   for (const char* c : candidates) {
+    // Lengths further apart than the edits allowed: no near miss (and a
+    // long key costs nothing).
+    const std::size_t length = std::strlen(c);
+    if (std::max(key.size(), length) - std::min(key.size(), length) > nearMissEdits(c)) continue;
     const std::size_t edits = editDistance(key, c);
     if (edits <= nearMissEdits(c) && (best == nullptr || edits < best_edits)) best = c, best_edits = edits;
   }
@@ -107,7 +111,15 @@ const char* nearMiss(const std::string& key, std::initializer_list<const char*> 
 }
 
 void JsonReader::warn(const std::string& path, const std::string& reason) const {
-  if (warnings_ != nullptr) warnings_->push_back({file_, path, reason});
+  if (warnings_ == nullptr) return;
+  if (warnings_->size() < kMostWarnings) warnings_->push_back({file_, path, reason});
+  else ++unsaid_;
+}
+
+void JsonReader::deliverWarnings(std::vector<InputWarning>* sink) const {
+  if (warnings_ == nullptr) return;
+  if (unsaid_ > 0) warnings_->push_back({file_, "", std::to_string(unsaid_) + " more warnings like these, not shown"});
+  io::deliverWarnings(std::move(*warnings_), sink);
 }
 
 void JsonReader::unknownKeys(const json& obj, const std::string& path, std::initializer_list<const char*> known,

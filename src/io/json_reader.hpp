@@ -38,9 +38,13 @@ struct OtherKindKey {
   const char* owner;
 };
 
-// A reader's warnings, once it has read its input whole: appended to
-// `sink`, or printed (printInputWarnings) when there is none.
+// Warnings, once an input has been read whole: appended to `sink`, or
+// printed (printInputWarnings) when there is none.
 void deliverWarnings(std::vector<InputWarning>&& found, std::vector<InputWarning>* sink);
+
+// Warnings kept of one file: a file of 200,000 obstacles with a stray key
+// each would otherwise bury the terminal (and fill memory).
+inline constexpr std::size_t kMostWarnings = 20;
 
 class JsonReader {
  public:
@@ -51,8 +55,12 @@ class JsonReader {
   const std::string& file() const { return file_; }
 
   [[noreturn]] void fail(const std::string& path, const std::string& reason) const;
-  // Input read all the same, but likely a mistake.
+  // Input read all the same, but likely a mistake. Beyond kMostWarnings,
+  // only counted.
   void warn(const std::string& path, const std::string& reason) const;
+  // The warnings (and a line counting those beyond kMostWarnings) to
+  // deliverWarnings, once the input has been read whole.
+  void deliverWarnings(std::vector<InputWarning>* sink) const;
   // Warns of each key of obj (the object at path) that is not in `known`:
   // the contract ignores unknown keys, but a misspelt optional field would
   // silently become its default. A key of `others` is said to belong to
@@ -85,6 +93,7 @@ class JsonReader {
  private:
   std::string file_;
   std::vector<InputWarning>* warnings_ = nullptr;
+  mutable std::size_t unsaid_ = 0;  // warnings beyond kMostWarnings
 };
 
 }  // namespace earc::io

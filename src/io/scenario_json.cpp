@@ -217,7 +217,7 @@ Scenario scenarioFromJson(const json& doc, const std::string& file, InputWarning
     else readManipulator(r, v, p, spec);
     s.robots.push_back(std::move(spec));
   }
-  io::deliverWarnings(std::move(found), warnings);
+  r.deliverWarnings(warnings);
   return s;
 }
 

@@ -52,7 +52,7 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
   // An unsolved solution may leave "paths" out.
   const json* paths = sol.solved ? &r.required(doc, "paths", "$") : r.optional(doc, "paths");
   if (paths == nullptr) {
-    io::deliverWarnings(std::move(found), warnings);
+    r.deliverWarnings(warnings);
     return sol;
   }
   r.array(*paths, "$.paths");
@@ -80,7 +80,7 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
     sol.paths.push_back(readStates(r, states, dim, member(p, "states")));
     sol.robot_names.push_back(std::move(name));
   }
-  io::deliverWarnings(std::move(found), warnings);
+  r.deliverWarnings(warnings);
   return sol;
 }
 

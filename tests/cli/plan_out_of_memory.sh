@@ -34,7 +34,9 @@ for kb in 40000 60000 80000 100000 130000 160000 200000 250000; do
   rc=$?
   [ $rc -le 2 ] || fail "ulimit -v $kb: exit $rc: $(head -c 300 "$WORK/err")"
   grep -q "terminate" "$WORK/err" && fail "ulimit -v $kb: $(head -c 300 "$WORK/err")"
-  [ "$(wc -l < "$WORK/err")" -le 1 ] || fail "ulimit -v $kb: more than one line: $(head -c 300 "$WORK/err")"
+  # (Read whole, the scenario's boxes outside the workspace are warned of.)
+  [ "$(grep -vc '^earc-plan: warning: ' "$WORK/err")" -le 1 ] ||
+    fail "ulimit -v $kb: more than one line: $(head -c 300 "$WORK/err")"
   grep -q "^earc-plan: error: $WORK/big.json: out of memory while reading it" "$WORK/err" && named=$((named + 1))
 done
 [ $named -ge 1 ] || fail "no limit ran out of memory while reading the scenario (limits too small or too large?)"

@@ -290,6 +290,17 @@ TEST_CASE("unknown keys are read past with a warning each, a near miss suggested
   CHECK(s.resolution.translation == 0.05);
 }
 
+TEST_CASE("a file's warnings stop at twenty, the rest counted in one more line") {
+  json doc = validScenario();
+  for (int i = 0; i < 30; ++i) doc["extra" + std::to_string(i)] = i;
+  doc["robots"][0][std::string(100000, 'g')] = 1;  // long: no near miss worth measuring
+  earc::InputWarnings warnings;
+  earc::scenarioFromJson(doc, "in.json", &warnings);
+  REQUIRE(warnings.size() == 21);
+  CHECK(warnings[19].text() == "in.json: $.extra26: unknown key, ignored");  // sorted: extra0, 1, 10..19, 2, 20..
+  CHECK(warnings[20].text() == "in.json: 11 more warnings like these, not shown");
+}
+
 TEST_CASE("a key of another kind of robot, shape or obstacle is said to be that kind's") {
   json doc = validScenario();
   doc["robots"][2]["shape"] = {{"type", "disc"}, {"radius", 0.3}};
