@@ -296,6 +296,11 @@ void checkScenarioGeometry(const Scenario& s, const std::string& file) {
         where = element(where, static_cast<std::size_t>(v.joint));
         reason = std::string(label) + " is outside the joint limits [" + io::formatNumber(lo) + ", " +
                  io::formatNumber(hi) + "]";
+        // A joint of -30 or 90: degrees, most likely, as for headings.
+        if (const double angle = q[static_cast<std::size_t>(robot)][v.joint];
+            std::abs(angle) > 2 * std::numbers::pi + kFullTurnSlack)
+          reason += " (" + io::formatNumber(angle) + " is more than a full turn: angles are in radians, and this looks "
+                    "like degrees)";
         break;
       }
       case Violation::Type::Workspace:

@@ -576,6 +576,13 @@ TEST_CASE("a start or goal outside the joint limits names the joint") {
   CHECK_ERROR(geometryError(doc), "$.robots[2].goal[1]", "goal is outside the joint limits [-2, 2]");
   doc["robots"][2]["goal"] = {0.5, 2 + 1e-7};  // the contract's 1e-6 slack
   CHECK(geometryError(doc).empty());
+  // A joint in degrees: said so, as a heading in degrees is.
+  doc["robots"][2]["goal"] = {0.5, -30};
+  CHECK_ERROR(geometryError(doc), "$.robots[2].goal[1]",
+              "goal is outside the joint limits [-2, 2] (-30 is more than a full turn: angles are in radians, and this "
+              "looks like degrees)");
+  doc["robots"][2]["goal"] = {0.5, 2.5};  // just past the limit: no such hint
+  CHECK_FALSE(has(geometryError(doc), "degrees"));
 }
 
 TEST_CASE("two starts or two goals that touch are invalid input") {
