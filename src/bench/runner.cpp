@@ -1139,6 +1139,21 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
       throw InputError("", "--method-arg", "method " + method + " is not one of this run's methods (--methods)");
     requirePlannerArgs(args, "--method-arg " + method);
   }
+  // E-ARC's database options where they would be ignored: no earc trials,
+  // or no robots of that kind.
+  const bool runs_earc = std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end();
+  const std::set<std::string> families = runFamilies(o, files);
+  for (const auto& [option, given, family] :
+       {std::tuple{"--earc-db-count", o.earc_db_count.has_value(), ""}, std::tuple{"--db-mobile", !o.db_mobile.empty(), "mobile"},
+        std::tuple{"--db-arms", !o.db_arms.empty(), "arms"}}) {
+    if (!given) continue;
+    if (!runs_earc)
+      throw InputError("", option, "is for method earc, which this run does not plan with (--methods)");
+    if (*family && !families.count(family))
+      throw InputError("", option,
+                       std::string("this run plans for no ") + (family == std::string("arms") ? "arms" : "mobile robots") +
+                           " (its suites or scenario files), so it would not be used");
+  }
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
   ExistingEarcDbs existing;

@@ -106,6 +106,16 @@ for db in --db-mobile --db-arms; do
     "${R[@]}" --robots 2 $db "$WORK/given.db" --earc-db-count 5
 done
 [ -e "$WORK/given.db" ] && fail "a refused run built the E-ARC database it was given"
+# E-ARC's database options where nothing would use them: no earc trials,
+# or no robots of that kind.
+refused "--earc-db-count: is for method earc, which this run does not plan with (--methods)" \
+  run --suites mobile --robots 2 --methods arc --earc-db-count 5 --results "$WORK/bad.sqlite"
+refused "--db-mobile: is for method earc, which this run does not plan with (--methods)" \
+  run --suites mobile --robots 2 --methods arc,prioritized --db-mobile "$WORK/given.db" --results "$WORK/bad.sqlite"
+refused "--db-arms: this run plans for no arms (its suites or scenario files), so it would not be used" \
+  run --suites mobile --robots 2 --methods earc --db-arms "$WORK/given.db" --results "$WORK/bad.sqlite"
+refused "--db-mobile: this run plans for no mobile robots (its suites or scenario files), so it would not be used" \
+  run --suites arms --robots 2 --methods earc --db-mobile "$WORK/given.db" --results "$WORK/bad.sqlite"
 [ -e "$WORK/bad.sqlite" ] && fail "a refused run created its results database"
 [ -e "$WORK/bad.sqlite.work" ] && fail "a refused run created its work directory"
 
