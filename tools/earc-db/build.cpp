@@ -105,7 +105,8 @@ Footprints scenarioFootprints(const earc::Scenario& scenario) {
 // The footprints to build for: the scenario's distinct mobile robots (each
 // problem's robots drawn in proportion to their numbers there), or the one
 // given by --shape/--size/--radius, or the builder's default.
-void setMobileRobots(const BuildOptions& opt, const earc::Scenario* scenario, earc::exp::BuildSettings& s) {
+void setMobileRobots(const BuildOptions& opt, const earc::Scenario* scenario, earc::exp::BuildSettings& s,
+                     earc::InputWarnings& warnings) {
   std::vector<earc::RobotSpec>& out = s.mobile_robots;
   // --size sizes the default box; --radius needs --shape disc, as in
   // earc-scenario. A footprint option that would be ignored is a mistake.
@@ -137,8 +138,9 @@ void setMobileRobots(const BuildOptions& opt, const earc::Scenario* scenario, ea
   const std::string given = earc::makeRobotModel(r, s.resolution)->geometrySignature();
   if (!fleet.signatures.empty() &&
       std::find(fleet.signatures.begin(), fleet.signatures.end(), given) == fleet.signatures.end())
-    std::cerr << "earc-db: warning: " << opt.scenario << ": none of its mobile robots has the footprint given ("
-              << given << "); built for that footprint, this database will not answer them\n";
+    warnings.push_back({opt.scenario, "",
+                        "none of its mobile robots has the footprint given (" + given +
+                            "); built for that footprint, this database will not answer them"});
 }
 
 // --kind, or a footprint option (mobile), or what the scenario holds: a
@@ -179,7 +181,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   }
   s.kind = kindToBuild(opt, scenario ? &*scenario : nullptr);
   if (s.kind == earc::RobotKind::Mobile) {
-    setMobileRobots(opt, scenario ? &*scenario : nullptr, s);
+    setMobileRobots(opt, scenario ? &*scenario : nullptr, s, read_warnings);
   } else if (scenario) {
     for (const auto& r : scenario->robots)
       if (r.kind == earc::RobotKind::Manipulator) s.arms.push_back(r);
