@@ -27,7 +27,8 @@ grep -q '^VALID' "$WORK/out" || fail "validate: $(cat "$WORK/out")"
 grep -qF "$WORK/wall.json: resolution: robot 'd0'" "$WORK/err" || fail "validate gave no warning: $(cat "$WORK/err")"
 "$BUILD/earc-plan" validate --json "$WORK/wall.json" "$WORK/wall.sol.json" > "$WORK/out" 2> "$WORK/err" ||
   fail "validate --json exited $?"
-grep -qF '"warnings":["resolution: robot' "$WORK/out" || fail "validate --json has no warning: $(cat "$WORK/out")"
+grep -qF "\"warnings\":[\"$WORK/wall.json: resolution: robot" "$WORK/out" ||
+  fail "validate --json has no warning naming the file: $(cat "$WORK/out")"
 [ -s "$WORK/err" ] && fail "validate --json wrote to stderr: $(cat "$WORK/err")"
 
 "$BUILD/earc-plan" plan "$DATASETS/mobile-4-s1.json" -o "$WORK/m.sol.json" --method arc -q 2> "$WORK/err" ||

@@ -75,7 +75,9 @@ int runValidate(const ValidateOptions& opt, std::ostream& out) {
     if (opt.json) {
       nlohmann::json warnings = nlohmann::json::array();
       for (const earc::InputWarning& w : read_warnings) warnings.push_back(w.text());
-      if (const std::string warning = earc::passThroughWarning(sc); !warning.empty()) warnings.push_back(warning);
+      // Named by its file, as the readers' warnings are (FILE: PATH: REASON).
+      if (const std::string warning = earc::passThroughWarning(sc); !warning.empty())
+        warnings.push_back(earc::inputMessage(opt.scenario, "", warning));
       nlohmann::json report = reportToJson(sc, rep);
       report["warnings"] = std::move(warnings);
       out << report.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
