@@ -20,8 +20,6 @@ needPython
 needBuilt earc-bench earc-plan earc-db earc-scenario
 failShowsOutput
 cd "$WORK" || exit 1
-count() { "$PY" -c 'import sqlite3, sys
-print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.argv[2]).fetchone()[0])' "$@"; }
 built() { grep -q "^building E-ARC database $1 " out || fail "$2: did not build $1: $(cat out)"; }
 notBuilt() { grep -q "^building E-ARC database" out && fail "$1: built a database: $(cat out)"; }
 names() { (cd "$1" && ls -- *.sqlite | tr '\n' ' '); }
@@ -35,7 +33,7 @@ built w/earc-mobile-p20-s3.sqlite "seed 3"
 # Another seed into the same results file: its own database.
 "$BENCH" "${RUN[@]}" --seed 4 --results a.sqlite > out 2> err || fail "seed 4 exited $?"
 built w/earc-mobile-p20-s4.sqlite "seed 4 into the same results file"
-[ "$(count a.sqlite "SELECT group_concat(seed || ':' || earc_db, ' ') FROM (SELECT * FROM trials ORDER BY id)")" = \
+[ "$(sqlValue a.sqlite "SELECT group_concat(seed || ':' || earc_db, ' ') FROM (SELECT * FROM trials ORDER BY id)")" = \
   "3:w/earc-mobile-p20-s3.sqlite 4:w/earc-mobile-p20-s4.sqlite" ] || fail "the trials do not record their seed's database"
 # Both seeds resume, each on its own.
 for seed in 3 4; do
@@ -94,7 +92,7 @@ refusedInOneLine "old.sqlite: --db-mobile: its earc trials of mobile robots with
 "$BENCH" "${BASE[@]}" --seed 3 --trials 2 --work-dir old.work --db-mobile old.work/earc-mobile.sqlite \
   --results old.sqlite > out 2> err || fail "resumed on the old database: exit $?"
 notBuilt "resumed on the old database"
-[ "$(count old.sqlite "SELECT count(*) FROM trials WHERE earc_db = 'old.work/earc-mobile.sqlite'")" = 2 ] ||
+[ "$(sqlValue old.sqlite "SELECT count(*) FROM trials WHERE earc_db = 'old.work/earc-mobile.sqlite'")" = 2 ] ||
   fail "the resumed trial did not plan on the old database"
 # A version 7 file records no database: its run builds one under the new
 # name, from the count its databases rows hold, and goes on.
@@ -109,6 +107,6 @@ PY
 "$BENCH" "${OLD[@]}" --trials 2 --work-dir old7.work --results old7.sqlite > out 2> err ||
   fail "a version 7 file resumed: exit $?"
 built old7.work/earc-mobile-p20-s3.sqlite "a version 7 file resumed"
-[ "$(count old7.sqlite "SELECT count(*) || ' ' || max(earc_db) FROM trials")" = "2 old7.work/earc-mobile-p20-s3.sqlite" ] ||
+[ "$(sqlValue old7.sqlite "SELECT count(*) || ' ' || max(earc_db) FROM trials")" = "2 old7.work/earc-mobile-p20-s3.sqlite" ] ||
   fail "the version 7 file's run did not go on on its new database"
 echo "ok: E-ARC databases the run builds are named by what their rows come of"

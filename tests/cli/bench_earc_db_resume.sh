@@ -21,19 +21,17 @@ needPython
 needBuilt earc-bench earc-plan earc-db
 failShowsOutput
 cd "$WORK" || exit 1
-count() { "$PY" -c 'import sqlite3, sys
-print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.argv[2]).fetchone()[0])' "$@"; }
-lastToken() { count "$1" "SELECT token FROM history ORDER BY id DESC LIMIT 1"; }
+lastToken() { sqlValue "$1" "SELECT token FROM history ORDER BY id DESC LIMIT 1"; }
 
 NO_COUNT=(run --suites mobile --robots 2 --methods earc --time-limit 5 --seed 3)
 RUN=("${NO_COUNT[@]}" --earc-db-count 20)
 BUILT=r.sqlite.work/earc-mobile-p20-s3.sqlite
 "$BENCH" "${RUN[@]}" --trials 1 --results r.sqlite > out 2> err || fail "run exited $?"
-[ "$(count r.sqlite "SELECT learn || ' ' || earc_db || ' ' || earc_db_state FROM trials")" = \
+[ "$(sqlValue r.sqlite "SELECT learn || ' ' || earc_db || ' ' || earc_db_state FROM trials")" = \
   "0 $BUILT $(lastToken $BUILT)" ] || fail "the earc trial does not record --learn, its database and its state"
 tail=": a results file holds the earc trials of one E-ARC database per kind of robot and seed, as they found it (give that one, or another --results)"
 counts=": a results file holds the earc trials of E-ARC databases built from one count"
-trials() { [ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq "$1" ] || fail "not $1 trials: a refused run recorded some"; }
+trials() { [ "$(sqlValue r.sqlite "SELECT count(*) FROM trials")" -eq "$1" ] || fail "not $1 trials: a refused run recorded some"; }
 
 # The same options: nothing to run. Another --learn or count: refused.
 "$BENCH" "${RUN[@]}" --trials 1 --results r.sqlite > out 2> err || fail "resumed with the same: exit $?"
@@ -54,7 +52,7 @@ cp $BUILT moved.sqlite
 [ -e $BUILT-wal ] && cp $BUILT-wal moved.sqlite-wal
 "$BENCH" "${NO_COUNT[@]}" --trials 2 --db-mobile moved.sqlite --results r.sqlite > out 2> err || fail "moved: exit $?"
 trials 2
-[ "$(count r.sqlite "SELECT count(DISTINCT earc_db_state) || ' ' || group_concat(earc_db, ' ') FROM
+[ "$(sqlValue r.sqlite "SELECT count(DISTINCT earc_db_state) || ' ' || group_concat(earc_db, ' ') FROM
      (SELECT * FROM trials ORDER BY id)")" = "1 $BUILT moved.sqlite" ] || fail "the moved database is not recorded as it is"
 
 # A change since to its rows, in place (curate), refuses it; so would
@@ -77,10 +75,10 @@ refusedInOneLine "learned.sqlite has changed since (learn)" \
   "$BENCH" "${NO_COUNT[@]}" --trials 3 --db-mobile learned.sqlite --results r.sqlite
 trials 2
 "$BENCH" "${RUN[@]}" --trials 1 --learn --results l.sqlite > out 2> err || fail "a --learn run exited $?"
-[ "$(count l.sqlite "SELECT learn FROM trials")" = 1 ] || fail "a --learn trial does not record it"
+[ "$(sqlValue l.sqlite "SELECT learn FROM trials")" = 1 ] || fail "a --learn trial does not record it"
 learnLine l.sqlite.work/earc-mobile-p20-s3-learn.sqlite 78
 "$BENCH" "${RUN[@]}" --trials 2 --learn --results l.sqlite > out 2> err || fail "a --learn run resumed after learning: exit $?"
-[ "$(count l.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "the --learn run did not go on"
+[ "$(sqlValue l.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "the --learn run did not go on"
 refusedInOneLine "l.sqlite: --learn: its earc trials ran with --learn; this run gives no --learn (fixed databases)" \
   "$BENCH" "${RUN[@]}" --trials 3 --results l.sqlite
 
@@ -116,5 +114,5 @@ refusedInOneLine "old.sqlite: --earc-db-count: its E-ARC database $BUILT was bui
 "$BENCH" "${NO_COUNT[@]}" --trials 2 --learn --db-mobile other.sqlite --results old.sqlite > out 2> err ||
   fail "a version 7 file resumed on another database with --learn: exit $?"
 grep -q "^nothing to run" out || fail "the version 7 file's trials were not skipped"
-[ "$(count old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 7 file was not migrated"
+[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 7 file was not migrated"
 echo "ok: a resumed run is held to its trials' E-ARC database, count and --learn"

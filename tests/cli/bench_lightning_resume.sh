@@ -19,17 +19,15 @@ needPython
 needBuilt earc-bench earc-plan
 failShowsOutput
 cd "$WORK" || exit 1
-count() { "$PY" -c 'import sqlite3, sys
-print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.argv[2]).fetchone()[0])' "$@"; }
 
 RUN=(run --suites mobile --robots 2 --methods arc,lightning --trials 1 --time-limit 5 --seed 3)
 LIGHTNING=(--lightning-problems 2 --lightning-problem-time-limit 1)
 "$BENCH" "${RUN[@]}" "${LIGHTNING[@]}" --results r.sqlite > out 2> err || fail "run exited $?"
-[ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "not 2 trials"
-[ "$(count r.sqlite "SELECT lightning_problems || ' ' || ifnull(lightning_problems_per_robot, 'NULL') || ' ' ||
+[ "$(sqlValue r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "not 2 trials"
+[ "$(sqlValue r.sqlite "SELECT lightning_problems || ' ' || ifnull(lightning_problems_per_robot, 'NULL') || ' ' ||
      lightning_problem_time_limit_s FROM trials WHERE method = 'lightning'")" = "2 NULL 1.0" ] ||
   fail "the lightning trial does not record its settings"
-[ "$(count r.sqlite "SELECT count(*) FROM trials WHERE method = 'arc' AND (lightning_problems IS NOT NULL OR
+[ "$(sqlValue r.sqlite "SELECT count(*) FROM trials WHERE method = 'arc' AND (lightning_problems IS NOT NULL OR
      lightning_problems_per_robot IS NOT NULL OR lightning_problem_time_limit_s IS NOT NULL)")" -eq 0 ] ||
   fail "an arc trial records Lightning settings"
 
@@ -47,7 +45,7 @@ refusedInOneLine "r.sqlite: --lightning-problems: its lightning trials ran with 
 refusedInOneLine "r.sqlite: --lightning-problem-time-limit: its lightning trials ran with 1; this run gives 2" \
   "$BENCH" run --suites mobile --robots 2 --methods arc,lightning --trials 2 --time-limit 5 --seed 3 \
   --lightning-problems 2 --lightning-problem-time-limit 2 --results r.sqlite
-[ "$(count r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "a refused resume recorded trials"
+[ "$(sqlValue r.sqlite "SELECT count(*) FROM trials")" -eq 2 ] || fail "a refused resume recorded trials"
 # A run without lightning is not held to them.
 "$BENCH" run --suites mobile --robots 2 --methods arc --trials 1 --time-limit 5 --seed 3 \
   --lightning-problem-time-limit 3 --results r.sqlite > out 2> err || fail "arc alone, other settings: exit $?"
@@ -55,7 +53,7 @@ refusedInOneLine "r.sqlite: --lightning-problem-time-limit: its lightning trials
 # Per robot: recorded as such, and held to.
 "$BENCH" "${RUN[@]}" --lightning-problems-per-robot 1 --lightning-problem-time-limit 1 --results p.sqlite \
   > out 2> err || fail "run per robot exited $?"
-[ "$(count p.sqlite "SELECT ifnull(lightning_problems, 'NULL') || ' ' || lightning_problems_per_robot FROM trials
+[ "$(sqlValue p.sqlite "SELECT ifnull(lightning_problems, 'NULL') || ' ' || lightning_problems_per_robot FROM trials
      WHERE method = 'lightning'")" = "NULL 1" ] || fail "the per-robot count is not recorded"
 refusedInOneLine "p.sqlite: --lightning-problems-per-robot: its lightning trials ran with 1; this run gives 2$tail" \
   "$BENCH" "${RUN[@]}" --lightning-problems-per-robot 2 --lightning-problem-time-limit 1 --results p.sqlite
@@ -75,8 +73,8 @@ PY
 "$BENCH" "${RUN[@]}" --lightning-problem-time-limit 3 --results old.sqlite --work-dir r.sqlite.work > out 2> err ||
   fail "a version 6 file resumed with other settings: exit $?"
 grep -q "^nothing to run" out || fail "the version 6 file's trials were not skipped"
-[ "$(count old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 6 file was not migrated"
-[ "$(count old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
+[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 6 file was not migrated"
+[ "$(sqlValue old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
   fail "the old trials gained settings"
 # A limit per problem reaches lightning-db exactly, however small: 1e-07,
 # not std::to_string's 0.000000, which lightning-db refuses.
@@ -84,7 +82,7 @@ grep -q "^nothing to run" out || fail "the version 6 file's trials were not skip
   --lightning-problems 1 --lightning-problem-time-limit 1e-7 --results tiny.sqlite > out 2> err ||
   fail "a run with a limit per problem of 1e-7 exited $?"
 grep -q "failed" err && fail "growing the Lightning database under 1e-7 s per problem failed"
-[ "$(count tiny.sqlite "SELECT count(*) FROM databases WHERE method = 'lightning'")" -eq 1 ] ||
+[ "$(sqlValue tiny.sqlite "SELECT count(*) FROM databases WHERE method = 'lightning'")" -eq 1 ] ||
   fail "no Lightning database recorded for a limit per problem of 1e-7"
 # A database is named by what grows it. Another results file sharing the
 # --lightning-dir takes one grown the same way, and grows its own under

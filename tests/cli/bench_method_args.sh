@@ -123,7 +123,7 @@ refusedInOneLine "plot_results.py: $WORK/$want" "$PY" "$SRC/tools/plots/plot_res
   --results "$WORK/mixed.sqlite" -o "$WORK/mixed-figures"
 
 # The figures' legends name the method as table does.
-if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
+if hasMatplotlib; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/err" || fail "plot exited $?"
   "$PY" - "$SRC/tools/plots" "$WORK/r.sqlite" <<'PYEOF' || fail "plot's labels"
 import sys

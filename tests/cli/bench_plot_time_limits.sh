@@ -13,8 +13,7 @@ SRC=$2
 . "$(dirname "$0")/common.bash"
 BENCH="$BUILD/earc-bench"
 needBuilt earc-bench earc-plan
-needPython
-"$PY" -c "import matplotlib, numpy" 2> /dev/null || { echo "skipped: no matplotlib for $PY"; exit 77; }
+needMatplotlib
 
 for run in "5 3" "10 4"; do
   read -r limit seed <<< "$run"

@@ -216,7 +216,7 @@ refused "$WORK/x/../same.csv: --databases-csv: is the same file as --csv $WORK/s
 refused "$WORK/logs/mobile-2.log: --ompl-log: is the same file as --csv $WORK/logs/mobile-2.log" \
   export --results "$WORK/r.sqlite" --ompl-log "$WORK/logs" --csv "$WORK/logs/mobile-2.log"
 
-if "$PY" -c "import matplotlib, numpy" 2> /dev/null; then
+if hasMatplotlib; then
   "$BENCH" plot --results "$WORK/r.sqlite" -o "$WORK/fig" > /dev/null 2> "$WORK/plot.err" || fail "plot exited $?: $(cat "$WORK/plot.err")"
   [ -s "$WORK/fig/time_mobile.png" ] && [ -s "$WORK/fig/success_mobile.svg" ] || fail "plot wrote no figures"
   leftNothingBeside "$WORK/r.sqlite" plot

@@ -11,6 +11,16 @@ fail() { echo "FAIL: $*"; exit 1; }
 failShowsOutput() { fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }; }
 # Skipped (77) without /usr/bin/python3.
 needPython() { [ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }; }
+# True when $PY has matplotlib and numpy (the plot scripts' needs).
+hasMatplotlib() { "$PY" -c "import matplotlib, numpy" 2> /dev/null; }
+# Skipped (77) without /usr/bin/python3 with matplotlib.
+needMatplotlib() { needPython; hasMatplotlib || { echo "skipped: no matplotlib for $PY"; exit 77; }; }
+# sqlValue FILE SQL: the first value of the query's first row, FILE (an
+# SQLite database) opened read-only.
+sqlValue() {
+  "$PY" -c 'import sqlite3, sys
+print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.argv[2]).fetchone()[0])' "$@"
+}
 # refusedInOneLine WANT PROGRAM ARGS...: FAIL unless PROGRAM exits 2 with
 # one line on stderr that contains WANT (left in $WORK/err).
 refusedInOneLine() {

@@ -9,8 +9,7 @@ set -u
 BUILD=$1
 SRC=$2
 . "$(dirname "$0")/common.bash"
-needPython
-"$PY" -c "import matplotlib, numpy" 2> /dev/null || { echo "skipped: no matplotlib for $PY"; exit 77; }
+needMatplotlib
 
 "$PY" - "$SRC/tools/plots" "$WORK" <<'PYEOF' || fail "methods of equal times hide each other in the time figure"
 import sys
