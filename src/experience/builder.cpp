@@ -167,13 +167,12 @@ ProblemResult solveProblem(const BuildSettings& s, const std::vector<std::pair<i
   std::optional<Problem> problem;
   if (s.kind == RobotKind::Mobile) {
     const int n = robotsForMix(s.mobile_mix, uniform(rng, 0.0, 1.0));
-    const std::vector<double> shares =
-        s.mobile_shares.empty() ? std::vector<double>(s.mobile_robots.size(), 1.0) : s.mobile_shares;
     std::vector<RobotSpec> group;
     // One footprint draws nothing: its databases stay as they were.
     for (int r = 0; r < n; ++r)
-      group.push_back(s.mobile_robots.size() == 1 ? s.mobile_robots.front()
-                                                  : s.mobile_robots[pickByShares(shares, uniform(rng, 0.0, 1.0))]);
+      group.push_back(s.mobile_robots.size() == 1
+                          ? s.mobile_robots.front()
+                          : s.mobile_robots[pickByShares(s.mobile_shares, uniform(rng, 0.0, 1.0))]);
     problem = mobileProblem(s, std::move(group), rng);
   } else {
     const auto [a, b] = arm_pairs[index % arm_pairs.size()];
@@ -211,9 +210,9 @@ BuildSettings withDefaults(BuildSettings s) {
       if (r.kind != RobotKind::Mobile) throw std::invalid_argument("build: mobile footprints must be mobile robots");
     if (s.mobile_mix.empty() || std::any_of(s.mobile_mix.begin(), s.mobile_mix.end(), [](double w) { return w < 0; }))
       throw std::invalid_argument("build: the robot-count mix needs non-negative shares");
-    if (!s.mobile_shares.empty() &&
-        (s.mobile_shares.size() != s.mobile_robots.size() ||
-         std::any_of(s.mobile_shares.begin(), s.mobile_shares.end(), [](double w) { return !(w > 0); })))
+    if (s.mobile_shares.empty()) s.mobile_shares.assign(s.mobile_robots.size(), 1.0);
+    if (s.mobile_shares.size() != s.mobile_robots.size() ||
+        std::any_of(s.mobile_shares.begin(), s.mobile_shares.end(), [](double w) { return !(w > 0); }))
       throw std::invalid_argument("build: one positive share per mobile footprint");
   } else {
     if (s.arms.empty()) s.arms = defaultArms();
