@@ -1157,8 +1157,8 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   if (!o.plan_program.empty()) requireExecutable(o.plan_program, "--plan-program");
   else requireExecutable(executableDir() + "/earc-plan", "--plan-program (default: earc-plan beside earc-bench)");
   ExistingEarcDbs existing;
-  if (std::find(o.methods.begin(), o.methods.end(), "earc") != o.methods.end())
-    for (const std::string& family : runFamilies(o, files))
+  if (runs_earc)
+    for (const std::string& family : families)
       if (fs::exists(earcDbPath(o, files, family))) existing[family] = earcDbFacts(o, files, family);
   return existing;
 }
