@@ -183,6 +183,7 @@ ProblemResult solveProblem(const BuildSettings& s, const std::vector<std::pair<i
   const CollisionWorld world(problem->scenario);
   CoupledSettings cs;
   cs.time_limit_s = s.time_per_problem_s;
+  cs.within = Deadline().withWorkBudgets(s.work_budgets);
   cs.polish = true;
   const auto t0 = Clock::now();
   auto solution = solveCoupled(world, problem->query, cs, splitSeed(s.seed ^ 0xb01dULL, index));
@@ -312,7 +313,7 @@ std::string buildDescription(const BuildSettings& s, std::size_t arm_pair_classe
     out << ", " << s.arms.size() << " arms, " << arm_pair_classes << " pair class"
         << (arm_pair_classes == 1 ? "" : "es");
   }
-  out << ", " << s.time_per_problem_s << " s a problem";
+  out << ", " << s.time_per_problem_s << (s.work_budgets ? " s of work a problem" : " s a problem");
   return out.str();
 }
 

@@ -212,7 +212,7 @@ class ArcRun {
   ArcRun(const Scenario& scenario, const PlannerSettings& settings,
          std::vector<std::unique_ptr<SubproblemSolver>> hierarchy)
       : scenario_(scenario), settings_(settings), hierarchy_(std::move(hierarchy)), world_(scenario),
-        owned_models_(makeRobotModels(scenario)), deadline_(settings.time_limit_s) {
+        owned_models_(makeRobotModels(scenario)), deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets)) {
     for (const auto& m : owned_models_) models_.push_back(m.get());
   }
 
@@ -449,6 +449,7 @@ PlanResult ArcRun::run() {
   st["subproblems_by_robots"] = by_size_;
   st["solver_time_s"] = solver_time_;
   st["window_expansions"] = expansions_;
+  st["solver_budgets"] = settings_.work_budgets ? "work" : "seconds";
   st["robots_merged"] = merged_;
   st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
   st["roadmaps_built"] = roadmaps_->built();

@@ -41,6 +41,13 @@ bool CompositeChecker::outOfTime() const {
 bool CompositeChecker::outOfTimeAfter(std::size_t work) const {
   if (!deadline_) return false;
   if (expired_.load(std::memory_order_relaxed)) return true;
+  countWork(work);
+  // A work budget is checked every time (no clock read), so that it ends
+  // at the same work whatever the thread's checks did before.
+  if (deadline_->workSpent()) {
+    expired_.store(true, std::memory_order_relaxed);
+    return true;
+  }
   thread_local std::size_t owed = 0;  // shared by every checker on the thread: only the pace of reads
   owed += work;
   if (owed < kWorkPerClockRead) return false;

@@ -135,9 +135,10 @@ RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotM
     q.goals = stateAt(paths, b);
     q.region = region;
     CoupledSettings cs;
-    cs.time_limit_s = std::min(time_per_run_s, deadline.remaining());
+    cs.time_limit_s = time_per_run_s;
+    cs.within = deadline;
     cs.polish = true;
-    if (cs.time_limit_s <= 0) return {std::nullopt, true, "no time left to repair"};
+    if (deadline.expired()) return {std::nullopt, true, "no time left to repair"};
     auto fix = solveCoupled(world, q, cs, splitSeed(seed, a));
     if (!fix) return {std::nullopt, false, "repair failed"};
     for (std::size_t r = 0; r < robots.size(); ++r) repaired[r].append(fix->paths[r], 1);
@@ -153,7 +154,7 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   // The limit covers the checks and the setup before OMPL's search too: on
   // thousands of robots they are not negligible.
-  const Deadline deadline(settings.time_limit_s);
+  const Deadline deadline = settings.within.capped(settings.time_limit_s);
   CompositeChecker checker(world, query.robots, deadline);
   if (!checker.stateValid(query.starts) || !checker.stateValid(query.goals)) return std::nullopt;
   std::vector<std::vector<std::vector<double>>> waypoints;

@@ -435,9 +435,10 @@ SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
   q.goals = sub.goals;
   q.region = sub.region;
   CoupledSettings cs;
-  cs.time_limit_s = std::min(settings_.time_budget_s * ctx.budget_scale, ctx.deadline.remaining());
+  cs.time_limit_s = settings_.time_budget_s * ctx.budget_scale;
+  cs.within = ctx.deadline;
   cs.polish = true;
-  if (cs.time_limit_s <= 0) return {std::nullopt, name(), -1};
+  if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
   auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
   if (!sol) return {std::nullopt, name(), -1};
   const std::size_t len = std::max(sol->length(), sub.t_end - sub.t_start + 1);

@@ -56,6 +56,9 @@ struct BuildSettings {
   std::uint64_t seed = 1;
   int threads = 2;
   double time_per_problem_s = 0.5;
+  // Count time_per_problem_s in work done, not seconds (see
+  // Deadline::withWorkBudgets): the same database on a busy machine.
+  bool work_budgets = false;
   double near_duplicate_eps = 1e-3;
   // Called after each insert transaction commits, with the ids it stored
   // (duplicates left out); `earc-db build --report` logs them.

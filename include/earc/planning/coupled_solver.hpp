@@ -19,7 +19,10 @@
 namespace earc {
 
 struct CoupledSettings {
+  // The attempt's budget, within `within` (capped there: seconds of work
+  // when that deadline's budgets count work, see Deadline::withWorkBudgets).
   double time_limit_s = 1.0;
+  Deadline within;
   bool simplify = true;        // shortcut the composite path before time-stamping
   // After simplifying, polish the path (see polishComposite). For a few
   // robots (subproblems, repairs, stored experiences); the whole-problem

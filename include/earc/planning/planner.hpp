@@ -38,6 +38,11 @@ struct PlannerSettings {
   double time_limit_s = 60.0;
   std::uint64_t seed = 1;
   bool trace = false;                 // record a trace of conflicts and subproblems
+  // ARC's and E-ARC's solver attempts (and the database's repairs) count
+  // their budgets in work done, not seconds (Deadline::withWorkBudgets):
+  // the same seed then gives the same plan on any machine of the same
+  // build, busy or not, unless time_limit_s (wall clock) stops it.
+  bool work_budgets = false;
   // Individual roadmaps.
   int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
   int roadmap_neighbors = 10;

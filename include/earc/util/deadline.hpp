@@ -1,9 +1,11 @@
 // A wall-clock deadline that planners poll.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace earc {
@@ -18,6 +20,21 @@ inline void requestStop() noexcept { g_stop_requested.store(true, std::memory_or
 inline void clearStopRequest() noexcept { g_stop_requested.store(false, std::memory_order_relaxed); }
 inline bool stopRequested() noexcept { return g_stop_requested.load(std::memory_order_relaxed); }
 
+// Work done on this thread, in the collision checks' units (bodies placed,
+// or a composite state's summed dims): the clock that solver attempts'
+// budgets run on when they count work instead of seconds (see
+// Deadline::withWorkBudgets). Advanced by DeadlinePoll and the composite
+// checker; each thread has its own, and budgets are relative to it.
+inline thread_local std::uint64_t t_work_done = 0;
+inline void countWork(std::size_t units) noexcept { t_work_done += units; }
+
+// How many units of work a second of budget stands for when budgets count
+// work: about what one core of the machine the defaults were tuned on (a
+// 2-core VM, 2026) did per second in ARC's and E-ARC's solvers, mobile
+// robots and arms alike, so that a budget lasts about as long on an idle
+// machine of that speed either way.
+inline constexpr double kWorkPerBudgetSecond = 2.0e7;
+
 class Deadline {
  public:
   using Clock = std::chrono::steady_clock;
@@ -26,20 +43,50 @@ class Deadline {
       : end_(seconds_from_now >= 1e9 ? Clock::time_point::max()
                                      : Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                           std::chrono::duration<double>(seconds_from_now))) {}
-  bool expired() const { return stopRequested() || (end_ != Clock::time_point::max() && Clock::now() >= end_); }
+  bool expired() const {
+    return stopRequested() || workSpent() || (end_ != Clock::time_point::max() && Clock::now() >= end_);
+  }
+  // Whether a work budget (see capped) has been used up: no clock read.
+  bool workSpent() const noexcept { return t_work_done >= work_end_; }
   double remaining() const {
     if (stopRequested()) return 0.0;
-    if (end_ == Clock::time_point::max()) return std::numeric_limits<double>::infinity();
-    return std::chrono::duration<double>(end_ - Clock::now()).count();
+    double left = std::numeric_limits<double>::infinity();
+    if (work_end_ != kNoWorkEnd)
+      left = work_end_ > t_work_done ? static_cast<double>(work_end_ - t_work_done) / kWorkPerBudgetSecond : 0.0;
+    if (end_ == Clock::time_point::max()) return left;
+    return std::min(left, std::chrono::duration<double>(end_ - Clock::now()).count());
   }
-  // The earlier of this deadline and `seconds` from now.
+  // This deadline, whose capped() budgets count work done on the calling
+  // thread (kWorkPerBudgetSecond units a second) instead of seconds when
+  // `on`: the same seed then makes the same plan on a slower or busier
+  // machine, where a budget of seconds would end a search sooner. The
+  // deadline's own end stays what it was (a wall-clock time limit).
+  Deadline withWorkBudgets(bool on) const {
+    Deadline d = *this;
+    d.work_budgets_ = on;
+    return d;
+  }
+  bool countsWork() const noexcept { return work_budgets_; }
+  // The earlier of this deadline and `seconds` from now: seconds of work
+  // on this thread when budgets count work.
   Deadline capped(double seconds) const {
+    if (work_budgets_) {
+      Deadline d = *this;
+      const double units = std::max(0.0, seconds) * kWorkPerBudgetSecond;
+      if (units < static_cast<double>(kNoWorkEnd - t_work_done))
+        d.work_end_ = std::min(work_end_, t_work_done + static_cast<std::uint64_t>(units));
+      return d;
+    }
     Deadline d(seconds);
+    d.work_end_ = work_end_;
     return d.end_ < end_ ? d : *this;
   }
 
  private:
+  static constexpr std::uint64_t kNoWorkEnd = std::numeric_limits<std::uint64_t>::max();
   Clock::time_point end_;
+  std::uint64_t work_end_ = kNoWorkEnd;
+  bool work_budgets_ = false;
 };
 
 // A deadline read where the work is: at the first call, then once per
@@ -55,6 +102,10 @@ class DeadlinePoll {
   // of the last read of the clock).
   bool expired(std::size_t work) {
     if (expired_) return true;
+    countWork(work);
+    // A work budget is checked at every call (no clock read), so that it
+    // ends at the same work however this poll's reads fall.
+    if (deadline_.workSpent()) return expired_ = true;
     owed_ += work;
     if (owed_ < per_read_) return false;
     owed_ = 0;
