@@ -5,7 +5,7 @@
 #   tools/setup.sh --tests    also what the tests use (python3-numpy for the
 #                             agreement tests, chromium and jq for the viewer tests,
 #                             clang for the fuzz targets, strace for the
-#                             socket test)
+#                             socket test, faketime for --deterministic's)
 set -euo pipefail
 
 packages=(
@@ -16,7 +16,7 @@ packages=(
   python3 python3-numpy python3-matplotlib librsvg2-bin
 )
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(chromium jq clang libclang-rt-14-dev strace)
+  packages+=(chromium jq clang libclang-rt-14-dev strace faketime)
 fi
 
 missing=()

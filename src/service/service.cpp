@@ -65,6 +65,13 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
     if (!l.is_boolean()) throw badField("learn", "must be true or false");
     s.db_learn = l.get<bool>();
   }
+  s.work_budgets = defaults.deterministic && s.method != Method::Lightning;
+  if (const json& d = field(request, "deterministic"); !d.is_null()) {
+    if (!d.is_boolean()) throw badField("deterministic", "must be true or false");
+    if (d.get<bool>() && s.method == Method::Lightning)
+      throw badField("deterministic", "is not for method lightning (it races two planners on two threads)");
+    s.work_budgets = d.get<bool>();
+  }
   if (const json& w = field(request, "window"); !w.is_null()) {
     if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
@@ -161,7 +168,7 @@ json Service::handle(const json& request) {
     json response;
     if (name == "plan") {
       requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
-                                 "window", "db_k", "db_repair_max", "db_max_stretch"});
+                                 "deterministic", "window", "db_k", "db_repair_max", "db_max_stretch"});
       response = plan(request);
     } else if (name == "ping") {
       requireKnownKeys(request, {"id", "op"});

@@ -34,6 +34,7 @@ struct BuildOptions {
   std::uint64_t seed = 1;
   int threads = 2;
   double time_per_problem = 0.5;
+  bool deterministic = false;
   double dedupe = 1e-3;
   std::string report;
   bool quiet = false;
@@ -166,6 +167,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
   s.seed = opt.seed;
   s.threads = opt.threads;
   s.time_per_problem_s = opt.time_per_problem;
+  s.work_budgets = opt.deterministic;
   s.near_duplicate_eps = opt.dedupe;
   // The report is appended to: as the database or the scenario it would
   // write lines into that file.
@@ -266,10 +268,13 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--shape", opt->shape, "Mobile footprint (default: box 0.6x0.4)")->check(CLI::IsMember({"box", "disc"}));
   sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH (a box without --shape)");
   sub->add_option("--radius", opt->radius, "Disc footprint radius")->check(earc::cli::kFinitePositive);
-  sub->add_option("--seed", opt->seed, "Random seed (the result depends only on it)")->check(earc::cli::kWholeNumber);
+  sub->add_option("--seed", opt->seed, "Random seed (with --deterministic the result depends only on it; else also on whether a problem's solver ran out of --time-per-problem)")->check(earc::cli::kWholeNumber);
   sub->add_option("--threads", opt->threads, "Solver threads")->check(earc::cli::wholeNumberIn(1, 256));
   sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
       ->check(earc::cli::kFinitePositive);
+  sub->add_flag("--deterministic", opt->deterministic,
+                "Count --time-per-problem in work done, not seconds: the same database from the same seed on a "
+                "busy or slower machine");
   sub->add_option("--dedupe", opt->dedupe, "Skip entries this close in key space to a stored one (negative: keep all)")
       ->check(earc::cli::kFinite);
   sub->add_option("--report", opt->report,

@@ -38,6 +38,7 @@ struct PlanOptions {
   int window = 0;
   bool no_learn = false;
   bool shadow_decoupled = false;
+  bool deterministic = false;
   std::optional<int> db_k, db_repair_max;
   std::optional<double> db_max_stretch;
   bool quiet = false;
@@ -184,6 +185,13 @@ int runPlan(const PlanOptions& o) {
   s.trace = !o.trace.empty();
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
+  // Lightning races two planners on two threads: which finishes first is
+  // the machine's to say, whatever the budgets count.
+  if (o.deterministic && s.method == Method::Lightning)
+    throw InputError("", "--deterministic",
+                     "is not for method lightning (it races two planners on two threads; its plans follow the "
+                     "machine's timing)");
+  s.work_budgets = o.deterministic;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "--shadow-decoupled"}, std::pair{o.db_k.has_value(), "--db-k"},
         std::pair{o.db_repair_max.has_value(), "--db-repair-max"},
@@ -284,6 +292,10 @@ void setupPlan(CLI::App& app) {
   cmd->add_option("--window", opts->window, "Initial subproblem window in steps each side of a conflict")
       ->check(earc::cli::wholeNumberIn(1, 1000000));
   cmd->add_flag("--no-learn", opts->no_learn, "Leave the database as it is (E-ARC, Lightning)");
+  cmd->add_flag("--deterministic", opts->deterministic,
+                "ARC, E-ARC: count each solver attempt's budget in work done, not seconds, so that the same "
+                "seed gives the same plan on a busy or slower machine (only --time-limit stays wall-clock "
+                "time); prioritized and coupled plans are so already; not for lightning");
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");

@@ -39,6 +39,7 @@ struct ServeOptions {
   std::string method = "earc";
   double time_limit = 60.0;
   std::uint64_t seed = 1;
+  bool deterministic = false;
 };
 
 // Written by the signal handler only: the signal's number, and a byte into
@@ -334,6 +335,7 @@ int runServe(const ServeOptions& o) {
   settings.method = o.method;
   settings.time_limit_s = o.time_limit;
   settings.seed = o.seed;
+  settings.deterministic = o.deterministic;
   installSignals();
   // The socket first: a second service on the same path is refused before
   // it touches the database. Clients that connect meanwhile wait in the
@@ -381,6 +383,9 @@ void setupServe(CLI::App& app) {
       ->check(earc::cli::kFinitePositive)
       ->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed for requests that give none")->check(earc::cli::kWholeNumber)->capture_default_str();
+  cmd->add_flag("--deterministic", opts->deterministic,
+                "Count ARC's and E-ARC's solver budgets in work done, not seconds, for requests that do not say "
+                "(\"deterministic\": false); see earc-plan plan --deterministic");
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
 }
 

@@ -48,6 +48,7 @@ struct ServiceSettings {
   std::string method = "earc";  // for requests that name none
   double time_limit_s = 60.0;
   std::uint64_t seed = 1;
+  bool deterministic = false;   // work budgets (PlannerSettings::work_budgets)
 };
 
 // Counters over the service's life (op "stats").
