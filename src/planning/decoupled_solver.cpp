@@ -18,6 +18,10 @@ namespace {
 // obstacle's bounding-disc centre is tabulated once per search, with boxes
 // over chunks of instants, so that a motion far from an obstacle costs a
 // few box tests instead of one interpolation and test per instant.
+// Units of work (Deadline::withWorkBudgets) of one expansion of the
+// space-time search, beside its collision checks: about its time.
+constexpr std::size_t kWorkPerExpansion = 4;
+
 class MotionGuard {
  public:
   // With a poll, the robot is not free anywhere once its deadline has
@@ -54,6 +58,7 @@ class MotionGuard {
       }
       tracks_.push_back(std::move(tr));
     }
+    countWork(obstacles_.size() * (last_ + 1) / kBroadTestsPerUnit);
   }
 
   // The robot at q is free of every obstacle at local instant k.
@@ -68,6 +73,7 @@ class MotionGuard {
       }
       return vertex_;
     };
+    countWork(obstacles_.size() / kBroadTestsPerUnit + 1);
     for (std::size_t i = 0; i < obstacles_.size(); ++i)
       if (!freeOf(i, c, k, own)) return false;
     return true;
@@ -112,10 +118,18 @@ class MotionGuard {
       }
       return q;
     };
+    // The broad phase's tests count as work too (a budget of work would
+    // otherwise last several times its seconds where many robots pass
+    // near), a few to a unit: they cost a few nanoseconds each.
+    std::size_t tests = 0;
+    struct Counted {
+      std::size_t& tests;
+      ~Counted() { countWork(tests / kBroadTestsPerUnit); }
+    } counted{tests};
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
       const double reach = model_.boundingRadius() + obstacles_[i].model->boundingRadius();
       const geo::Aabb near = swept.inflated(reach);
-      for (std::size_t k = k0; k <= k1;) {
+      for (std::size_t k = k0; k <= k1; ++tests) {
         const std::size_t kc = std::min(k, last_);
         const std::size_t chunk_end = (kc / kChunk + 1) * kChunk;  // first instant of the next chunk
         if (k <= last_ && !tracks_[i].chunks[kc / kChunk].overlaps(near)) {
@@ -141,6 +155,7 @@ class MotionGuard {
 
  private:
   static constexpr std::size_t kChunk = 16;
+  static constexpr std::size_t kBroadTestsPerUnit = 8;
   struct Track {
     std::vector<geo::Vec2> centers;  // bounding centre per instant 0..last
     std::vector<geo::Aabb> chunks;   // box of the centres of each chunk of instants
@@ -282,6 +297,8 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       break;
     }
     if (++expansions > max_expansions) break;
+    // The queue and the table of states reached, as work (see MotionGuard).
+    countWork(kWorkPerExpansion);
     if ((expansions & 255) == 0 && deadline.expired()) break;
     // Polled where the work is (see MotionGuard and Roadmap::edgeValid):
     // an expansion on arms of thousands of links can take a second.
