@@ -9,6 +9,7 @@
 #include <exception>
 #include <mutex>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <unordered_map>
 
@@ -300,7 +301,12 @@ ValidationReport validateSolution(const Scenario& sc, const Solution& sol, const
   };
   const std::size_t threads = std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), blocks);
   std::vector<std::thread> pool;
-  for (std::size_t i = 1; i < threads; ++i) pool.emplace_back(worker);
+  // A thread that cannot be started (no memory for its stack under a
+  // memory limit) leaves its blocks to the others: the check still runs.
+  try {
+    for (std::size_t i = 1; i < threads; ++i) pool.emplace_back(worker);
+  } catch (const std::system_error&) {
+  }
   worker();
   for (auto& th : pool) th.join();
   if (error) std::rethrow_exception(error);
