@@ -58,6 +58,11 @@ struct StoreOptions {
   // damaged file is still never written to. awaitCheck() asks for the
   // verdict (and counts the session).
   bool check_in_background = false;
+  // ... except on a machine with no spare core (runnable threads at least
+  // the cores this process may use): there an idle-class thread gets no
+  // time, and the check runs in the open instead (see openLocked). Off:
+  // always in the background (tests of the background path).
+  bool check_in_open_when_busy = true;
   // Run PRAGMA integrity_check at open instead of quick_check: index
   // contents too (Connection::requireIntegrityCheck). For the offline
   // commands that write into an existing file (earc-db build, import,
@@ -182,6 +187,9 @@ class ExperienceStore {
   void describeHistory(std::string operation, std::string detail);
   const HistoryWriter& history() const { return history_; }
 
+ // The background check's state (store.cpp).
+  struct BackgroundCheck;
+
  private:
   void openLocked();
   // After a failed open that created the file `real`: closes the
@@ -200,12 +208,19 @@ class ExperienceStore {
   void requireOpen() const;
   void requireWritable() const;
   void startCheckLocked();
-  // Joins the background check (if any) and throws its error.
+  ConnectionSettings checkSettings() const;
+  // Interrupts the background check (it ends without a verdict).
+  void stopCheckLocked();
+  // Waits for the background check (if any) to end; its error, if any, in
+  // check_error_. A check starved of CPU (its idle class gets none beside
+  // busy processes) is stopped and run on the calling thread instead.
+  void finishCheckLocked();
+  // finishCheckLocked, then throws the check's error.
   void joinCheckLocked();
   // joinCheckLocked, then counts the session when that was left for after
   // the check. Every write calls it first.
   void awaitCheckLocked();
-  bool checkRunning() const { return check_.joinable() && !check_done_.load(); }
+  bool checkRunning() const;
 
   std::string path_;
   StoreOptions options_;
@@ -222,9 +237,10 @@ class ExperienceStore {
   std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>> pending_uses_;  // id -> (retrieved, succeeded)
   int writes_since_checkpoint_ = 0;
   std::chrono::steady_clock::time_point last_checkpoint_;
-  // The background quick_check (StoreOptions::check_in_background).
-  std::thread check_;
-  std::atomic<bool> check_done_{false};
+  // The background quick_check (StoreOptions::check_in_background): its
+  // thread and what it found, shared with the thread, which a starved
+  // check is left to (see joinCheckLocked).
+  std::shared_ptr<BackgroundCheck> check_;
   std::exception_ptr check_error_;   // set by the thread, read after join
   bool check_error_reported_ = false;  // thrown to a caller at least once
   bool session_pending_ = false;       // 'sessions' not yet counted
