@@ -33,6 +33,14 @@ struct ExperienceStore::BackgroundCheck {
 
 namespace {
 
+// Asks `check` to stop: interrupts its quick_check, if running; it ends
+// without a verdict.
+void stopCheck(ExperienceStore::BackgroundCheck& check) {
+  std::lock_guard l(check.mutex);
+  check.stopped = true;
+  if (check.db) sqlite3_interrupt(check.db);
+}
+
 // Whether fewer threads are runnable on the machine (procs_running in
 // /proc/stat, this one included) than this process may use cores: a core
 // would otherwise idle. True where it cannot be read.
@@ -84,7 +92,7 @@ ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& op
     openLocked();
   } catch (...) {
     if (check_) {  // no destructor will
-      stopCheckLocked();
+      stopCheck(*check_);
       check_->thread.join();
       check_.reset();
     }
@@ -236,7 +244,7 @@ void ExperienceStore::startCheckLocked() {
     // 1.3x ARC's time instead of 1.0x. An idle-class thread runs when a
     // core would otherwise idle. On a machine kept busy by other processes
     // it gets no time at all, not even while awaitCheck() waits for it:
-    // joinCheckLocked then runs the check itself (see there).
+    // finishCheckLocked then runs the check itself (see there).
     // Best effort: where the policy is refused, the check runs anyway.
     sched_param idle{};
     pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
@@ -250,20 +258,13 @@ void ExperienceStore::startCheckLocked() {
     }
     {
       std::lock_guard l(check->mutex);
-      // Stopped (interrupted, or never begun): joinCheckLocked checks anew.
+      // Stopped (interrupted, or never begun): finishCheckLocked checks anew.
       check->passed = passed && !check->stopped;
       if (!check->stopped) check->error = error;
       check->done = true;
     }
     check->ended.notify_all();
   });
-}
-
-void ExperienceStore::stopCheckLocked() {
-  BackgroundCheck& c = *check_;
-  std::lock_guard l(c.mutex);
-  c.stopped = true;
-  if (c.db) sqlite3_interrupt(c.db);
 }
 
 void ExperienceStore::finishCheckLocked() {
@@ -285,9 +286,7 @@ void ExperienceStore::finishCheckLocked() {
       starved = !ended && before >= 0 && after >= 0 && after - before < 0.2 * 1e6 * static_cast<double>(kWait.count());
     }
     if (starved) {
-      check_ = check;
-      stopCheckLocked();
-      check_.reset();
+      stopCheck(*check);
       sched_param normal{};
       pthread_setschedparam(check->thread.native_handle(), SCHED_OTHER, &normal);
       ended = awaitEnd(*check, kWait);

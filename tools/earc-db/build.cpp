@@ -268,7 +268,10 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--shape", opt->shape, "Mobile footprint (default: box 0.6x0.4)")->check(CLI::IsMember({"box", "disc"}));
   sub->add_option("--size", opt->size, "Box footprint LENGTHxWIDTH (a box without --shape)");
   sub->add_option("--radius", opt->radius, "Disc footprint radius")->check(earc::cli::kFinitePositive);
-  sub->add_option("--seed", opt->seed, "Random seed (with --deterministic the result depends only on it; else also on whether a problem's solver ran out of --time-per-problem)")->check(earc::cli::kWholeNumber);
+  sub->add_option("--seed", opt->seed,
+                  "Random seed (with --deterministic the result depends only on it; else also on whether a "
+                  "problem's solver ran out of --time-per-problem)")
+      ->check(earc::cli::kWholeNumber);
   sub->add_option("--threads", opt->threads, "Solver threads")->check(earc::cli::wholeNumberIn(1, 256));
   sub->add_option("--time-per-problem", opt->time_per_problem, "Solver time limit per problem (s)")
       ->check(earc::cli::kFinitePositive);

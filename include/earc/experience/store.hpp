@@ -209,8 +209,6 @@ class ExperienceStore {
   void requireWritable() const;
   void startCheckLocked();
   ConnectionSettings checkSettings() const;
-  // Interrupts the background check (it ends without a verdict).
-  void stopCheckLocked();
   // Waits for the background check (if any) to end; its error, if any, in
   // check_error_. A check starved of CPU (its idle class gets none beside
   // busy processes) is stopped and run on the calling thread instead.
@@ -239,7 +237,7 @@ class ExperienceStore {
   std::chrono::steady_clock::time_point last_checkpoint_;
   // The background quick_check (StoreOptions::check_in_background): its
   // thread and what it found, shared with the thread, which a starved
-  // check is left to (see joinCheckLocked).
+  // check is left to (see finishCheckLocked).
   std::shared_ptr<BackgroundCheck> check_;
   std::exception_ptr check_error_;   // set by the thread, read after join
   bool check_error_reported_ = false;  // thrown to a caller at least once

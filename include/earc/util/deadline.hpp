@@ -1,4 +1,5 @@
-// A wall-clock deadline that planners poll.
+// A deadline that planners poll: wall-clock time, and budgets within it
+// that count seconds or (Deadline::withWorkBudgets) work done.
 #pragma once
 
 #include <algorithm>
@@ -23,8 +24,9 @@ inline bool stopRequested() noexcept { return g_stop_requested.load(std::memory_
 // Work done on this thread, in the collision checks' units (bodies placed,
 // or a composite state's summed dims): the clock that solver attempts'
 // budgets run on when they count work instead of seconds (see
-// Deadline::withWorkBudgets). Advanced by DeadlinePoll and the composite
-// checker; each thread has its own, and budgets are relative to it.
+// Deadline::withWorkBudgets). Advanced by DeadlinePoll, the composite
+// checker, the coupled search's distances and the space-time search
+// (countWork); each thread has its own, and budgets are relative to it.
 inline thread_local std::uint64_t t_work_done = 0;
 inline void countWork(std::size_t units) noexcept { t_work_done += units; }
 
