@@ -212,7 +212,8 @@ class ArcRun {
   ArcRun(const Scenario& scenario, const PlannerSettings& settings,
          std::vector<std::unique_ptr<SubproblemSolver>> hierarchy)
       : scenario_(scenario), settings_(settings), hierarchy_(std::move(hierarchy)), world_(scenario),
-        owned_models_(makeRobotModels(scenario)), deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets)) {
+        owned_models_(makeRobotModels(scenario)),
+        deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets)) {
     for (const auto& m : owned_models_) models_.push_back(m.get());
   }
 

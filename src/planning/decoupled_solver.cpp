@@ -14,14 +14,14 @@ namespace earc {
 
 namespace {
 
-// Checks a robot against moving obstacles at local instants. Each
-// obstacle's bounding-disc centre is tabulated once per search, with boxes
-// over chunks of instants, so that a motion far from an obstacle costs a
-// few box tests instead of one interpolation and test per instant.
 // Units of work (Deadline::withWorkBudgets) of one expansion of the
 // space-time search, beside its collision checks: about its time.
 constexpr std::size_t kWorkPerExpansion = 4;
 
+// Checks a robot against moving obstacles at local instants. Each
+// obstacle's bounding-disc centre is tabulated once per search, with boxes
+// over chunks of instants, so that a motion far from an obstacle costs a
+// few box tests instead of one interpolation and test per instant.
 class MotionGuard {
  public:
   // With a poll, the robot is not free anywhere once its deadline has

@@ -69,7 +69,7 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
   if (const json& d = field(request, "deterministic"); !d.is_null()) {
     if (!d.is_boolean()) throw badField("deterministic", "must be true or false");
     if (d.get<bool>() && s.method == Method::Lightning)
-      throw badField("deterministic", "is not for method lightning (it races two planners on two threads)");
+      throw badField("deterministic", kWorkBudgetsNotForLightning);
     s.work_budgets = d.get<bool>();
   }
   if (const json& w = field(request, "window"); !w.is_null()) {

@@ -185,12 +185,8 @@ int runPlan(const PlanOptions& o) {
   s.trace = !o.trace.empty();
   if (o.window > 0) s.initial_window = o.window;
   s.db_learn = !o.no_learn;
-  // Lightning races two planners on two threads: which finishes first is
-  // the machine's to say, whatever the budgets count.
   if (o.deterministic && s.method == Method::Lightning)
-    throw InputError("", "--deterministic",
-                     "is not for method lightning (it races two planners on two threads; its plans follow the "
-                     "machine's timing)");
+    throw InputError("", "--deterministic", kWorkBudgetsNotForLightning);
   s.work_budgets = o.deterministic;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "--shadow-decoupled"}, std::pair{o.db_k.has_value(), "--db-k"},

@@ -20,6 +20,11 @@ namespace exp { class ExperienceStore; }
 enum class Method { Arc, Earc, Prioritized, Coupled, Lightning };
 const char* methodName(Method m);
 Method methodFromName(const std::string& name);  // throws std::invalid_argument
+// Why `method` cannot plan with work budgets (PlannerSettings::
+// work_budgets), for the option or request field that asked: Lightning
+// races two planners on two threads, whichever the budgets count.
+inline constexpr const char* kWorkBudgetsNotForLightning =
+    "is not for method lightning (it races two planners on two threads; its plans follow the machine's timing)";
 
 // How far a running plan has got, for a progress line that another thread
 // draws (`earc-plan plan` on a terminal). ARC and E-ARC fill it in; the
