@@ -18,10 +18,6 @@ namespace {
 constexpr int kIndividualShortcuts = 80;
 // Times the roadmap is doubled before a robot is declared pathless.
 constexpr int kRoadmapGrowths = 3;
-// Merging stops at this many robots: beyond it neither prioritized nor
-// composite planning of a local subproblem succeeds in its budget, and
-// resolving the conflict without the merge is the better bet.
-constexpr std::size_t kMaxMergedRobots = 5;
 
 bool goalsApart(const std::vector<int>& robots, const std::vector<const RobotModel*>& models,
                 const std::vector<Path>& paths, std::size_t t) {
@@ -165,6 +161,11 @@ int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& 
   return added;
 }
 
+std::size_t ConflictRecurrence::capFor(const Conflict& c, std::size_t max_robots) {
+  const int before = seen_[{std::min(c.a, c.b), std::max(c.a, c.b), std::llround(2 * c.t)}]++;
+  return max_robots + static_cast<std::size_t>(std::min(before / kRecurrencesPerRobot, kMaxExtraRobots));
+}
+
 std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& roadmaps, const RobotModel& model,
                                    int robot, const Deadline& deadline, std::uint64_t seed) {
   const RobotSpec& spec = model.spec();
@@ -220,7 +221,7 @@ class ArcRun {
   PlanResult run();
 
  private:
-  bool resolve(const Conflict& c);
+  bool resolve(const Conflict& c, std::size_t max_robots);
   std::optional<int> conflictsWithResolved(const Subproblem& sub, const LocalSolution& local);
   void traceEvent(nlohmann::json ev) {
     if (settings_.trace) events_.push_back(std::move(ev));
@@ -251,6 +252,8 @@ class ArcRun {
   std::map<std::string, double> solver_time_;
   std::set<FailureCause> failures_;
   std::size_t last_t_start_ = 0;
+  ConflictRecurrence recurrence_;
+  int cap_raised_ = 0;
 };
 
 std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const LocalSolution& local) {
@@ -285,10 +288,10 @@ std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const Lo
   return std::nullopt;
 }
 
-bool ArcRun::resolve(const Conflict& c) {
+bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   std::vector<int> robots{c.a, c.b};
   const auto tc = static_cast<std::size_t>(c.t);
-  int merged_here = mergeOverlapping(robots, spans_, tc, tc, kMaxMergedRobots);
+  int merged_here = mergeOverlapping(robots, spans_, tc, tc, max_robots);
   merged_ += merged_here;
   // Levels beyond max_expansions re-solve the last level's subproblem (the
   // whole problem, unless the paths are very long) with ever larger
@@ -311,6 +314,8 @@ bool ArcRun::resolve(const Conflict& c) {
       ev = {{"type", "subproblem"}, {"id", subproblem_id_}, {"conflict", conflicts_ - 1}, {"robots", sub.robots},
             {"window", {sub.t_start, sub.t_end}}, {"region", boxJson(sub.workspace_region)},
             {"expansions", level}, {"merged", merged_here}};
+    if (settings_.trace && max_robots > static_cast<std::size_t>(settings_.max_merged_robots))
+      ev["merge_cap"] = max_robots;
     ++subproblem_id_;
     SolverContext ctx{world_, models_, *roadmaps_, paths_, sub, deadline_,
                       splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_)), budgetScale(level, settings_.max_expansions)};
@@ -344,7 +349,7 @@ bool ArcRun::resolve(const Conflict& c) {
       }
       if (!out.solution) continue;
       requireWellFormed(*out.solution, sub, how);
-      if (robots.size() < kMaxMergedRobots) {
+      if (robots.size() < max_robots) {
         if (auto other = conflictsWithResolved(sub, *out.solution)) {
           // Merge the robot rather than undo its earlier resolution, and
           // solve again at the same level with the larger group.
@@ -428,7 +433,9 @@ PlanResult ArcRun::run() {
       }
       traceEvent({{"type", "conflict"}, {"id", conflicts_ - 1}, {"robots", {c->a, c->b}}, {"t", c->t},
                   {"place", {c->place.x, c->place.y}}, {"at_s", clock.seconds()}});
-      if (!resolve(*c)) {
+      const std::size_t cap = recurrence_.capFor(*c, static_cast<std::size_t>(settings_.max_merged_robots));
+      if (cap > static_cast<std::size_t>(settings_.max_merged_robots)) ++cap_raised_;
+      if (!resolve(*c, cap)) {
         failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
         // Said too when the time ran out re-solving a conflict whose
         // subproblem had already grown to the whole problem and failed.
@@ -452,6 +459,7 @@ PlanResult ArcRun::run() {
   st["window_expansions"] = expansions_;
   st["solver_budgets"] = settings_.work_budgets ? "work" : "seconds";
   st["robots_merged"] = merged_;
+  st["merge_cap_raised"] = cap_raised_;
   st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
   st["roadmaps_built"] = roadmaps_->built();
   st["roadmap_build_s"] = roadmaps_->buildSeconds();

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/gen/generators.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/planner.hpp"
@@ -565,6 +566,61 @@ TEST_CASE("ARC's retries beyond the last level ignore the robots outside the gro
   for (std::size_t i = 0; i + 1 < seen.size(); ++i) CHECK_FALSE(seen[i].second);
   CHECK(seen.back().first);
   CHECK(seen.back().second);
+}
+
+TEST_CASE("A conflict's merge cap grows by one robot every third time it comes back, up to four more") {
+  ConflictRecurrence rec;
+  const Conflict c{3, 7, 41.5, {}};
+  std::vector<std::size_t> caps;
+  for (int i = 0; i < 16; ++i) caps.push_back(rec.capFor(c, 5));
+  CHECK(caps == std::vector<std::size_t>{5, 5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 9});
+  // Another instant, or another pair, is another conflict.
+  CHECK(rec.capFor({3, 7, 42.0, {}}, 5) == 5);
+  CHECK(rec.capFor({3, 8, 41.5, {}}, 5) == 5);
+  CHECK(rec.capFor({7, 3, 41.5, {}}, 2) == 6);  // the same pair either way round
+}
+
+TEST_CASE("Groups at the merge cap that undo each other grow until the plan is solved, instead of looping") {
+  // Every solver here plans its group as if no other robot were there, as
+  // the coupled solver does; with groups capped at two robots, each
+  // answer runs into a robot of another group and undoes its resolution.
+  // Eight 0.8-radius discs in an 8 x 8 square: with the cap fixed, this
+  // plan looped until its 30 s limit; a conflict that comes back now takes
+  // in the robot it keeps running into.
+  struct Blinkered : SubproblemSolver {
+    const char* name() const override { return "blinkered"; }
+    SolverOutcome solve(SolverContext& ctx) override {
+      ctx.ignore_others = true;
+      return DecoupledSolver().solve(ctx);
+    }
+  };
+  gen::MobileSettings crowd;
+  crowd.robots = 8;
+  crowd.workspace = 8;
+  crowd.footprint.shape = MobileShape::Disc;
+  crowd.footprint.radius = 0.8;
+  crowd.seed = 5;
+  const Scenario s = gen::generateMobile(crowd);
+  PlannerSettings settings;
+  settings.time_limit_s = 30;
+  settings.max_merged_robots = 2;
+  settings.work_budgets = true;  // the same plan under sanitizers
+  settings.trace = true;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+  hierarchy.push_back(std::make_unique<Blinkered>());
+  PlanResult r = runArc(s, settings, std::move(hierarchy));
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(s, r.solution).valid);
+  CHECK(r.stats["merge_cap_raised"].get<int>() > 0);
+  // A group past the cap only where the trace says its cap was raised.
+  std::size_t largest = 0;
+  for (const auto& ev : r.trace["events"]) {
+    if (ev["type"] != "subproblem") continue;
+    const std::size_t n = ev["robots"].size();
+    largest = std::max(largest, n);
+    if (n > 2) CHECK(ev.contains("merge_cap"));
+  }
+  CHECK(largest > 2);
 }
 
 TEST_CASE("ARC plans two facing arms whose straight motions collide, and the solution validates") {

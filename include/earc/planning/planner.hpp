@@ -56,6 +56,11 @@ struct PlannerSettings {
   double region_margin = 1.0;         // plane units (mobile) around the local query
   double joint_margin = 0.6;          // radians (arms)
   int max_expansions = 12;
+  // Merging stops at this many robots: beyond it neither prioritized nor
+  // composite planning of a local subproblem succeeds in its budget, and
+  // resolving the conflict without the merge is the better bet. A conflict
+  // that keeps coming back is the exception (ArcMergeCap).
+  int max_merged_robots = 5;
   // E-ARC's database solver.
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
