@@ -666,6 +666,9 @@
                  fmt(s.region[1][0]) + ', ' + fmt(s.region[1][1]) + ')'],
       ['expansions', s.expansions],
       ['merged', s.merged ? s.merged + ' robot(s)' : 'none'],
+      ['merge cap', s.merge_cap === undefined ? undefined
+        : s.merge_cap + ' robots (raised: the conflict kept coming back)'],
+      ['others', s.ignore_others ? 'ignored: planned as if alone' : undefined],
       ['db entry', s.entry],
       ['length', s.length === undefined ? undefined : s.length + ' steps'],
       ['attempts', attemptsList(s)],
