@@ -108,6 +108,9 @@ class TraceReader {
               {"solved_by", r_.string(r_.required(ev, "solved_by", p), member(p, "solved_by"))}};
     if (const json* v = r_.optional(ev, "entry", true)) s["entry"] = count(*v, member(p, "entry"));
     if (const json* v = r_.optional(ev, "length", true)) s["length"] = count(*v, member(p, "length"));
+    if (const json* v = r_.optional(ev, "merge_cap", true)) s["merge_cap"] = count(*v, member(p, "merge_cap"));
+    if (const json* v = r_.optional(ev, "ignore_others", true))
+      s["ignore_others"] = r_.boolean(*v, member(p, "ignore_others"));
     json attempts = json::array();
     if (const json* list = r_.optional(ev, "attempts", true)) {
       const std::string ap = member(p, "attempts");

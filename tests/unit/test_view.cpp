@@ -182,6 +182,13 @@ TEST_CASE("viewer reads a trace: conflicts and subproblems with rounded numbers,
   CHECK(s["attempts"][0]["detail"] == "3 candidates: 3 ends blocked, 0 invalid, 0 crowded; none to repair");
   CHECK_FALSE(s["attempts"][1].contains("detail"));
   CHECK(s["window"] == json({1.0, 9.0}));
+  CHECK_FALSE(s.contains("merge_cap"));
+  CHECK_FALSE(s.contains("ignore_others"));
+  events[1]["merge_cap"] = 7;
+  events[1]["ignore_others"] = true;
+  const json raised = view::traceFromJson(traceDoc(events), swapDiscsFromFile(), "t.json")["subproblems"][0];
+  CHECK(raised["merge_cap"] == 7);
+  CHECK(raised["ignore_others"] == true);
 }
 
 TEST_CASE("viewer refuses a trace with robots the scenario lacks, dangling references or bad fields") {
@@ -206,6 +213,9 @@ TEST_CASE("viewer refuses a trace with robots the scenario lacks, dangling refer
   odd_detail["attempts"][0]["detail"] = 7;
   CHECK(traceError(traceDoc({conflictEvent(0, 0, 1), odd_detail})).find("$.events[1].attempts[0].detail") !=
         std::string::npos);
+  json odd_cap = subproblemEvent(0, 0);
+  odd_cap["merge_cap"] = "six";
+  CHECK(traceError(traceDoc({conflictEvent(0, 0, 1), odd_cap})).find("$.events[1].merge_cap") != std::string::npos);
   json no_place = conflictEvent(0, 0, 1);
   no_place.erase("place");
   CHECK(traceError(traceDoc({no_place})).find("$.events[0]") != std::string::npos);
