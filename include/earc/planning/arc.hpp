@@ -7,8 +7,8 @@
 
 #include <map>
 #include <memory>
-#include <tuple>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"

@@ -59,7 +59,8 @@ struct PlannerSettings {
   // Merging stops at this many robots: beyond it neither prioritized nor
   // composite planning of a local subproblem succeeds in its budget, and
   // resolving the conflict without the merge is the better bet. A conflict
-  // that keeps coming back is the exception (ArcMergeCap).
+  // that keeps coming back is the exception (ConflictRecurrence, arc.hpp).
+  // At least 2, the robots of a conflict.
   int max_merged_robots = 5;
   // E-ARC's database solver.
   int db_k = 10;                      // candidates retrieved per subproblem
