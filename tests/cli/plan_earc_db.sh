@@ -68,7 +68,8 @@ leftNothingBeside "$F" "a learning plan"
 "$PLAN" plan "$SCEN" -o "$WORK/c.json" --method earc --db "$F" --seed 4 > "$WORK/out" || fail "plan: exit $?"
 hits=$(stat_of "$WORK/c.json" db_hits)
 repairs=$(stat_of "$WORK/c.json" db_repairs)
-line="; database answered $((hits + repairs)) of $(stat_of "$WORK/c.json" subproblems) subproblems ($repairs by repair)"
+solved=$("$PY" -c 'import json,sys; print(sum(json.load(open(sys.argv[1]))["stats"]["subproblems_by_solver"].values()))' "$WORK/c.json")
+line="; database answered $((hits + repairs)) of $solved solved subproblems ($repairs by repair)"
 line+=", learned $(stat_of "$WORK/c.json" db_learned)"
 grep -q "^solved: 2 robots, method earc, .*, sum of costs [0-9.]*$line\$" "$WORK/out" ||
   fail "the summary line does not say what the database did: $(cat "$WORK/out")"

@@ -138,13 +138,13 @@ class ProgressLine {
 };
 
 // What the experience database did in an E-ARC plan, for the summary
-// line: "; database answered 6 of 8 subproblems (1 by repair), learned 2":
+// line: "; database answered 6 of 8 solved subproblems (1 by repair), learned 2":
 // of the subproblems solved, as db_hit_rate counts them.
 std::string databaseSummary(const nlohmann::json& st) {
   if (!st.contains("db_queries")) return "";
   const DatabaseAnswers a = databaseAnswers(st);
   std::string line = "; database answered " + std::to_string(a.answered()) + " of " + std::to_string(a.solved) +
-                     " subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
+                     " solved subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
                      std::to_string(st.value("db_learned", 0));
   // Why subproblems solved from scratch were not learned, when some were.
   const int unstorable = st.value("db_learn_unstorable", 0);

@@ -367,7 +367,7 @@ int runServe(const ServeOptions& o) {
   std::cerr << "earc-plan serve: " << (g_signal ? (g_signal == SIGINT ? "SIGINT" : "SIGTERM") : "end of input")
             << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
             << " experiences learned";
-  if (n.db.solved > 0) std::cerr << ", database answered " << n.db.answered() << " of " << n.db.solved << " subproblems";
+  if (n.db.solved > 0) std::cerr << ", database answered " << n.db.answered() << " of " << n.db.solved << " solved subproblems";
   std::cerr << "; database closed\n";
   return 0;
 }
