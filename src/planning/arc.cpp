@@ -162,7 +162,8 @@ int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& 
 }
 
 std::size_t ConflictRecurrence::capFor(const Conflict& c, std::size_t max_robots) {
-  const int before = seen_[{std::min(c.a, c.b), std::max(c.a, c.b), std::llround(2 * c.t)}]++;
+  const auto cell = [](double v) { return static_cast<long long>(std::floor(v / kCell)); };
+  const int before = seen_[{std::min(c.a, c.b), std::max(c.a, c.b), cell(c.place.x), cell(c.place.y)}]++;
   return max_robots + static_cast<std::size_t>(std::min(before / kRecurrencesPerRobot, kMaxExtraRobots));
 }
 

@@ -570,14 +570,16 @@ TEST_CASE("ARC's retries beyond the last level ignore the robots outside the gro
 
 TEST_CASE("A conflict's merge cap grows by one robot every third time it comes back, up to four more") {
   ConflictRecurrence rec;
-  const Conflict c{3, 7, 41.5, {}};
   std::vector<std::size_t> caps;
-  for (int i = 0; i < 16; ++i) caps.push_back(rec.capFor(c, 5));
+  // The same two robots in the same half-unit cell, at drifting instants:
+  // every resolution shifts the later paths in time.
+  for (int i = 0; i < 16; ++i) caps.push_back(rec.capFor({3, 7, 41.5 + 3 * i, {2.1 + 0.02 * i, 3.2}}, 5));
   CHECK(caps == std::vector<std::size_t>{5, 5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 9});
-  // Another instant, or another pair, is another conflict.
-  CHECK(rec.capFor({3, 7, 42.0, {}}, 5) == 5);
-  CHECK(rec.capFor({3, 8, 41.5, {}}, 5) == 5);
-  CHECK(rec.capFor({7, 3, 41.5, {}}, 2) == 6);  // the same pair either way round
+  // Another cell, or another pair, is another conflict.
+  CHECK(rec.capFor({3, 7, 41.5, {2.6, 3.2}}, 5) == 5);
+  CHECK(rec.capFor({3, 7, 41.5, {2.1, 2.9}}, 5) == 5);
+  CHECK(rec.capFor({3, 8, 41.5, {2.1, 3.2}}, 5) == 5);
+  CHECK(rec.capFor({7, 3, 41.5, {2.1, 3.2}}, 2) == 6);  // the same pair either way round
 }
 
 TEST_CASE("Groups at the merge cap that undo each other grow until the plan is solved, instead of looping") {
