@@ -63,8 +63,7 @@ Obstacle randomBox(Random& rng, const geo::Aabb& area, double min_side, double m
 }
 
 std::string mobileName(const MobileSettings& s) {
-  std::string n = "mobile";
-  if (s.footprint.shape == MobileShape::Disc) n += "-disc";
+  std::string n = "mobile" + footprintTag(s.footprint);
   if (s.workspace != MobileSettings{}.workspace) n += "-w" + compact(s.workspace);
   if (s.obstacles > 0) {
     n += "-obst";
@@ -85,6 +84,11 @@ std::string armsName(const ArmSettings& s) {
 }
 
 }  // namespace
+
+std::string footprintTag(const MobileFootprint& f) {
+  if (f.shape != MobileShape::Disc) return "";
+  return f.radius == MobileFootprint{}.radius ? "-disc" : "-disc-r" + compact(f.radius);
+}
 
 RobotSpec mobileRobot(int index, const MobileFootprint& f) {
   RobotSpec r;

@@ -180,7 +180,8 @@ Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings) 
   if (settings.robots < 1 || settings.robots > 1024)
     throw SettingError("robots", "must be in [1, 1024], got " + std::to_string(settings.robots));
   Scenario s;
-  s.name = "movingai-" + map.name + "-" + std::to_string(settings.robots) + "-s" + std::to_string(settings.seed);
+  s.name = "movingai-" + map.name + footprintTag(settings.footprint) + "-" + std::to_string(settings.robots) + "-s" +
+           std::to_string(settings.seed);
   s.workspace = {{0.0, 0.0}, {static_cast<double>(map.width), static_cast<double>(map.height)}};
   for (const CellRect& r : mergeBlockedCells(map)) s.obstacles.push_back(cellRectObstacle(map, r));
 

@@ -35,7 +35,7 @@ cmp -s "$WORK/a.json" "$WORK/c.json" && fail "different seeds, same file"
 # Every file is a valid scenario for the project's own loader: validating
 # an unsolved solution is "invalid" (1), never "bad input" (2).
 if [ -x "$PLAN" ]; then
-  for f in a:mobile-obst-8-s3 open:mobile-4-s1 disc:mobile-disc-w12-obst3-rot-4-s1 arms:arms-obst-4-s2; do
+  for f in a:mobile-obst-8-s3 open:mobile-4-s1 disc:mobile-disc-r0.25-w12-obst3-rot-4-s1 arms:arms-obst-4-s2; do
     name=${f#*:}
     f=${f%%:*}
     [ "$(field "$WORK/$f.json" 'd["name"]')" = "$name" ] || fail "$f.json is not named $name"

@@ -188,6 +188,11 @@ TEST_CASE("scenario names encode family, obstacles, robot count and seed") {
   CHECK(mobile(4, 0, 1).name == "mobile-4-s1");
   CHECK(mobile(4, 5, 1).name == "mobile-obst5-4-s1");
   CHECK(mobile(4, 0, 2, MobileShape::Disc).name == "mobile-disc-4-s2");
+  gen::MobileFootprint big;
+  big.shape = MobileShape::Disc;
+  big.radius = 0.8;
+  CHECK(footprintTag(big) == "-disc-r0.8");  // not named like the 0.3-radius discs
+  CHECK(footprintTag({}) == "");
   CHECK(arms(8, 0, 3).name == "arms-8-s3");
   CHECK(arms(8, defaultArmObstacles(8), 3).name == "arms-obst-8-s3");
 }

@@ -179,6 +179,9 @@ TEST_CASE("MovingAI scenarios are valid, deterministic per seed, on the map's wo
   s.seed = 3;
   CHECK(scenarioToJson(a).dump() != scenarioToJson(generateMovingAi(m, s)).dump());
   CHECK(a.name == "movingai-random-32-32-10-16-s2");
+  s.footprint.shape = MobileShape::Disc;
+  s.footprint.radius = 0.45;
+  CHECK(generateMovingAi(m, s).name == "movingai-random-32-32-10-disc-r0.45-16-s3");
   CHECK(a.workspace.hi.x == 32.0);
   CHECK(a.workspace.hi.y == 32.0);
   CHECK(a.obstacles.size() == mergeBlockedCells(m).size());

@@ -42,6 +42,11 @@ struct MobileFootprint {
   double radius = 0.3;           // disc
 };
 
+// The footprint's part of a scenario's name: "" for the box, "-disc" for
+// a disc of the default radius, "-disc-r0.8" for another, so that
+// scenarios of different robots are not named alike.
+std::string footprintTag(const MobileFootprint& f);
+
 // Robot "m<index>" with this footprint; start and goal left empty.
 RobotSpec mobileRobot(int index, const MobileFootprint& footprint);
 
