@@ -41,6 +41,26 @@ void stopCheck(ExperienceStore::BackgroundCheck& check) {
   if (check.db) sqlite3_interrupt(check.db);
 }
 
+// Waits for `check` to end, at most `wait`; whether it has.
+bool awaitEnd(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
+  std::unique_lock l(check.mutex);
+  return check.ended.wait_for(l, wait, [&] { return check.done; });
+}
+
+// Stops `check`, whose verdict is no longer wanted, and lets its thread
+// go: given an ordinary priority where that is allowed (root), so that a
+// starved idle-class thread gets the time to notice, and joined if it
+// ends within `wait`, else detached, holding its own state.
+void abandonCheck(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
+  stopCheck(check);
+  sched_param normal{};
+  pthread_setschedparam(check.thread.native_handle(), SCHED_OTHER, &normal);
+  if (awaitEnd(check, wait))
+    check.thread.join();
+  else
+    check.thread.detach();
+}
+
 // Whether fewer threads are runnable on the machine (procs_running in
 // /proc/stat, this one included) than this process may use cores: a core
 // would otherwise idle. True where it cannot be read.
@@ -92,8 +112,7 @@ ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& op
     openLocked();
   } catch (...) {
     if (check_) {  // no destructor will
-      stopCheck(*check_);
-      check_->thread.join();
+      abandonCheck(*check_, std::chrono::milliseconds(10));
       check_.reset();
     }
     if (creating) discardCreatedLocked(real);
@@ -187,12 +206,6 @@ std::int64_t ExperienceStore::metaLocked(const char* name) {
 
 namespace {
 
-// Waits for `check` to end, at most `wait`; whether it has.
-bool awaitEnd(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
-  std::unique_lock l(check.mutex);
-  return check.ended.wait_for(l, wait, [&] { return check.done; });
-}
-
 // The CPU time a thread has used (ns), or -1 where it cannot be read.
 double threadCpuNs(std::thread& t) {
   clockid_t clock;
@@ -274,9 +287,8 @@ void ExperienceStore::finishCheckLocked() {
     // a wait is starved by other processes (its idle class comes after
     // every busy one): on 2 cores beside 4 busy loops a plan of 0.03 s
     // waited 8 to 25 s for it. It is stopped, and the check runs here at
-    // this thread's priority; the thread ends when it next gets time
-    // (interrupted), or is given an ordinary priority where that is
-    // allowed (root), and is left holding its own state.
+    // this thread's priority (abandonCheck). A stopped check has no
+    // verdict, passed or failed.
     constexpr auto kWait = std::chrono::milliseconds(10);
     bool ended = false, starved = false;
     while (!ended && !starved) {
@@ -285,19 +297,13 @@ void ExperienceStore::finishCheckLocked() {
       const double after = threadCpuNs(check->thread);
       starved = !ended && before >= 0 && after >= 0 && after - before < 0.2 * 1e6 * static_cast<double>(kWait.count());
     }
-    if (starved) {
-      stopCheck(*check);
-      sched_param normal{};
-      pthread_setschedparam(check->thread.native_handle(), SCHED_OTHER, &normal);
-      ended = awaitEnd(*check, kWait);
-    }
     bool passed = false;
-    if (ended) {
+    if (starved) {
+      abandonCheck(*check, kWait);
+    } else {
       check->thread.join();
       passed = check->passed;
       check_error_ = check->error;
-    } else {
-      check->thread.detach();
     }
     if (!passed && !check_error_) try {
         runQuickCheck(path_, checkSettings(), nullptr);
