@@ -72,6 +72,10 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
       throw badField("deterministic", kWorkBudgetsNotForLightning);
     s.work_budgets = d.get<bool>();
   }
+  if (const json& c = field(request, "compact"); !c.is_null()) {
+    if (!c.is_boolean()) throw badField("compact", "must be true or false");
+    s.compact = c.get<bool>();
+  }
   if (const json& w = field(request, "window"); !w.is_null()) {
     if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
@@ -168,7 +172,7 @@ json Service::handle(const json& request) {
     json response;
     if (name == "plan") {
       requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
-                                 "deterministic", "window", "db_k", "db_repair_max", "db_max_stretch"});
+                                 "deterministic", "compact", "window", "db_k", "db_repair_max", "db_max_stretch"});
       response = plan(request);
     } else if (name == "ping") {
       requireKnownKeys(request, {"id", "op"});

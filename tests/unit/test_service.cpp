@@ -93,6 +93,10 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
     CHECK(r["ok"] == false);
     CHECK(r["error"].get<std::string>().find("$.db_k: must be a whole number from 1 to 1000") != std::string::npos);
   }
+  r = reply(svc, json{{"id", 16}, {"scenario_file", kScenarioFile}, {"compact", 1}}.dump());
+  CHECK(r["ok"] == false);
+  CHECK(r["error"].get<std::string>().find("$.compact: must be true or false") != std::string::npos);
+
   r = reply(svc, json{{"id", 15}, {"scenario_file", kScenarioFile}, {"db_repair_max", 1001}}.dump());
   CHECK(r["error"].get<std::string>().find("$.db_repair_max: must be a whole number from 0 to 1000") !=
         std::string::npos);
@@ -100,8 +104,8 @@ TEST_CASE("serve protocol: the service answers bad requests with one-line errors
   r = reply(svc, R"({"id": 11, "op": "ping"})");
   CHECK(r["ok"] == true);
   CHECK(r["protocol"] == service::kProtocol);
-  CHECK(svc.counters().errors == 17);
-  CHECK(svc.counters().requests == 18);
+  CHECK(svc.counters().errors == 18);
+  CHECK(svc.counters().requests == 19);
 }
 
 TEST_CASE("serve protocol: the service plans through the validator and reports what it learned by id") {
@@ -149,8 +153,8 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
   CHECK(refused_strict >= 1);
   CHECK(r["stats"]["db_repairs"].get<int>() == 0);
   const int answered_strict = r["stats"]["db_hits"].get<int>();
+  CHECK_FALSE(r["stats"].contains("compact"));
   CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
-
   r = reply(svc, R"({"op": "stats"})");
   CHECK(r["stats"]["plans"] == 3);
   CHECK(r["stats"]["solved"] == 3);
@@ -163,6 +167,15 @@ TEST_CASE("serve protocol: the service plans through the validator and reports w
   CHECK(session["db_refused_too_long"].get<int>() == refused_strict);
   CHECK(session["db_hit_rate"].get<double>() ==
         doctest::Approx(static_cast<double>(answered) / session["db_subproblems"].get<int>()));
+  // Compaction per request: its stats, and a plan no longer than without.
+  r = reply(svc, json{{"id", "compact"}, {"scenario", scenarioToJson(scenario)}, {"seed", 3}, {"learn", false},
+                      {"db_max_stretch", 1.0}, {"db_k", 2}, {"db_repair_max", 0}, {"compact", true}}
+                     .dump());
+  REQUIRE(r["solved"] == true);
+  REQUIRE(r["stats"].contains("compact"));
+  CHECK(r["stats"]["sum_of_costs"] <= r["stats"]["compact"]["sum_of_costs_before"]);
+  CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
+
   svc.close();
 }
 

@@ -71,6 +71,10 @@ struct PlannerSettings {
   // the database and report what each solved (stats
   // db_shadow_decoupled). Planning times then include those runs.
   bool db_shadow_decoupled = false;
+  // After planning, retime every robot along its own path to leave out
+  // the waits it does not need (compactPlan, compact.hpp); stats
+  // "compact". Not part of any method as published; off by default.
+  bool compact = false;
   // Lightning's whole-problem database file (OMPL's format): empty starts
   // from an empty database and writes none; a missing file is created when
   // db_learn is set.

@@ -1,0 +1,269 @@
+#include "earc/planning/compact.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <optional>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/conflict.hpp"
+
+namespace earc {
+
+namespace {
+
+constexpr std::size_t kNoInstant = static_cast<std::size_t>(-1);
+// Instants whose states are kept: a search goes forward in time and seldom
+// backs up far.
+constexpr std::size_t kSlots = 2048;
+
+// Every robot's configuration at recently asked instants, in a ring of
+// slots keyed by instant, filled on first use.
+class InstantStates {
+ public:
+  InstantStates(const std::vector<const RobotModel*>& models, const std::vector<Path>& paths)
+      : models_(models), paths_(paths) {
+    for (const RobotModel* m : models_) {
+      offset_.push_back(width_);
+      width_ += static_cast<std::size_t>(m->dim());
+    }
+    tag_.assign(kSlots, kNoInstant);
+    q_.resize(kSlots * width_);
+  }
+
+  // All robots' states at instant k, robot r's at row + offset(r).
+  const double* row(std::size_t k) {
+    const std::size_t slot = k % kSlots;
+    double* out = q_.data() + slot * width_;
+    if (tag_[slot] != k) {
+      for (std::size_t r = 0; r < models_.size(); ++r) fill(r, k, out);
+      tag_[slot] = k;
+    }
+    return out;
+  }
+  std::size_t offset(std::size_t r) const { return offset_[r]; }
+
+  // Robot r's path changed: its states in the kept slots again.
+  void refresh(std::size_t r) {
+    for (std::size_t slot = 0; slot < kSlots; ++slot)
+      if (tag_[slot] != kNoInstant) fill(r, tag_[slot], q_.data() + slot * width_);
+  }
+
+ private:
+  void fill(std::size_t r, std::size_t k, double* row) const {
+    if (!paths_[r].empty()) stateAtInstant(*models_[r], paths_[r], k, row + offset_[r]);
+  }
+
+  const std::vector<const RobotModel*>& models_;
+  const std::vector<Path>& paths_;
+  std::vector<std::size_t> offset_;
+  std::size_t width_ = 0;
+  std::vector<std::size_t> tag_;
+  std::vector<double> q_;
+};
+
+class Compactor {
+ public:
+  Compactor(const std::vector<const RobotModel*>& models, std::vector<Path>& paths, const Deadline& deadline,
+            std::size_t states_per_position)
+      : models_(models), paths_(paths), states_(models, paths),
+        poll_(deadline, kWorkPerClockRead),
+        states_per_position_(states_per_position) {
+    for (std::size_t o = 0; o < paths_.size(); ++o) reach_.push_back(reach(o));
+    changed_at_.assign(paths_.size(), 0);
+    failed_at_.assign(paths_.size(), static_cast<std::size_t>(-1));
+  }
+
+  bool expired() { return poll_.expired(0); }
+  std::size_t states() const { return tried_; }
+
+  // Retimes robot r; the steps its arrival moved earlier (0: kept as it was).
+  std::int64_t retime(std::size_t r) {
+    const std::int64_t saved = search(r);
+    if (saved > 0) {
+      changed_at_[r] = ++changes_;
+    } else if (!poll_.seenExpired()) {
+      failed_at_[r] = changes_;
+    }
+    return saved;
+  }
+
+ private:
+  // The box that robot o's bounding disc stays in along its path (a
+  // midpoint's centre lies between its steps' centres).
+  geo::Aabb reach(std::size_t o) const {
+    geo::Aabb box;
+    const RobotModel& m = *models_[o];
+    const double rad = m.boundingRadius();
+    for (std::size_t t = 0; t < paths_[o].size(); ++t) {
+      const geo::Vec2 c = m.boundingCenter(paths_[o].at(t));
+      box.expand(geo::Aabb{{c.x - rad, c.y - rad}, {c.x + rad, c.y + rad}});
+    }
+    return box;
+  }
+
+  std::int64_t search(std::size_t r);
+  // The route timed to arrive before `arrival`, staying at its goal after
+  // instant last_block: nothing when no such timing was found.
+  std::optional<Path> timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival);
+
+  // Robot r at configuration q touches none of near_ at instant k.
+  bool free(std::size_t r, const double* q, std::size_t k) {
+    if (poll_.expired(near_.size() + 1)) return false;
+    const double* row = states_.row(k);
+    const RobotModel& m = *models_[r];
+    const geo::Vec2 c = m.boundingCenter(q);
+    for (std::size_t o : near_) {
+      // Bounding discs apart (most pairs): no call.
+      const RobotModel& mo = *models_[o];
+      const double* qo = row + states_.offset(o);
+      const geo::Vec2 co = mo.boundingCenter(qo);
+      const double apart = m.boundingRadius() + mo.boundingRadius();
+      const double dx = c.x - co.x, dy = c.y - co.y;
+      if (dx * dx + dy * dy > apart * apart) continue;
+      if (robotsTouch(m, q, mo, qo)) return false;
+    }
+    return true;
+  }
+
+  const std::vector<const RobotModel*>& models_;
+  std::vector<Path>& paths_;
+  InstantStates states_;
+  DeadlinePoll poll_;
+  std::vector<geo::Aabb> reach_;  // per robot
+  std::vector<std::size_t> near_;  // the robots whose reach meets the retimed one's
+  // A robot's search that found nothing is not repeated until a robot
+  // near it has changed: changes_ counts retimings kept; changed_at_ and
+  // failed_at_ hold its value after a robot's last change and failure.
+  std::size_t changes_ = 0;
+  std::size_t tried_ = 0;
+  std::vector<std::size_t> changed_at_, failed_at_;
+  std::size_t states_per_position_;
+};
+
+std::int64_t Compactor::search(std::size_t r) {
+  const Path& path = paths_[r];
+  if (path.size() < 2) return 0;
+  const RobotModel& model = *models_[r];
+  const auto dim = static_cast<std::size_t>(model.dim());
+  // The robot's route: its path without repeated states.
+  Path route(model.dim());
+  route.push(path.at(0));
+  for (std::size_t t = 1; t < path.size(); ++t)
+    if (!std::equal(path.at(t), path.at(t) + dim, route.back())) route.push(path.at(t));
+  const std::size_t arrival = path.size() - 1;
+  if (route.size() - 1 >= arrival) return 0;  // it moves on at every step
+
+  // Only robots that come near its route can touch it.
+  near_.clear();
+  for (std::size_t o = 0; o < paths_.size(); ++o)
+    if (o != r && !paths_[o].empty() && reach_[o].overlaps(reach_[r])) near_.push_back(o);
+  if (failed_at_[r] != static_cast<std::size_t>(-1) &&
+      std::none_of(near_.begin(), near_.end(), [&](std::size_t o) { return changed_at_[o] > failed_at_[r]; }))
+    return 0;
+  // The last instant at which another robot touches it standing at its
+  // goal: it may arrive only after that, to stay there.
+  std::size_t horizon = 0;
+  for (std::size_t o : near_) horizon = std::max(horizon, paths_[o].size() - 1);
+  long long last_block = -1;
+  for (std::size_t k = 2 * horizon + 1; k-- > 0;) {
+    if (!free(r, route.back(), k)) {
+      last_block = static_cast<long long>(k);
+      break;
+    }
+  }
+  if (poll_.seenExpired()) return 0;
+
+  std::optional<Path> timed = timing(r, route, last_block, arrival);
+  if (!timed) return 0;
+  const auto saved = static_cast<std::int64_t>(arrival) - static_cast<std::int64_t>(timed->size() - 1);
+  paths_[r] = std::move(*timed);
+  states_.refresh(r);
+  return saved;
+}
+
+std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival) {
+  const RobotModel& model = *models_[r];
+  const std::size_t last = route.size() - 1;  // route index of the goal
+  const std::size_t earliest = std::max(last, static_cast<std::size_t>(last_block / 2 + 1));
+  if (earliest >= arrival) return std::nullopt;
+  // Depth-first over (route index i, step t), moving on before waiting,
+  // among the pairs from which it could still arrive before `arrival`:
+  // t - i waits so far, at most `slack`.
+  const std::size_t slack = arrival - 1 - last;
+  if (last + 1 > (std::size_t{1} << 30) / (slack + 1)) return std::nullopt;  // a table of 128 MiB or more
+  std::vector<bool> seen((last + 1) * (slack + 1), false);
+  auto mark = [&](std::size_t i, std::size_t t) {
+    const std::size_t at = i * (slack + 1) + (t - i);
+    if (seen[at]) return false;
+    seen[at] = true;
+    return true;
+  };
+  struct Frame {
+    std::size_t i, t;
+    int next;  // 0: move on, 1: wait, 2: done
+  };
+  std::vector<Frame> stack{{0, 0, 0}};
+  mark(0, 0);
+  std::size_t visited = 1;
+  std::vector<double> mid(static_cast<std::size_t>(model.dim()));
+  bool found = false;
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    if (f.i == last && 2 * static_cast<long long>(f.t) > last_block) {
+      found = true;
+      break;
+    }
+    if (f.next == 2) {
+      stack.pop_back();
+      continue;
+    }
+    stack.back().next = f.next + 1;
+    const std::size_t ni = f.i + (f.next == 0 ? 1 : 0);
+    const std::size_t nt = f.t + 1;
+    if (ni > last || nt - ni > slack) continue;
+    if (!mark(ni, nt)) continue;
+    ++tried_;
+    if (++visited > states_per_position_ * (last + 1) || poll_.seenExpired()) return std::nullopt;
+    model.interpolate(route.at(f.i), route.at(ni), 0.5, mid.data());
+    if (!free(r, mid.data(), 2 * f.t + 1) || !free(r, route.at(ni), 2 * nt)) continue;
+    stack.push_back({ni, nt, 0});
+  }
+  if (!found) return std::nullopt;
+  Path timed(model.dim());
+  timed.reserve(stack.size());
+  for (const Frame& f : stack) timed.push(route.at(f.i));
+  timed.dropTrailingWaits();
+  return timed;
+}
+
+}  // namespace
+
+CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                          const Deadline& deadline, int max_passes, std::size_t states_per_position) {
+  CompactReport rep;
+  Compactor compactor(models, paths, deadline, states_per_position);
+  for (int pass = 0; pass < max_passes; ++pass) {
+    if (compactor.expired()) break;
+    ++rep.passes;
+    std::vector<std::size_t> order(paths.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return paths[a].size() > paths[b].size(); });
+    std::int64_t saved = 0;
+    for (std::size_t r : order) {
+      const std::int64_t s = compactor.retime(r);
+      if (s > 0) {
+        ++rep.robots_retimed;
+        saved += s;
+      }
+      if (compactor.expired()) break;
+    }
+    rep.steps_saved += saved;
+    if (saved == 0) break;
+  }
+  rep.interrupted = compactor.expired();
+  rep.states = compactor.states();
+  return rep;
+}
+
+}  // namespace earc

@@ -1,0 +1,160 @@
+// Plan compaction: robots retimed along their own routes, leaving out the
+// waits nothing needs, keeping the ones that let others pass, and never
+// arriving at a goal that someone crosses later.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+
+#include "earc/gen/generators.hpp"
+#include "earc/planning/compact.hpp"
+#include "earc/planning/conflict.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+using namespace earc;
+
+namespace {
+
+RobotSpec compactDisc(const std::string& name, std::vector<double> start, std::vector<double> goal) {
+  RobotSpec s = RobotSpec::mobileDisc(name, 0.3);
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
+// `waits` copies of the path's first state before it.
+Path waitFirst(const Path& p, int waits) {
+  Path out(p.dim());
+  for (int k = 0; k < waits; ++k) out.push(p.at(0));
+  out.append(p);
+  return out;
+}
+
+// A path without its repeated states: the route it follows.
+Path routeOf(const Path& p) {
+  Path out(p.dim());
+  for (std::size_t t = 0; t < p.size(); ++t)
+    if (out.empty() || !std::equal(p.at(t), p.at(t) + p.dim(), out.back())) out.push(p.at(t));
+  return out;
+}
+
+Scenario compactScenario(std::vector<RobotSpec> robots) {
+  Scenario s;
+  s.name = "compact";
+  s.workspace = {{0, 0}, {12, 12}};
+  s.robots = std::move(robots);
+  return s;
+}
+
+struct CompactCase {
+  Scenario scenario;
+  RobotModels models;
+  explicit CompactCase(std::vector<RobotSpec> robots)
+      : scenario(compactScenario(std::move(robots))), models(scenario) {}
+  bool valid(const std::vector<Path>& paths) const {
+    Solution sol;
+    sol.solved = true;
+    sol.paths = paths;
+    sol.scenario = scenario.name;
+    sol.nameRobots(scenario);
+    const ValidationReport rep = validateSolution(scenario, sol);
+    return rep.valid;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Compaction leaves out a wait that nothing needs, and keeps the route") {
+  CompactCase c({compactDisc("a", {1, 1, 0}, {1, 9, 0}), compactDisc("b", {9, 1, 0}, {9, 9, 0})});
+  // Steps of 0.05, the default resolution.
+  std::vector<Path> paths{waitFirst(test::line({1, 1, 0}, {1, 9, 0}, 161), 10), test::line({9, 1, 0}, {9, 9, 0}, 161)};
+  REQUIRE(c.valid(paths));
+  const Path b_before = paths[1];
+  const CompactReport rep = compactPlan(c.models.raw, paths, Deadline());
+  CHECK(rep.robots_retimed == 1);
+  CHECK(rep.steps_saved == 10);
+  CHECK(paths[0] == test::line({1, 1, 0}, {1, 9, 0}, 161));
+  CHECK(paths[1] == b_before);
+  CHECK(c.valid(paths));
+}
+
+TEST_CASE("Compaction keeps the waits that let a crossing robot pass, and the plan stays valid") {
+  // b crosses a's line at (6, 6) at step 100; a waited at its start for
+  // 60 steps, more than it needs (about 13).
+  CompactCase c({compactDisc("a", {6, 1, 0}, {6, 11, 0}), compactDisc("b", {1, 6, 0}, {11, 6, 0})});
+  const Path a_straight = test::line({6, 1, 0}, {6, 11, 0}, 201);
+  std::vector<Path> paths{waitFirst(a_straight, 60), test::line({1, 6, 0}, {11, 6, 0}, 201)};
+  REQUIRE(c.valid(paths));
+  REQUIRE_FALSE(c.valid({a_straight, paths[1]}));  // without waiting they meet
+  const std::size_t before = paths[0].size();
+  const CompactReport rep = compactPlan(c.models.raw, paths, Deadline());
+  CHECK(rep.steps_saved > 0);
+  CHECK(paths[0].size() < before);
+  CHECK(paths[0].size() > a_straight.size());  // some waiting stays
+  CHECK(routeOf(paths[0]) == routeOf(a_straight));
+  CHECK(c.valid(paths));
+  ConflictDetector detector(c.models.raw);
+  CHECK_FALSE(detector.first(pathPointers(paths)).has_value());
+}
+
+TEST_CASE("Compaction does not bring a robot to a goal that another robot crosses later") {
+  // a's goal (6, 6) lies on b's line, which b crosses at step 120 after
+  // 20 waits; a could get there by step 100, but could not stay.
+  CompactCase c({compactDisc("a", {6, 1, 0}, {6, 6, 0}), compactDisc("b", {1, 6, 0}, {11, 6, 0})});
+  const Path a_straight = test::line({6, 1, 0}, {6, 6, 0}, 101);
+  const Path b_straight = test::line({1, 6, 0}, {11, 6, 0}, 201);
+  std::vector<Path> paths{waitFirst(a_straight, 160), waitFirst(b_straight, 20)};
+  REQUIRE(c.valid(paths));
+  compactPlan(c.models.raw, paths, Deadline());
+  CHECK(c.valid(paths));
+  // b, which had nothing to wait for, goes straight; a arrives only once
+  // b is clear of its goal (centres 0.6 apart: b past x = 6.6).
+  CHECK(paths[1] == b_straight);
+  std::size_t clear = 0;
+  while (paths[1].at(clear)[0] <= 6.6) ++clear;
+  CHECK(paths[0].size() - 1 >= clear);
+  CHECK(paths[0].size() < a_straight.size() + 160);
+}
+
+TEST_CASE("Compaction after an expired deadline changes nothing and says it was interrupted") {
+  CompactCase c({compactDisc("a", {1, 1, 0}, {1, 9, 0})});
+  std::vector<Path> paths{waitFirst(test::line({1, 1, 0}, {1, 9, 0}, 161), 10)};
+  const std::vector<Path> before = paths;
+  const CompactReport rep = compactPlan(c.models.raw, paths, Deadline(0.0));
+  CHECK(rep.interrupted);
+  CHECK(paths == before);
+}
+
+TEST_CASE("Compacted ARC plans keep every route, arrive no later and validate, on mobile robots and arms") {
+  gen::MobileSettings ms;
+  ms.robots = 16;
+  ms.obstacles = 12;
+  ms.seed = 3;
+  gen::ArmSettings as;
+  as.robots = 8;
+  as.obstacles = gen::defaultArmObstacles(8);
+  as.seed = 2;
+  for (const Scenario& s : {gen::generateMobile(ms), gen::generateArms(as)}) {
+    CAPTURE(s.name);
+    PlannerSettings settings;
+    settings.work_budgets = true;  // the same plan twice, under sanitizers too
+    settings.time_limit_s = 60;
+    const PlanResult plain = plan(s, settings);
+    REQUIRE(plain.solution.solved);
+    settings.compact = true;
+    const PlanResult compacted = plan(s, settings);
+    REQUIRE(compacted.solution.solved);  // plan() validates it
+    const auto& st = compacted.stats;
+    REQUIRE(st.contains("compact"));
+    CHECK(st["compact"]["sum_of_costs_before"] == plain.stats["sum_of_costs"]);
+    CHECK(st["compact"]["makespan_before"] == plain.stats["makespan"]);
+    CHECK(st["sum_of_costs"].get<long>() ==
+          plain.stats["sum_of_costs"].get<long>() - st["compact"]["steps_saved"].get<long>());
+    CHECK(st["makespan"] <= plain.stats["makespan"]);
+    for (std::size_t r = 0; r < s.robots.size(); ++r) {
+      CHECK(routeOf(compacted.solution.paths[r]) == routeOf(plain.solution.paths[r]));
+      CHECK(compacted.solution.paths[r].size() <= plain.solution.paths[r].size());
+    }
+  }
+}
