@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/planning/composite.hpp"
 #include "earc/planning/conflict.hpp"
 
 namespace earc {
@@ -63,9 +64,9 @@ class InstantStates {
 
 class Compactor {
  public:
-  Compactor(const std::vector<const RobotModel*>& models, std::vector<Path>& paths, const Deadline& deadline,
-            std::size_t states_per_position)
-      : models_(models), paths_(paths), states_(models, paths),
+  Compactor(const std::vector<const RobotModel*>& models, std::vector<Path>& paths, const CollisionWorld* world,
+            const Deadline& deadline, std::size_t states_per_position)
+      : models_(models), paths_(paths), world_(world), deadline_(deadline), states_(models, paths),
         poll_(deadline, kWorkPerClockRead),
         states_per_position_(states_per_position) {
     for (std::size_t o = 0; o < paths_.size(); ++o) reach_.push_back(reach(o));
@@ -102,6 +103,11 @@ class Compactor {
   }
 
   std::int64_t search(std::size_t r);
+  // The route at full speed: each run of states along one straight motion
+  // slower than the resolution allows (a robot held back by a composite
+  // motion's slowest robot) made again in the fewest steps, where the
+  // obstacles allow at those steps. Nothing when no run got shorter.
+  std::optional<Path> atFullSpeed(std::size_t r, const Path& route);
   // The route timed to arrive before `arrival`, staying at its goal after
   // instant last_block: nothing when no such timing was found.
   std::optional<Path> timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival);
@@ -127,6 +133,8 @@ class Compactor {
 
   const std::vector<const RobotModel*>& models_;
   std::vector<Path>& paths_;
+  const CollisionWorld* world_;
+  Deadline deadline_;
   InstantStates states_;
   DeadlinePoll poll_;
   std::vector<geo::Aabb> reach_;  // per robot
@@ -151,7 +159,6 @@ std::int64_t Compactor::search(std::size_t r) {
   for (std::size_t t = 1; t < path.size(); ++t)
     if (!std::equal(path.at(t), path.at(t) + dim, route.back())) route.push(path.at(t));
   const std::size_t arrival = path.size() - 1;
-  if (route.size() - 1 >= arrival) return 0;  // it moves on at every step
 
   // Only robots that come near its route can touch it.
   near_.clear();
@@ -160,6 +167,12 @@ std::int64_t Compactor::search(std::size_t r) {
   if (failed_at_[r] != static_cast<std::size_t>(-1) &&
       std::none_of(near_.begin(), near_.end(), [&](std::size_t o) { return changed_at_[o] > failed_at_[r]; }))
     return 0;
+  std::optional<Path> faster;
+  if (world_ != nullptr) {
+    faster = atFullSpeed(r, route);
+    if (poll_.seenExpired()) return 0;
+  }
+  if (route.size() - 1 >= arrival && !faster) return 0;  // it moves on at every step, as fast as it can
   // The last instant at which another robot touches it standing at its
   // goal: it may arrive only after that, to stay there.
   std::size_t horizon = 0;
@@ -173,12 +186,63 @@ std::int64_t Compactor::search(std::size_t r) {
   }
   if (poll_.seenExpired()) return 0;
 
-  std::optional<Path> timed = timing(r, route, last_block, arrival);
+  std::optional<Path> timed;
+  if (faster) timed = timing(r, *faster, last_block, arrival);
+  if (!timed && !poll_.seenExpired()) timed = timing(r, route, last_block, arrival);
   if (!timed) return 0;
   const auto saved = static_cast<std::int64_t>(arrival) - static_cast<std::int64_t>(timed->size() - 1);
   paths_[r] = std::move(*timed);
   states_.refresh(r);
   return saved;
+}
+
+namespace {
+
+// Whether state c - 1 of `route` lies on the straight motion from state a
+// to state c, strictly between them (to rounding): extended state by
+// state, this keeps every state of a run on the run's one motion.
+bool onMotion(const RobotModel& model, const Path& route, std::size_t a, std::size_t c, std::vector<double>& q) {
+  const double whole = model.distance(route.at(a), route.at(c));
+  const double part = model.distance(route.at(a), route.at(c - 1));
+  if (!(part > 0 && part < whole)) return false;
+  model.interpolate(route.at(a), route.at(c), part / whole, q.data());
+  const double off = model.distance(q.data(), route.at(c - 1));
+  return off <= 1e-9 * std::max(1.0, whole);
+}
+
+}  // namespace
+
+std::optional<Path> Compactor::atFullSpeed(std::size_t r, const Path& route) {
+  const RobotModel& model = *models_[r];
+  const std::size_t last = route.size() - 1;
+  const CompositeChecker checker(*world_, {&model}, deadline_);
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  Path out(model.dim());
+  out.push(route.at(0));
+  bool shorter = false;
+  for (std::size_t a = 0; a < last;) {
+    std::size_t b = a + 1;
+    while (b < last && onMotion(model, route, a, b + 1, q)) ++b;
+    const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(a), route.at(b)));
+    const auto state = [&](std::size_t i) { return std::vector<double>(route.at(i), route.at(i) + model.dim()); };
+    if (n < b - a && checker.motionValid({state(a)}, {state(b)}, {.start = true, .end = true})) {
+      for (std::size_t k = 1; k < n; ++k) {
+        model.interpolate(route.at(a), route.at(b), static_cast<double>(k) / static_cast<double>(n), q.data());
+        out.push(q.data());
+      }
+      out.push(route.at(b));
+      shorter = true;
+    } else {
+      for (std::size_t k = a + 1; k <= b; ++k) out.push(route.at(k));
+    }
+    if (checker.outOfTime()) {
+      poll_.expired(kWorkPerClockRead);  // so that the caller sees it
+      return std::nullopt;
+    }
+    a = b;
+  }
+  if (!shorter) return std::nullopt;
+  return out;
 }
 
 std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival) {
@@ -239,9 +303,10 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 }  // namespace
 
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
-                          const Deadline& deadline, int max_passes, std::size_t states_per_position) {
+                          const CollisionWorld* world, const Deadline& deadline, int max_passes,
+                          std::size_t states_per_position) {
   CompactReport rep;
-  Compactor compactor(models, paths, deadline, states_per_position);
+  Compactor compactor(models, paths, world, deadline, states_per_position);
   for (int pass = 0; pass < max_passes; ++pass) {
     if (compactor.expired()) break;
     ++rep.passes;

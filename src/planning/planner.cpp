@@ -174,7 +174,8 @@ void compactResult(const Scenario& scenario, const PlannerSettings& settings, Pl
   if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
     spent = result.stats["planning_time_s"].get<double>();
   const Deadline deadline = Deadline(std::max(0.0, settings.time_limit_s - spent)).withWorkBudgets(settings.work_budgets);
-  const CompactReport rep = compactPlan(models.raw, paths, deadline);
+  const CollisionWorld world(scenario);
+  const CompactReport rep = compactPlan(models.raw, paths, &world, deadline);
   const double s = clock.seconds();
   result.stats["compact"] = {{"s", s},
                              {"passes", rep.passes},
