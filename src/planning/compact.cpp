@@ -27,13 +27,17 @@ class InstantStates {
       offset_.push_back(width_);
       width_ += static_cast<std::size_t>(m->dim());
     }
-    tag_.assign(kSlots, kNoInstant);
-    q_.resize(kSlots * width_);
+    // No more slots than the plan has instants.
+    std::size_t longest = 0;
+    for (const Path& p : paths_) longest = std::max(longest, p.size());
+    slots_ = std::min(kSlots, 2 * longest + 1);
+    tag_.assign(slots_, kNoInstant);
+    q_.resize(slots_ * width_);
   }
 
   // All robots' states at instant k, robot r's at row + offset(r).
   const double* row(std::size_t k) {
-    const std::size_t slot = k % kSlots;
+    const std::size_t slot = k % slots_;
     double* out = q_.data() + slot * width_;
     if (tag_[slot] != k) {
       for (std::size_t r = 0; r < models_.size(); ++r) fill(r, k, out);
@@ -45,7 +49,7 @@ class InstantStates {
 
   // Robot r's path changed: its states in the kept slots again.
   void refresh(std::size_t r) {
-    for (std::size_t slot = 0; slot < kSlots; ++slot)
+    for (std::size_t slot = 0; slot < slots_; ++slot)
       if (tag_[slot] != kNoInstant) fill(r, tag_[slot], q_.data() + slot * width_);
   }
 
@@ -58,6 +62,7 @@ class InstantStates {
   const std::vector<Path>& paths_;
   std::vector<std::size_t> offset_;
   std::size_t width_ = 0;
+  std::size_t slots_ = 0;
   std::vector<std::size_t> tag_;
   std::vector<double> q_;
 };
