@@ -123,15 +123,22 @@ class Compactor {
     const double* row = states_.row(k);
     const RobotModel& m = *models_[r];
     const geo::Vec2 c = m.boundingCenter(q);
+    bool placed = false;
     for (std::size_t o : near_) {
-      // Bounding discs apart (most pairs): no call.
+      // Bounding discs apart (most pairs): no bodies placed. Else as
+      // robotsTouch, robot r's bodies placed once for all the others.
       const RobotModel& mo = *models_[o];
       const double* qo = row + states_.offset(o);
       const geo::Vec2 co = mo.boundingCenter(qo);
       const double apart = m.boundingRadius() + mo.boundingRadius();
       const double dx = c.x - co.x, dy = c.y - co.y;
       if (dx * dx + dy * dy > apart * apart) continue;
-      if (robotsTouch(m, q, mo, qo)) return false;
+      if (!placed) {
+        mine_.place(m, q);
+        placed = true;
+      }
+      other_.place(mo, qo);
+      if (bodiesTouch(mine_, other_)) return false;
     }
     return true;
   }
@@ -144,6 +151,7 @@ class Compactor {
   DeadlinePoll poll_;
   std::vector<geo::Aabb> reach_;  // per robot
   std::vector<std::size_t> near_;  // the robots whose reach meets the retimed one's
+  PlacedBodies mine_, other_;      // free()'s scratch
   // A robot's search that found nothing is not repeated until a robot
   // near it has changed: changes_ counts retimings kept; changed_at_ and
   // failed_at_ hold its value after a robot's last change and failure.
