@@ -164,6 +164,14 @@ class Compactor {
 std::int64_t Compactor::search(std::size_t r) {
   const Path& path = paths_[r];
   if (path.size() < 2) return 0;
+  // Only robots that come near its route can touch it.
+  near_.clear();
+  for (std::size_t o = 0; o < paths_.size(); ++o)
+    if (o != r && !paths_[o].empty() && reach_[o].overlaps(reach_[r])) near_.push_back(o);
+  if (failed_at_[r] != static_cast<std::size_t>(-1) &&
+      std::none_of(near_.begin(), near_.end(), [&](std::size_t o) { return changed_at_[o] > failed_at_[r]; }))
+    return 0;
+
   const RobotModel& model = *models_[r];
   const auto dim = static_cast<std::size_t>(model.dim());
   // The robot's route: its path without repeated states.
@@ -172,14 +180,6 @@ std::int64_t Compactor::search(std::size_t r) {
   for (std::size_t t = 1; t < path.size(); ++t)
     if (!std::equal(path.at(t), path.at(t) + dim, route.back())) route.push(path.at(t));
   const std::size_t arrival = path.size() - 1;
-
-  // Only robots that come near its route can touch it.
-  near_.clear();
-  for (std::size_t o = 0; o < paths_.size(); ++o)
-    if (o != r && !paths_[o].empty() && reach_[o].overlaps(reach_[r])) near_.push_back(o);
-  if (failed_at_[r] != static_cast<std::size_t>(-1) &&
-      std::none_of(near_.begin(), near_.end(), [&](std::size_t o) { return changed_at_[o] > failed_at_[r]; }))
-    return 0;
   std::optional<Path> faster;
   if (world_ != nullptr) {
     faster = atFullSpeed(r, route);

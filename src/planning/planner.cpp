@@ -165,11 +165,7 @@ void compactResult(const Scenario& scenario, const PlannerSettings& settings, Pl
   Stopwatch clock;
   std::vector<Path>& paths = result.solution.paths;
   const RobotModels models(scenario);
-  std::size_t makespan = 0, sum_of_costs = 0;
-  for (const Path& p : paths) {
-    makespan = std::max(makespan, p.size() - 1);
-    sum_of_costs += p.size() - 1;
-  }
+  const std::size_t makespan = result.solution.makespan(), sum_of_costs = result.solution.sumOfCosts();
   double spent = 0.0;
   if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
     spent = result.stats["planning_time_s"].get<double>();

@@ -138,9 +138,6 @@ class ProgressLine {
   std::thread thread_;
 };
 
-// What the experience database did in an E-ARC plan, for the summary
-// line: "; database answered 6 of 8 solved subproblems (1 by repair), learned 2":
-// of the subproblems solved, as db_hit_rate counts them.
 // What --compact changed, after the plan's makespan and sum of costs.
 std::string compactSummary(const nlohmann::json& st) {
   if (!st.contains("compact")) return "";
@@ -150,6 +147,9 @@ std::string compactSummary(const nlohmann::json& st) {
          std::to_string(c.value("sum_of_costs_before", 0)) + ")";
 }
 
+// What the experience database did in an E-ARC plan, for the summary
+// line: "; database answered 6 of 8 solved subproblems (1 by repair), learned 2":
+// of the subproblems solved, as db_hit_rate counts them.
 std::string databaseSummary(const nlohmann::json& st) {
   if (!st.contains("db_queries")) return "";
   const DatabaseAnswers a = databaseAnswers(st);
@@ -305,9 +305,9 @@ void setupPlan(CLI::App& app) {
                 "seed gives the same plan on a busy or slower machine (only --time-limit stays wall-clock "
                 "time); prioritized and coupled plans are so already; not for lightning");
   cmd->add_flag("--compact", opts->compact,
-                "After planning, retime every robot along its own path to leave out the waits it does not "
-                "need (any method; shorter plans, same routes; stats compact; not part of the published "
-                "methods)");
+                "After planning, retime every robot along its own route to leave out the waits it does not "
+                "need and go at full speed where it crept (any method; shorter plans, same routes; stats "
+                "compact; not part of the published methods)");
   cmd->add_flag("--shadow-decoupled", opts->shadow_decoupled,
                 "E-ARC diagnostic: also run the decoupled solver on every subproblem put to the database and "
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");
