@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 #include "earc/util/random.hpp"
@@ -37,8 +38,10 @@ void Roadmap::embed(const double* q, double* out) const {
   }
 }
 
-void Roadmap::grow(int samples) {
+void Roadmap::grow(int samples, const ConfigBox* within) {
   const int first = size();
+  const std::vector<double>& lo = within ? within->lo : lo_;
+  const std::vector<double>& hi = within ? within->hi : hi_;
   std::vector<double> q(static_cast<std::size_t>(dim_));
   std::vector<double> e(static_cast<std::size_t>(index_.dim()));
   long tries = static_cast<long>(samples) * kMaxTriesPerSample;
@@ -48,7 +51,7 @@ void Roadmap::grow(int samples) {
   const auto work = static_cast<std::size_t>(dim_);
   while (added < samples && tries-- > 0) {
     if (poll_.expired(work)) break;
-    for (int j = 0; j < dim_; ++j) q[static_cast<std::size_t>(j)] = uniform(rng_, lo_[static_cast<std::size_t>(j)], hi_[static_cast<std::size_t>(j)]);
+    for (int j = 0; j < dim_; ++j) q[static_cast<std::size_t>(j)] = uniform(rng_, lo[static_cast<std::size_t>(j)], hi[static_cast<std::size_t>(j)]);
     if (!world_.stateValid(model_, q.data())) continue;
     configs_.insert(configs_.end(), q.begin(), q.end());
     adjacency_.emplace_back();
@@ -66,6 +69,37 @@ void Roadmap::grow(int samples) {
   // theirs: room for 2k edges spares each list its regrowths.
   for (int v = first; v < size(); ++v) adjacency_[static_cast<std::size_t>(v)].reserve(2 * static_cast<std::size_t>(neighbors_));
   for (int v = first; v < size() && !poll_.expired(work); ++v) connect(v, near, scratch);
+}
+
+ConfigBox Roadmap::boxAround(const std::vector<double>& configs) const {
+  const auto d = static_cast<std::size_t>(dim_);
+  ConfigBox box{lo_, hi_};
+  if (configs.size() < d) return box;
+  // A doorway next to a pocket lies within four bounding radii of it.
+  const std::size_t boxed = model_.isMobile() ? 2 : d;
+  for (std::size_t j = 0; j < boxed; ++j) {
+    double l = std::numeric_limits<double>::infinity(), h = -l;
+    for (std::size_t i = j; i < configs.size(); i += d) {
+      l = std::min(l, configs[i]);
+      h = std::max(h, configs[i]);
+    }
+    const double margin = model_.isMobile() ? 4.0 * model_.boundingRadius() : 0.1 * (hi_[j] - lo_[j]);
+    box.lo[j] = std::max(lo_[j], l - margin);
+    box.hi[j] = std::min(hi_[j], h + margin);
+  }
+  return box;
+}
+
+double Roadmap::share(const ConfigBox& box) const {
+  double s = 1.0;
+  for (std::size_t j = 0; j < lo_.size(); ++j)
+    if (hi_[j] > lo_[j]) s *= std::max(0.0, box.hi[j] - box.lo[j]) / (hi_[j] - lo_[j]);
+  return s;
+}
+
+void Roadmap::growWithin(const ConfigBox& box) {
+  const int most = std::max(64, size());
+  grow(std::clamp(static_cast<int>(std::ceil(4.0 * size() * share(box))), 64, most), &box);
 }
 
 void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>& scratch) {
@@ -169,7 +203,8 @@ bool QueryGraph::edgeValid(int key) {
   return state > 0;
 }
 
-std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline) {
+std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline,
+                                             std::vector<int>* reached) {
   const int n = graph.size();
   const auto un = static_cast<std::size_t>(n);
   const RobotModel& model = graph.model();
@@ -219,7 +254,15 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
         }
       });
     }
-    if (!found) return std::nullopt;
+    if (!found) {
+      // The search ran out of vertices: those it closed are from's part.
+      if (reached && !deadline.expired() && !graph.roadmap().poll().seenExpired()) {
+        reached->clear();
+        for (int v = 0; v < n; ++v)
+          if (closed[static_cast<std::size_t>(v)]) reached->push_back(v);
+      }
+      return std::nullopt;
+    }
     std::vector<int> path{to};
     std::vector<int> keys;
     for (int v = to; v != from; v = parent[static_cast<std::size_t>(v)]) {

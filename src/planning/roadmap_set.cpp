@@ -69,6 +69,12 @@ Roadmap& RoadmapSet::forRobot(int robot) {
   return *rm;
 }
 
+void RoadmapSet::growWithin(int robot, const ConfigBox& box) {
+  Stopwatch sw;
+  forRobot(robot).growWithin(box);
+  build_seconds_ += sw.seconds();
+}
+
 std::size_t RoadmapSet::built() const {
   return static_cast<std::size_t>(std::count_if(roadmaps_.begin(), roadmaps_.end(), [](const auto& rm) { return rm != nullptr; }));
 }
@@ -77,6 +83,13 @@ std::size_t RoadmapSet::edgeChecks() const {
   std::size_t n = 0;
   for (const auto& rm : roadmaps_)
     if (rm) n += rm->edgeChecks();
+  return n;
+}
+
+std::size_t RoadmapSet::vertices() const {
+  std::size_t n = 0;
+  for (const auto& rm : roadmaps_)
+    if (rm) n += static_cast<std::size_t>(rm->size());
   return n;
 }
 

@@ -691,6 +691,44 @@ TEST_CASE("A robot whose straight motion is free takes it without a roadmap; a w
   CHECK(detours);
 }
 
+TEST_CASE("A robot in a pocket behind a narrow door grows the roadmap around the pocket, not everywhere") {
+  // A 1.6 x 1.6 room in the corner of a 20 x 20 square, its one door 0.8
+  // wide opening on a passage that turns up along a wall: no straight
+  // motion leads out, and a roadmap of 50 vertices has none that joins
+  // the room to the rest.
+  // Both ways round: the start in the room (its own part is the small
+  // one), and the goal in it (the search from the goal finds the room).
+  for (const bool start_inside : {true, false}) {
+    CAPTURE(start_inside);
+    Scenario s = openScenario(20);
+    const std::vector<double> room{0.8, 0.8, 0}, out{15, 15, 0};
+    s.robots = {disc("a", 0.3, start_inside ? room : out, start_inside ? out : room)};
+    s.obstacles.push_back(Obstacle::makeBox({0.9, 1.7}, {1.8, 0.2}));   // top wall
+    s.obstacles.push_back(Obstacle::makeBox({1.7, 0.25}, {0.2, 0.5}));  // right wall, below the door
+    s.obstacles.push_back(Obstacle::makeBox({1.7, 1.5}, {0.2, 0.4}));   // and above it: door y in [0.5, 1.3]
+    s.obstacles.push_back(Obstacle::makeBox({2.9, 1.3}, {0.2, 2.6}));   // the passage's far wall
+    RobotModels m(s);
+    CollisionWorld world(s);
+    RoadmapSet roadmaps(world, m.raw, 50, 10, 1);
+    Roadmap& rm = roadmaps.forRobot(0);
+    {
+      QueryGraph graph(rm, *m.raw[0]);
+      const int a = graph.addVertex(s.robots[0].start.data(), 10), b = graph.addVertex(s.robots[0].goal.data(), 10);
+      REQUIRE_FALSE(shortestPath(graph, a, b, Deadline()).has_value());  // the case this is about
+    }
+    auto path = individualPath(world, roadmaps, *m.raw[0], 0, Deadline(10), 1);
+    REQUIRE(path.has_value());
+    for (std::size_t t = 0; t < path->size(); ++t) CHECK(world.stateValid(*m.raw[0], path->at(t)));
+    // Grown near the room only (doubling would have put most new
+    // vertices all over the square), and by no more than doubling would.
+    REQUIRE(rm.size() > 50);
+    CHECK(rm.size() <= 50 + 3 * 64);
+    int far = 0;
+    for (int v = 50; v < rm.size(); ++v) far += rm.config(v)[0] > 6.0 || rm.config(v)[1] > 6.0;
+    CHECK(far == 0);
+  }
+}
+
 TEST_CASE("A space-time search among crossing robots returns paths clear of them at every instant") {
   // A turning box robot on a roadmap, three box robots sweeping straight
   // across its square, turning as they go. The search meets the same edge

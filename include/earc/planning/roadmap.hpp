@@ -35,11 +35,24 @@ class Roadmap {
   Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed,
           const Deadline& deadline = Deadline());
 
-  // Adds `samples` valid configurations (rejection-sampled) and connects
-  // each to its k nearest vertices. Edges are not checked here. Stops
-  // early, leaving fewer vertices or some unconnected, once the deadline
-  // has expired: on an arm of thousands of links this takes many seconds.
-  void grow(int samples);
+  // Adds `samples` valid configurations (rejection-sampled within the
+  // sampling bounds, or within `within` where given) and connects each to
+  // its k nearest vertices. Edges are not checked here. Stops early,
+  // leaving fewer vertices or some unconnected, once the deadline has
+  // expired: on an arm of thousands of links this takes many seconds.
+  void grow(int samples, const ConfigBox* within = nullptr);
+
+  // Where to grow the roadmap when a search found part of it cut off from
+  // the rest: the box around that part's configurations (`configs`, one
+  // after another), widened by four bounding radii for a mobile robot
+  // (whose box spans every heading) and by a tenth of each joint's range
+  // for an arm; the sampling bounds when `configs` is empty.
+  ConfigBox boxAround(const std::vector<double>& configs) const;
+  // The share of the sampling bounds' volume that `box` covers.
+  double share(const ConfigBox& box) const;
+  // Samples for four times the roadmap's density within `box`, at most as
+  // many as the roadmap has (a box of everything doubles it), at least 64.
+  void growWithin(const ConfigBox& box);
 
   int size() const { return static_cast<int>(configs_.size() / static_cast<std::size_t>(dim_)); }
   const double* config(int v) const { return configs_.data() + static_cast<std::size_t>(v) * static_cast<std::size_t>(dim_); }
@@ -140,8 +153,11 @@ class QueryGraph {
 
 // Shortest path in time steps from `from` to `to` (lazy: edges on a
 // candidate path are checked, invalid ones excluded, and the search
-// repeated). Vertex sequence, or nothing.
-std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline);
+// repeated). Vertex sequence, or nothing. When there is none and the
+// deadline has not passed, `reached` (if given) gets the vertices the
+// search could reach from `from`: its part of the graph.
+std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline,
+                                             std::vector<int>* reached = nullptr);
 
 // Time-stamps a sequence of configurations at the robot's resolution.
 Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& waypoints);

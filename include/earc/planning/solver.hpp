@@ -28,10 +28,15 @@ class RoadmapSet {
   RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples, int neighbors,
              std::uint64_t seed, const Deadline& deadline = Deadline());
   Roadmap& forRobot(int robot);
+  // Grows the robot's roadmap within `box` (Roadmap::growWithin), counted
+  // in buildSeconds.
+  void growWithin(int robot, const ConfigBox& box);
   int initialSamples(int robot) const;
   std::size_t edgeChecks() const;
+  // Vertices of all the roadmaps built, grown ones included.
+  std::size_t vertices() const;
   // Roadmaps built so far (each when a robot first needed it), and the
-  // seconds spent building them: a solver that asks for a roadmap first
+  // seconds spent building and growing them: a solver that asks for a roadmap first
   // pays for it, and ARC counts that time apart from the solver's own.
   std::size_t built() const;
   double buildSeconds() const { return build_seconds_; }
