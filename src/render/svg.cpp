@@ -427,6 +427,18 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
   }
   if (sol.stats.is_object() && sol.stats.contains("planning_time_s") && sol.stats["planning_time_s"].is_number())
     facts.emplace_back("planned in " + formatNumber("%.3g", sol.stats["planning_time_s"].get<double>()) + " s", false);
+  // earc-plan plan --compact: what the plan was before it, or why the
+  // compacted plan was not kept.
+  const nlohmann::json* compact = sol.stats.is_object() && sol.stats.contains("compact") ? &sol.stats["compact"] : nullptr;
+  if (compact && compact->is_object()) {
+    if (compact->contains("rejected"))
+      facts.emplace_back("compaction undone: " + compact->value("rejected", std::string()), false);
+    else if (compact->value("makespan_before", nlohmann::json()).is_number_integer() &&
+             compact->value("sum_of_costs_before", nlohmann::json()).is_number_integer())
+      facts.emplace_back("before --compact: makespan " + std::to_string((*compact)["makespan_before"].get<long long>()) +
+                             ", sum of costs " + std::to_string((*compact)["sum_of_costs_before"].get<long long>()),
+                         false);
+  }
   return facts;
 }
 

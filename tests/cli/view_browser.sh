@@ -2,10 +2,11 @@
 # label: browser
 # The viewer page in headless Chromium (tests/browser/viewer_harness.sh):
 # for arms, box and disc robots, a planned scenario with obstacles and its
-# trace, and an unsolved solution, the page's self-test must PASS (no script
-# error, keyboard, play/pause, a drawn canvas, clicking a conflict mark
-# shows its details) and the poses it draws at chosen steps and midpoints
-# must match poses computed here from the solution file, within 1e-3.
+# trace (compacted: the header must say what the plan was before), and an
+# unsolved solution, the page's self-test must PASS (no script error,
+# keyboard, play/pause, a drawn canvas, clicking a conflict mark shows its
+# details) and the poses it draws at chosen steps and midpoints must match
+# poses computed here from the solution file, within 1e-3.
 # The harness must also fail: a page whose script throws or does not parse
 # reports FAIL with the error, and poses compared at the wrong times do not
 # match. 128 robots x 5,000 steps keep the page compact and frames cheap.
@@ -71,7 +72,7 @@ if ! grep -q '"solved":false' "$WORK/unsolved.html"; then fail "unsolved page do
 # A planned scenario with obstacles and a trace (conflicts to click).
 if [ -x "$GEN" ]; then
   "$GEN" generate --family mobile -n 8 --obstacles --seed 3 -o "$WORK/gen.json" > /dev/null &&
-    "$PLAN" plan "$WORK/gen.json" -o "$WORK/gen.sol.json" --method arc --seed 1 --trace "$WORK/gen.trace.json" -q
+    "$PLAN" plan "$WORK/gen.json" -o "$WORK/gen.sol.json" --method arc --seed 1 --trace "$WORK/gen.trace.json" --compact -q
   if [ -f "$WORK/gen.trace.json" ]; then
     last=$(jq '[.paths[].states | length] | max - 1' "$WORK/gen.sol.json")
     check planned "$WORK/gen.json" "$WORK/gen.sol.json" "0,1.5,$((last / 2)),$((last / 2)).5,$last" \
@@ -80,6 +81,10 @@ if [ -x "$GEN" ]; then
        ! grep -q 'PASS.*clicked conflict' <(harness_verdict "$WORK/planned.dom"); then
       fail "planned: the self-test did not click a conflict although the trace has some"
     fi
+    # The header says what the plan was before --compact.
+    before=$(jq -r '"makespan \(.stats.compact.makespan_before), sum of costs \(.stats.compact.sum_of_costs_before)"' "$WORK/gen.sol.json")
+    grep -qF "before --compact: $before" "$WORK/planned.dom" ||
+      fail "planned: the page's header does not say 'before --compact: $before'"
   else
     fail "could not plan the generated scenario"
   fi

@@ -294,6 +294,19 @@ TEST_CASE("a plan picture says what the solution holds, and a step of how many")
   CHECK(std::find(texts.begin(), texts.end(),
                   "method test \u00b7 solved \u00b7 makespan 40 steps \u00b7 sum of costs 160 \u00b7 planned in 1.25 s") !=
         texts.end());
+  // A compacted plan says what it was before; one whose compaction was
+  // undone says why.
+  sol.stats["compact"] = {{"makespan_before", 52}, {"sum_of_costs_before", 190}};
+  const auto compacted = svgTexts(solutionSvg(s, sol));
+  CHECK(std::any_of(compacted.begin(), compacted.end(), [](const std::string& t) {
+    return t.find("before --compact: makespan 52, sum of costs 190") != std::string::npos;
+  }));
+  sol.stats["compact"]["rejected"] = "robots 0 and 1 collide at t = 3";
+  const auto undone = svgTexts(solutionSvg(s, sol));
+  CHECK(std::any_of(undone.begin(), undone.end(), [](const std::string& t) {
+    return t.find("compaction undone: robots 0 and 1 collide at t = 3") != std::string::npos;
+  }));
+  sol.stats.erase("compact");
   SvgOptions o;
   o.steps = {10, 40};
   const auto timed = svgTexts(solutionSvg(s, sol, o));

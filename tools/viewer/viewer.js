@@ -750,6 +750,11 @@
     if (sol.paths.length) parts.push('makespan ' + makespan + ' steps');
     if (sol.method) parts.push('method ' + sol.method);
     if (typeof st.planning_time_s === 'number') parts.push('planned in ' + fmt(st.planning_time_s, 3) + ' s');
+    // earc-plan plan --compact: what the plan was before, or why it was kept as planned.
+    const compact = st.compact && typeof st.compact === 'object' ? st.compact : null;
+    if (compact && compact.rejected !== undefined) parts.push('compaction undone: ' + String(compact.rejected));
+    else if (compact && Number.isInteger(compact.makespan_before) && Number.isInteger(compact.sum_of_costs_before))
+      parts.push('before --compact: makespan ' + compact.makespan_before + ', sum of costs ' + compact.sum_of_costs_before);
     if (trace) parts.push(conflicts.length + ' conflicts, ' + subproblems.length + ' subproblems');
     byId('summary').textContent = parts.join(' \u00b7 ');
     if (!sol.solved) {
