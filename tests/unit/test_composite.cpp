@@ -278,6 +278,46 @@ TEST_CASE("A composite motion between states known to be valid is decided by the
   CHECK(end_invalid > 50);
 }
 
+TEST_CASE("A motion check's yes or no, and where a motion first fails, agree with testing every instant in order") {
+  // Two discs and two obstacles, motions of up to a few dozen steps. The
+  // yes-or-no check stops at the first collision it finds (coarse to
+  // fine); where the motion first fails is the earliest instant.
+  Scenario s = crowd(2, 8);
+  s.obstacles.push_back(Obstacle::makeBox({3, 4}, {0.4, 3.0}, 0.2));
+  s.obstacles.push_back(Obstacle::makeBox({5.5, 2.5}, {1.5, 0.4}));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  CompositeChecker checker(world, m.raw);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> xy(0.4, 7.6), heading(-3.0, 3.0);
+  int valid = 0, invalid = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    CompositeState a(2), b(2);
+    for (std::size_t r = 0; r < 2; ++r) {
+      a[r] = {xy(rng), xy(rng), heading(rng)};
+      b[r] = {xy(rng), xy(rng), heading(rng)};
+    }
+    const int n = compositeSteps(m.raw, a, b);
+    REQUIRE(n > 0);
+    int first_bad = -1;
+    CompositeState q(2);
+    for (int k = 0; k <= 2 * n && first_bad < 0; ++k) {
+      for (std::size_t r = 0; r < 2; ++r) {
+        q[r].resize(3);
+        m.raw[r]->interpolate(a[r].data(), b[r].data(), static_cast<double>(k) / (2 * n), q[r].data());
+      }
+      if (!checker.stateValid(q)) first_bad = k;
+    }
+    CAPTURE(trial);
+    CHECK(checker.motionValid(a, b) == (first_bad < 0));
+    const double expected = first_bad < 0 ? 1.0 : std::max(0.0, static_cast<double>(first_bad - 1) / (2 * n));
+    CHECK(checker.lastValidFraction(a, b) == doctest::Approx(expected));
+    (first_bad < 0 ? valid : invalid)++;
+  }
+  CHECK(valid > 50);
+  CHECK(invalid > 500);
+}
+
 TEST_CASE("Shortcutting a path's ends goes straight to the furthest waypoint tried that the start reaches, and from it to the goal") {
   // One disc; a wall x in [4.5, 5.5], y in [0, 6]. The path backs away
   // from its start, climbs over the wall and comes down to a goal right of it.

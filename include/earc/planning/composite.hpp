@@ -106,6 +106,8 @@ class CompositeChecker {
   bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
                         KnownValid known, BodiesAlongPaths* along, std::size_t t) const;
   bool instantValid(const CompositeState& a, const CompositeState& b, double s, CompositeState& scratch) const;
+  // lastValidFraction, or (earliest false) 0 as soon as any instant fails.
+  double lastValidFraction(const CompositeState& a, const CompositeState& b, KnownValid known, bool earliest) const;
   const CollisionWorld& world_;
   std::vector<const RobotModel*> robots_;
   // Counts `work` done on this thread; whether the deadline has expired,
