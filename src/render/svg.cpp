@@ -431,8 +431,10 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
   // compacted plan was not kept.
   const nlohmann::json* compact = sol.stats.is_object() && sol.stats.contains("compact") ? &sol.stats["compact"] : nullptr;
   if (compact && compact->is_object()) {
-    if (compact->contains("rejected"))
-      facts.emplace_back("compaction undone: " + compact->value("rejected", std::string()), false);
+    if (compact->contains("rejected")) {
+      const nlohmann::json& why = (*compact)["rejected"];  // a file's, whatever it holds
+      facts.emplace_back("compaction undone: " + (why.is_string() ? why.get<std::string>() : why.dump()), false);
+    }
     else if (compact->value("makespan_before", nlohmann::json()).is_number_integer() &&
              compact->value("sum_of_costs_before", nlohmann::json()).is_number_integer())
       facts.emplace_back("before --compact: makespan " + std::to_string((*compact)["makespan_before"].get<long long>()) +

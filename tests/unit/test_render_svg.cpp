@@ -306,6 +306,11 @@ TEST_CASE("a plan picture says what the solution holds, and a step of how many")
   CHECK(std::any_of(undone.begin(), undone.end(), [](const std::string& t) {
     return t.find("compaction undone: robots 0 and 1 collide at t = 3") != std::string::npos;
   }));
+  sol.stats["compact"]["rejected"] = 7;  // a hand-made file's: said as it is, not thrown on
+  const auto odd = svgTexts(solutionSvg(s, sol));
+  CHECK(std::any_of(odd.begin(), odd.end(), [](const std::string& t) {
+    return t.find("compaction undone: 7") != std::string::npos;
+  }));
   sol.stats.erase("compact");
   SvgOptions o;
   o.steps = {10, 40};

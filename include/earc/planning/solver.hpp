@@ -36,8 +36,9 @@ class RoadmapSet {
   // Vertices of all the roadmaps built, grown ones included.
   std::size_t vertices() const;
   // Roadmaps built so far (each when a robot first needed it), and the
-  // seconds spent building and growing them: a solver that asks for a roadmap first
-  // pays for it, and ARC counts that time apart from the solver's own.
+  // seconds spent building and growing them: a solver that asks for a
+  // roadmap first pays for it, and ARC counts that time apart from the
+  // solver's own.
   std::size_t built() const;
   double buildSeconds() const { return build_seconds_; }
 
