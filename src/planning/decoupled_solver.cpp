@@ -1,5 +1,6 @@
 // Prioritized planning in space-time over roadmaps (ARC's first solver).
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <queue>
 #include <unordered_map>
@@ -235,7 +236,8 @@ std::uint64_t motionKey(int from, int to) {
 
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
-                                    std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions) {
+                                    std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
+                                    bool graph_heuristic) {
   const RobotModel& model = graph.model();
   const int dim = model.dim();
   DeadlinePoll poll(deadline, kWorkPerClockRead);
@@ -246,6 +248,27 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
   if (!shortestPath(graph, start, goal, deadline)) return std::nullopt;
 
   std::vector<double> h(static_cast<std::size_t>(graph.size()), -1.0);
+  if (graph_heuristic) {
+    // Steps to the goal over every edge not known invalid (unchecked ones
+    // count as valid): no more than the robot needs, and consistent. A
+    // vertex it does not reach cannot reach the goal.
+    const double unreached = std::numeric_limits<double>::infinity();
+    std::fill(h.begin(), h.end(), unreached);
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> frontier;
+    h[static_cast<std::size_t>(goal)] = 0;
+    frontier.push({0.0, goal});
+    while (!frontier.empty()) {
+      const auto [d, v] = frontier.top();
+      frontier.pop();
+      if (d > h[static_cast<std::size_t>(v)]) continue;
+      graph.forEachEdge(v, [&](int u, int steps, int edge) {
+        if (graph.knownInvalid(edge) || d + steps >= h[static_cast<std::size_t>(u)]) return;
+        h[static_cast<std::size_t>(u)] = d + steps;
+        frontier.push({d + steps, u});
+      });
+    }
+  }
   auto heuristic = [&](int v) {
     double& x = h[static_cast<std::size_t>(v)];
     if (x < 0) x = model.distance(graph.config(v), graph.config(goal));
@@ -296,6 +319,12 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       found = key;
       break;
     }
+    // The heuristic never overestimates: once the least f in the queue
+    // is past the horizon, no arrival by the horizon is left to find.
+    // (Searches that fail used to go on to the horizon, the expansion cap
+    // or the budget; a half step of margin covers the metric's rounding
+    // slack in step counts.)
+    if (it.f > static_cast<double>(horizon) + 0.5) break;
     if (++expansions > max_expansions) break;
     // The queue and the table of states reached, as work (see MotionGuard).
     countWork(kWorkPerExpansion);
@@ -305,7 +334,9 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     if (poll.seenExpired() || graph.roadmap().poll().seenExpired()) break;
     if (it.tau >= horizon) continue;
     auto push = [&](int u, std::size_t tau) {
-      if (parent.try_emplace(nodeKey(u, tau), key).second) open.push({priority(u, tau), tau, u});
+      const double f = priority(u, tau);
+      if (f == std::numeric_limits<double>::infinity()) return;  // no way on to the goal
+      if (parent.try_emplace(nodeKey(u, tau), key).second) open.push({f, tau, u});
     };
     // Wait one step.
     const double* here = graph.config(it.v);
@@ -423,7 +454,8 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
-      auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, max_expansions);
+      auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, max_expansions,
+                               settings_.graph_heuristic);
       if (!p) {
         ok = false;
         break;

@@ -791,6 +791,54 @@ TEST_CASE("A space-time search among crossing robots returns paths clear of them
   CHECK(delayed > 10);  // the crossings got in the way, and the search went around or waited
 }
 
+TEST_CASE("The space-time search arrives as early with the roadmap-distance heuristic as with the straight line, and gives up exactly when the horizon is too short") {
+  // A disc among walls that the straight line runs through, and a box
+  // robot sweeping across. Both heuristics never overestimate, so A*
+  // finds the earliest arrival with either; one step less of horizon
+  // leaves none (the search stops once its least f passes the horizon).
+  Scenario s = openScenario(8);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {7, 7, 0}), RobotSpec::mobileBox("b", {0.6, 0.4})};
+  s.robots[1].start = s.robots[1].goal = {0, 0, 0};
+  s.obstacles.push_back(Obstacle::makeBox({2.7, 3.0}, {0.3, 6.0}));  // open at the top
+  s.obstacles.push_back(Obstacle::makeBox({5.3, 5.0}, {0.3, 6.0}));  // open at the bottom
+  RobotModels m(s);
+  CollisionWorld world(s);
+  const RobotModel& model = *m.raw[0];
+  Roadmap rm(world, model, 10, 3);
+  rm.grow(500);
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> pos(0.4, 7.6);
+  int compared = 0, detours = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    Path sweep(3);
+    const double y0 = pos(rng), y1 = pos(rng);
+    for (int t = 0; t <= 150; ++t) {
+      const double f = t / 150.0, q[3] = {0.4 + 7.2 * f, y0 + (y1 - y0) * f, 3.0 * f};
+      sweep.push(q);
+    }
+    const std::vector<MovingObstacle> obstacles{{m.raw[1], &sweep, 0, 1}};
+    const std::vector<double> start{pos(rng), pos(rng), 0}, goal{pos(rng), pos(rng), 0};
+    if (!world.stateValid(model, start.data()) || !world.stateValid(model, goal.data())) continue;
+    QueryGraph graph(rm, model);
+    const int sv = graph.addVertex(start.data(), 10), gv = graph.addVertex(goal.data(), 10);
+    auto line = spaceTimeSearch(graph, sv, gv, obstacles, 600, 0, Deadline(), 2000000, false);
+    auto roads = spaceTimeSearch(graph, sv, gv, obstacles, 600, 0, Deadline(), 2000000, true);
+    REQUIRE(line.has_value() == roads.has_value());
+    if (!line) continue;
+    ++compared;
+    CAPTURE(trial);
+    CHECK(roads->size() == line->size());
+    const std::size_t arrival = line->size() - 1;
+    if (static_cast<double>(arrival) > 1.5 * model.distance(start.data(), goal.data()) + 2) ++detours;
+    for (const bool by_roads : {false, true}) {
+      CHECK(spaceTimeSearch(graph, sv, gv, obstacles, arrival, 0, Deadline(), 2000000, by_roads).has_value());
+      CHECK_FALSE(spaceTimeSearch(graph, sv, gv, obstacles, arrival - 1, 0, Deadline(), 2000000, by_roads).has_value());
+    }
+  }
+  CHECK(compared > 30);
+  CHECK(detours > 5);  // the walls made many ways longer than the straight line
+}
+
 TEST_CASE("A roadmap whose deadline has passed grows no further and checks no edge") {
   Scenario s = openScenario(6);
   s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};

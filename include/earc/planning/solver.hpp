@@ -121,6 +121,13 @@ struct DecoupledSettings {
   int connect_neighbors = 10;
   int max_orders = 4;                   // priority orders tried
   bool avoid_others = true;             // treat robots outside the subproblem as moving obstacles
+  // The space-time search's heuristic: each vertex's distance to the goal
+  // over the roadmap (see spaceTimeSearch) instead of in a straight line.
+  // The whole-problem prioritized baseline on den520d, 32 robots: every
+  // plan ran 2 million expansions short in 20 s with the straight line,
+  // every one solved in about a second with this. ARC at 32 mobile robots
+  // with obstacles: paired time 0.93, makespans 5% shorter.
+  bool graph_heuristic = true;
 };
 
 // Prioritized planning in space-time over the robots' roadmaps, waiting
@@ -155,10 +162,15 @@ class CoupledSubproblemSolver : public SubproblemSolver {
 // Space-time A* for one robot over a query graph, avoiding moving
 // obstacles. The result starts at `start` at local time 0, reaches `goal`
 // and can then wait there without contact through step `hold_until`;
-// arrival no later than step `horizon`.
+// arrival no later than step `horizon`. Its heuristic is the straight-line
+// distance to the goal in steps, or with graph_heuristic the steps of the
+// shortest way there over the graph's edges not known to be invalid (a
+// Dijkstra search from the goal first): as admissible, and far better
+// informed on a maze-like map, where the straight line runs through walls.
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
-                                    std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions);
+                                    std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
+                                    bool graph_heuristic = false);
 
 // Robots outside the subproblem whose motion during local steps
 // [0, span] may come near the subproblem's region, as moving obstacles;
