@@ -810,12 +810,8 @@ TEST_CASE("The space-time search arrives as early with the roadmap-distance heur
   std::uniform_real_distribution<double> pos(0.4, 7.6);
   int compared = 0, detours = 0;
   for (int trial = 0; trial < 60; ++trial) {
-    Path sweep(3);
     const double y0 = pos(rng), y1 = pos(rng);
-    for (int t = 0; t <= 150; ++t) {
-      const double f = t / 150.0, q[3] = {0.4 + 7.2 * f, y0 + (y1 - y0) * f, 3.0 * f};
-      sweep.push(q);
-    }
+    const Path sweep = line({0.4, y0, 0.0}, {7.6, y1, 3.0}, 151);  // left to right, turning
     const std::vector<MovingObstacle> obstacles{{m.raw[1], &sweep, 0, 1}};
     const std::vector<double> start{pos(rng), pos(rng), 0}, goal{pos(rng), pos(rng), 0};
     if (!world.stateValid(model, start.data()) || !world.stateValid(model, goal.data())) continue;
