@@ -260,6 +260,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     frontier.push({0.0, goal});
     // Polled now and then: a whole map's roadmap can have 80,000 vertices.
     for (std::size_t pops = 1; !frontier.empty(); ++pops) {
+      countWork(kWorkPerGraphPop);
       if ((pops & 1023) == 0 && deadline.expired()) return std::nullopt;
       const auto [d, v] = frontier.top();
       frontier.pop();

@@ -234,7 +234,10 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
     g[static_cast<std::size_t>(from)] = 0;
     open.push({heuristic(from), from});
     bool found = false;
-    while (!open.empty()) {
+    for (std::size_t pops = 1; !open.empty(); ++pops) {
+      // Polled now and then: a whole map's roadmap can have 80,000 vertices.
+      countWork(kWorkPerGraphPop);
+      if ((pops & 1023) == 0 && deadline.expired()) return std::nullopt;
       int v = open.top().second;
       open.pop();
       if (closed[static_cast<std::size_t>(v)]) continue;

@@ -835,6 +835,45 @@ TEST_CASE("The space-time search arrives as early with the roadmap-distance heur
   CHECK(detours > 5);  // the walls made many ways longer than the straight line
 }
 
+TEST_CASE("The searches over a roadmap count their work, so that a budget of work ends them as one of seconds would") {
+  // A disc in an open square on a large roadmap. Its edges are checked by
+  // a first search and cached, so that what the searches count after it
+  // is their own queue work. The space-time search's distances to the
+  // goal visit the whole roadmap (6,000 vertices), however near the goal.
+  Scenario s = openScenario(8);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {2, 1, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  const RobotModel& model = *m.raw[0];
+  Roadmap rm(world, model, 10, 3);
+  rm.grow(6000);
+  QueryGraph graph(rm, model);
+  const double start[3] = {1, 1, 0}, goal[3] = {2.5, 1.5, 0};
+  const int sv = graph.addVertex(start, 10), gv = graph.addVertex(goal, 10);
+  REQUIRE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, Deadline(), 1000000, true).has_value());  // checks the edges
+
+  auto workOf = [&](auto&& search) {
+    const std::uint64_t before = t_work_done;
+    search();
+    return t_work_done - before;
+  };
+  std::optional<std::vector<int>> vertices;
+  const std::uint64_t shortest = workOf([&] { vertices = shortestPath(graph, sv, gv, Deadline()); });
+  REQUIRE(vertices.has_value());
+  CHECK(shortest >= kWorkPerGraphPop * vertices->size());
+  const std::uint64_t by_line = workOf([&] { REQUIRE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, Deadline(), 1000000, false)); });
+  const std::uint64_t by_roads = workOf([&] { REQUIRE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, Deadline(), 1000000, true)); });
+  CHECK(by_roads >= by_line + kWorkPerGraphPop * 5000);
+
+  // A budget of work halfway between the two: enough for the search by
+  // the straight line, not for the one that first measures the roadmap.
+  const double halfway = static_cast<double>(by_line + by_roads) / 2 / kWorkPerBudgetSecond;
+  const Deadline budget = Deadline().withWorkBudgets(true);
+  CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(halfway), 1000000, false).has_value());
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(halfway), 1000000, true).has_value());
+  CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(2 * halfway), 1000000, true).has_value());
+}
+
 TEST_CASE("A roadmap whose deadline has passed grows no further and checks no edge") {
   Scenario s = openScenario(6);
   s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};

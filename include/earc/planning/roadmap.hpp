@@ -151,6 +151,12 @@ class QueryGraph {
   std::vector<std::int8_t> extra_edge_state_;
 };
 
+// Units of work (Deadline::withWorkBudgets) of one vertex taken from a
+// graph search's queue over a roadmap, its edges relaxed: about its time.
+// Counted by shortestPath and the space-time search's distances to the
+// goal, so that a budget of work covers them as a budget of seconds does.
+inline constexpr std::size_t kWorkPerGraphPop = 4;
+
 // Shortest path in time steps from `from` to `to` (lazy: edges on a
 // candidate path are checked, invalid ones excluded, and the search
 // repeated). Vertex sequence, or nothing. When there is none and the
