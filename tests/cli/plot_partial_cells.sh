@@ -33,5 +33,18 @@ for want in ("1/3", "0/3", "time limit 3 s", "k/n: k of n trials solved", "none 
     assert want in texts, (want, texts)
 assert "3/3" not in texts, texts  # a cell where every trial solved is not labelled
 assert any("3 trials per cell, time limit 3 s" in t for t in texts), texts
+
+# Two methods that solved none at the same robot count: their x marks
+# nearly coincide on the limit's line, so their labels are stacked, not
+# drawn over each other (each label's text follows its comment, placed by
+# a translate).
+for t in (None, None, None):
+    rows.append(T("mobile-obst", 3.0, 16, "lightning", False, 3.0, ()))
+pr.plot_times(rows, "mobile-obst", "mobile-obst", sys.argv[2])
+svg = open(sys.argv[2] + "/time_mobile-obst.svg").read()
+ys = [float(re.search(r"translate\(([-\d.]+) ([-\d.]+)\)", m.group(1)).group(2))
+      for m in re.finditer(r"<!-- 0/3 -->(.{0,800})", svg, re.S)]
+assert len(ys) == 2, ys
+assert abs(ys[0] - ys[1]) >= 6, ys  # about a line of x-small text apart
 PYEOF
 echo "ok"

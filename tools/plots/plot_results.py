@@ -303,6 +303,9 @@ def plot_times(rows, name, title, out):
     fig, ax = plt.subplots(figsize=(6, 4))
     limit = max(t.time_limit for t in rows)
     drawn = partial = unsolved = False
+    # Labels of the x marks already put at a robot count: the next one goes
+    # above them, as the marks of methods that all failed nearly coincide.
+    stacked = {}
     methods = ordered({t.method for t in rows}, METHODS)
     for place, method in enumerate(methods):
         color = COLORS.get(method)
@@ -330,7 +333,11 @@ def plot_times(rows, name, title, out):
                 unsolved = True
             # Left of the point at the last robot count, so as not to run off the axes.
             last = n == max(t.robots for t in rows)
-            ax.annotate("%d/%d" % (k, total), (n * shift, y), textcoords="offset points", xytext=(-6 if last else 6, 4),
+            rise = 4
+            if not q:
+                rise += 8 * stacked.get(n, 0)
+                stacked[n] = stacked.get(n, 0) + 1
+            ax.annotate("%d/%d" % (k, total), (n * shift, y), textcoords="offset points", xytext=(-6 if last else 6, rise),
                         ha="right" if last else "left", fontsize="x-small", color=color)
     ax.axhline(limit, color="0.4", linestyle=":", linewidth=1, label="time limit %g s" % limit)
     if partial:
