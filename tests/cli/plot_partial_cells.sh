@@ -38,7 +38,7 @@ assert any("3 trials per cell, time limit 3 s" in t for t in texts), texts
 # nearly coincide on the limit's line, so their labels are stacked, not
 # drawn over each other (each label's text follows its comment, placed by
 # a translate).
-for t in (None, None, None):
+for _ in range(3):
     rows.append(T("mobile-obst", 3.0, 16, "lightning", False, 3.0, ()))
 pr.plot_times(rows, "mobile-obst", "mobile-obst", sys.argv[2])
 svg = open(sys.argv[2] + "/time_mobile-obst.svg").read()
