@@ -258,10 +258,9 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> frontier;
     h[static_cast<std::size_t>(goal)] = 0;
     frontier.push({0.0, goal});
-    // Polled now and then: a whole map's roadmap can have 80,000 vertices.
-    for (std::size_t pops = 1; !frontier.empty(); ++pops) {
-      countWork(kWorkPerGraphPop);
-      if ((pops & 1023) == 0 && deadline.expired()) return std::nullopt;
+    // Polled as it works: a whole map's roadmap can have 80,000 vertices.
+    while (!frontier.empty()) {
+      if (poll.expired(kWorkPerGraphPop)) return std::nullopt;
       const auto [d, v] = frontier.top();
       frontier.pop();
       if (d > h[static_cast<std::size_t>(v)]) continue;

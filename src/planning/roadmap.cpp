@@ -213,6 +213,8 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
   // goal stays, so each vertex's distance to it (the heuristic, a tenth of
   // a search's time on den520d) is worked out once for all the repeats.
   std::vector<double> h(un, -1.0);
+  // Polled as it works: a whole map's roadmap can have 80,000 vertices.
+  DeadlinePoll poll(deadline, kWorkPerClockRead);
   auto heuristic = [&](int v) {
     double& hv = h[static_cast<std::size_t>(v)];
     if (hv < 0) hv = model.distance(graph.config(v), graph.config(to));
@@ -234,10 +236,8 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
     g[static_cast<std::size_t>(from)] = 0;
     open.push({heuristic(from), from});
     bool found = false;
-    for (std::size_t pops = 1; !open.empty(); ++pops) {
-      // Polled now and then: a whole map's roadmap can have 80,000 vertices.
-      countWork(kWorkPerGraphPop);
-      if ((pops & 1023) == 0 && deadline.expired()) return std::nullopt;
+    while (!open.empty()) {
+      if (poll.expired(kWorkPerGraphPop)) return std::nullopt;
       int v = open.top().second;
       open.pop();
       if (closed[static_cast<std::size_t>(v)]) continue;

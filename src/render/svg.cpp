@@ -434,8 +434,7 @@ std::vector<std::pair<std::string, bool>> solutionFacts(const Solution& sol) {
     if (compact->contains("rejected")) {
       const nlohmann::json& why = (*compact)["rejected"];  // a file's, whatever it holds
       facts.emplace_back("compaction undone: " + (why.is_string() ? why.get<std::string>() : why.dump()), false);
-    }
-    else if (compact->value("makespan_before", nlohmann::json()).is_number_integer() &&
+    } else if (compact->value("makespan_before", nlohmann::json()).is_number_integer() &&
              compact->value("sum_of_costs_before", nlohmann::json()).is_number_integer())
       facts.emplace_back("before --compact: makespan " + std::to_string((*compact)["makespan_before"].get<long long>()) +
                              ", sum of costs " + std::to_string((*compact)["sum_of_costs_before"].get<long long>()),
