@@ -328,12 +328,11 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     // slack in step counts.)
     if (it.f > static_cast<double>(horizon) + 0.5) break;
     if (++expansions > max_expansions) break;
-    // The queue and the table of states reached, as work (see MotionGuard).
-    countWork(kWorkPerExpansion);
-    if ((expansions & 255) == 0 && deadline.expired()) break;
-    // Polled where the work is (see MotionGuard and Roadmap::edgeValid):
-    // an expansion on arms of thousands of links can take a second.
-    if (poll.seenExpired() || graph.roadmap().poll().seenExpired()) break;
+    // The queue and the table of states reached count as work (see
+    // MotionGuard). The poll is also read where the work is (MotionGuard
+    // and Roadmap::edgeValid): an expansion on arms of thousands of links
+    // can take a second.
+    if (poll.expired(kWorkPerExpansion) || graph.roadmap().poll().seenExpired()) break;
     if (it.tau >= horizon) continue;
     auto push = [&](int u, std::size_t tau) {
       const double f = priority(u, tau);

@@ -841,7 +841,7 @@ TEST_CASE("The searches over a roadmap count their work, so that a budget of wor
   // is their own queue work. The space-time search's distances to the
   // goal visit the whole roadmap (6,000 vertices), however near the goal.
   Scenario s = openScenario(8);
-  s.robots = {disc("a", 0.3, {1, 1, 0}, {2, 1, 0})};
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {2, 1, 0}), disc("b", 0.3, {6, 6, 0}, {6, 6, 0})};
   RobotModels m(s);
   CollisionWorld world(s);
   const RobotModel& model = *m.raw[0];
@@ -872,6 +872,26 @@ TEST_CASE("The searches over a roadmap count their work, so that a budget of wor
   CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(halfway), 1000000, false).has_value());
   CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(halfway), 1000000, true).has_value());
   CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, 0, budget.capped(2 * halfway), 1000000, true).has_value());
+
+  // A budget that ends in the search's own loop ends it at the expansion
+  // that spends it (a few units each here), not expansions later. A
+  // second disc parked on the goal for 100 steps makes the search expand
+  // many states before the robot may arrive.
+  Path parked(3);
+  for (int t = 0; t <= 100; ++t) parked.push(goal);
+  const double away[3] = {6, 6, 0};
+  parked.push(away);
+  const std::vector<MovingObstacle> obstacles{{m.raw[1], &parked, 0, 1}};
+  const std::uint64_t waiting = workOf([&] { REQUIRE(spaceTimeSearch(graph, sv, gv, obstacles, 200, 150, Deadline(), 1000000, false)); });
+  REQUIRE(waiting > 20000);
+  const std::uint64_t units = waiting / 2;
+  const std::uint64_t stopped = workOf([&] {
+    CHECK_FALSE(spaceTimeSearch(graph, sv, gv, obstacles, 200, 150,
+                                budget.capped(static_cast<double>(units) / kWorkPerBudgetSecond), 1000000, false)
+                    .has_value());
+  });
+  CHECK(stopped >= units);
+  CHECK(stopped <= units + 16);  // 2 over here; 67 when the loop read its budget every 256 expansions
 }
 
 TEST_CASE("A roadmap whose deadline has passed grows no further and checks no edge") {
