@@ -237,15 +237,21 @@ std::uint64_t motionKey(int from, int to) {
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
-                                    bool graph_heuristic) {
+                                    bool graph_heuristic, bool* exhausted) {
   const RobotModel& model = graph.model();
   const int dim = model.dim();
   DeadlinePoll poll(deadline, kWorkPerClockRead);
   MotionGuard guard(model, obstacles, 2 * std::max(horizon, hold_until) + 2, &poll);
-  if (!guard.free(graph.config(start), 0)) return std::nullopt;
+  bool capped = false;  // stopped at max_expansions
+  auto fail = [&]() -> std::optional<Path> {
+    if (exhausted)
+      *exhausted = !capped && !poll.seenExpired() && !graph.roadmap().poll().seenExpired() && !deadline.expired();
+    return std::nullopt;
+  };
+  if (!guard.free(graph.config(start), 0)) return fail();
   // Unreachable in the region even with time ignored: say so now rather than
   // after enumerating every (vertex, time) pair up to the horizon.
-  if (!shortestPath(graph, start, goal, deadline)) return std::nullopt;
+  if (!shortestPath(graph, start, goal, deadline)) return fail();
 
   std::vector<double> h(static_cast<std::size_t>(graph.size()), -1.0);
   if (graph_heuristic) {
@@ -260,7 +266,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     frontier.push({0.0, goal});
     // Polled as it works: a whole map's roadmap can have 80,000 vertices.
     while (!frontier.empty()) {
-      if (poll.expired(kWorkPerGraphPop)) return std::nullopt;
+      if (poll.expired(kWorkPerGraphPop)) return fail();
       const auto [d, v] = frontier.top();
       frontier.pop();
       if (d > h[static_cast<std::size_t>(v)]) continue;
@@ -287,7 +293,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       break;
     }
   }
-  if (earliest_hold > hold_until) return std::nullopt;
+  if (earliest_hold > hold_until) return fail();
   // Arriving later than hold_until needs only the arrival instant free.
   auto holds = [&](int v, std::size_t tau) {
     return tau >= earliest_hold && (tau <= hold_until || guard.free(graph.config(v), 2 * tau));
@@ -327,7 +333,10 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     // or the budget; a half step of margin covers the metric's rounding
     // slack in step counts.)
     if (it.f > static_cast<double>(horizon) + 0.5) break;
-    if (++expansions > max_expansions) break;
+    if (++expansions > max_expansions) {
+      capped = true;
+      break;
+    }
     // The queue and the table of states reached count as work (see
     // MotionGuard). The poll is also read where the work is (MotionGuard
     // and Roadmap::edgeValid): an expansion on arms of thousands of links
@@ -351,7 +360,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
       push(u, arrive);
     });
   }
-  if (!found) return std::nullopt;
+  if (!found) return fail();
 
   std::vector<std::pair<int, std::size_t>> nodes;
   for (std::uint64_t k = *found;; k = parent.at(k)) {
@@ -444,8 +453,14 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     orders.push_back(order);
   }
 
+  // A robot planned first meets only the robots outside the group. If it
+  // runs out of ways then (not out of expansions), it would find none in
+  // any order, behind more robots and holding its goal no sooner: the
+  // attempt ends there instead of trying the other orders.
+  bool hopeless = false;
+  int blocked = -1;  // that robot, for the trace
   for (const auto& ord : orders) {
-    if (deadline.expired()) break;
+    if (deadline.expired() || hopeless) break;
     std::vector<Path> local(n);
     std::vector<MovingObstacle> obstacles = others;
     std::size_t hold = window;
@@ -455,9 +470,12 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
+      bool exhausted = false;
       auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, max_expansions,
-                               settings_.graph_heuristic);
+                               settings_.graph_heuristic, &exhausted);
       if (!p) {
+        hopeless = exhausted && obstacles.size() == others.size();
+        if (hopeless) blocked = robot;
         ok = false;
         break;
       }
@@ -474,7 +492,10 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       while (p.size() < len) p.push(p.back());
     return {std::move(sol), name(), -1};
   }
-  return {std::nullopt, name(), -1};
+  SolverOutcome failed{std::nullopt, name(), -1};
+  if (blocked >= 0)
+    failed.detail = "robot " + std::to_string(blocked) + " has no way past the robots outside the group, in any order";
+  return failed;
 }
 
 SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {

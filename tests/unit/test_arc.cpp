@@ -373,6 +373,52 @@ TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budge
   CHECK(DecoupledSolver(tight).solve(ctx).solution.has_value());
 }
 
+TEST_CASE("A robot with no way past the robots outside its group ends the decoupled attempt at once") {
+  // Discs a and b cross; disc c rests for good where a's window ends. a,
+  // planned first, finds no way to hold its goal; behind b it would find
+  // none either, so the solver says so and tries no other order.
+  Scenario s = openScenario(10);
+  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0}),
+              disc("c", 0.2, {9, 9, 0}, {9, 9, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  std::vector<Path> paths;
+  for (int r = 0; r < 3; ++r) {
+    Path p(3);
+    for (int t = 0; t <= 80; ++t) {
+      const double q[3] = {r == 0 ? 3 + 0.05 * t : r == 1 ? 5.0 : 9.0, r == 0 ? 5.0 : r == 1 ? 3 + 0.05 * t : 9.0, 0};
+      p.push(q);
+    }
+    paths.push_back(std::move(p));
+  }
+  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
+  REQUIRE(conflict.has_value());
+  PlannerSettings settings;
+  const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  REQUIRE(DecoupledSolver().solve(ctx).solution.has_value());  // with c out of the way
+  paths[2] = Path(3);
+  for (int t = 0; t <= 80; ++t) paths[2].push(sub.goals[0].data());
+  const SolverOutcome out = DecoupledSolver().solve(ctx);
+  CHECK_FALSE(out.solution.has_value());
+  CHECK(out.detail == "robot 0 has no way past the robots outside the group, in any order");
+
+  // The search says whether it ran out of ways or stopped short of them.
+  QueryGraph graph(roadmaps.forRobot(0), *m.raw[0], &sub.region[0]);
+  const int sv = graph.addVertex(sub.starts[0].data(), 10), gv = graph.addVertex(sub.goals[0].data(), 10);
+  const std::vector<MovingObstacle> resting{{m.raw[2], &paths[2], sub.t_start, 2}};
+  const std::size_t window = sub.t_end - sub.t_start;
+  bool exhausted = false;
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, resting, 200, window, Deadline(), 100000, false, &exhausted));
+  CHECK(exhausted);
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 0, false, &exhausted));
+  CHECK_FALSE(exhausted);  // at its expansion cap
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(-1.0), 100000, false, &exhausted));
+  CHECK_FALSE(exhausted);  // out of time
+  CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 100000, false, &exhausted));
+}
+
 TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through one that walls its group in") {
   // ARC's retries of a whole problem do so every other time: the robot in
   // the way then meets the answer as a conflict of its own.

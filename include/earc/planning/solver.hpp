@@ -167,10 +167,13 @@ class CoupledSubproblemSolver : public SubproblemSolver {
 // shortest way there over the graph's edges not known to be invalid (a
 // Dijkstra search from the goal first): as admissible, and far better
 // informed on a maze-like map, where the straight line runs through walls.
+// When it finds none, *exhausted (if given) says whether it ran out of
+// ways (no arrival by the horizon among these obstacles: none among more
+// of them either) rather than stopping at max_expansions or the deadline.
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
-                                    bool graph_heuristic = false);
+                                    bool graph_heuristic = false, bool* exhausted = nullptr);
 
 // Robots outside the subproblem whose motion during local steps
 // [0, span] may come near the subproblem's region, as moving obstacles;
