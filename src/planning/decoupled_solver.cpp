@@ -234,18 +234,30 @@ std::uint64_t motionKey(int from, int to) {
 
 }  // namespace
 
+const char* searchEndName(SearchEnd end) {
+  switch (end) {
+    case SearchEnd::Found: return "found";
+    case SearchEnd::NoWay: return "no way";
+    case SearchEnd::Capped: return "expansion cap";
+    case SearchEnd::OutOfTime: return "out of time";
+  }
+  return "?";
+}
+
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
-                                    bool graph_heuristic, bool* exhausted) {
+                                    bool graph_heuristic, SearchEnd* end) {
   const RobotModel& model = graph.model();
   const int dim = model.dim();
   DeadlinePoll poll(deadline, kWorkPerClockRead);
   MotionGuard guard(model, obstacles, 2 * std::max(horizon, hold_until) + 2, &poll);
   bool capped = false;  // stopped at max_expansions
   auto fail = [&]() -> std::optional<Path> {
-    if (exhausted)
-      *exhausted = !capped && !poll.seenExpired() && !graph.roadmap().poll().seenExpired() && !deadline.expired();
+    if (end)
+      *end = capped ? SearchEnd::Capped
+             : poll.seenExpired() || graph.roadmap().poll().seenExpired() || deadline.expired() ? SearchEnd::OutOfTime
+                                                                                                : SearchEnd::NoWay;
     return std::nullopt;
   };
   if (!guard.free(graph.config(start), 0)) return fail();
@@ -361,6 +373,7 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     });
   }
   if (!found) return fail();
+  if (end) *end = SearchEnd::Found;
 
   std::vector<std::pair<int, std::size_t>> nodes;
   for (std::uint64_t k = *found;; k = parent.at(k)) {
@@ -458,9 +471,14 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // any order, behind more robots and holding its goal no sooner: the
   // attempt ends there instead of trying the other orders.
   bool hopeless = false;
-  int blocked = -1;  // that robot, for the trace
+  // The last failure, for the trace: orders tried, robot, its place in
+  // the order, how its search ended.
+  int tried = 0, last_robot = -1;
+  std::size_t last_place = 0;
+  SearchEnd last_end = SearchEnd::Found;
   for (const auto& ord : orders) {
     if (deadline.expired() || hopeless) break;
+    ++tried;
     std::vector<Path> local(n);
     std::vector<MovingObstacle> obstacles = others;
     std::size_t hold = window;
@@ -470,12 +488,14 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
-      bool exhausted = false;
+      SearchEnd end = SearchEnd::Found;
       auto p = spaceTimeSearch(graph, s, g, obstacles, horizon, hold, deadline, max_expansions,
-                               settings_.graph_heuristic, &exhausted);
+                               settings_.graph_heuristic, &end);
       if (!p) {
-        hopeless = exhausted && obstacles.size() == others.size();
-        if (hopeless) blocked = robot;
+        last_robot = robot;
+        last_place = obstacles.size() - others.size();
+        last_end = end;
+        hopeless = end == SearchEnd::NoWay && last_place == 0;
         ok = false;
         break;
       }
@@ -493,8 +513,12 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     return {std::move(sol), name(), -1};
   }
   SolverOutcome failed{std::nullopt, name(), -1};
-  if (blocked >= 0)
-    failed.detail = "robot " + std::to_string(blocked) + " has no way past the robots outside the group, in any order";
+  if (hopeless)
+    failed.detail = "robot " + std::to_string(last_robot) + " has no way past the robots outside the group, in any order";
+  else if (last_robot >= 0)
+    failed.detail = std::to_string(tried) + " priority orders failed; in the last, robot " +
+                    std::to_string(last_robot) + " (" + std::to_string(last_place + 1) + " of " +
+                    std::to_string(n) + "): " + searchEndName(last_end);
   return failed;
 }
 

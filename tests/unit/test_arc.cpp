@@ -382,15 +382,7 @@ TEST_CASE("A robot with no way past the robots outside its group ends the decoup
               disc("c", 0.2, {9, 9, 0}, {9, 9, 0})};
   RobotModels m(s);
   CollisionWorld world(s);
-  std::vector<Path> paths;
-  for (int r = 0; r < 3; ++r) {
-    Path p(3);
-    for (int t = 0; t <= 80; ++t) {
-      const double q[3] = {r == 0 ? 3 + 0.05 * t : r == 1 ? 5.0 : 9.0, r == 0 ? 5.0 : r == 1 ? 3 + 0.05 * t : 9.0, 0};
-      p.push(q);
-    }
-    paths.push_back(std::move(p));
-  }
+  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({5, 3, 0}, {5, 7, 0}, 81), line({9, 9, 0}, {9, 9, 0}, 81)};
   auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
   REQUIRE(conflict.has_value());
   PlannerSettings settings;
@@ -409,14 +401,36 @@ TEST_CASE("A robot with no way past the robots outside its group ends the decoup
   const int sv = graph.addVertex(sub.starts[0].data(), 10), gv = graph.addVertex(sub.goals[0].data(), 10);
   const std::vector<MovingObstacle> resting{{m.raw[2], &paths[2], sub.t_start, 2}};
   const std::size_t window = sub.t_end - sub.t_start;
-  bool exhausted = false;
-  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, resting, 200, window, Deadline(), 100000, false, &exhausted));
-  CHECK(exhausted);
-  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 0, false, &exhausted));
-  CHECK_FALSE(exhausted);  // at its expansion cap
-  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(-1.0), 100000, false, &exhausted));
-  CHECK_FALSE(exhausted);  // out of time
-  CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 100000, false, &exhausted));
+  SearchEnd end = SearchEnd::Found;
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, resting, 200, window, Deadline(), 100000, false, &end));
+  CHECK(end == SearchEnd::NoWay);
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 0, false, &end));
+  CHECK(end == SearchEnd::Capped);
+  CHECK_FALSE(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(-1.0), 100000, false, &end));
+  CHECK(end == SearchEnd::OutOfTime);
+  CHECK(spaceTimeSearch(graph, sv, gv, {}, 200, window, Deadline(), 100000, false, &end));
+  CHECK(end == SearchEnd::Found);
+}
+
+TEST_CASE("A failed decoupled attempt says how its last priority order failed") {
+  // Two discs swap places along a line, in a region too narrow to pass:
+  // either one, planned first, goes straight through; the other then has
+  // no way past it, in both orders.
+  Scenario s = openScenario(10);
+  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {7, 5, 0}, {3, 5, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({7, 5, 0}, {3, 5, 0}, 81)};
+  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
+  REQUIRE(conflict.has_value());
+  PlannerSettings settings;
+  settings.region_margin = 0.2;
+  const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  const SolverOutcome out = DecoupledSolver().solve(ctx);
+  CHECK_FALSE(out.solution.has_value());
+  CHECK(out.detail == "2 priority orders failed; in the last, robot 0 (2 of 2): no way");
 }
 
 TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through one that walls its group in") {

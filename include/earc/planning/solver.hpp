@@ -167,13 +167,17 @@ class CoupledSubproblemSolver : public SubproblemSolver {
 // shortest way there over the graph's edges not known to be invalid (a
 // Dijkstra search from the goal first): as admissible, and far better
 // informed on a maze-like map, where the straight line runs through walls.
-// When it finds none, *exhausted (if given) says whether it ran out of
-// ways (no arrival by the horizon among these obstacles: none among more
-// of them either) rather than stopping at max_expansions or the deadline.
+// How a search ended. NoWay: no arrival by the horizon among these
+// obstacles, so none among more of them either; Capped and OutOfTime: it
+// stopped at max_expansions or the deadline before it could tell.
+enum class SearchEnd { Found, NoWay, Capped, OutOfTime };
+const char* searchEndName(SearchEnd end);
+
+// When `end` is given, the search says there how it ended.
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,
-                                    bool graph_heuristic = false, bool* exhausted = nullptr);
+                                    bool graph_heuristic = false, SearchEnd* end = nullptr);
 
 // Robots outside the subproblem whose motion during local steps
 // [0, span] may come near the subproblem's region, as moving obstacles;
