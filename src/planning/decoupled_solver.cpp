@@ -516,7 +516,8 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   if (hopeless)
     failed.detail = "robot " + std::to_string(last_robot) + " has no way past the robots outside the group, in any order";
   else if (last_robot >= 0)
-    failed.detail = std::to_string(tried) + " priority orders failed; in the last, robot " +
+    failed.detail = std::to_string(tried) + (tried == 1 ? " priority order" : " priority orders") +
+                    " failed; in the last, robot " +
                     std::to_string(last_robot) + " (" + std::to_string(last_place + 1) + " of " +
                     std::to_string(n) + "): " + searchEndName(last_end);
   return failed;
