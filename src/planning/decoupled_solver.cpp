@@ -82,6 +82,30 @@ class MotionGuard {
 
   static constexpr std::uint64_t kOnce = ~std::uint64_t{0};
 
+  // The first local step from which no obstacle that could touch a robot
+  // centred in `where` moves any more: from then on the world the robot
+  // searches in stands still. An obstacle may still move far from
+  // `where` (every motion between its steps stays out of reach).
+  std::size_t stillFrom(const geo::Aabb& where) const {
+    std::size_t from = 0;
+    for (const MovingObstacle& o : obstacles_) {
+      const geo::Aabb near = where.inflated(model_.boundingRadius() + o.model->boundingRadius());
+      const std::size_t dim = static_cast<std::size_t>(o.model->dim());
+      const std::size_t end = std::min(o.path->size() - 1, o.offset + last_ / 2 + 1);
+      for (std::size_t s = end; s-- > o.offset;) {
+        const double* a = o.path->at(s);
+        const double* b = o.path->at(s + 1);
+        if (std::equal(a, a + dim, b)) continue;
+        const geo::Vec2 ca = o.model->boundingCenter(a), cb = o.model->boundingCenter(b);
+        const geo::Aabb motion{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)}, {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
+        if (!motion.overlaps(near)) continue;
+        from = std::max(from, s + 1 - o.offset);
+        break;
+      }
+    }
+    return from;
+  }
+
   // The robot moving straight a -> b over `steps` steps from local step tau
   // is free at instants 2 tau + 1 .. 2 tau + 2 steps. `edge` names the
   // motion (the search's directed pair of vertices): its states and bodies
@@ -313,6 +337,21 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
   auto priority = [&](int v, std::size_t tau) {
     return std::max(static_cast<double>(tau) + heuristic(v), static_cast<double>(earliest_hold));
   };
+  // From step `still` on, nothing within reach of the robot's region
+  // moves: being at a vertex earlier is as good as being there later (it
+  // can wait), so a vertex reached again no sooner than before is not
+  // searched again. Waits at the goal are kept: holding it may need a
+  // later arrival. (A search that finds no way used to enumerate every
+  // vertex at every step up to the horizon.)
+  geo::Aabb where{{-1e300, -1e300}, {1e300, 1e300}};
+  if (const ConfigBox* region = graph.region()) {
+    const geo::Vec2 lo = model.boundingCenter(region->lo.data()), hi = model.boundingCenter(region->hi.data());
+    where = {lo, lo};
+    for (geo::Vec2 c : {hi, model.boundingCenter(graph.config(start)), model.boundingCenter(graph.config(goal))})
+      where.expand({c, c});
+  }
+  const std::size_t still = guard.stillFrom(where);
+  std::vector<std::size_t> still_since(static_cast<std::size_t>(graph.size()), std::numeric_limits<std::size_t>::max());
 
   struct Item {
     double f;
@@ -358,6 +397,11 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
     auto push = [&](int u, std::size_t tau) {
       const double f = priority(u, tau);
       if (f == std::numeric_limits<double>::infinity()) return;  // no way on to the goal
+      if (tau >= still && u != goal) {
+        std::size_t& since = still_since[static_cast<std::size_t>(u)];
+        if (since <= tau) return;
+        since = tau;
+      }
       if (parent.try_emplace(nodeKey(u, tau), key).second) open.push({f, tau, u});
     };
     // Wait one step.

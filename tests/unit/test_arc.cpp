@@ -225,6 +225,16 @@ namespace {
 // Two discs on straight, crossing paths through (5, 5): their models, the
 // world, and the paths' first conflict, from which the subproblem tests
 // start. (Members are made in this order: each from those above it.)
+// Robot 0 of a scenario, and a roadmap of `vertices` vertices for it in
+// the scenario's world: what the space-time search's tests search on.
+struct SearchWorld {
+  RobotModels m;
+  CollisionWorld world;
+  Roadmap rm;
+  SearchWorld(const Scenario& s, int vertices) : m(s), world(s), rm(world, *m.raw[0], 10, 3) { rm.grow(vertices); }
+  const RobotModel& model() const { return *m.raw[0]; }
+};
+
 struct CrossingFixture {
   Scenario s = scenario();
   std::vector<Path> paths = crossingPaths();
@@ -861,11 +871,11 @@ TEST_CASE("The space-time search arrives as early with the roadmap-distance heur
   s.robots[1].start = s.robots[1].goal = {0, 0, 0};
   s.obstacles.push_back(Obstacle::makeBox({2.7, 3.0}, {0.3, 6.0}));  // open at the top
   s.obstacles.push_back(Obstacle::makeBox({5.3, 5.0}, {0.3, 6.0}));  // open at the bottom
-  RobotModels m(s);
-  CollisionWorld world(s);
-  const RobotModel& model = *m.raw[0];
-  Roadmap rm(world, model, 10, 3);
-  rm.grow(500);
+  SearchWorld w(s, 500);
+  const RobotModels& m = w.m;
+  const CollisionWorld& world = w.world;
+  const RobotModel& model = w.model();
+  Roadmap& rm = w.rm;
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> pos(0.4, 7.6);
   int compared = 0, detours = 0;
@@ -902,12 +912,10 @@ TEST_CASE("The searches over a roadmap count their work, so that a budget of wor
   // goal visit the whole roadmap (6,000 vertices), however near the goal.
   Scenario s = openScenario(8);
   s.robots = {disc("a", 0.3, {1, 1, 0}, {2, 1, 0}), disc("b", 0.3, {6, 6, 0}, {6, 6, 0})};
-  RobotModels m(s);
-  CollisionWorld world(s);
-  const RobotModel& model = *m.raw[0];
-  Roadmap rm(world, model, 10, 3);
-  rm.grow(6000);
-  QueryGraph graph(rm, model);
+  SearchWorld w(s, 6000);
+  const RobotModels& m = w.m;
+  const RobotModel& model = w.model();
+  QueryGraph graph(w.rm, model);
   const double start[3] = {1, 1, 0}, goal[3] = {2.5, 1.5, 0};
   const int sv = graph.addVertex(start, 10), gv = graph.addVertex(goal, 10);
   REQUIRE(spaceTimeSearch(graph, sv, gv, {}, 200, 0, Deadline(), 1000000, true).has_value());  // checks the edges
@@ -952,6 +960,44 @@ TEST_CASE("The searches over a roadmap count their work, so that a budget of wor
   });
   CHECK(stopped >= units);
   CHECK(stopped <= units + 16);  // 2 over here; 67 when the loop read its budget every 256 expansions
+}
+
+TEST_CASE("Once nothing near it moves, a space-time search that finds no way stops searching later steps") {
+  // A ring of resting discs walls the goal in. The roadmap knows nothing
+  // of them (they are robots), so only the space-time search can find
+  // that there is no way; once the world stands still, being at a vertex
+  // later is no better than being there sooner, and a longer horizon
+  // should cost next to nothing more.
+  Scenario s = openScenario(8);
+  s.robots = {disc("a", 0.3, {1, 1, 0}, {5, 5, 0})};
+  const std::vector<double> goal{5, 5, 0};
+  std::vector<Path> ring;
+  for (int j = 0; j < 8; ++j) {
+    const double angle = j * test::kPi / 4;
+    const std::vector<double> q{5 + 0.65 * std::cos(angle), 5 + 0.65 * std::sin(angle), 0};
+    s.robots.push_back(disc("r" + std::to_string(j), 0.3, q, q));
+    ring.push_back(line({q}));
+  }
+  SearchWorld w(s, 1500);
+  const RobotModels& m = w.m;
+  QueryGraph graph(w.rm, w.model());
+  const double start[3] = {1, 1, 0};
+  const int sv = graph.addVertex(start, 10), gv = graph.addVertex(goal.data(), 10);
+  std::vector<MovingObstacle> obstacles;
+  for (int j = 0; j < 8; ++j) obstacles.push_back({m.raw[static_cast<std::size_t>(j + 1)], &ring[static_cast<std::size_t>(j)], 0, j + 1});
+  REQUIRE(spaceTimeSearch(graph, sv, gv, {}, 1000, 0, Deadline(), 10000000).has_value());
+  auto workOf = [&](std::size_t horizon) {
+    const std::uint64_t before = t_work_done;
+    SearchEnd end = SearchEnd::Found;
+    CHECK_FALSE(spaceTimeSearch(graph, sv, gv, obstacles, horizon, 0, Deadline(), 10000000, false, &end));
+    CHECK(end == SearchEnd::NoWay);
+    return t_work_done - before;
+  };
+  workOf(300);  // checks the edges it reaches, so that what is counted next is the searches' own work
+  const std::uint64_t short_horizon = workOf(300), long_horizon = workOf(1200);
+  CAPTURE(short_horizon);
+  CAPTURE(long_horizon);
+  CHECK(long_horizon < short_horizon * 5 / 4);  // searching every vertex at every step: 8 times
 }
 
 TEST_CASE("A roadmap whose deadline has passed grows no further and checks no edge") {

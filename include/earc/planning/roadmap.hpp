@@ -135,6 +135,7 @@ class QueryGraph {
   }
   Roadmap& roadmap() { return roadmap_; }
   const RobotModel& model() const { return robot_; }
+  const ConfigBox* region() const { return region_; }  // null: everywhere
 
  private:
   struct Extra {
