@@ -19,6 +19,12 @@ namespace {
 // space-time search, beside its collision checks: about its time.
 constexpr std::size_t kWorkPerExpansion = 4;
 
+// The box spanned by two points: where a bounding centre moving straight
+// from a to b passes.
+geo::Aabb spanOf(geo::Vec2 a, geo::Vec2 b) {
+  return {{std::min(a.x, b.x), std::min(a.y, b.y)}, {std::max(a.x, b.x), std::max(a.y, b.y)}};
+}
+
 // Checks a robot against moving obstacles at local instants. Each
 // obstacle's bounding-disc centre is tabulated once per search, with boxes
 // over chunks of instants, so that a motion far from an obstacle costs a
@@ -96,9 +102,7 @@ class MotionGuard {
         const double* a = o.path->at(s);
         const double* b = o.path->at(s + 1);
         if (std::equal(a, a + dim, b)) continue;
-        const geo::Vec2 ca = o.model->boundingCenter(a), cb = o.model->boundingCenter(b);
-        const geo::Aabb motion{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)}, {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
-        if (!motion.overlaps(near)) continue;
+        if (!spanOf(o.model->boundingCenter(a), o.model->boundingCenter(b)).overlaps(near)) continue;
         from = std::max(from, s + 1 - o.offset);
         break;
       }
@@ -116,9 +120,7 @@ class MotionGuard {
   bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::uint64_t edge = kOnce) {
     const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
     const std::size_t dim = static_cast<std::size_t>(model_.dim());
-    const geo::Vec2 ca = model_.boundingCenter(a), cb = model_.boundingCenter(b);
-    const geo::Aabb swept = geo::Aabb{{std::min(ca.x, cb.x), std::min(ca.y, cb.y)},
-                                      {std::max(ca.x, cb.x), std::max(ca.y, cb.y)}};
+    const geo::Aabb swept = spanOf(model_.boundingCenter(a), model_.boundingCenter(b));
     // The robot's state and bodies at each instant of the motion, made when
     // first needed and shared by every obstacle it comes near. A motion is
     // kept only once it comes near an obstacle: most never do.
@@ -345,13 +347,14 @@ std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
   // vertex at every step up to the horizon.)
   geo::Aabb where{{-1e300, -1e300}, {1e300, 1e300}};
   if (const ConfigBox* region = graph.region()) {
-    const geo::Vec2 lo = model.boundingCenter(region->lo.data()), hi = model.boundingCenter(region->hi.data());
-    where = {lo, lo};
-    for (geo::Vec2 c : {hi, model.boundingCenter(graph.config(start)), model.boundingCenter(graph.config(goal))})
-      where.expand({c, c});
+    where = spanOf(model.boundingCenter(region->lo.data()), model.boundingCenter(region->hi.data()));
+    where.expand(spanOf(model.boundingCenter(graph.config(start)), model.boundingCenter(graph.config(goal))));
   }
   const std::size_t still = guard.stillFrom(where);
-  std::vector<std::size_t> still_since(static_cast<std::size_t>(graph.size()), std::numeric_limits<std::size_t>::max());
+  // Steps pushed reach the horizon at most: a world still only later
+  // needs no table.
+  std::vector<std::size_t> still_since(still <= horizon ? static_cast<std::size_t>(graph.size()) : 0,
+                                       std::numeric_limits<std::size_t>::max());
 
   struct Item {
     double f;
@@ -514,14 +517,14 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // runs out of ways then (not out of expansions), it would find none in
   // any order, behind more robots and holding its goal no sooner: the
   // attempt ends there instead of trying the other orders.
-  bool hopeless = false;
-  // The last failure, for the trace: orders tried, robot, its place in
-  // the order, how its search ended.
+  // The last failure (also for the trace): orders tried, robot, its
+  // place in the order, how its search ended.
   int tried = 0, last_robot = -1;
   std::size_t last_place = 0;
   SearchEnd last_end = SearchEnd::Found;
+  auto hopeless = [&] { return last_end == SearchEnd::NoWay && last_place == 0; };
   for (const auto& ord : orders) {
-    if (deadline.expired() || hopeless) break;
+    if (deadline.expired() || hopeless()) break;
     ++tried;
     std::vector<Path> local(n);
     std::vector<MovingObstacle> obstacles = others;
@@ -539,7 +542,6 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
         last_robot = robot;
         last_place = obstacles.size() - others.size();
         last_end = end;
-        hopeless = end == SearchEnd::NoWay && last_place == 0;
         ok = false;
         break;
       }
@@ -557,7 +559,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
     return {std::move(sol), name(), -1};
   }
   SolverOutcome failed{std::nullopt, name(), -1};
-  if (hopeless)
+  if (hopeless())
     failed.detail = "robot " + std::to_string(last_robot) + " has no way past the robots outside the group, in any order";
   else if (last_robot >= 0)
     failed.detail = std::to_string(tried) + (tried == 1 ? " priority order" : " priority orders") +
