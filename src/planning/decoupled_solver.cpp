@@ -479,6 +479,33 @@ std::vector<MovingObstacle> nearbyRobots(const SolverContext& ctx, std::size_t s
   return out;
 }
 
+std::vector<std::size_t> nextPriorityOrder(const std::vector<std::vector<std::size_t>>& tried, std::size_t failed,
+                                           std::mt19937_64& rng) {
+  if (tried.empty()) return {};
+  auto untried = [&](const std::vector<std::size_t>& o) { return std::find(tried.begin(), tried.end(), o) == tried.end(); };
+  // The last order with the robot that failed moved to its front.
+  std::vector<std::size_t> next = tried.back();
+  const auto at = std::find(next.begin(), next.end(), failed);
+  if (at != next.end()) std::rotate(next.begin(), at, at + 1);
+  if (untried(next)) return next;
+  // Else one not tried yet, drawn at random: among all of them while
+  // there are few (5 robots: 120), else by shuffling.
+  const std::size_t n = next.size();
+  if (n <= 5) {
+    std::vector<std::vector<std::size_t>> left;
+    std::sort(next.begin(), next.end());
+    do {
+      if (untried(next)) left.push_back(next);
+    } while (std::next_permutation(next.begin(), next.end()));
+    if (left.empty()) return {};
+    return left[std::uniform_int_distribution<std::size_t>(0, left.size() - 1)(rng)];
+  }
+  for (;;) {
+    std::shuffle(next.begin(), next.end(), rng);
+    if (untried(next)) return next;
+  }
+}
+
 SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   const Subproblem& sub = ctx.sub;
   const std::size_t n = sub.robots.size();
@@ -502,16 +529,12 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   std::vector<MovingObstacle> others;
   if (settings_.avoid_others) others = nearbyRobots(ctx, horizon);
 
-  std::vector<std::vector<std::size_t>> orders;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  orders.push_back(order);
-  if (n > 1) orders.emplace_back(order.rbegin(), order.rend());
+  // The robots as listed first; after a failure, the next order comes
+  // from nextPriorityOrder.
+  std::vector<std::vector<std::size_t>> tried_orders;
+  std::vector<std::size_t> ord(n);
+  std::iota(ord.begin(), ord.end(), 0);
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdec0));
-  while (static_cast<int>(orders.size()) < max_orders && n > 2) {
-    std::shuffle(order.begin(), order.end(), rng);
-    orders.push_back(order);
-  }
 
   // A robot planned first meets only the robots outside the group. If it
   // runs out of ways then (not out of expansions), it would find none in
@@ -523,13 +546,15 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   std::size_t last_place = 0;
   SearchEnd last_end = SearchEnd::Found;
   auto hopeless = [&] { return last_end == SearchEnd::NoWay && last_place == 0; };
-  for (const auto& ord : orders) {
+  while (tried < max_orders && !ord.empty()) {
     if (deadline.expired() || hopeless()) break;
     ++tried;
+    tried_orders.push_back(ord);
     std::vector<Path> local(n);
     std::vector<MovingObstacle> obstacles = others;
     std::size_t hold = window;
     bool ok = true;
+    std::size_t failed_index = 0;
     for (std::size_t i : ord) {
       const int robot = sub.robots[i];
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
@@ -542,6 +567,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
         last_robot = robot;
         last_place = obstacles.size() - others.size();
         last_end = end;
+        failed_index = i;
         ok = false;
         break;
       }
@@ -549,7 +575,10 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       hold = std::max(hold, local[i].size() - 1);
       obstacles.push_back({ctx.models[static_cast<std::size_t>(robot)], &local[i], 0, robot});
     }
-    if (!ok) continue;
+    if (!ok) {
+      ord = nextPriorityOrder(tried_orders, failed_index, rng);
+      continue;
+    }
     LocalSolution sol;
     sol.paths = std::move(local);
     std::size_t len = window + 1;

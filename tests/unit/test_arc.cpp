@@ -443,6 +443,56 @@ TEST_CASE("A failed decoupled attempt says how its last priority order failed") 
   CHECK(out.detail == "2 priority orders failed; in the last, robot 0 (2 of 2): no way");
 }
 
+TEST_CASE("After a failed priority order the robot that failed goes first, and no order is tried twice") {
+  std::mt19937_64 rng(5);
+  using Order = std::vector<std::size_t>;
+  // Robot 2 found no way behind 0 and 1: it picks its way first next.
+  CHECK(nextPriorityOrder({{0, 1, 2}}, 2, rng) == Order{2, 0, 1});
+  CHECK(nextPriorityOrder({{3, 1, 0, 2}}, 0, rng) == Order{0, 3, 1, 2});
+  // The robot planned first failed (out of expansions): moving it to the
+  // front gives the same order, so an untried one comes instead.
+  std::vector<Order> tried{{0, 1, 2}};
+  for (int k = 0; k < 5; ++k) {
+    const Order next = nextPriorityOrder(tried, tried.back().front(), rng);
+    REQUIRE(next.size() == 3);
+    CHECK(std::find(tried.begin(), tried.end(), next) == tried.end());
+    CHECK(std::is_permutation(next.begin(), next.end(), tried.front().begin()));
+    tried.push_back(next);
+  }
+  // All 6 orders of 3 robots tried: none is left.
+  CHECK(nextPriorityOrder(tried, 1, rng).empty());
+  // Beyond 5 robots an untried order is drawn by shuffling.
+  std::vector<Order> many{{0, 1, 2, 3, 4, 5, 6}};
+  const Order next = nextPriorityOrder(many, 0, rng);
+  CHECK(next != many.front());
+  CHECK(std::is_permutation(next.begin(), next.end(), many.front().begin()));
+}
+
+TEST_CASE("The decoupled solver tries each priority order of a group once at most") {
+  // Three discs cross; no search may expand a state, so every order fails
+  // at the robot planned first. Ten orders allowed, six exist.
+  Scenario s = openScenario(10);
+  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0}),
+              disc("c", 0.2, {3.2, 4.6, 0}, {7.2, 5.4, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({5, 3, 0}, {5, 7, 0}, 81),
+                          line({3.2, 4.6, 0}, {7.2, 5.4, 0}, 81)};
+  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
+  REQUIRE(conflict.has_value());
+  PlannerSettings settings;
+  const Subproblem sub = createSubproblem(*conflict, {0, 1, 2}, 0, m.raw, paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  DecoupledSettings capped;
+  capped.max_expansions = 0;
+  capped.max_orders = 10;
+  const SolverOutcome out = DecoupledSolver(capped).solve(ctx);
+  CHECK_FALSE(out.solution.has_value());
+  CHECK(out.detail.rfind("6 priority orders failed; in the last, robot ", 0) == 0);
+  CHECK(out.detail.find("(1 of 3): expansion cap") != std::string::npos);
+}
+
 TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through one that walls its group in") {
   // ARC's retries of a whole problem do so every other time: the robot in
   // the way then meets the answer as a conflict of its own.

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -133,6 +134,8 @@ struct DecoupledSettings {
 // Prioritized planning in space-time over the robots' roadmaps, waiting
 // allowed: each robot avoids the ones planned before it (and, with
 // avoid_others, the robots outside the subproblem along their current paths).
+// The robots are planned first in the order listed, then in the orders
+// nextPriorityOrder gives, up to max_orders.
 class DecoupledSolver : public SubproblemSolver {
  public:
   explicit DecoupledSolver(DecoupledSettings s = {}) : settings_(s) {}
@@ -142,6 +145,14 @@ class DecoupledSolver : public SubproblemSolver {
  private:
   DecoupledSettings settings_;
 };
+
+// The priority order to try after `tried` (tried.back() failed at the
+// robot with index `failed`): tried.back() with that robot moved to the
+// front, so that the robot that found no way behind the others picks its
+// way first; if that was tried, one not yet tried, at random; none
+// (empty) once every order of the robots was tried.
+std::vector<std::size_t> nextPriorityOrder(const std::vector<std::vector<std::size_t>>& tried, std::size_t failed,
+                                           std::mt19937_64& rng);
 
 struct CoupledSolverSettings {
   double time_budget_s = 0.5;
