@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <string_view>
@@ -347,9 +348,30 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
                                       const std::vector<const RobotModel*>& robots,
                                       const std::vector<Path>& middle, bool shortcut) const {
   const Subproblem& sub = ctx.sub;
-  std::vector<CompositeState> waypoints{sub.starts};
-  for (std::size_t t = 0; t < middle.front().size(); ++t) waypoints.push_back(stateAt(middle, t));
-  waypoints.push_back(sub.goals);
+  // A candidate that ends where this subproblem does (a stored answer to
+  // the same subproblem elsewhere, equal up to the rounding of the
+  // translation) takes its start and goal as they are: a join across a
+  // rounding error would cost a whole step (stepsBetween rounds up), and
+  // an answer that passes the robots outside closely runs into them a
+  // step late.
+  auto same = [](const CompositeState& a, const CompositeState& b) {
+    for (std::size_t r = 0; r < a.size(); ++r)
+      for (std::size_t j = 0; j < a[r].size(); ++j)
+        if (std::abs(a[r][j] - b[r][j]) > 1e-9) return false;
+    return true;
+  };
+  const std::size_t last = middle.front().size() - 1;
+  std::vector<CompositeState> waypoints;
+  for (std::size_t t = 0; t <= last; ++t) waypoints.push_back(stateAt(middle, t));
+  const bool joined_start = !same(waypoints.front(), sub.starts), joined_goal = !same(waypoints.back(), sub.goals);
+  if (joined_start)
+    waypoints.insert(waypoints.begin(), sub.starts);
+  else
+    waypoints.front() = sub.starts;
+  if (joined_goal)
+    waypoints.push_back(sub.goals);
+  else
+    waypoints.back() = sub.goals;
   // A stored solution answered a nearby query, not this one: joined to
   // this start and goal it can double back, and every extra step shifts
   // the rest of the robots' paths in time and breeds new conflicts. Every
@@ -363,7 +385,25 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
   } else if (shortcut) {
     shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
   }
-  LocalSolution out = timeStampComposite(robots, waypoints);
+  LocalSolution out;
+  if (shortcut) {
+    out = timeStampComposite(robots, waypoints);
+  } else {
+    // The candidate's own steps as stored, joined at its ends. Time-stamped
+    // as waypoints, its states would lose the steps on which every robot
+    // waits (stepsBetween two equal states is 0): a decoupled answer's
+    // robots may wait together for the robots outside to pass.
+    const auto first = static_cast<std::ptrdiff_t>(joined_start);  // the candidate's first state in waypoints
+    out = timeStampComposite(robots, {waypoints.begin(), waypoints.begin() + first + 1});
+    for (std::size_t t = 1; t <= last; ++t)
+      for (std::size_t r = 0; r < robots.size(); ++r)
+        out.paths[r].push(waypoints[static_cast<std::size_t>(first) + t][r].data());
+    if (joined_goal) {
+      const LocalSolution tail = timeStampComposite(robots, {waypoints[waypoints.size() - 2], waypoints.back()});
+      for (std::size_t t = 1; t < tail.length(); ++t)
+        for (std::size_t r = 0; r < robots.size(); ++r) out.paths[r].push(tail.paths[r].at(t));
+    }
+  }
   // An answer for two arms comes out long: the stored pair's ends are far
   // from this start and goal in ten joint dimensions, and the composite
   // shortcut moves both arms together, so one arm's detour holds up the
