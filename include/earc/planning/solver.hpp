@@ -119,6 +119,16 @@ struct DecoupledSettings {
   // expand few states; one that fails has often exhausted every state
   // reachable before the horizon, the costliest way a subproblem fails.
   std::size_t expansions_per_horizon_step = 32;
+  // Each robot arrives within horizon_windows x the window's steps +
+  // horizon_steps (times the hierarchy's budget scale past ARC's last
+  // level). A local solution that arrives much later than the window it
+  // replaces holds its robots up there, and the conflicts that makes
+  // cost more than the coupled solver's answer; a search that finds no
+  // way also ends sooner. With the window plus 50 instead of 4 windows
+  // plus 100, ARC at 32 mobile robots with obstacles was paired 0.85
+  // with makespans 6% shorter (see README, The methods).
+  double horizon_windows = 1.0;
+  std::size_t horizon_steps = 50;
   int connect_neighbors = 10;
   int max_orders = 4;                   // priority orders tried
   bool avoid_others = true;             // treat robots outside the subproblem as moving obstacles
