@@ -422,6 +422,40 @@ TEST_CASE("A robot with no way past the robots outside its group ends the decoup
   CHECK(end == SearchEnd::Found);
 }
 
+TEST_CASE("The decoupled solver's robots arrive within the window and 50 steps, more on the hierarchy's retries") {
+  // Discs a and b cross; disc c rests on a's way, in a region too narrow
+  // to pass it, until 80 steps after the window: a can get by only after
+  // that, later than its horizon allows.
+  Scenario s = openScenario(10);
+  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0}),
+              disc("c", 0.1, {9, 9, 0}, {9, 9, 0})};
+  RobotModels m(s);
+  CollisionWorld world(s);
+  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({5, 3, 0}, {5, 7, 0}, 81), line({9, 9, 0}, {9, 9, 0}, 81)};
+  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
+  REQUIRE(conflict.has_value());
+  PlannerSettings settings;
+  settings.region_margin = 0.2;
+  settings.initial_window = 16;
+  const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  const std::size_t window = sub.t_end - sub.t_start;
+  paths[2] = Path(3);
+  const double in_the_way[3] = {4.5, 5, 0}, away[3] = {9, 9, 0};
+  for (std::size_t t = 0; t <= sub.t_end + 80; ++t) paths[2].push(in_the_way);
+  paths[2].push(away);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  CHECK_FALSE(DecoupledSolver().solve(ctx).solution.has_value());
+  DecoupledSettings patient;
+  patient.horizon_steps = 200;
+  const SolverOutcome waited = DecoupledSolver(patient).solve(ctx);
+  REQUIRE(waited.solution.has_value());
+  CHECK(waited.solution->length() > window + 80);
+  // Past ARC's last level the budget scale grows the horizon too.
+  ctx.budget_scale = 4;
+  CHECK(DecoupledSolver().solve(ctx).solution.has_value());
+}
+
 TEST_CASE("A failed decoupled attempt says how its last priority order failed") {
   // Two discs swap places along a line, in a region too narrow to pass:
   // either one, planned first, goes straight through; the other then has
