@@ -126,7 +126,10 @@ refused = [re.search(r"answer (\d+) steps, more than 1.05 x (\d+)$", l) for l in
 refused = [m for m in refused if m]
 assert refused, "nothing refused at 1.05"
 assert all(int(m.group(1)) > 1.05 * int(m.group(2)) for m in refused), "refused an answer within the bound"
-assert len(refused) == int(sys.argv[2]), "stats db_refused_too_long %s, trace %d" % (sys.argv[2], len(refused))
+# The stats count every answer refused; the trace says how each query
+# ended, and a query that refused an answer may still repair a candidate
+# tried before it and end otherwise, or refuse the repaired answer too.
+assert int(sys.argv[2]) >= len(refused), "stats db_refused_too_long %s, trace %d" % (sys.argv[2], len(refused))
 PY
 "$PLAN" validate "$MOB" "$WORK/k.json" > /dev/null || fail "--db-max-stretch: the plan is not valid"
 
