@@ -488,22 +488,25 @@ std::vector<std::size_t> nextPriorityOrder(const std::vector<std::vector<std::si
   const auto at = std::find(next.begin(), next.end(), failed);
   if (at != next.end()) std::rotate(next.begin(), at, at + 1);
   if (untried(next)) return next;
-  // Else one not tried yet, drawn at random: among all of them while
-  // there are few (5 robots: 120), else by shuffling.
+  // Else one not tried yet, drawn at random: by shuffling where there
+  // are many orders (6 robots have 720), among all that are left where
+  // there are few or shuffling keeps meeting tried ones. Past 8 robots
+  // (40,320 orders) that is never needed: max_orders is at most 10,000.
   const std::size_t n = next.size();
-  if (n <= 5) {
-    std::vector<std::vector<std::size_t>> left;
-    std::sort(next.begin(), next.end());
-    do {
-      if (untried(next)) left.push_back(next);
-    } while (std::next_permutation(next.begin(), next.end()));
-    if (left.empty()) return {};
-    return left[std::uniform_int_distribution<std::size_t>(0, left.size() - 1)(rng)];
+  if (n > 5) {
+    for (int k = 0; k < 64; ++k) {
+      std::shuffle(next.begin(), next.end(), rng);
+      if (untried(next)) return next;
+    }
+    if (n > 8) return {};
   }
-  for (;;) {
-    std::shuffle(next.begin(), next.end(), rng);
-    if (untried(next)) return next;
-  }
+  std::vector<std::vector<std::size_t>> left;
+  std::sort(next.begin(), next.end());
+  do {
+    if (untried(next)) left.push_back(next);
+  } while (std::next_permutation(next.begin(), next.end()));
+  if (left.empty()) return {};
+  return left[std::uniform_int_distribution<std::size_t>(0, left.size() - 1)(rng)];
 }
 
 SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {

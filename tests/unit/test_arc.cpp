@@ -500,6 +500,15 @@ TEST_CASE("After a failed priority order the robot that failed goes first, and n
   const Order next = nextPriorityOrder(many, 0, rng);
   CHECK(next != many.front());
   CHECK(std::is_permutation(next.begin(), next.end(), many.front().begin()));
+  // Every order of 6 robots tried (a whole-problem prioritized plan may
+  // try up to 1,000): none is left, and the search for one ends.
+  std::vector<Order> all;
+  Order six{0, 1, 2, 3, 4, 5};
+  do all.push_back(six);
+  while (std::next_permutation(six.begin(), six.end()));
+  CHECK(nextPriorityOrder(all, 3, rng).empty());
+  all.pop_back();
+  CHECK(nextPriorityOrder(all, 3, rng) == Order{5, 4, 3, 2, 1, 0});
 }
 
 TEST_CASE("The decoupled solver tries each priority order of a group once at most") {

@@ -120,8 +120,8 @@ struct DecoupledSettings {
   // reachable before the horizon, the costliest way a subproblem fails.
   std::size_t expansions_per_horizon_step = 32;
   // Each robot arrives within horizon_windows x the window's steps +
-  // horizon_steps (times the hierarchy's budget scale past ARC's last
-  // level). A local solution that arrives much later than the window it
+  // horizon_steps (past ARC's last level, that times the hierarchy's
+  // budget scale, up to 4 windows + 100 steps). A local solution that arrives much later than the window it
   // replaces holds its robots up there, and the conflicts that makes
   // cost more than the coupled solver's answer; a search that finds no
   // way also ends sooner. With the window plus 50 instead of 4 windows
