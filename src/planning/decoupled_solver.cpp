@@ -549,21 +549,19 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // runs out of ways then (not out of expansions), it would find none in
   // any order, behind more robots and holding its goal no sooner: the
   // attempt ends there instead of trying the other orders.
-  // The last failure (also for the trace): orders tried, robot, its
-  // place in the order, how its search ended.
-  int tried = 0, last_robot = -1;
+  // The last failure (also for the trace): robot, its place in the
+  // order, how its search ended.
+  int last_robot = -1;
   std::size_t last_place = 0;
   SearchEnd last_end = SearchEnd::Found;
   auto hopeless = [&] { return last_end == SearchEnd::NoWay && last_place == 0; };
-  while (tried < max_orders && !ord.empty()) {
+  while (static_cast<int>(tried_orders.size()) < max_orders && !ord.empty()) {
     if (deadline.expired() || hopeless()) break;
-    ++tried;
     tried_orders.push_back(ord);
     std::vector<Path> local(n);
     std::vector<MovingObstacle> obstacles = others;
     std::size_t hold = window;
     bool ok = true;
-    std::size_t failed_index = 0;
     for (std::size_t i : ord) {
       const int robot = sub.robots[i];
       QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
@@ -576,7 +574,6 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
         last_robot = robot;
         last_place = obstacles.size() - others.size();
         last_end = end;
-        failed_index = i;
         ok = false;
         break;
       }
@@ -585,7 +582,7 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
       obstacles.push_back({ctx.models[static_cast<std::size_t>(robot)], &local[i], 0, robot});
     }
     if (!ok) {
-      ord = nextPriorityOrder(tried_orders, failed_index, rng);
+      ord = nextPriorityOrder(tried_orders, ord[last_place], rng);  // the robot that failed
       continue;
     }
     LocalSolution sol;
@@ -600,7 +597,8 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   if (hopeless())
     failed.detail = "robot " + std::to_string(last_robot) + " has no way past the robots outside the group, in any order";
   else if (last_robot >= 0)
-    failed.detail = std::to_string(tried) + (tried == 1 ? " priority order" : " priority orders") +
+    failed.detail = std::to_string(tried_orders.size()) +
+                    (tried_orders.size() == 1 ? " priority order" : " priority orders") +
                     " failed; in the last, robot " +
                     std::to_string(last_robot) + " (" + std::to_string(last_place + 1) + " of " +
                     std::to_string(n) + "): " + searchEndName(last_end);

@@ -235,20 +235,25 @@ struct SearchWorld {
   const RobotModel& model() const { return *m.raw[0]; }
 };
 
+// Discs a and b cross at (5, 5); with a bystander radius, a third disc c
+// of that radius rests at (9, 9), out of their way.
 struct CrossingFixture {
-  Scenario s = scenario();
-  std::vector<Path> paths = crossingPaths();
-  RobotModels m{s};
-  CollisionWorld world{s};
-  Conflict c = firstConflict();
+  explicit CrossingFixture(double bystander_radius = 0)
+      : s(scenario(bystander_radius)), paths(crossingPaths(bystander_radius)), m(s), world(s), c(firstConflict()) {}
+  Scenario s;
+  std::vector<Path> paths;
+  RobotModels m;
+  CollisionWorld world;
+  Conflict c;
 
  private:
-  static Scenario scenario() {
+  static Scenario scenario(double bystander_radius) {
     Scenario sc = openScenario(10);
     sc.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0})};
+    if (bystander_radius > 0) sc.robots.push_back(disc("c", bystander_radius, {9, 9, 0}, {9, 9, 0}));
     return sc;
   }
-  static std::vector<Path> crossingPaths() {
+  static std::vector<Path> crossingPaths(double bystander_radius) {
     std::vector<Path> out;
     for (int r = 0; r < 2; ++r) {
       Path p(3);
@@ -258,6 +263,7 @@ struct CrossingFixture {
       }
       out.push_back(std::move(p));
     }
+    if (bystander_radius > 0) out.push_back(line({9, 9, 0}, {9, 9, 0}, 81));
     return out;
   }
   Conflict firstConflict() const {
@@ -387,16 +393,12 @@ TEST_CASE("A robot with no way past the robots outside its group ends the decoup
   // Discs a and b cross; disc c rests for good where a's window ends. a,
   // planned first, finds no way to hold its goal; behind b it would find
   // none either, so the solver says so and tries no other order.
-  Scenario s = openScenario(10);
-  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0}),
-              disc("c", 0.2, {9, 9, 0}, {9, 9, 0})};
-  RobotModels m(s);
-  CollisionWorld world(s);
-  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({5, 3, 0}, {5, 7, 0}, 81), line({9, 9, 0}, {9, 9, 0}, 81)};
-  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
-  REQUIRE(conflict.has_value());
+  CrossingFixture f(0.2);
+  const auto& m = f.m;
+  const CollisionWorld& world = f.world;
+  std::vector<Path>& paths = f.paths;
   PlannerSettings settings;
-  const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  const Subproblem sub = createSubproblem(f.c, {0, 1}, 0, m.raw, paths, world, settings);
   RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
   SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
   REQUIRE(DecoupledSolver().solve(ctx).solution.has_value());  // with c out of the way
@@ -426,18 +428,14 @@ TEST_CASE("The decoupled solver's robots arrive within the window and 50 steps, 
   // Discs a and b cross; disc c rests on a's way, in a region too narrow
   // to pass it, until 80 steps after the window: a can get by only after
   // that, later than its horizon allows.
-  Scenario s = openScenario(10);
-  s.robots = {disc("a", 0.2, {3, 5, 0}, {7, 5, 0}), disc("b", 0.2, {5, 3, 0}, {5, 7, 0}),
-              disc("c", 0.1, {9, 9, 0}, {9, 9, 0})};
-  RobotModels m(s);
-  CollisionWorld world(s);
-  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({5, 3, 0}, {5, 7, 0}, 81), line({9, 9, 0}, {9, 9, 0}, 81)};
-  auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
-  REQUIRE(conflict.has_value());
+  CrossingFixture f(0.1);
+  const auto& m = f.m;
+  const CollisionWorld& world = f.world;
+  std::vector<Path>& paths = f.paths;
   PlannerSettings settings;
   settings.region_margin = 0.2;
   settings.initial_window = 16;
-  const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  const Subproblem sub = createSubproblem(f.c, {0, 1}, 0, m.raw, paths, world, settings);
   const std::size_t window = sub.t_end - sub.t_start;
   paths[2] = Path(3);
   const double in_the_way[3] = {4.5, 5, 0}, away[3] = {9, 9, 0};
