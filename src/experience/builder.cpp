@@ -112,8 +112,7 @@ std::optional<Problem> mobileProblem(const BuildSettings& s, std::vector<RobotSp
   // At most 8 times: paths then run to hundreds of steps at the default
   // resolution, and a footprint beyond it finds no query, as before.
   const double scale = std::clamp(radius / kTunedBoundingRadius, 1.0, 8.0);
-  sampling.min_start_distance *= scale;
-  sampling.max_start_distance *= scale;
+  for (double* d : {&sampling.rest_radius, &sampling.pass_offset, &sampling.min_travel, &sampling.max_travel}) *d *= scale;
   for (int attempt = 0; attempt < kQueryAttempts; ++attempt) {
     Query q = sampleMobileQuery(n, rng, sampling);
     geo::Aabb box;

@@ -1,6 +1,7 @@
 #include "earc/experience/sampling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -11,15 +12,27 @@ namespace earc::exp {
 Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s) {
   Query q;
   constexpr double pi = std::numbers::pi;
+  // A point uniform in the disc of radius r about the origin.
+  auto inDisc = [&](double r) {
+    const double d = r * std::sqrt(uniform(rng, 0, 1)), a = uniform(rng, -pi, pi);
+    return std::array<double, 2>{d * std::cos(a), d * std::sin(a)};
+  };
+  const double spread = 1 + s.spread_per_robot * std::max(0, robots - 3);
   for (int i = 0; i < robots; ++i) {
-    const double a = uniform(rng, -pi, pi);
-    const double ds = uniform(rng, s.min_start_distance, s.max_start_distance);
-    const double across = a + pi + uniform(rng, -s.cross_jitter, s.cross_jitter);
-    const double dg = uniform(rng, s.min_start_distance, s.max_start_distance);
     const double heading = uniform(rng, -pi, pi);
+    if (uniform(rng, 0, 1) < s.rest_probability) {
+      const auto p = inDisc(s.rest_radius * spread);
+      q.starts.push_back({p[0], p[1], heading});
+      q.goals.push_back(q.starts.back());
+      continue;
+    }
+    const auto p = inDisc(s.pass_offset * spread);
+    const double dir = uniform(rng, -pi, pi);
+    const double before = uniform(rng, s.min_travel, s.max_travel * spread);
+    const double after = uniform(rng, s.min_travel, s.max_travel * spread);
     const double turn = uniform(rng, -s.max_heading_change, s.max_heading_change);
-    q.starts.push_back({ds * std::cos(a), ds * std::sin(a), heading});
-    q.goals.push_back({dg * std::cos(across), dg * std::sin(across), geo::wrapAngle(heading + turn)});
+    q.starts.push_back({p[0] - before * std::cos(dir), p[1] - before * std::sin(dir), heading});
+    q.goals.push_back({p[0] + after * std::cos(dir), p[1] + after * std::sin(dir), geo::wrapAngle(heading + turn)});
   }
   return q;
 }

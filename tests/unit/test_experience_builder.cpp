@@ -3,10 +3,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <sstream>
 
 #include "earc/experience/builder.hpp"
 #include "earc/experience/rows.hpp"
+#include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/validate/validator.hpp"
@@ -74,27 +77,80 @@ TEST_CASE("the generated arm layout yields the facing and neighbouring classes, 
 }
 
 TEST_CASE("built mobile experiences are valid solutions of conflicting subproblems") {
-  ScratchDirectory dir("builder");
-  ExperienceStore store(dir.file("m.db"));
-  BuildSettings s;
-  s.count = 12;
-  s.seed = 4;
-  BuildReport r = buildDatabase(store, s);
-  CHECK(r.problems == 12);
-  CHECK(r.inserted == r.solved - r.duplicates);
-  CHECK(r.inserted >= 10);
-  RobotSpec robot;
-  robot.shape = MobileShape::Box;
-  robot.box_size = gen::MobileFootprint{}.box_size;
-  for (const Experience& e : allRows(store)) {
-    CAPTURE(e.id);
-    checkStoredMobileValid(e, robot, 1.0);
-    CHECK(e.source == Source::Build);
-    CHECK(e.solve_time_s > 0);
-    // A conflict: the straight motion was not already valid, so the paths
-    // are not two straight lines of equal length... at least one bends or waits.
-    CHECK(e.paths.front().size() > 2);
+  // The default mix of 2, 3 and 4 robots, and 4 robots alone: four robots
+  // as close together as two (spread_per_robot 0) found a conflicting
+  // query in 12 of these 30 problems.
+  struct Case {
+    const char* name;
+    std::vector<double> mix;
+    int count;
+    unsigned seed;
+    int max_no_query;
+  };
+  for (const Case& c : {Case{"default mix", {0.5, 0.3, 0.2}, 12, 4, 1}, Case{"four robots", {0, 0, 1}, 30, 5, 3}}) {
+    SUBCASE(c.name) {
+      ScratchDirectory dir("builder");
+      ExperienceStore store(dir.file("m.db"));
+      BuildSettings s;
+      s.count = c.count;
+      s.seed = c.seed;
+      s.mobile_mix = c.mix;
+      BuildReport r = buildDatabase(store, s);
+      CHECK(r.problems == c.count);
+      CHECK(r.no_query <= c.max_no_query);
+      CHECK(r.inserted == r.solved - r.duplicates);
+      CHECK(r.inserted >= c.count - c.max_no_query - 1);
+      RobotSpec robot;
+      robot.shape = MobileShape::Box;
+      robot.box_size = gen::MobileFootprint{}.box_size;
+      for (const Experience& e : allRows(store)) {
+        CAPTURE(e.id);
+        if (c.mix.front() == 0) CHECK(e.paths.size() == 4);
+        checkStoredMobileValid(e, robot, 1.0);
+        CHECK(e.source == Source::Build);
+        CHECK(e.solve_time_s > 0);
+        // A conflict: the straight motion was not already valid, so the
+        // paths are not straight lines of equal length... at least one
+        // bends or waits.
+        CHECK(e.paths.front().size() > 2);
+      }
+    }
   }
+}
+
+TEST_CASE("drawn mobile queries: some robots rest, the others pass by the conflict point") {
+  // ARC's subproblems have robots that wait while others pass, and robots
+  // that pass beside the conflict point rather than through it: the
+  // database is drawn alike (QuerySampling).
+  const QuerySampling s;
+  std::mt19937_64 rng(7);
+  int robots = 0, resting = 0, beside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Query q = sampleMobileQuery(2, rng, s);
+    REQUIRE(q.starts.size() == 2);
+    for (std::size_t r = 0; r < 2; ++r) {
+      ++robots;
+      const auto& a = q.starts[r];
+      const auto& b = q.goals[r];
+      if (a == b) {
+        ++resting;
+        CHECK(std::hypot(a[0], a[1]) <= s.rest_radius + 1e-12);
+        continue;
+      }
+      const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+      CHECK(len <= 2 * s.max_travel + 1e-12);
+      CHECK(len >= 2 * s.min_travel - 1e-12);
+      CHECK(std::abs(geo::wrapAngle(b[2] - a[2])) <= s.max_heading_change + 1e-12);
+      // The straight motion passes within pass_offset of the conflict point.
+      const double along = std::clamp(-(a[0] * dx + a[1] * dy) / (len * len), 0.0, 1.0);
+      const double miss = std::hypot(a[0] + along * dx, a[1] + along * dy);
+      CHECK(miss <= s.pass_offset + 1e-9);
+      beside += miss > 0.25;
+    }
+  }
+  CHECK(resting > robots / 10);
+  CHECK(resting < robots / 5);
+  CHECK(beside > robots / 5);
 }
 
 TEST_CASE("built arm experiences are valid solutions for their base transform class") {
