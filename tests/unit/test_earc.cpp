@@ -427,6 +427,17 @@ struct ParkedRobot {
     LocalSolution st = timeStampComposite(pair, way);
     REQUIRE(exp::learn(db, pair, st.paths, 0.1, exp::Source::Build).has_value());
   }
+
+  // The subproblem put to `solver` with c parked on a's way, then with c
+  // parked out of the way.
+  std::pair<SolverOutcome, SolverOutcome> solveParkedThenAway(DatabaseSolver& solver) {
+    SolverContext ctx{world, all, roadmaps, plan_paths, sub, Deadline(10), 7};
+    SolverOutcome parked = solver.solve(ctx);
+    std::vector<Path> away = plan_paths;
+    away[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
+    SolverContext clear{world, all, roadmaps, away, sub, Deadline(10), 7};
+    return {std::move(parked), solver.solve(clear)};
+  }
 };
 
 }  // namespace
@@ -437,15 +448,17 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   ParkedRobot f;
   f.store(store, {{{4, 4, 0}, {4, 6, 0}}, {{6, 4, 0}, {6, 6, 0}}});
   DatabaseSolver solver(store, DatabaseSolverSettings{});
-  SolverContext ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
-  SolverOutcome out = solver.solve(ctx);
+  auto [out, used] = f.solveParkedThenAway(solver);
   CHECK_FALSE(out.solution.has_value());
   // The trace says what became of the candidates.
   CHECK(out.detail == "1 candidates: 0 ends blocked, 0 invalid, 1 crowded; none to repair");
+  // With c parked out of the way the same entry is used.
+  REQUIRE(used.solution.has_value());
+  CHECK(used.how == "database");
   nlohmann::json stats;
   solver.finish(stats);
   CHECK(stats["db_refused_crowded"].get<int>() == 1);
-  CHECK(stats["db_hits"].get<int>() == 0);
+  CHECK(stats["db_hits"].get<int>() == 1);
 
   // Told to ignore the robots outside (ARC's retries beyond its last
   // level), the solver uses the entry and leaves c to a later conflict.
@@ -454,13 +467,24 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   SolverOutcome through = solver.solve(ignoring);
   REQUIRE(through.solution.has_value());
   CHECK(through.how == "database");
+}
 
-  // With c parked out of the way the same entry is used.
-  f.plan_paths[2] = line({{5, 8.5, 0}, {5, 8.5, 0}});
-  SolverContext clear_ctx{f.world, f.all, f.roadmaps, f.plan_paths, f.sub, Deadline(10), 7};
-  SolverOutcome used = solver.solve(clear_ctx);
+TEST_CASE("A stored solution that runs into a robot outside before its invalid stretch is not repaired") {
+  TempDb tmp;
+  exp::ExperienceStore store(tmp.file());
+  ParkedRobot f;
+  // a drives straight through c's place; b dips towards a's line and
+  // touches a half-way: one invalid run, after a has reached c.
+  f.store(store, {{{4, 4, 0}, {4, 6, 0}}, {{5, 4, 0}, {5, 4.5, 0}}, {{6, 4, 0}, {6, 6, 0}}});
+  DatabaseSolverSettings ds;
+  ds.repair_time_s = 2.0;
+  DatabaseSolver solver(store, ds);
+  auto [out, used] = f.solveParkedThenAway(solver);
+  CHECK_FALSE(out.solution.has_value());
+  CHECK(out.detail == "1 candidates: 0 ends blocked, 1 invalid, 0 crowded; crowded before repair");
+  // With c parked out of the way the same entry is repaired and used.
   REQUIRE(used.solution.has_value());
-  CHECK(used.how == "database");
+  CHECK(used.how == "repair");
 }
 
 TEST_CASE("After three stored solutions run into robots outside the subproblem, the database hands over") {
