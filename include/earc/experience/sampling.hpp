@@ -26,7 +26,8 @@ struct QuerySampling {
   // degrees). Every robot used to cross the conflict point itself: the
   // nearest of the default database's keys then lay 0.46 (2 robots), 1.26
   // (3) and 2.24 (4) from the median subproblem's at seeds 1-20; drawn
-  // this way, 0.26, 0.75 and 1.61 (the same counts).
+  // this way, 0.26, 0.75 and 1.61 (the same counts, measured with a
+  // stand-in for the builder that tells collisions by bounding discs).
   double rest_probability = 0.15;
   double rest_radius = 0.8;  // a resting robot lies within this of the conflict point
   double pass_offset = 0.5;
