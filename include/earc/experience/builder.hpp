@@ -2,9 +2,9 @@
 // subproblems shaped like ARC's conflicts, each solved in isolation in its
 // composite space with solveCoupled, stored in canonical form.
 //
-// Mobile robots: 2, 3 and 4 robots (mix below) around a conflict point:
-// each start 0.4-1.5 units from it, each goal roughly across it, random
-// headings; the region is a box just around the query plus a margin.
+// Mobile robots: 2, 3 and 4 robots (mix below) around a conflict point,
+// each resting near it or passing by it (QuerySampling), random headings;
+// the region is a box just around the query plus a margin.
 // Manipulators: 2 arms for every relative base transform class of a layout
 // (pairs whose reach discs overlap by kMinReachOverlap or more), start
 // joints reaching towards the other arm and goals a short joint distance
