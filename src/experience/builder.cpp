@@ -313,6 +313,10 @@ std::string buildDescription(const BuildSettings& s, std::size_t arm_pair_classe
         << (arm_pair_classes == 1 ? "" : "es");
   }
   out << ", " << s.time_per_problem_s << (s.work_budgets ? " s of work a problem" : " s a problem");
+  // The mobile draw (QuerySampling), so that a database of an earlier
+  // one, every robot crossing the conflict point, can be told apart.
+  if (s.kind == RobotKind::Mobile)
+    out << ", robots rest " << s.sampling.rest_probability << " or pass within " << s.sampling.pass_offset;
   return out.str();
 }
 

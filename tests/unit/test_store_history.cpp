@@ -118,6 +118,9 @@ TEST_CASE("build, import and curate write what they did; the counts add up to th
   REQUIRE(lines.size() == 2);
   CHECK(lines[1].operation == "build");
   CHECK(lines[1].detail.find("8 mobile problems, seed 5") == 0);
+  // Which draw made the rows (earlier builds crossed every robot over the
+  // conflict point and said nothing of it).
+  CHECK(lines[1].detail.find(" s a problem, robots rest 0.15 or pass within 0.5") != std::string::npos);
   CHECK(lines[1].rows_added == b.inserted);
 
   CurateSettings c;

@@ -14,7 +14,7 @@ namespace {
 // Builds named on the "made by" line.
 constexpr std::size_t kListedBuilds = 5;
 // Bytes of a history line's detail, and of its operation and program, shown.
-constexpr std::size_t kShownDetail = 110;
+constexpr std::size_t kShownDetail = 150;
 constexpr std::size_t kShownName = 40;
 
 struct InspectOptions {
