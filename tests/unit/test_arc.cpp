@@ -246,6 +246,11 @@ struct CrossingFixture {
   CollisionWorld world;
   Conflict c;
 
+  // a's and b's subproblem of the conflict at `level`, as the paths are now.
+  Subproblem subproblem(const PlannerSettings& settings, int level = 0) const {
+    return createSubproblem(c, {0, 1}, level, m.raw, paths, world, settings);
+  }
+
  private:
   static Scenario scenario(double bystander_radius) {
     Scenario sc = openScenario(10);
@@ -280,7 +285,7 @@ TEST_CASE("A subproblem's window spans the conflict and its local query lies on 
   CrossingFixture f;
   PlannerSettings settings;
   settings.initial_window = 8;
-  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  Subproblem sub = f.subproblem(settings);
   CHECK(sub.t_start + 8 == static_cast<std::size_t>(f.c.t));
   CHECK(sub.t_end >= static_cast<std::size_t>(f.c.t) + 8);
   // The end moved past the crossing so that the local goals are apart.
@@ -299,7 +304,7 @@ TEST_CASE("The decoupled solver builds its robots' roadmaps before its time budg
   // search gives up at once, yet the roadmap is there.
   CrossingFixture f;
   PlannerSettings settings;
-  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  Subproblem sub = f.subproblem(settings);
   RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
   REQUIRE(roadmaps.built() == 0);
   SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
@@ -317,11 +322,11 @@ TEST_CASE("Expanding a subproblem doubles its window and grows its region until 
   PlannerSettings settings;
   settings.initial_window = 4;
   settings.max_expansions = 5;
-  Subproblem a = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
-  Subproblem b = createSubproblem(f.c, {0, 1}, 1, f.m.raw, f.paths, f.world, settings);
+  Subproblem a = f.subproblem(settings);
+  Subproblem b = f.subproblem(settings, 1);
   CHECK(a.t_start - b.t_start == 4);
   CHECK(b.region[0].hi[0] - b.region[0].lo[0] > a.region[0].hi[0] - a.region[0].lo[0]);
-  Subproblem last = createSubproblem(f.c, {0, 1}, 5, f.m.raw, f.paths, f.world, settings);
+  Subproblem last = f.subproblem(settings, 5);
   CHECK(last.whole_problem);
   CHECK(last.t_start == 0);
   CHECK(last.t_end == 80);
@@ -338,7 +343,7 @@ TEST_CASE("A subproblem whose window and regions already cover everything is the
   int first_saturated = -1;
   for (int level = 0; level <= settings.max_expansions; ++level) {
     CAPTURE(level);
-    Subproblem sub = createSubproblem(f.c, {0, 1}, level, f.m.raw, f.paths, f.world, settings);
+    Subproblem sub = f.subproblem(settings, level);
     bool covers = sub.t_start == 0 && sub.t_end == 80;
     for (int r = 0; r < 2; ++r) {
       ConfigBox full;
@@ -363,11 +368,11 @@ TEST_CASE("A subproblem spanning the paths whose regions together span the works
   settings.max_expansions = 12;
   ConfigBox full;
   f.m.raw[0]->samplingBounds(f.world.workspace(), full.lo, full.hi);
-  Subproblem one = createSubproblem(f.c, {0, 1}, 1, f.m.raw, f.paths, f.world, settings);
+  Subproblem one = f.subproblem(settings, 1);
   REQUIRE(one.t_start == 0);
   REQUIRE(one.t_end == 80);
   CHECK_FALSE(one.whole_problem);
-  Subproblem two = createSubproblem(f.c, {0, 1}, 2, f.m.raw, f.paths, f.world, settings);
+  Subproblem two = f.subproblem(settings, 2);
   CHECK(two.whole_problem);
   CHECK_FALSE(two.region[0] == full);
 }
@@ -377,7 +382,7 @@ TEST_CASE("The decoupled solver's expansion cap grows with the hierarchy's budge
   // budget scale: a search cut off by its expansion cap must get further.
   CrossingFixture f;
   PlannerSettings settings;
-  Subproblem sub = createSubproblem(f.c, {0, 1}, 0, f.m.raw, f.paths, f.world, settings);
+  Subproblem sub = f.subproblem(settings);
   RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
   DecoupledSettings tight;
   tight.max_expansions = 3;
@@ -394,24 +399,21 @@ TEST_CASE("A robot with no way past the robots outside its group ends the decoup
   // planned first, finds no way to hold its goal; behind b it would find
   // none either, so the solver says so and tries no other order.
   CrossingFixture f(0.2);
-  const auto& m = f.m;
-  const CollisionWorld& world = f.world;
-  std::vector<Path>& paths = f.paths;
   PlannerSettings settings;
-  const Subproblem sub = createSubproblem(f.c, {0, 1}, 0, m.raw, paths, world, settings);
-  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
-  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  const Subproblem sub = f.subproblem(settings);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
   REQUIRE(DecoupledSolver().solve(ctx).solution.has_value());  // with c out of the way
-  paths[2] = Path(3);
-  for (int t = 0; t <= 80; ++t) paths[2].push(sub.goals[0].data());
+  f.paths[2] = Path(3);
+  for (int t = 0; t <= 80; ++t) f.paths[2].push(sub.goals[0].data());
   const SolverOutcome out = DecoupledSolver().solve(ctx);
   CHECK_FALSE(out.solution.has_value());
   CHECK(out.detail == "robot 0 has no way past the robots outside the group, in any order");
 
   // The search says whether it ran out of ways or stopped short of them.
-  QueryGraph graph(roadmaps.forRobot(0), *m.raw[0], &sub.region[0]);
+  QueryGraph graph(roadmaps.forRobot(0), *f.m.raw[0], &sub.region[0]);
   const int sv = graph.addVertex(sub.starts[0].data(), 10), gv = graph.addVertex(sub.goals[0].data(), 10);
-  const std::vector<MovingObstacle> resting{{m.raw[2], &paths[2], sub.t_start, 2}};
+  const std::vector<MovingObstacle> resting{{f.m.raw[2], &f.paths[2], sub.t_start, 2}};
   const std::size_t window = sub.t_end - sub.t_start;
   SearchEnd end = SearchEnd::Found;
   CHECK_FALSE(spaceTimeSearch(graph, sv, gv, resting, 200, window, Deadline(), 100000, false, &end));
@@ -429,20 +431,17 @@ TEST_CASE("The decoupled solver's robots arrive within the window and 50 steps, 
   // to pass it, until 80 steps after the window: a can get by only after
   // that, later than its horizon allows.
   CrossingFixture f(0.1);
-  const auto& m = f.m;
-  const CollisionWorld& world = f.world;
-  std::vector<Path>& paths = f.paths;
   PlannerSettings settings;
   settings.region_margin = 0.2;
   settings.initial_window = 16;
-  const Subproblem sub = createSubproblem(f.c, {0, 1}, 0, m.raw, paths, world, settings);
+  const Subproblem sub = f.subproblem(settings);
   const std::size_t window = sub.t_end - sub.t_start;
-  paths[2] = Path(3);
+  f.paths[2] = Path(3);
   const double in_the_way[3] = {4.5, 5, 0}, away[3] = {9, 9, 0};
-  for (std::size_t t = 0; t <= sub.t_end + 80; ++t) paths[2].push(in_the_way);
-  paths[2].push(away);
-  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
-  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  for (std::size_t t = 0; t <= sub.t_end + 80; ++t) f.paths[2].push(in_the_way);
+  f.paths[2].push(away);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, sub, Deadline(10), 7};
   CHECK_FALSE(DecoupledSolver().solve(ctx).solution.has_value());
   DecoupledSettings patient;
   patient.horizon_steps = 200;
