@@ -50,6 +50,18 @@ constexpr std::string_view kNoneToRepair = "none to repair";
 constexpr int kCrowdedGiveUp = 3;
 constexpr std::string_view kBusy = "region busy with other robots";
 
+// A candidate that ends where this subproblem does (a stored answer to the
+// same subproblem elsewhere, equal up to the rounding of the translation)
+// takes its start and goal as they are: a join across a rounding error
+// would cost a whole step (stepsBetween rounds up), and an answer that
+// passes the robots outside closely runs into them a step late.
+bool sameUpToRounding(const CompositeState& a, const CompositeState& b) {
+  for (std::size_t r = 0; r < a.size(); ++r)
+    for (std::size_t j = 0; j < a[r].size(); ++j)
+      if (std::abs(a[r][j] - b[r][j]) > 1e-9) return false;
+  return true;
+}
+
 // Keys hold positions, not headings, so a retrieved mobile robot's path
 // may start facing anywhere: turn the whole path by one angle so that it
 // starts at the subproblem's start heading (its steps keep their turns;
@@ -207,15 +219,20 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
   // candidate gets that far: most queries end before.
   const std::size_t window = sub.t_end - sub.t_start;
   std::optional<std::vector<MovingObstacle>> others;
+  // Time-stamped paths of the subproblem's robots from its start, clear of
+  // the robots outside.
+  auto clearOfOthers = [&](const std::vector<Path>& paths) {
+    if (!others) others = nearbyRobots(ctx, 4 * window + 100);
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      if (!clearOfMoving(*robots[r], paths[r], *others)) return false;
+    return true;
+  };
   // Shortcutting changes when the robots are where, which the other
   // robots may not allow: then the candidate as stored is tried.
   auto joinClear = [&](const std::vector<Path>& middle) -> std::optional<LocalSolution> {
-    if (!others) others = nearbyRobots(ctx, 4 * window + 100);
     for (bool shortcut : {true, false}) {
       LocalSolution sol = connect(checker, ctx, robots, middle, shortcut);
-      bool clear = true;
-      for (std::size_t r = 0; r < robots.size() && clear; ++r) clear = clearOfMoving(*robots[r], sol.paths[r], *others);
-      if (clear) return sol;
+      if (clearOfOthers(sol.paths)) return sol;
     }
     return std::nullopt;
   };
@@ -317,16 +334,14 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     // outside, so would nearly every repaired answer. (At 32 mobile
     // robots with obstacles a third of the failed queries repaired an
     // answer only to find it crowded, 0.25 s in 20 plans; with this check
-    // the same plans used 75 repaired answers, against 76.)
-    if (!others) others = nearbyRobots(ctx, 4 * window + 100);
-    const LocalSolution head = timeStampComposite(robots, {sub.starts, stateAt(c.paths, 0)});
-    bool clear = true;
-    for (std::size_t r = 0; r < robots.size() && clear; ++r) {
-      Path p = head.paths[r];
-      for (std::size_t t = 1; t <= best->runs.front().first; ++t) p.push(c.paths[r].at(t));
-      clear = clearOfMoving(*robots[r], p, *others);
-    }
-    if (!clear) {
+    // the same plans used 75 repaired answers, against 76.) Joined to the
+    // start as connect() joins the candidate as stored.
+    const CompositeState first = stateAt(c.paths, 0);
+    std::vector<Path> head = sameUpToRounding(first, sub.starts) ? timeStampComposite(robots, {sub.starts}).paths
+                                                                 : timeStampComposite(robots, {sub.starts, first}).paths;
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      for (std::size_t t = 1; t <= best->runs.front().first; ++t) head[r].push(c.paths[r].at(t));
+    if (!clearOfOthers(head)) {
       recordUse(c.id, false);
       ++crowded_;
       return failed("crowded before repair");
@@ -369,22 +384,11 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
                                       const std::vector<const RobotModel*>& robots,
                                       const std::vector<Path>& middle, bool shortcut) const {
   const Subproblem& sub = ctx.sub;
-  // A candidate that ends where this subproblem does (a stored answer to
-  // the same subproblem elsewhere, equal up to the rounding of the
-  // translation) takes its start and goal as they are: a join across a
-  // rounding error would cost a whole step (stepsBetween rounds up), and
-  // an answer that passes the robots outside closely runs into them a
-  // step late.
-  auto same = [](const CompositeState& a, const CompositeState& b) {
-    for (std::size_t r = 0; r < a.size(); ++r)
-      for (std::size_t j = 0; j < a[r].size(); ++j)
-        if (std::abs(a[r][j] - b[r][j]) > 1e-9) return false;
-    return true;
-  };
   const std::size_t last = middle.front().size() - 1;
   std::vector<CompositeState> waypoints;
   for (std::size_t t = 0; t <= last; ++t) waypoints.push_back(stateAt(middle, t));
-  const bool joined_start = !same(waypoints.front(), sub.starts), joined_goal = !same(waypoints.back(), sub.goals);
+  const bool joined_start = !sameUpToRounding(waypoints.front(), sub.starts);
+  const bool joined_goal = !sameUpToRounding(waypoints.back(), sub.goals);
   if (joined_start)
     waypoints.insert(waypoints.begin(), sub.starts);
   else
