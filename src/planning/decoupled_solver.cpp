@@ -523,13 +523,14 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // retries repeat the same failed searches (a 4-robot corridor swap that
   // needs a fifth priority order failed for 60 s).
   const double scale = std::max(1.0, ctx.budget_scale);
-  // The horizon grows with it too, up to 4 windows and 100 steps, the
-  // horizon every subproblem had before (not beyond: each instant of it
-  // is tabulated for every robot around).
+  // The horizon grows with it too, up to the long horizon (not beyond:
+  // each instant of it is tabulated for every robot around).
   const double w = static_cast<double>(window);
   const double base_horizon = settings_.horizon_windows * w + static_cast<double>(settings_.horizon_steps);
+  const double long_horizon = DecoupledSettings::kLongHorizonWindows * w +
+                              static_cast<double>(DecoupledSettings::kLongHorizonSteps);
   const std::size_t horizon =
-      static_cast<std::size_t>(std::max(base_horizon, std::min(base_horizon * scale, 4 * w + 100)));
+      static_cast<std::size_t>(std::max(base_horizon, std::min(base_horizon * scale, long_horizon)));
   std::size_t max_expansions = static_cast<std::size_t>(std::min(1e9, static_cast<double>(settings_.max_expansions) * scale));
   const int max_orders = static_cast<int>(std::min(1e4, settings_.max_orders * scale));
   if (settings_.expansions_per_horizon_step > 0)

@@ -92,8 +92,8 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   ds.max_orders = 1000;
   // The whole plan is one window: a robot may have to wait long for the
   // ones before it (ARC's subproblems take a shorter horizon).
-  ds.horizon_windows = 4;
-  ds.horizon_steps = 100;
+  ds.horizon_windows = DecoupledSettings::kLongHorizonWindows;
+  ds.horizon_steps = DecoupledSettings::kLongHorizonSteps;
   ds.avoid_others = false;
   DecoupledSolver solver(ds);
   SolverContext ctx{world, models, roadmaps, none, sub, deadline, splitSeed(settings.seed, 2)};
