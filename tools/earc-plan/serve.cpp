@@ -1,6 +1,6 @@
-// earc-plan serve --db FILE [--socket PATH] [--method M] [--seed K]
-// [--time-limit S]: a long-running planner. Opens the experience store once
-// and answers planning requests, one JSON line each (protocol in
+// earc-plan serve [--db FILE] [--socket PATH] [--method M] [--seed K]
+// [--time-limit S]: a long-running planner. Opens the experience store, when
+// given, once and answers planning requests, one JSON line each (protocol in
 // earc/service/service.hpp), on stdin/stdout and, with --socket, on a Unix
 // domain socket (any number of connections, requests answered one at a
 // time in arrival order). SIGINT or SIGTERM cuts the request in flight
@@ -327,11 +327,19 @@ void installSignals() {
 
 int runServe(const ServeOptions& o) {
   service::ServiceSettings settings;
+  Method method;
   try {
-    methodFromName(o.method);
+    method = methodFromName(o.method);
   } catch (const std::invalid_argument& e) {
     throw InputError("", "--method", e.what());
   }
+  // Without a database the service plans every method but E-ARC, and
+  // answers an E-ARC request with an error; E-ARC as the default for
+  // requests that name no method would make most of them errors.
+  if (o.db.empty() && method == Method::Earc)
+    throw InputError("", "--db",
+                     "method earc (the default) needs an experience database: give --db FILE, or --method arc, "
+                     "prioritized, coupled or lightning");
   settings.method = o.method;
   settings.time_limit_s = o.time_limit;
   settings.seed = o.seed;
@@ -343,18 +351,22 @@ int runServe(const ServeOptions& o) {
   Fd listener;
   if (!o.socket.empty()) listener = listenOn(o.socket);
   std::shared_ptr<exp::ExperienceStore> store;
-  try {
-    store = openStoreForPlanning(Method::Earc, o.db, true);
-    // A damaged file keeps the service from starting, as it always did;
-    // the check only ran while the index loaded.
-    exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
-  } catch (...) {
-    if (!o.socket.empty()) ::unlink(o.socket.c_str());
-    throw;
+  if (!o.db.empty()) {
+    try {
+      store = openStoreForPlanning(Method::Earc, o.db, true);
+      // A damaged file keeps the service from starting, as it always did;
+      // the check only ran while the index loaded.
+      exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
+    } catch (...) {
+      if (!o.socket.empty()) ::unlink(o.socket.c_str());
+      throw;
+    }
   }
   service::Service service(store, settings);
-  std::cerr << "earc-plan serve: " << o.db << " (" << store->size() << " experiences), requests on stdin"
-            << (o.socket.empty() ? "" : " and " + o.socket) << "\n";
+  std::cerr << "earc-plan serve: "
+            << (store ? o.db + " (" + std::to_string(store->size()) + " experiences)"
+                      : std::string("no experience database (method earc refused)"))
+            << ", requests on stdin" << (o.socket.empty() ? "" : " and " + o.socket) << "\n";
   try {
     Server(service, std::move(listener)).run();
   } catch (...) {
@@ -368,7 +380,7 @@ int runServe(const ServeOptions& o) {
             << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
             << " experiences learned";
   if (n.db.solved > 0) std::cerr << ", database answered " << n.db.answered() << " of " << n.db.solved << " solved subproblems";
-  std::cerr << "; database closed\n";
+  std::cerr << (store ? "; database closed\n" : "\n");
   return 0;
 }
 
@@ -376,7 +388,9 @@ void setupServe(CLI::App& app) {
   auto opts = std::make_shared<ServeOptions>();
   auto* cmd = app.add_subcommand(
       "serve", "Answer planning requests (JSON lines, protocol earc.service.v1) with one experience database open");
-  cmd->add_option("--db", opts->db, "Experience database (created when missing)")->check(earc::cli::kFileName)->required();
+  cmd->add_option("--db", opts->db,
+                  "Experience database (created when missing); needed when --method is earc, the default")
+      ->check(earc::cli::kFileName);
   cmd->add_option("--socket", opts->socket, "Also accept requests on this Unix domain socket");
   cmd->add_option("--method", opts->method, "Method for requests that name none")->capture_default_str();
   cmd->add_option("--time-limit", opts->time_limit, "Time limit for requests that give none (s)")
