@@ -14,8 +14,8 @@ failShowsOutput
 PLAN=$BUILD/earc-plan
 mkdir "$WORK/run" && cd "$WORK/run" || exit 1
 
-refusedInOneLine "--db: method earc (the default) needs an experience database" "$PLAN" serve < /dev/null
-refusedInOneLine "--db: method earc (the default) needs an experience database" "$PLAN" serve --method earc < /dev/null
+refusedInOneLine "--db: method earc needs an experience database file" "$PLAN" serve < /dev/null
+refusedInOneLine "--db: method earc needs an experience database file" "$PLAN" serve --method earc < /dev/null
 [ -z "$(ls)" ] || fail "a refused service left $(ls)"
 
 "$BUILD/earc-scenario" generate -n 8 --obstacles --seed 3 -o s.json > /dev/null || fail "earc-scenario: exit $?"

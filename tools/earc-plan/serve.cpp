@@ -333,13 +333,6 @@ int runServe(const ServeOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError("", "--method", e.what());
   }
-  // Without a database the service plans every method but E-ARC, and
-  // answers an E-ARC request with an error; E-ARC as the default for
-  // requests that name no method would make most of them errors.
-  if (o.db.empty() && method == Method::Earc)
-    throw InputError("", "--db",
-                     "method earc (the default) needs an experience database: give --db FILE, or --method arc, "
-                     "prioritized, coupled or lightning");
   settings.method = o.method;
   settings.time_limit_s = o.time_limit;
   settings.seed = o.seed;
@@ -351,16 +344,18 @@ int runServe(const ServeOptions& o) {
   Fd listener;
   if (!o.socket.empty()) listener = listenOn(o.socket);
   std::shared_ptr<exp::ExperienceStore> store;
-  if (!o.db.empty()) {
-    try {
-      store = openStoreForPlanning(Method::Earc, o.db, true);
-      // A damaged file keeps the service from starting, as it always did;
-      // the check only ran while the index loaded.
-      exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
-    } catch (...) {
-      if (!o.socket.empty()) ::unlink(o.socket.c_str());
-      throw;
-    }
+  try {
+    // A database given serves E-ARC requests whatever the default method.
+    // Without one the service plans every method but E-ARC, and answers an
+    // E-ARC request with an error: E-ARC as the default is refused here
+    // (openStoreForPlanning), as most requests would be errors.
+    store = openStoreForPlanning(o.db.empty() ? method : Method::Earc, o.db, true);
+    // A damaged file keeps the service from starting, as it always did;
+    // the check only ran while the index loaded.
+    if (store) exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
+  } catch (...) {
+    if (!o.socket.empty()) ::unlink(o.socket.c_str());
+    throw;
   }
   service::Service service(store, settings);
   std::cerr << "earc-plan serve: "
@@ -387,7 +382,7 @@ int runServe(const ServeOptions& o) {
 void setupServe(CLI::App& app) {
   auto opts = std::make_shared<ServeOptions>();
   auto* cmd = app.add_subcommand(
-      "serve", "Answer planning requests (JSON lines, protocol earc.service.v1) with one experience database open");
+      "serve", "Answer planning requests (JSON lines, protocol earc.service.v1), keeping one experience database open (--db)");
   cmd->add_option("--db", opts->db,
                   "Experience database (created when missing); needed when --method is earc, the default")
       ->check(earc::cli::kFileName);
