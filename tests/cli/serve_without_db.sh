@@ -1,7 +1,7 @@
 #!/bin/bash
 # earc-plan serve without --db: a service for the methods that need no
 # experience database. With E-ARC as its default method it is refused at
-# once, in one line naming --db, creating no file; with --method arc it
+# once, in one line naming --db, creating no file (nor its socket); with --method arc it
 # answers a ping, plans an ARC request (a valid plan), refuses an E-ARC
 # request with an error answer and goes on, and reports no database in
 # its stats. Skipped (77) without /usr/bin/python3.
@@ -16,6 +16,9 @@ mkdir "$WORK/run" && cd "$WORK/run" || exit 1
 
 refusedInOneLine "--db: method earc needs an experience database file" "$PLAN" serve < /dev/null
 refusedInOneLine "--db: method earc needs an experience database file" "$PLAN" serve --method earc < /dev/null
+# Before any socket is bound: the option is named, not the socket's
+# directory, which does not exist.
+refusedInOneLine "--db: method earc needs an experience database file" "$PLAN" serve --socket none/s.sock < /dev/null
 [ -z "$(ls)" ] || fail "a refused service left $(ls)"
 
 "$BUILD/earc-scenario" generate -n 8 --obstacles --seed 3 -o s.json > /dev/null || fail "earc-scenario: exit $?"

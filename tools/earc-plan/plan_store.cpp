@@ -45,10 +45,15 @@ std::shared_ptr<exp::ExperienceStore> openStore(const std::string& db, const exp
 
 }  // namespace
 
+void requireDatabaseFor(Method method, const std::string& db) {
+  if (method == Method::Earc && db.empty())
+    throw InputError("", "--db", "method earc needs an experience database file (earc-db build makes one; a new file name starts empty)");
+}
+
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
                                                            std::string* full_disk) {
   if (method != Method::Earc) return nullptr;
-  if (db.empty()) throw InputError("", "--db", "method earc needs an experience database file (earc-db build makes one; a new file name starts empty)");
+  requireDatabaseFor(method, db);
   exp::StoreOptions options;
   options.check_in_background = true;
   if (!learn) {

@@ -338,18 +338,20 @@ int runServe(const ServeOptions& o) {
   settings.seed = o.seed;
   settings.deterministic = o.deterministic;
   installSignals();
-  // The socket first: a second service on the same path is refused before
+  // A database given serves E-ARC requests whatever the default method.
+  // Without one the service plans every method but E-ARC, and answers an
+  // E-ARC request with an error; E-ARC as the default is refused here, as
+  // most requests would be errors, before anything is bound or opened.
+  const Method store_method = o.db.empty() ? method : Method::Earc;
+  requireDatabaseFor(store_method, o.db);
+  // The socket next: a second service on the same path is refused before
   // it touches the database. Clients that connect meanwhile wait in the
   // backlog until the store is open.
   Fd listener;
   if (!o.socket.empty()) listener = listenOn(o.socket);
   std::shared_ptr<exp::ExperienceStore> store;
   try {
-    // A database given serves E-ARC requests whatever the default method.
-    // Without one the service plans every method but E-ARC, and answers an
-    // E-ARC request with an error: E-ARC as the default is refused here
-    // (openStoreForPlanning), as most requests would be errors.
-    store = openStoreForPlanning(o.db.empty() ? method : Method::Earc, o.db, true);
+    store = openStoreForPlanning(store_method, o.db, true);
     // A damaged file keeps the service from starting, as it always did;
     // the check only ran while the index loaded.
     if (store) exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
