@@ -49,57 +49,105 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
   std::vector<int> active;
   for (std::size_t r = 0; r < n; ++r)
     if (paths[r] && !paths[r]->empty()) active.push_back(static_cast<int>(r));
-  std::vector<int> order = active;  // by min x after the first instant's sort
   std::size_t work = 0;  // per instant
   for (int r : active) work += static_cast<std::size_t>(models_[static_cast<std::size_t>(r)]->dim());
   std::optional<DeadlinePoll> poll;
   if (deadline_) poll.emplace(*deadline_, kWorkPerClockRead);
+  auto counts = [&](std::size_t ri, std::size_t rj) { return !focus || (*focus)[ri] || (*focus)[rj]; };
 
-  for (std::size_t k = 2 * from; k <= 2 * to; ++k) {
-    if (poll && poll->expired(work)) {
+  // Instants go in chunks. Each robot's bodies over a chunk lie in one box
+  // (RobotModel::boundsWithin over its configurations there, which takes
+  // an arm's bodies once instead of at every instant); only robots whose
+  // box meets another's that counts are placed instant by instant.
+  std::vector<int> order;  // the chunk's robots, by min x
+  std::vector<char> live(n, 0);
+  std::vector<double> lo, hi;
+  const std::size_t last = 2 * to;
+  for (std::size_t k0 = 2 * from; k0 <= last; k0 += kChunk) {
+    const std::size_t k1 = std::min(last, k0 + kChunk - 1);
+    if (poll && poll->expired(work)) {  // the bounds: about one instant's work
       interrupted_ = true;
       return std::nullopt;
     }
     for (int r : active) {
       auto ru = static_cast<std::size_t>(r);
-      stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());
-      models_[ru]->bodies(q_[ru].data(), bodies_);
-      geo::Aabb box;
-      for (const auto& b : bodies_) box.expand(geo::bounds(b));
-      boxes_[ru] = box;
-    }
-    // Insertion sort by min x.
-    for (std::size_t i = 1; i < order.size(); ++i) {
-      int r = order[i];
-      std::size_t j = i;
-      while (j > 0 && boxes_[static_cast<std::size_t>(order[j - 1])].lo.x > boxes_[static_cast<std::size_t>(r)].lo.x) {
-        order[j] = order[j - 1];
-        --j;
+      const std::size_t dim = q_[ru].size();
+      lo.assign(dim, 0.0);
+      hi.assign(dim, 0.0);
+      for (std::size_t k = k0; k <= k1; ++k) {
+        stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());
+        for (std::size_t i = 0; i < dim; ++i) {
+          const double v = q_[ru][i];
+          lo[i] = k == k0 ? v : std::min(lo[i], v);
+          hi[i] = k == k0 ? v : std::max(hi[i], v);
+        }
       }
-      order[j] = r;
+      boxes_[ru] = models_[ru]->boundsWithin(lo.data(), hi.data());
+      live[ru] = 0;
     }
-    std::optional<Conflict> best;
+    order = active;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return boxes_[static_cast<std::size_t>(a)].lo.x < boxes_[static_cast<std::size_t>(b)].lo.x;
+    });
     for (std::size_t i = 0; i < order.size(); ++i) {
       auto ri = static_cast<std::size_t>(order[i]);
       for (std::size_t j = i + 1; j < order.size(); ++j) {
         auto rj = static_cast<std::size_t>(order[j]);
         if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
-        if (!boxes_[ri].overlaps(boxes_[rj])) continue;
-        if (focus && !(*focus)[ri] && !(*focus)[rj]) continue;
-        ++exact_tests_;
-        if (!robotsTouch(*models_[ri], q_[ri].data(), *models_[rj], q_[rj].data())) continue;
-        Conflict c;
-        c.a = static_cast<int>(std::min(ri, rj));
-        c.b = static_cast<int>(std::max(ri, rj));
-        c.t = static_cast<double>(k) / 2.0;
-        geo::Vec2 ca = models_[ri]->boundingCenter(q_[ri].data());
-        geo::Vec2 cb = models_[rj]->boundingCenter(q_[rj].data());
-        c.place = (ca + cb) * 0.5;
-        // Deterministic choice among simultaneous conflicts: lowest pair.
-        if (!best || std::pair(c.a, c.b) < std::pair(best->a, best->b)) best = c;
+        if (boxes_[ri].overlaps(boxes_[rj]) && counts(ri, rj)) live[ri] = live[rj] = 1;
       }
     }
-    if (best) return best;
+    order.erase(std::remove_if(order.begin(), order.end(), [&](int r) { return !live[static_cast<std::size_t>(r)]; }),
+                order.end());
+    std::size_t live_work = 0;
+    for (int r : order) live_work += q_[static_cast<std::size_t>(r)].size();
+
+    for (std::size_t k = k0; k <= k1 && !order.empty(); ++k) {
+      if (poll && poll->expired(live_work)) {
+        interrupted_ = true;
+        return std::nullopt;
+      }
+      for (int r : order) {
+        auto ru = static_cast<std::size_t>(r);
+        stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());
+        models_[ru]->bodies(q_[ru].data(), bodies_);
+        geo::Aabb box;
+        for (const auto& b : bodies_) box.expand(geo::bounds(b));
+        boxes_[ru] = box;
+      }
+      // Insertion sort by min x.
+      for (std::size_t i = 1; i < order.size(); ++i) {
+        int r = order[i];
+        std::size_t j = i;
+        while (j > 0 && boxes_[static_cast<std::size_t>(order[j - 1])].lo.x > boxes_[static_cast<std::size_t>(r)].lo.x) {
+          order[j] = order[j - 1];
+          --j;
+        }
+        order[j] = r;
+      }
+      std::optional<Conflict> best;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        auto ri = static_cast<std::size_t>(order[i]);
+        for (std::size_t j = i + 1; j < order.size(); ++j) {
+          auto rj = static_cast<std::size_t>(order[j]);
+          if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
+          if (!boxes_[ri].overlaps(boxes_[rj])) continue;
+          if (!counts(ri, rj)) continue;
+          ++exact_tests_;
+          if (!robotsTouch(*models_[ri], q_[ri].data(), *models_[rj], q_[rj].data())) continue;
+          Conflict c;
+          c.a = static_cast<int>(std::min(ri, rj));
+          c.b = static_cast<int>(std::max(ri, rj));
+          c.t = static_cast<double>(k) / 2.0;
+          geo::Vec2 ca = models_[ri]->boundingCenter(q_[ri].data());
+          geo::Vec2 cb = models_[rj]->boundingCenter(q_[rj].data());
+          c.place = (ca + cb) * 0.5;
+          // Deterministic choice among simultaneous conflicts: lowest pair.
+          if (!best || std::pair(c.a, c.b) < std::pair(best->a, best->b)) best = c;
+        }
+      }
+      if (best) return best;
+    }
   }
   return std::nullopt;
 }

@@ -181,6 +181,29 @@ class ArmRobot final : public RobotModel {
     });
   }
 
+  // The bodies at the box's middle, widened by how far any point can move
+  // from there: turning joint i by d moves every point beyond it by at
+  // most |d| times its distance from the joint, which is at most the
+  // links from i on plus the link radius (the links beyond turn with it,
+  // rigidly). Summed over the joints, with a hair of slack for rounding.
+  geo::Aabb boundsWithin(const double* lo, const double* hi) const override {
+    const std::size_t n = spec_.links.size();
+    thread_local std::vector<double> mid;
+    mid.resize(n);
+    double widen = 0.0;
+    double reach = spec_.link_radius;
+    for (std::size_t i = n; i-- > 0;) {
+      mid[i] = 0.5 * (lo[i] + hi[i]);
+      reach += spec_.links[i];
+      widen += 0.5 * (hi[i] - lo[i]) * reach;
+    }
+    geo::Aabb box;
+    walkArm(spec_, mid.data(), [&](std::size_t, geo::Vec2 from, geo::Vec2 to) {
+      box.expand(geo::bounds(geo::Body::capsule(from, to, spec_.link_radius)));
+    });
+    return box.inflated(widen * (1.0 + 1e-9) + 1e-9);
+  }
+
   bool selfCollides(const double* q) const override {
     if (spec_.links.size() < 3) return false;
     thread_local std::vector<geo::Body> links;  // per-thread scratch: no allocation per call
@@ -302,6 +325,12 @@ std::optional<RobotSpec> robotFromSignature(std::string_view signature) {
     return std::nullopt;  // a negative radius, limits lo > hi, ...
   }
   return spec;
+}
+
+geo::Aabb RobotModel::boundsWithin(const double* lo, const double* hi) const {
+  const double r = boundingRadius() * (1.0 + 1e-9) + 1e-9;
+  if (!center_is_position_) return geo::Aabb{fixed_center_, fixed_center_}.inflated(r);
+  return geo::Aabb{{lo[0], lo[1]}, {hi[0], hi[1]}}.inflated(r);
 }
 
 int RobotModel::stepsBetween(const double* a, const double* b) const {

@@ -169,6 +169,72 @@ TEST_CASE("FindConflict with its broad phase agrees with all-pairs checking on r
   }
 }
 
+TEST_CASE("FindConflict agrees with all-pairs checking on wandering boxes and arms, in windows and with a focus") {
+  // Boxes turn as they go and arms sweep their links, some standing still
+  // for a while, over more instants than one chunk of the detector's
+  // broad phase, which must never skip the earliest touching pair. The
+  // arms stand apart from the boxes, so that only their own bounds let
+  // them be checked.
+  Scenario s = fourBoxes();
+  s.workspace = {{0, 0}, {18, 6}};
+  for (int i = 0; i < 4; ++i)
+    s.robots.push_back(arm("arm" + std::to_string(i), {12.0 + 2.2 * (i % 2), 1.0 + 4.0 * (i / 2)}, i % 2 ? 3.14159 : 0.0,
+                           {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  RobotModels m(s);
+  const std::size_t n = m.raw.size();
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> pos(1.0, 5.0), step(-0.05, 0.05), ang(-3.0, 3.0), turn(-0.06, 0.06),
+      unit(0.0, 1.0);
+  auto walk = [&](const RobotModel& model, std::size_t steps) {
+    std::vector<double> q(static_cast<std::size_t>(model.dim()));
+    for (double& v : q) v = model.isMobile() ? ang(rng) : 0.5 * ang(rng);
+    if (model.isMobile()) q[0] = pos(rng), q[1] = pos(rng);
+    Path p(model.dim());
+    const std::size_t rest_from = steps / 3, rest_to = rest_from + static_cast<std::size_t>(unit(rng) * 30);
+    for (std::size_t t = 0; t <= steps; ++t) {
+      p.push(q.data());
+      if (t >= rest_from && t < rest_to) continue;
+      for (std::size_t d = 0; d < q.size(); ++d) q[d] += (model.isMobile() && d < 2) ? step(rng) : turn(rng);
+    }
+    return p;
+  };
+  int found = 0, none = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    std::vector<Path> paths;
+    for (std::size_t r = 0; r < n; ++r) paths.push_back(walk(*m.raw[r], 20 + static_cast<std::size_t>(trial) % 60));
+    std::vector<char> focus(n, 0);
+    focus[static_cast<std::size_t>(trial) % n] = 1;
+    const bool focused = trial % 2 == 1;
+    const std::size_t from = static_cast<std::size_t>(trial) % 7, to = from + 10 + static_cast<std::size_t>(trial) % 50;
+    std::size_t horizon = 0;
+    for (const Path& p : paths) horizon = std::max(horizon, p.size() - 1);
+    std::optional<std::tuple<double, int, int>> expect;
+    std::vector<double> qi(5), qj(5);
+    for (std::size_t k = 2 * from; k <= 2 * std::min(to, horizon) && !expect; ++k)
+      for (std::size_t i = 0; i < n && !expect; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+          if (focused && !focus[i] && !focus[j]) continue;
+          stateAtInstant(*m.raw[i], paths[i], k, qi.data());
+          stateAtInstant(*m.raw[j], paths[j], k, qj.data());
+          if (robotsTouch(*m.raw[i], qi.data(), *m.raw[j], qj.data())) {
+            expect = std::make_tuple(static_cast<double>(k) / 2.0, static_cast<int>(i), static_cast<int>(j));
+            break;
+          }
+        }
+    ConflictDetector det(m.raw);
+    auto c = det.first(pathPointers(paths), from, to, focused ? &focus : nullptr);
+    REQUIRE(c.has_value() == expect.has_value());
+    if (c) {
+      CHECK(c->t == std::get<0>(*expect));
+      CHECK(c->a == std::get<1>(*expect));
+      CHECK(c->b == std::get<2>(*expect));
+    }
+    (c ? found : none) += 1;
+  }
+  CHECK(found > 30);
+  CHECK(none > 30);
+}
+
 TEST_CASE("clearOfMoving agrees with an instant-by-instant check on random box and arm motions") {
   // Boxes turn as they move and arms sweep their links, so the checks meet
   // near misses of the bounding discs that only the exact bodies decide.

@@ -127,6 +127,51 @@ TEST_CASE("arm bodies are capsules between consecutive joints") {
   }
 }
 
+TEST_CASE("boundsWithin holds the bodies at every configuration of its box, and is tight where the box is a point") {
+  // Conflict detection prunes whole chunks of instants with these boxes:
+  // one that misses a body by a hair would miss a conflict.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+  const std::vector<RobotSpec> specs{armSpec({0.5, 0.5, 0.5, 0.5, 0.5}, 0.05, {4, 0}, kPi),
+                                     armSpec({1, 2, 0.5}, 0.1, {1, 2}, 0.3), boxSpec(0.6, 0.4), discSpec(0.3)};
+  int checked = 0;
+  for (const RobotSpec& spec : specs) {
+    auto m = makeRobotModel(spec, kRes);
+    const auto dim = static_cast<std::size_t>(m->dim());
+    std::vector<double> lo(dim), hi(dim), q(dim);
+    std::vector<geo::Body> parts;
+    for (int box = 0; box < 200; ++box) {
+      const double spread = box % 4 == 0 ? 0.0 : 0.6 * unit(rng);  // some boxes are points
+      for (std::size_t i = 0; i < dim; ++i) {
+        const double c = 3.0 * u(rng);
+        lo[i] = c - spread * unit(rng);
+        hi[i] = c + spread * unit(rng);
+      }
+      const geo::Aabb within = m->boundsWithin(lo.data(), hi.data());
+      for (int sample = 0; sample < 30; ++sample) {
+        // Corners of the box, where a bound is likeliest to be short, and inside it.
+        for (std::size_t i = 0; i < dim; ++i) {
+          const double s = sample < 8 ? static_cast<double>((sample >> (i % 3)) & 1) : unit(rng);
+          q[i] = lo[i] + s * (hi[i] - lo[i]);
+        }
+        m->bodies(q.data(), parts);
+        geo::Aabb tight;
+        for (const auto& b : parts) tight.expand(geo::bounds(b));
+        REQUIRE(within.contains(tight));
+        ++checked;
+      }
+      if (spread == 0.0 && !m->isMobile()) {  // an arm standing still: its own bounds
+        m->bodies(lo.data(), parts);
+        geo::Aabb tight;
+        for (const auto& b : parts) tight.expand(geo::bounds(b));
+        CHECK(within.lo.x == doctest::Approx(tight.lo.x).epsilon(1e-6));
+        CHECK(within.hi.y == doctest::Approx(tight.hi.y).epsilon(1e-6));
+      }
+    }
+  }
+  CHECK(checked == 4 * 200 * 30);
+}
+
 TEST_CASE("a folded arm whose third link crosses its first self-collides") {
   // Link 1 runs (0,0)-(2,0); link 3 comes back down through y = 0 near x = 1.07.
   auto m = makeRobotModel(armSpec({2, 1, 2}, 0.05), kRes);

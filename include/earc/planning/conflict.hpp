@@ -53,6 +53,7 @@ class ConflictDetector {
   std::vector<geo::Aabb> boxes_;
   std::vector<std::vector<double>> q_;
   std::vector<geo::Body> bodies_;
+  static constexpr std::size_t kChunk = 16;  // instants bounded at once
   std::size_t exact_tests_ = 0;
   const Deadline* deadline_ = nullptr;
   bool interrupted_ = false;

@@ -52,6 +52,13 @@ class RobotModel {
   // one body for a mobile robot, one capsule per link for an arm.
   virtual void bodies(const double* q, std::vector<geo::Body>& out) const = 0;
 
+  // A box holding the robot's bodies at every configuration q with lo[i]
+  // <= q[i] <= hi[i] for each coordinate, for broad phases over many
+  // instants at once; it may be larger than the tightest such box. By
+  // default the bounding disc around every centre in the box (for a
+  // mobile robot its positions, whatever the heading).
+  virtual geo::Aabb boundsWithin(const double* lo, const double* hi) const;
+
   // True when two non-adjacent links of an arm touch (never for mobile robots).
   virtual bool selfCollides(const double* q) const = 0;
   // The same, decided on the robot's bodies at q (as bodies(q) gives them)
