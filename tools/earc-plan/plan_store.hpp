@@ -8,6 +8,11 @@
 
 namespace earc {
 
+// An InputError naming --db when method is earc and db is empty: a check of
+// the options alone, which touches no file (openStoreForPlanning makes it
+// too).
+void requireDatabaseFor(Method method, const std::string& db);
+
 // The store for method earc (an InputError when --db is missing or the file
 // is refused); nullptr for every other method. Without learn it is opened
 // read-only: the file stays as it was, byte for byte (no session count, no
@@ -17,11 +22,6 @@ namespace earc {
 // the file, migrating it, counting the session) is no error: the store is
 // the file opened read-only, or, when the file could not be created, an
 // empty one in memory, and *full_disk says so in a line naming the file.
-// An InputError naming --db when method is earc and db is empty: a check of
-// the options alone, which touches no file (openStoreForPlanning makes it
-// too).
-void requireDatabaseFor(Method method, const std::string& db);
-
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
                                                            std::string* full_disk = nullptr);
 

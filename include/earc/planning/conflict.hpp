@@ -36,9 +36,12 @@ class ConflictDetector {
   // Earliest conflict among `paths` (one per robot; nullptr = robot absent)
   // at instants from step `from` through step `to` (inclusive; clamped to
   // the longest path). When `focus` is given, only pairs with at least one
-  // focused robot count. A sort-and-sweep over the bodies' bounds per
-  // instant (insertion sort: the order barely changes between instants)
-  // keeps this near linear in the number of robots. Nothing either when
+  // focused robot count. Instants go in chunks of kChunk: each robot is
+  // bounded over a chunk at once (RobotModel::boundsWithin), and only the
+  // robots whose chunk bounds meet another's that counts are placed at
+  // each instant, where a sort-and-sweep over the bodies' bounds
+  // (insertion sort: the order barely changes between instants) keeps
+  // this near linear in the number of robots. Nothing either when
   // the deadline expired before the end: ask interrupted().
   std::optional<Conflict> first(const std::vector<const Path*>& paths, std::size_t from = 0,
                                 std::size_t to = static_cast<std::size_t>(-1),
