@@ -54,6 +54,18 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
   std::optional<DeadlinePoll> poll;
   if (deadline_) poll.emplace(*deadline_, kWorkPerClockRead);
   auto counts = [&](std::size_t ri, std::size_t rj) { return !focus || (*focus)[ri] || (*focus)[rj]; };
+  // Every pair of robots in `order` (sorted by boxes_' min x) whose boxes
+  // overlap and that counts, to visit.
+  auto overlappingPairs = [&](const std::vector<int>& order, auto&& visit) {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      auto ri = static_cast<std::size_t>(order[i]);
+      for (std::size_t j = i + 1; j < order.size(); ++j) {
+        auto rj = static_cast<std::size_t>(order[j]);
+        if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
+        if (boxes_[ri].overlaps(boxes_[rj]) && counts(ri, rj)) visit(ri, rj);
+      }
+    }
+  };
 
   // Instants go in chunks. Each robot's bodies over a chunk lie in one box
   // (RobotModel::boundsWithin over its configurations there, which takes
@@ -89,14 +101,7 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
     std::sort(order.begin(), order.end(), [&](int a, int b) {
       return boxes_[static_cast<std::size_t>(a)].lo.x < boxes_[static_cast<std::size_t>(b)].lo.x;
     });
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      auto ri = static_cast<std::size_t>(order[i]);
-      for (std::size_t j = i + 1; j < order.size(); ++j) {
-        auto rj = static_cast<std::size_t>(order[j]);
-        if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
-        if (boxes_[ri].overlaps(boxes_[rj]) && counts(ri, rj)) live[ri] = live[rj] = 1;
-      }
-    }
+    overlappingPairs(order, [&](std::size_t ri, std::size_t rj) { live[ri] = live[rj] = 1; });
     order.erase(std::remove_if(order.begin(), order.end(), [&](int r) { return !live[static_cast<std::size_t>(r)]; }),
                 order.end());
     std::size_t live_work = 0;
@@ -126,26 +131,19 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
         order[j] = r;
       }
       std::optional<Conflict> best;
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        auto ri = static_cast<std::size_t>(order[i]);
-        for (std::size_t j = i + 1; j < order.size(); ++j) {
-          auto rj = static_cast<std::size_t>(order[j]);
-          if (boxes_[rj].lo.x > boxes_[ri].hi.x) break;
-          if (!boxes_[ri].overlaps(boxes_[rj])) continue;
-          if (!counts(ri, rj)) continue;
-          ++exact_tests_;
-          if (!robotsTouch(*models_[ri], q_[ri].data(), *models_[rj], q_[rj].data())) continue;
-          Conflict c;
-          c.a = static_cast<int>(std::min(ri, rj));
-          c.b = static_cast<int>(std::max(ri, rj));
-          c.t = static_cast<double>(k) / 2.0;
-          geo::Vec2 ca = models_[ri]->boundingCenter(q_[ri].data());
-          geo::Vec2 cb = models_[rj]->boundingCenter(q_[rj].data());
-          c.place = (ca + cb) * 0.5;
-          // Deterministic choice among simultaneous conflicts: lowest pair.
-          if (!best || std::pair(c.a, c.b) < std::pair(best->a, best->b)) best = c;
-        }
-      }
+      overlappingPairs(order, [&](std::size_t ri, std::size_t rj) {
+        ++exact_tests_;
+        if (!robotsTouch(*models_[ri], q_[ri].data(), *models_[rj], q_[rj].data())) return;
+        Conflict c;
+        c.a = static_cast<int>(std::min(ri, rj));
+        c.b = static_cast<int>(std::max(ri, rj));
+        c.t = static_cast<double>(k) / 2.0;
+        geo::Vec2 ca = models_[ri]->boundingCenter(q_[ri].data());
+        geo::Vec2 cb = models_[rj]->boundingCenter(q_[rj].data());
+        c.place = (ca + cb) * 0.5;
+        // Deterministic choice among simultaneous conflicts: lowest pair.
+        if (!best || std::pair(c.a, c.b) < std::pair(best->a, best->b)) best = c;
+      });
       if (best) return best;
     }
   }

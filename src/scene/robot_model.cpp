@@ -197,10 +197,10 @@ class ArmRobot final : public RobotModel {
       reach += spec_.links[i];
       widen += 0.5 * (hi[i] - lo[i]) * reach;
     }
+    thread_local std::vector<geo::Body> links;
+    bodies(mid.data(), links);
     geo::Aabb box;
-    walkArm(spec_, mid.data(), [&](std::size_t, geo::Vec2 from, geo::Vec2 to) {
-      box.expand(geo::bounds(geo::Body::capsule(from, to, spec_.link_radius)));
-    });
+    for (const auto& link : links) box.expand(geo::bounds(link));
     return box.inflated(widen * (1.0 + 1e-9) + 1e-9);
   }
 

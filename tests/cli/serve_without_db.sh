@@ -1,10 +1,10 @@
 #!/bin/bash
 # earc-plan serve without --db: a service for the methods that need no
 # experience database. With E-ARC as its default method it is refused at
-# once, in one line naming --db, creating no file (nor its socket); with --method arc it
-# answers a ping, plans an ARC request (a valid plan), refuses an E-ARC
-# request with an error answer and goes on, and reports no database in
-# its stats. Skipped (77) without /usr/bin/python3.
+# once, in one line naming --db, creating no file (nor its socket); with
+# --method arc it answers a ping, plans an ARC request (a valid plan),
+# refuses an E-ARC request with an error answer and goes on, and reports
+# no database in its stats. Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
