@@ -16,6 +16,22 @@ void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, do
   model.interpolate(a, path.at(t + 1), 0.5, out);
 }
 
+geo::Aabb boundsOverInstants(const RobotModel& model, const Path& path, std::size_t k0, std::size_t k1,
+                             std::vector<double>& q, std::vector<double>& lo, std::vector<double>& hi) {
+  const auto dim = static_cast<std::size_t>(model.dim());
+  q.resize(dim);
+  lo.assign(dim, 0.0);
+  hi.assign(dim, 0.0);
+  for (std::size_t k = k0; k <= k1; ++k) {
+    stateAtInstant(model, path, k, q.data());
+    for (std::size_t i = 0; i < dim; ++i) {
+      lo[i] = k == k0 ? q[i] : std::min(lo[i], q[i]);
+      hi[i] = k == k0 ? q[i] : std::max(hi[i], q[i]);
+    }
+  }
+  return model.boundsWithin(lo.data(), hi.data());
+}
+
 std::vector<const Path*> pathPointers(const std::vector<Path>& paths) {
   std::vector<const Path*> out;
   out.reserve(paths.size());
@@ -83,18 +99,7 @@ std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& 
     }
     for (int r : active) {
       auto ru = static_cast<std::size_t>(r);
-      const std::size_t dim = q_[ru].size();
-      lo.assign(dim, 0.0);
-      hi.assign(dim, 0.0);
-      for (std::size_t k = k0; k <= k1; ++k) {
-        stateAtInstant(*models_[ru], *paths[ru], k, q_[ru].data());
-        for (std::size_t i = 0; i < dim; ++i) {
-          const double v = q_[ru][i];
-          lo[i] = k == k0 ? v : std::min(lo[i], v);
-          hi[i] = k == k0 ? v : std::max(hi[i], v);
-        }
-      }
-      boxes_[ru] = models_[ru]->boundsWithin(lo.data(), hi.data());
+      boxes_[ru] = boundsOverInstants(*models_[ru], *paths[ru], k0, k1, q_[ru], lo, hi);
       live[ru] = 0;
     }
     order = active;

@@ -28,7 +28,11 @@ geo::Aabb spanOf(geo::Vec2 a, geo::Vec2 b) {
 // Checks a robot against moving obstacles at local instants. Each
 // obstacle's bounding-disc centre is tabulated once per search, with boxes
 // over chunks of instants, so that a motion far from an obstacle costs a
-// few box tests instead of one interpolation and test per instant.
+// few box tests instead of one interpolation and test per instant. Where
+// an arm takes part, whose bounding disc is centred on its fixed base and
+// so always meets a neighbour's, the obstacle's bodies are also bounded
+// over each chunk (RobotModel::boundsWithin), and tested against the
+// robot's bodies over the part of its motion in that chunk.
 class MotionGuard {
  public:
   // With a poll, the robot is not free anywhere once its deadline has
@@ -40,6 +44,7 @@ class MotionGuard {
     for (const auto& o : obstacles_) {
       Track tr;
       tr.work = static_cast<std::size_t>(model_.dim() + o.model->dim());
+      tr.centers_decide = model_.isMobile() && o.model->isMobile();
       tr.centers.reserve(last_ + 1);
       // Centres at whole steps come from the path's states (past its end,
       // the last); a midpoint's is halfway between its neighbours' (see
@@ -63,6 +68,7 @@ class MotionGuard {
           box.expand({tr.centers[k], tr.centers[k]});
         tr.chunks.push_back(box);
       }
+      only_mobile_ = only_mobile_ && tr.centers_decide;
       tracks_.push_back(std::move(tr));
     }
     countWork(obstacles_.size() * (last_ + 1) / kBroadTestsPerUnit);
@@ -118,6 +124,14 @@ class MotionGuard {
   // 0.7 million distinct ones), so they are kept for the whole search, up
   // to kKeptInstants of them. kOnce: a motion met once.
   bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::uint64_t edge = kOnce) {
+    return only_mobile_ ? motionFreeOf<true>(a, b, steps, tau, edge) : motionFreeOf<false>(a, b, steps, tau, edge);
+  }
+
+ private:
+  // motionFree, compiled apart for a world of mobile robots only (their
+  // planning's innermost loop), where the centres' tests decide alone.
+  template <bool kOnlyMobile>
+  bool motionFreeOf(const double* a, const double* b, int steps, std::size_t tau, std::uint64_t edge) {
     const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
     const std::size_t dim = static_cast<std::size_t>(model_.dim());
     const geo::Aabb swept = spanOf(model_.boundingCenter(a), model_.boundingCenter(b));
@@ -125,6 +139,31 @@ class MotionGuard {
     // first needed and shared by every obstacle it comes near. A motion is
     // kept only once it comes near an obstacle: most never do.
     const std::size_t n = k1 - k0 + 1;
+    // The robot's bodies over the part of the motion in chunk c of
+    // instants: interpolate moves each joint of an arm evenly between its
+    // ends (and a mobile robot's position; boundsWithin leaves its heading
+    // out). Made when first needed.
+    const std::size_t first_chunk = k0 / kChunk;  // asked for chunks first_chunk .. min(k1, last_) / kChunk
+    bool within_made = false;
+    auto motionBox = [&](std::size_t c) -> const geo::Aabb& {
+      if (!within_made) {
+        within_.assign(std::min(k1, last_) / kChunk + 1 - first_chunk, geo::Aabb{});
+        within_made = true;
+      }
+      geo::Aabb& box = within_[c - first_chunk];
+      if (box.lo.x > box.hi.x) {
+        const std::size_t from = std::max(k0, c * kChunk), to = std::min(k1, c * kChunk + kChunk - 1);
+        lo_.resize(dim);
+        hi_.resize(dim);
+        model_.interpolate(a, b, static_cast<double>(from - 2 * tau) / (2 * steps), lo_.data());
+        model_.interpolate(a, b, static_cast<double>(to - 2 * tau) / (2 * steps), hi_.data());
+        for (std::size_t i = 0; i < dim; ++i)
+          if (lo_[i] > hi_[i]) std::swap(lo_[i], hi_[i]);
+        box = model_.boundsWithin(lo_.data(), hi_.data());
+        countWork(dim);
+      }
+      return box;
+    };
     Motion* motion = nullptr;
     if (edge != kOnce)
       if (auto it = motions_.find(edge); it != motions_.end() && it->second.state.size() == n) motion = &it->second;
@@ -156,10 +195,12 @@ class MotionGuard {
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
       const double reach = model_.boundingRadius() + obstacles_[i].model->boundingRadius();
       const geo::Aabb near = swept.inflated(reach);
+      const bool centers_decide = kOnlyMobile || tracks_[i].centers_decide;
       for (std::size_t k = k0; k <= k1; ++tests) {
         const std::size_t kc = std::min(k, last_);
         const std::size_t chunk_end = (kc / kChunk + 1) * kChunk;  // first instant of the next chunk
-        if (k <= last_ && !tracks_[i].chunks[kc / kChunk].overlaps(near)) {
+        if (k <= last_ && (!tracks_[i].chunks[kc / kChunk].overlaps(near) ||
+                           (!centers_decide && !bodiesWithin(i, kc / kChunk).overlaps(motionBox(kc / kChunk))))) {
           k = chunk_end;
           continue;
         }
@@ -173,28 +214,45 @@ class MotionGuard {
           }
           return motion->bodies[j];
         };
-        if (!freeOf(i, model_.boundingCenter(q), k, own)) return false;
+        if (!freeOf(i, model_.boundingCenter(q), k, own, centers_decide || k > last_ ? nullptr : &motionBox(kc / kChunk)))
+          return false;
         ++k;
       }
     }
     return true;
   }
 
- private:
   static constexpr std::size_t kChunk = 16;
   static constexpr std::size_t kBroadTestsPerUnit = 8;
   struct Track {
     std::vector<geo::Vec2> centers;  // bounding centre per instant 0..last
     std::vector<geo::Aabb> chunks;   // box of the centres of each chunk of instants
+    std::vector<geo::Aabb> bodies_within;  // of the bodies over each chunk, empty until needed
+    bool centers_decide = false;  // both robots mobile: the centres' test is the bodies' already
     std::vector<PlacedBodies> placed;  // bodies per instant, placed when first needed
     std::size_t work = 0;              // of a check of the robot's bodies against these
   };
 
-  // The robot, centred at c with bodies own(), is free of obstacle i at
-  // local instant k. The obstacle's bodies at an instant are placed once
-  // per search: the search meets each instant again and again.
+  // A box holding obstacle i's bodies over chunk c of instants.
+  const geo::Aabb& bodiesWithin(std::size_t i, std::size_t c) {
+    std::vector<geo::Aabb>& boxes = tracks_[i].bodies_within;
+    if (boxes.empty()) boxes.resize(tracks_[i].chunks.size());
+    geo::Aabb& box = boxes[c];
+    if (box.lo.x > box.hi.x) {
+      const MovingObstacle& o = obstacles_[i];
+      const std::size_t k0 = c * kChunk, k1 = std::min(last_, k0 + kChunk - 1);
+      box = boundsOverInstants(*o.model, *o.path, 2 * o.offset + k0, 2 * o.offset + k1, scratch_q_, lo_, hi_);
+      countWork(tracks_[i].work);
+    }
+    return box;
+  }
+
+  // The robot, centred at c with bodies own() (which lie in `within` when
+  // given), is free of obstacle i at local instant k. The obstacle's
+  // bodies at an instant are placed once per search: the search meets
+  // each instant again and again.
   template <class Own>
-  bool freeOf(std::size_t i, geo::Vec2 c, std::size_t k, Own&& own) {
+  bool freeOf(std::size_t i, geo::Vec2 c, std::size_t k, Own&& own, const geo::Aabb* within = nullptr) {
     const MovingObstacle& o = obstacles_[i];
     Track& tr = tracks_[i];
     const geo::Vec2 oc = tr.centers[std::min(k, last_)];
@@ -214,7 +272,10 @@ class MotionGuard {
     // The robot's bounding disc against the obstacle's tight bounds decides
     // most near misses before the robot's own bodies are placed.
     const double r = model_.boundingRadius();
-    const geo::Aabb disc{{c.x - r, c.y - r}, {c.x + r, c.y + r}};
+    geo::Aabb disc{{c.x - r, c.y - r}, {c.x + r, c.y + r}};
+    if (within)
+      disc = {{std::max(disc.lo.x, within->lo.x), std::max(disc.lo.y, within->lo.y)},
+              {std::min(disc.hi.x, within->hi.x), std::min(disc.hi.y, within->hi.y)}};
     if (std::none_of(theirs->bounds.begin(), theirs->bounds.end(), [&](const geo::Aabb& b) { return b.overlaps(disc); }))
       return true;
     if (poll_ && poll_->expired(tr.work)) return false;
@@ -227,7 +288,9 @@ class MotionGuard {
   DeadlinePoll* poll_;
   std::vector<Track> tracks_;
   PlacedBodies scratch_;  // an obstacle past the last tabulated instant
-  std::vector<double> scratch_q_;
+  std::vector<double> scratch_q_, lo_, hi_;
+  std::vector<geo::Aabb> within_;  // see motionFreeOf
+  bool only_mobile_ = true;        // the robot and every obstacle
   PlacedBodies vertex_;  // the robot at vertex_q_, see free()
   std::vector<double> vertex_q_;
   // The robot along a motion, per instant of it, see motionFree().

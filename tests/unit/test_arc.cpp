@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -955,6 +956,40 @@ TEST_CASE("A robot in a pocket behind a narrow door grows the roadmap around the
   }
 }
 
+// Plans `model` from start to goal on `rm` among moving obstacles with
+// the space-time search, and checks the path it returns instant by
+// instant against their exact bodies. Tallies paths found, those that
+// arrive later than the robot alone would, and searches that found none.
+struct SearchTally {
+  int found = 0, delayed = 0, none = 0;
+};
+void searchAmongMoving(Roadmap& rm, const RobotModel& model, const double* start, const double* goal,
+                       const std::vector<MovingObstacle>& obstacles, std::size_t horizon, SearchTally& tally) {
+  QueryGraph graph(rm, model);
+  const int sv = graph.addVertex(start, 10), gv = graph.addVertex(goal, 10);
+  auto alone = spaceTimeSearch(graph, sv, gv, {}, horizon, 0, Deadline(), 1000000);
+  auto path = spaceTimeSearch(graph, sv, gv, obstacles, horizon, 0, Deadline(), 1000000);
+  if (!path) {
+    ++tally.none;
+    return;
+  }
+  ++tally.found;
+  REQUIRE(alone);
+  if (path->size() > alone->size()) ++tally.delayed;
+  const auto dim = static_cast<std::size_t>(model.dim());
+  CHECK(std::equal(start, start + dim, path->at(0)));
+  std::vector<double> q(dim), oq;
+  for (std::size_t k = 0; k <= 2 * (path->size() - 1); ++k) {
+    CAPTURE(k);
+    stateAtInstant(model, *path, k, q.data());
+    for (const MovingObstacle& o : obstacles) {
+      oq.resize(static_cast<std::size_t>(o.model->dim()));
+      stateAtInstant(*o.model, *o.path, k, oq.data());
+      CHECK_FALSE(robotsTouch(model, q.data(), *o.model, oq.data()));
+    }
+  }
+}
+
 TEST_CASE("A space-time search among crossing robots returns paths clear of them at every instant") {
   // A turning box robot on a roadmap, three box robots sweeping straight
   // across its square, turning as they go. The search meets the same edge
@@ -970,7 +1005,7 @@ TEST_CASE("A space-time search among crossing robots returns paths clear of them
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> pos(0.5, 5.5), ang(-3.0, 3.0);
   const std::size_t horizon = 400;
-  int found = 0, delayed = 0, none = 0;
+  SearchTally tally;
   for (int trial = 0; trial < 150; ++trial) {
     std::vector<Path> sweeps;
     for (int i = 0; i < 3; ++i) {
@@ -990,31 +1025,71 @@ TEST_CASE("A space-time search among crossing robots returns paths clear of them
     for (int i = 0; i < 3; ++i) obstacles.push_back({m.raw[static_cast<std::size_t>(i) + 1], &sweeps[static_cast<std::size_t>(i)], 0, i + 1});
     const std::vector<double> start{pos(rng), pos(rng), ang(rng)}, goal{pos(rng), pos(rng), ang(rng)};
     if (!world.stateValid(model, start.data()) || !world.stateValid(model, goal.data())) continue;
-    QueryGraph graph(rm, model);
-    const int sv = graph.addVertex(start.data(), 10), gv = graph.addVertex(goal.data(), 10);
-    auto alone = spaceTimeSearch(graph, sv, gv, {}, horizon, 0, Deadline(), 1000000);
-    auto path = spaceTimeSearch(graph, sv, gv, obstacles, horizon, 0, Deadline(), 1000000);
-    if (!path) {
-      ++none;
-      continue;
-    }
-    ++found;
-    REQUIRE(alone);
-    if (path->size() > alone->size()) ++delayed;
-    CHECK(std::equal(start.begin(), start.end(), path->at(0)));
-    std::vector<double> q(3), oq(3);
-    for (std::size_t k = 0; k <= 2 * (path->size() - 1); ++k) {
-      CAPTURE(k);
-      stateAtInstant(model, *path, k, q.data());
-      for (const MovingObstacle& o : obstacles) {
-        stateAtInstant(*o.model, *o.path, k, oq.data());
-        CHECK_FALSE(robotsTouch(model, q.data(), *o.model, oq.data()));
-      }
-    }
+    searchAmongMoving(rm, model, start.data(), goal.data(), obstacles, horizon, tally);
   }
-  CHECK(found > 100);
-  CHECK(none < 30);  // most crossings leave a way through
-  CHECK(delayed > 10);  // the crossings got in the way, and the search went around or waited
+  CHECK(tally.found > 100);
+  CHECK(tally.none < 30);  // most crossings leave a way through
+  CHECK(tally.delayed > 10);  // the crossings got in the way, and the search went around or waited
+}
+
+TEST_CASE("The space-time search keeps an arm clear of neighbouring arms that sweep their links past it") {
+  // Arms' bounding discs, centred on their fixed bases, always meet their
+  // neighbours', so the search's broad phase bounds the arms' bodies over
+  // chunks of instants and over the part of each roadmap edge in a chunk
+  // (edges here take many steps). Every path it returns is checked here
+  // instant by instant against the neighbours' exact bodies.
+  Scenario s = openScenario(9);
+  s.robots.push_back(arm("mid", {4.5, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(arm("left", {2.0, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(arm("right", {7.0, 4.5}, 3.14159, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  RobotModels m(s);
+  CollisionWorld world(s);
+  const RobotModel& model = *m.raw[0];
+  Roadmap rm(world, model, 10, 5);
+  rm.grow(600);
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> joint(-2.0, 2.0);
+  using Config = std::array<double, 5>;
+  auto config = [&]() {
+    Config q;
+    for (double& v : q) v = joint(rng);
+    return q;
+  };
+  const std::size_t horizon = 600;
+  SearchTally tally;
+  for (int trial = 0; trial < 60; ++trial) {
+    // Each neighbour starts and ends stretched away from the middle arm
+    // and reaches over to it through two random configurations on the
+    // way, 0.15 rad a step at most per joint (fast enough that a chunk's
+    // bounds taken from one of its instants miss collisions here).
+    std::vector<Path> sweeps;
+    const Config away{3.0, 0, 0, 0, 0};
+    for (std::size_t r = 1; r <= 2; ++r) {
+      Path p(5);
+      Config q = away;
+      for (int leg = 0; leg < 3; ++leg) {
+        const Config to = leg == 2 ? away : config();
+        double span = 0.0;
+        for (std::size_t j = 0; j < 5; ++j) span = std::max(span, std::abs(to[j] - q[j]));
+        const int steps = std::max(1, static_cast<int>(std::ceil(span / 0.15)));
+        for (int t = 0; t < steps; ++t) {
+          Config at;
+          for (std::size_t j = 0; j < 5; ++j) at[j] = q[j] + (to[j] - q[j]) * t / steps;
+          p.push(at.data());
+        }
+        q = to;
+      }
+      p.push(q.data());
+      sweeps.push_back(std::move(p));
+    }
+    const std::vector<MovingObstacle> obstacles{{m.raw[1], &sweeps[0], 0, 1}, {m.raw[2], &sweeps[1], 0, 2}};
+    const Config start = config(), goal = config();
+    if (!world.stateValid(model, start.data()) || !world.stateValid(model, goal.data())) continue;
+    CAPTURE(trial);
+    searchAmongMoving(rm, model, start.data(), goal.data(), obstacles, horizon, tally);
+  }
+  CHECK(tally.found > 40);
+  CHECK(tally.delayed > 8);  // the neighbours got in the way
 }
 
 TEST_CASE("The space-time search arrives as early with the roadmap-distance heuristic as with the straight line, and gives up exactly when the horizon is too short") {

@@ -24,6 +24,13 @@ struct Conflict {
 // of steps k/2 and k/2 + 1; past the end: the last state).
 void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, double* out);
 
+// A box holding the robot's bodies at every instant k0..k1 (inclusive, in
+// half steps, as stateAtInstant counts them) of its path:
+// RobotModel::boundsWithin over the range of its states there. q, lo and
+// hi are scratch.
+geo::Aabb boundsOverInstants(const RobotModel& model, const Path& path, std::size_t k0, std::size_t k1,
+                             std::vector<double>& q, std::vector<double>& lo, std::vector<double>& hi);
+
 class ConflictDetector {
  public:
   explicit ConflictDetector(std::vector<const RobotModel*> models);
