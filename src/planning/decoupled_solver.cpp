@@ -135,10 +135,6 @@ class MotionGuard {
     const std::size_t k0 = 2 * tau + 1, k1 = 2 * tau + 2 * static_cast<std::size_t>(steps);
     const std::size_t dim = static_cast<std::size_t>(model_.dim());
     const geo::Aabb swept = spanOf(model_.boundingCenter(a), model_.boundingCenter(b));
-    // The robot's state and bodies at each instant of the motion, made when
-    // first needed and shared by every obstacle it comes near. A motion is
-    // kept only once it comes near an obstacle: most never do.
-    const std::size_t n = k1 - k0 + 1;
     // The robot's bodies over the part of the motion in chunk c of
     // instants: interpolate moves each joint of an arm evenly between its
     // ends (and a mobile robot's position; boundsWithin leaves its heading
@@ -164,6 +160,10 @@ class MotionGuard {
       }
       return box;
     };
+    // The robot's state and bodies at each instant of the motion, made when
+    // first needed and shared by every obstacle it comes near. A motion is
+    // kept only once it comes near an obstacle: most never do.
+    const std::size_t n = k1 - k0 + 1;
     Motion* motion = nullptr;
     if (edge != kOnce)
       if (auto it = motions_.find(edge); it != motions_.end() && it->second.state.size() == n) motion = &it->second;
