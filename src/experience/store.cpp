@@ -173,8 +173,10 @@ void ExperienceStore::openLocked() {
                           (!options_.check_in_open_when_busy || spareCore()) &&
                           version_ == currentSchemaVersion() &&
                           conn_->retryWhileBusy([&] { return conn_->pragmaText("journal_mode"); }) == "wal";
-  if (background)
+  if (background) {
     startCheckLocked();
+    check_run_ = CheckRun::Background;
+  }
   else if (options_.full_check)
     conn_->retryWhileBusy([&] { conn_->requireIntegrityCheck(); });
   else
@@ -235,6 +237,11 @@ void runQuickCheck(const std::string& path, const ConnectionSettings& settings,
 }
 
 }  // namespace
+
+ExperienceStore::CheckRun ExperienceStore::checkRun() const {
+  std::lock_guard lock(mutex_);
+  return check_run_;
+}
 
 bool ExperienceStore::checkRunning() const {
   if (!check_) return false;
@@ -300,6 +307,7 @@ void ExperienceStore::finishCheckLocked() {
     bool passed = false;
     if (starved) {
       abandonCheck(*check, kWait);
+      check_run_ = CheckRun::TakenOver;
     } else {
       check->thread.join();
       passed = check->passed;

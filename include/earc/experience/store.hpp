@@ -127,6 +127,12 @@ class ExperienceStore {
   // the check ran at open or has been awaited.
   void awaitCheck();
 
+  // Where this open's structural check ran: in the constructor, or in the
+  // background thread, or (a background check starved of CPU) on the
+  // thread that awaited it.
+  enum class CheckRun { InOpen, Background, TakenOver };
+  CheckRun checkRun() const;
+
   // Loads rows other connections committed since the last refresh (all rows
   // again after a deletion anywhere). Cheap when nothing changed: one
   // PRAGMA data_version. nearest() and insert() call it themselves.
@@ -242,6 +248,7 @@ class ExperienceStore {
   std::exception_ptr check_error_;   // set by the thread, read after join
   bool check_error_reported_ = false;  // thrown to a caller at least once
   bool session_pending_ = false;       // 'sessions' not yet counted
+  CheckRun check_run_ = CheckRun::InOpen;
   HistoryWriter history_;
   bool history_described_ = false;     // else "learn", "planning session N"
 };
