@@ -416,6 +416,7 @@ PlanResult ArcRun::run() {
   result.solution.scenario = scenario_.name;
   roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap_samples, settings_.roadmap_neighbors,
                                            splitSeed(settings_.seed, 1), deadline_);
+  if (settings_.roadmap_cache) roadmaps_->useCache(*settings_.roadmap_cache, scenario_);
   for (std::size_t r = 0; r < models_.size(); ++r) {
     auto p = individualPath(world_, *roadmaps_, *models_[r], static_cast<int>(r), deadline_,
                             splitSeed(settings_.seed, 100 + r));
@@ -485,6 +486,7 @@ PlanResult ArcRun::run() {
   st["merge_cap_raised"] = cap_raised_;
   st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
   st["roadmaps_built"] = roadmaps_->built();
+  if (settings_.roadmap_cache) st["roadmaps_reused"] = roadmaps_->reused();
   st["roadmap_vertices"] = roadmaps_->vertices();
   st["roadmap_build_s"] = roadmaps_->buildSeconds();
   for (auto& solver : hierarchy_) solver->finish(st);

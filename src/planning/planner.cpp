@@ -61,6 +61,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   Deadline deadline(settings.time_limit_s);
   RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
                       splitSeed(settings.seed, 1), deadline);
+  if (settings.roadmap_cache) roadmaps.useCache(*settings.roadmap_cache, scenario);
   // The whole problem as one subproblem: every robot, its real start and
   // goal, the whole space; individual path lengths set the horizon.
   Subproblem sub;
@@ -104,6 +105,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   } else {
     result.failures.insert(deadline.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
   }
+  if (settings.roadmap_cache) result.stats["roadmaps_reused"] = roadmaps.reused();
   result.stats["planning_time_s"] = clock.seconds();
   return result;
 }

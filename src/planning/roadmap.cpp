@@ -24,6 +24,19 @@ Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, int neigh
   model_.samplingBounds(world_.workspace(), lo_, hi_);
 }
 
+Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, const Snapshot& snapshot,
+                 const Deadline& deadline)
+    : world_(world), model_(model), dim_(model.dim()), neighbors_(snapshot.neighbors), rng_(snapshot.rng),
+      configs_(snapshot.configs), adjacency_(snapshot.adjacency), edge_ends_(snapshot.edge_ends),
+      edge_state_(snapshot.edge_state), index_(snapshot.index), edge_checks_(snapshot.edge_checks),
+      poll_(deadline, kWorkPerClockRead) {
+  model_.samplingBounds(world_.workspace(), lo_, hi_);
+}
+
+Roadmap::Snapshot Roadmap::snapshot() const {
+  return {neighbors_, rng_, configs_, adjacency_, edge_ends_, edge_state_, index_, edge_checks_};
+}
+
 void Roadmap::embed(const double* q, double* out) const {
   const Resolution& res = model_.resolution();
   if (model_.isMobile()) {
@@ -303,6 +316,44 @@ Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& 
     }
   }
   return p;
+}
+
+}  // namespace earc
+
+namespace earc {
+
+std::shared_ptr<const RoadmapCache::Entry> RoadmapCache::find(const std::string& key) {
+  for (auto it = entries_.begin(); it != entries_.end(); ++it)
+    if (it->first == key) {
+      entries_.splice(entries_.begin(), entries_, it);
+      ++hits_;
+      return entries_.front().second;
+    }
+  ++misses_;
+  return nullptr;
+}
+
+void RoadmapCache::put(const std::string& key, Roadmap::Snapshot snapshot, std::uint64_t work) {
+  auto entry = std::make_shared<Entry>();
+  const Roadmap::Snapshot& s = snapshot;
+  std::size_t bytes = key.size() + s.configs.size() * sizeof(double) + s.edge_ends.size() * sizeof(s.edge_ends[0]) +
+                      s.edge_state.size() + s.index.size() * static_cast<std::size_t>(s.index.dim()) * sizeof(double);
+  for (const auto& edges : s.adjacency) bytes += sizeof(edges) + edges.size() * sizeof(Roadmap::Edge);
+  entry->snapshot = std::move(snapshot);
+  entry->work = work;
+  entry->bytes = bytes;
+  if (bytes > capacity_) return;
+  std::erase_if(entries_, [&](const auto& e) {
+    if (e.first != key) return false;
+    bytes_ -= e.second->bytes;
+    return true;
+  });
+  while (!entries_.empty() && bytes_ + bytes > capacity_) {
+    bytes_ -= entries_.back().second->bytes;
+    entries_.pop_back();
+  }
+  entries_.emplace_front(key, std::move(entry));
+  bytes_ += bytes;
 }
 
 }  // namespace earc

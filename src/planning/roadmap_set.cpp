@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <map>
+#include <string>
 
+#include "earc/io/json_io.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
@@ -33,8 +35,34 @@ RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel
     }
     auto [it, inserted] = slots.emplace(key, static_cast<int>(slots.size()));
     slot_.push_back(it->second);
+    if (inserted) anywhere_.push_back(key.ends_with("@anywhere"));
   }
   roadmaps_.resize(slots.size());
+}
+
+void RoadmapSet::useCache(RoadmapCache& cache, const Scenario& scenario) {
+  // Everything building depends on, numbers written exactly (JSON's
+  // shortest round trip): the scenario but its robots and name, the
+  // robot's description but where it starts and ends (and for an arm with
+  // nothing in reach, its base), the sample count, the neighbours and the
+  // roadmap's own seed. Equal keys build equal roadmaps.
+  nlohmann::json world = scenarioToJson(scenario);
+  const nlohmann::json robots = std::move(world["robots"]);
+  world.erase("robots");
+  world.erase("name");
+  const std::string world_key = world.dump();
+  cache_ = &cache;
+  cache_keys_.assign(roadmaps_.size(), {});
+  for (std::size_t r = 0; r < slot_.size(); ++r) {
+    const auto slot = static_cast<std::size_t>(slot_[r]);
+    if (!cache_keys_[slot].empty()) continue;
+    nlohmann::json robot = robots.at(r);
+    for (const char* f : {"start", "goal", "name"}) robot.erase(f);
+    if (anywhere_[slot]) robot.erase("base");
+    cache_keys_[slot] = world_key + "\n" + robot.dump() + "\n" + std::to_string(initialSamples(static_cast<int>(r))) +
+                        " samples, " + std::to_string(neighbors_) + " neighbours, seed " +
+                        std::to_string(splitSeed(seed_, slot));
+  }
 }
 
 int RoadmapSet::initialSamples(int robot) const {
@@ -61,9 +89,21 @@ Roadmap& RoadmapSet::forRobot(int robot) {
   auto& rm = roadmaps_[static_cast<std::size_t>(slot)];
   if (!rm) {
     Stopwatch sw;
-    rm = std::make_unique<Roadmap>(world_, *models_[static_cast<std::size_t>(robot)], neighbors_,
-                                   splitSeed(seed_, static_cast<std::uint64_t>(slot)), deadline_);
-    rm->grow(initialSamples(robot));
+    const RobotModel& model = *models_[static_cast<std::size_t>(robot)];
+    const std::string* key = cache_ ? &cache_keys_[static_cast<std::size_t>(slot)] : nullptr;
+    if (auto kept = key ? cache_->find(*key) : nullptr) {
+      rm = std::make_unique<Roadmap>(world_, model, kept->snapshot, deadline_);
+      // The work building did, as if done again: a solver's work budget
+      // that building fell into ends where it would have.
+      countWork(kept->work);
+      ++reused_;
+    } else {
+      const std::uint64_t work_before = t_work_done;
+      rm = std::make_unique<Roadmap>(world_, model, neighbors_, splitSeed(seed_, static_cast<std::uint64_t>(slot)),
+                                     deadline_);
+      rm->grow(initialSamples(robot));
+      if (key && !rm->deadlineSeen()) cache_->put(*key, rm->snapshot(), t_work_done - work_before);
+    }
     build_seconds_ += sw.seconds();
   }
   return *rm;

@@ -140,6 +140,8 @@ void requireKnownKeys(const json& request, const std::set<std::string>& known) {
 Service::Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings)
     : store_(std::move(store)), settings_(std::move(settings)), started_(std::chrono::steady_clock::now()) {
   methodFromName(settings_.method);  // throws std::invalid_argument for a bad default
+  if (settings_.roadmap_cache_mib > 0)
+    roadmaps_ = std::make_unique<RoadmapCache>(settings_.roadmap_cache_mib * (std::size_t{1} << 20));
 }
 
 Service::~Service() = default;
@@ -202,6 +204,7 @@ json Service::plan(const json& request) {
   InputWarnings read_warnings;
   Scenario scenario = scenarioFrom(request, read_warnings);
   PlannerSettings s = settingsFrom(request, settings_);
+  s.roadmap_cache = roadmaps_.get();
   if (s.method == Method::Earc && !store_)
     throw badField("method", "method earc needs the service to have an experience database");
   // Rows other processes committed since the last request.
@@ -251,6 +254,12 @@ json Service::stats() {
              {"errors", counters_.errors},
              {"learned", counters_.learned},
              {"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()}};
+  if (roadmaps_)
+    st["roadmap_cache"] = {{"roadmaps", roadmaps_->size()},
+                           {"bytes", roadmaps_->bytes()},
+                           {"capacity_bytes", roadmaps_->capacity()},
+                           {"reused", roadmaps_->hits()},
+                           {"built", roadmaps_->misses()}};
   if (store_) {
     store_->refresh();
     st["db"] = store_->path();

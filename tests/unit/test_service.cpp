@@ -273,3 +273,32 @@ TEST_CASE("serve protocol: the line splitter yields whole lines across reads and
   CHECK(d[0].text == "tail");
   CHECK(split.finish().empty());
 }
+
+TEST_CASE("serve protocol: a second request on the same world plans on the first one's roadmaps, to the same answer") {
+  exp::ScratchDirectory dir("service-roadmaps");
+  auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
+  const std::string request = json{{"scenario", scenarioToJson(serviceScenario())}, {"method", "arc"}, {"seed", 3}}.dump();
+  service::Service svc(store, {});
+  const json first = reply(svc, request), second = reply(svc, request);
+  REQUIRE(first["solved"] == true);
+  REQUIRE(second["solved"] == true);
+  const auto built = first["stats"]["roadmaps_built"].get<std::size_t>();
+  REQUIRE(built > 0);
+  CHECK(first["stats"]["roadmaps_reused"] == 0);
+  CHECK(second["stats"]["roadmaps_reused"] == built);
+  CHECK(second["solution"]["paths"] == first["solution"]["paths"]);
+  const json st = reply(svc, R"({"op": "stats"})")["stats"]["roadmap_cache"];
+  CHECK(st["roadmaps"] == built);
+  CHECK(st["reused"] == built);
+  CHECK(st["bytes"].get<std::size_t>() > 0);
+  CHECK(st["capacity_bytes"] == std::size_t{256} << 20);
+
+  // None kept: every request builds its own.
+  service::ServiceSettings none;
+  none.roadmap_cache_mib = 0;
+  service::Service plain(store, none);
+  const json fresh = reply(plain, request);
+  CHECK(fresh["solution"]["paths"] == first["solution"]["paths"]);
+  CHECK_FALSE(fresh["stats"].contains("roadmaps_reused"));
+  CHECK_FALSE(reply(plain, R"({"op": "stats"})")["stats"].contains("roadmap_cache"));
+}

@@ -1,5 +1,5 @@
 // earc-plan serve [--db FILE] [--socket PATH] [--method M] [--seed K]
-// [--time-limit S]: a long-running planner. Opens the experience store, when
+// [--time-limit S] [--roadmap-cache-mib N]: a long-running planner. Opens the experience store, when
 // given, once and answers planning requests, one JSON line each (protocol in
 // earc/service/service.hpp), on stdin/stdout and, with --socket, on a Unix
 // domain socket (any number of connections, requests answered one at a
@@ -40,6 +40,7 @@ struct ServeOptions {
   double time_limit = 60.0;
   std::uint64_t seed = 1;
   bool deterministic = false;
+  std::size_t roadmap_cache_mib = service::ServiceSettings{}.roadmap_cache_mib;
 };
 
 // Written by the signal handler only: the signal's number, and a byte into
@@ -337,6 +338,7 @@ int runServe(const ServeOptions& o) {
   settings.time_limit_s = o.time_limit;
   settings.seed = o.seed;
   settings.deterministic = o.deterministic;
+  settings.roadmap_cache_mib = o.roadmap_cache_mib;
   installSignals();
   // A database given serves E-ARC requests whatever the default method.
   // Without one the service plans every method but E-ARC, and answers an
@@ -397,6 +399,11 @@ void setupServe(CLI::App& app) {
   cmd->add_flag("--deterministic", opts->deterministic,
                 "Count ARC's and E-ARC's solver budgets in work done, not seconds, for requests that do not say "
                 "(\"deterministic\": false); see earc-plan plan --deterministic");
+  cmd->add_option("--roadmap-cache-mib", opts->roadmap_cache_mib,
+                  "Keep the robots' roadmaps between requests, up to this many MiB, for requests on the same "
+                  "world, robots and seed (the same plans; 0: build them anew every time)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 20))
+      ->capture_default_str();
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
 }
 

@@ -16,6 +16,7 @@
 namespace earc {
 
 namespace exp { class ExperienceStore; }
+class RoadmapCache;
 
 enum class Method { Arc, Earc, Prioritized, Coupled, Lightning };
 const char* methodName(Method m);
@@ -51,6 +52,11 @@ struct PlannerSettings {
   // Individual roadmaps.
   int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
   int roadmap_neighbors = 10;
+  // Roadmaps kept from earlier plans of this process (RoadmapCache):
+  // ARC, E-ARC and the prioritized baseline take a robot's roadmap from it
+  // where one was built for the same world, geometry and seed, and put
+  // those they build there. The same plan either way. Null: none kept.
+  RoadmapCache* roadmap_cache = nullptr;
   // ARC's subproblems.
   int initial_window = 8;             // steps before and after the conflict
   double region_margin = 1.0;         // plane units (mobile) around the local query

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cstdint>
+#include <list>
 #include <memory>
 #include <optional>
 #include <random>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -33,6 +35,25 @@ class Roadmap {
   // solver's shorter budget, which would leave the roadmap short for the
   // rest of the plan.
   Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed,
+          const Deadline& deadline = Deadline());
+
+  // What a roadmap holds apart from the world and robot it was made for
+  // and its deadline. A roadmap made from it for a world and a robot of
+  // the same contents is the one it was taken from, random engine and
+  // edge checks included: what grows or searches it next goes as it would
+  // have (RoadmapCache keeps them between a service's requests).
+  struct Snapshot {
+    int neighbors = 0;
+    std::mt19937_64 rng;
+    std::vector<double> configs;
+    std::vector<std::vector<Edge>> adjacency;
+    std::vector<std::pair<int, int>> edge_ends;
+    std::vector<std::int8_t> edge_state;
+    PointIndex index{0};
+    std::size_t edge_checks = 0;
+  };
+  Snapshot snapshot() const;
+  Roadmap(const CollisionWorld& world, const RobotModel& model, const Snapshot& snapshot,
           const Deadline& deadline = Deadline());
 
   // Adds `samples` valid configurations (rejection-sampled within the
@@ -71,6 +92,9 @@ class Roadmap {
   const CollisionWorld& world() const { return world_; }
   // The deadline as this roadmap's checks poll it (see grow and edgeValid).
   DeadlinePoll& poll() { return poll_; }
+  // Whether growing or an edge check found the deadline expired: a grow
+  // may then have stopped short.
+  bool deadlineSeen() const { return poll_.seenExpired(); }
 
  private:
   void embed(const double* q, double* out) const;
@@ -89,6 +113,39 @@ class Roadmap {
   PointIndex index_;
   std::size_t edge_checks_ = 0;
   DeadlinePoll poll_;  // one count of work for all of the roadmap's checks
+};
+
+// Roadmaps as they came out of building, kept across plans: a service
+// that plans one map again and again (earc-plan serve) builds each
+// robot's roadmap once. Looked up by a key that holds everything building
+// depends on (RoadmapSet::useCache), so a plan from a kept roadmap is the
+// plan a fresh build gives, work budgets included (`work`, the units the
+// build counted, are counted again on reuse). The least recently used
+// go first once the snapshots' bytes pass the capacity. Not thread-safe:
+// one plan at a time uses it.
+class RoadmapCache {
+ public:
+  struct Entry {
+    Roadmap::Snapshot snapshot;
+    std::uint64_t work = 0;
+    std::size_t bytes = 0;
+  };
+  explicit RoadmapCache(std::size_t capacity_bytes) : capacity_(capacity_bytes) {}
+  // The entry under `key`, now the most recently used; null if none.
+  std::shared_ptr<const Entry> find(const std::string& key);
+  void put(const std::string& key, Roadmap::Snapshot snapshot, std::uint64_t work);
+  std::size_t size() const { return entries_.size(); }
+  std::size_t bytes() const { return bytes_; }
+  std::size_t capacity() const { return capacity_; }
+  std::uint64_t hits() const { return hits_; }
+  std::uint64_t misses() const { return misses_; }
+
+ private:
+  std::size_t capacity_;
+  std::size_t bytes_ = 0;
+  std::uint64_t hits_ = 0, misses_ = 0;
+  // Most recently used first.
+  std::list<std::pair<std::string, std::shared_ptr<const Entry>>> entries_;
 };
 
 // A roadmap plus a few query vertices (a start, a goal), optionally

@@ -14,6 +14,7 @@
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/roadmap.hpp"
 #include "earc/planning/subproblem.hpp"
+#include "earc/scene/scenario.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/deadline.hpp"
 
@@ -43,6 +44,15 @@ class RoadmapSet {
   std::size_t built() const;
   double buildSeconds() const { return build_seconds_; }
 
+  // Takes roadmaps from `cache` where it holds one built for the same
+  // world, robot geometry, samples, neighbours and seed, and puts there
+  // those it builds (unless the deadline cut building short). `scenario`
+  // is the one the world and models were made from. Call before any
+  // roadmap is asked for; the cache must outlive this set's builds.
+  void useCache(RoadmapCache& cache, const Scenario& scenario);
+  // Of built(), those taken from the cache.
+  std::size_t reused() const { return reused_; }
+
  private:
   const CollisionWorld& world_;
   std::vector<const RobotModel*> models_;
@@ -50,6 +60,10 @@ class RoadmapSet {
   int neighbors_;
   std::uint64_t seed_;
   std::vector<int> slot_;  // robot -> roadmap index
+  std::vector<bool> anywhere_;  // per roadmap: an arm's with nothing in reach
+  RoadmapCache* cache_ = nullptr;
+  std::vector<std::string> cache_keys_;  // per roadmap
+  std::size_t reused_ = 0;
   std::vector<std::unique_ptr<Roadmap>> roadmaps_;
   double build_seconds_ = 0.0;
   Deadline deadline_;

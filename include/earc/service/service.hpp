@@ -49,6 +49,9 @@ struct ServiceSettings {
   double time_limit_s = 60.0;
   std::uint64_t seed = 1;
   bool deterministic = false;   // work budgets (PlannerSettings::work_budgets)
+  // Roadmaps kept between requests (PlannerSettings::roadmap_cache), at
+  // most this many MiB; 0 keeps none.
+  std::size_t roadmap_cache_mib = 256;
 };
 
 // Counters over the service's life (op "stats").
@@ -93,6 +96,7 @@ class Service {
 
   std::shared_ptr<exp::ExperienceStore> store_;
   ServiceSettings settings_;
+  std::unique_ptr<RoadmapCache> roadmaps_;  // null: none kept
   ServiceCounters counters_;
   std::chrono::steady_clock::time_point started_;
 };

@@ -14,6 +14,14 @@ namespace earc {
 class PointIndex {
  public:
   explicit PointIndex(int dim) : cloud_{dim, {}} {}
+  // A copy holds the same points; its tree is built again on its first
+  // query (the tree refers to its own index's points).
+  PointIndex(const PointIndex& other) : cloud_(other.cloud_) {}
+  PointIndex& operator=(const PointIndex& other) {
+    cloud_ = other.cloud_;
+    tree_.reset();
+    return *this;
+  }
 
   int dim() const { return cloud_.dim; }
   std::size_t size() const { return cloud_.count(); }
