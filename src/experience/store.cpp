@@ -176,11 +176,11 @@ void ExperienceStore::openLocked() {
   if (background) {
     startCheckLocked();
     check_run_ = CheckRun::Background;
-  }
-  else if (options_.full_check)
+  } else if (options_.full_check) {
     conn_->retryWhileBusy([&] { conn_->requireIntegrityCheck(); });
-  else
+  } else {
     conn_->retryWhileBusy([&] { conn_->requireQuickCheck(); });
+  }
   if (options_.read_only) {
     if (version_ == 0) throw notYetADatabase(path_);
   } else if (!background) {

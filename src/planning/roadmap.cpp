@@ -318,10 +318,6 @@ Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& 
   return p;
 }
 
-}  // namespace earc
-
-namespace earc {
-
 std::shared_ptr<const RoadmapCache::Entry> RoadmapCache::find(const std::string& key) {
   for (auto it = entries_.begin(); it != entries_.end(); ++it)
     if (it->first == key) {

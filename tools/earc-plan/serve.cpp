@@ -1,12 +1,14 @@
 // earc-plan serve [--db FILE] [--socket PATH] [--method M] [--seed K]
-// [--time-limit S] [--roadmap-cache-mib N]: a long-running planner. Opens the experience store, when
-// given, once and answers planning requests, one JSON line each (protocol in
-// earc/service/service.hpp), on stdin/stdout and, with --socket, on a Unix
-// domain socket (any number of connections, requests answered one at a
-// time in arrival order). SIGINT or SIGTERM cuts the request in flight
-// short (its answer says "interrupted"), commits what was learned, closes
-// the database and exits 0. Without --socket the service also ends at the
-// end of stdin; with one, it keeps serving the socket.
+// [--time-limit S] [--roadmap-cache-mib N]: a long-running planner. Opens
+// the experience store, when given, once, keeps the robots' roadmaps
+// between requests, and answers planning requests, one JSON line each
+// (protocol in earc/service/service.hpp), on stdin/stdout and, with
+// --socket, on a Unix domain socket (any number of connections, requests
+// answered one at a time in arrival order). SIGINT or SIGTERM cuts the
+// request in flight short (its answer says "interrupted"), commits what
+// was learned, closes the database and exits 0. Without --socket the
+// service also ends at the end of stdin; with one, it keeps serving the
+// socket.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
