@@ -28,13 +28,14 @@ Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, const Sna
                  const Deadline& deadline)
     : world_(world), model_(model), dim_(model.dim()), neighbors_(snapshot.neighbors), rng_(snapshot.rng),
       configs_(snapshot.configs), adjacency_(snapshot.adjacency), edge_ends_(snapshot.edge_ends),
-      edge_state_(snapshot.edge_state), index_(snapshot.index), edge_checks_(snapshot.edge_checks),
-      poll_(deadline, kWorkPerClockRead) {
+      edge_state_(snapshot.edge_state), dropped_(snapshot.dropped), candidates_(snapshot.candidates),
+      index_(snapshot.index),
+      edge_checks_(snapshot.edge_checks), poll_(deadline, kWorkPerClockRead) {
   model_.samplingBounds(world_.workspace(), lo_, hi_);
 }
 
 Roadmap::Snapshot Roadmap::snapshot() const {
-  return {neighbors_, rng_, configs_, adjacency_, edge_ends_, edge_state_, index_, edge_checks_};
+  return {neighbors_, rng_, configs_, adjacency_, edge_ends_, edge_state_, index_, edge_checks_, dropped_, candidates_};
 }
 
 void Roadmap::embed(const double* q, double* out) const {
@@ -84,6 +85,30 @@ void Roadmap::grow(int samples, const ConfigBox* within) {
   for (int v = first; v < size() && !poll_.expired(work); ++v) connect(v, near, scratch);
 }
 
+int Roadmap::dropInvalidVertices() {
+  const auto work = static_cast<std::size_t>(dim_);
+  int dropped = 0;
+  for (int v = 0; v < size() && !poll_.expired(work); ++v)
+    if (!world_.stateValid(model_, config(v))) {
+      if (dropped_.empty()) dropped_.resize(static_cast<std::size_t>(size()), false);
+      dropped_[static_cast<std::size_t>(v)] = true;
+      ++dropped;
+      for (const Edge& e : adjacency_[static_cast<std::size_t>(v)]) edge_state_[static_cast<std::size_t>(e.id)] = -1;
+    }
+  // A vertex that lost neighbours is joined to its k nearest of the rest,
+  // as a roadmap sampled in this world would have been.
+  if (dropped > 0) {
+    std::vector<std::size_t> near;
+    std::vector<double> scratch;
+    for (int v = 0; v < size() && !poll_.expired(work); ++v) {
+      if (this->dropped(v)) continue;
+      const auto& mine = adjacency_[static_cast<std::size_t>(v)];
+      if (std::any_of(mine.begin(), mine.end(), [&](const Edge& e) { return this->dropped(e.to); })) connect(v, near, scratch);
+    }
+  }
+  return dropped;
+}
+
 ConfigBox Roadmap::boxAround(const std::vector<double>& configs) const {
   const auto d = static_cast<std::size_t>(dim_);
   ConfigBox box{lo_, hi_};
@@ -117,11 +142,43 @@ void Roadmap::growWithin(const ConfigBox& box) {
 
 void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>& scratch) {
   // The index holds v's embedding (vertices and points share numbers).
-  index_.nearest(index_.point(static_cast<std::size_t>(v)), static_cast<std::size_t>(neighbors_) + 1, near, scratch);
+  // Dropped vertices are still in it: ask for more, take the k nearest of
+  // the rest.
+  const auto k = static_cast<std::size_t>(neighbors_);
+  const std::size_t listed = 2 * k;  // candidates kept per vertex (keepCandidates)
+  const auto at = static_cast<std::size_t>(v) * listed;
+  if (keep_candidates_ && candidates_.size() == at) {
+    // Building a free space's roadmap: the 2k nearest are kept for its
+    // copies, the k nearest joined as always (the first k + 1 of an exact
+    // search for more are those of the search for k + 1).
+    index_.nearest(index_.point(static_cast<std::size_t>(v)), listed + 1, near, scratch);
+    for (std::size_t u : near)
+      if (u != static_cast<std::size_t>(v) && candidates_.size() < at + listed) candidates_.push_back(static_cast<int>(u));
+    candidates_.resize(at + listed, -1);
+    near.resize(std::min(near.size(), k + 1));
+  } else if (droppedAny() && candidates_.size() >= at + listed &&
+             std::count_if(candidates_.begin() + static_cast<std::ptrdiff_t>(at),
+                           candidates_.begin() + static_cast<std::ptrdiff_t>(at + listed),
+                           [&](int u) { return u >= 0 && !dropped(u); }) >= static_cast<std::ptrdiff_t>(k)) {
+    // A copy's vertex that lost neighbours: its k nearest that are left,
+    // from the list kept, without a search.
+    near.assign(candidates_.begin() + static_cast<std::ptrdiff_t>(at),
+                candidates_.begin() + static_cast<std::ptrdiff_t>(at + listed));
+  } else {
+    std::size_t want = k + 1;
+    if (droppedAny())
+      for (const Edge& e : adjacency_[static_cast<std::size_t>(v)]) want += dropped(e.to);
+    index_.nearest(index_.point(static_cast<std::size_t>(v)), want, near, scratch);
+  }
   auto& mine = adjacency_[static_cast<std::size_t>(v)];
+  std::size_t taken = 0;
   for (std::size_t u_raw : near) {
     int u = static_cast<int>(u_raw);
-    if (u == v) continue;
+    if (u == v || u < 0) continue;
+    if (droppedAny() && (dropped(u) || taken++ == k)) {
+      if (taken > k) break;
+      continue;
+    }
     // Already joined when v was among u's nearest. Every edge of v is in
     // its own list, a few dozen at most: scanning it is cheaper than a
     // hash set of all edges (which took a fifth of the time of
@@ -165,8 +222,9 @@ const double* QueryGraph::config(int v) const {
 }
 
 bool QueryGraph::allowed(int v) const {
-  if (v >= roadmap_.size() || region_ == nullptr) return true;
-  return region_->contains(roadmap_.config(v));
+  if (v >= roadmap_.size()) return true;
+  if (roadmap_.dropped(v)) return false;
+  return region_ == nullptr || region_->contains(roadmap_.config(v));
 }
 
 int QueryGraph::addEdge(int a, int b) {
@@ -191,8 +249,9 @@ int QueryGraph::addVertex(const double* q, int k) {
     else
       extra_[static_cast<std::size_t>(u - n)].edges.push_back({v, steps, key});
   };
-  // Ask for more neighbours than needed when a region filters them.
-  int want = region_ ? 4 * k : k;
+  // Ask for more neighbours than needed when a region or dropped
+  // vertices filter them.
+  int want = region_ || roadmap_.droppedAny() ? 4 * k : k;
   int linked = 0;
   for (int u : roadmap_.nearest(q, want)) {
     if (!allowed(u)) continue;

@@ -886,6 +886,60 @@ TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle
   CHECK(&roadmaps.forRobot(3) != &roadmaps.forRobot(2));
 }
 
+TEST_CASE("An arm with something in reach gets the free space's roadmap less what it cannot reach; the others keep theirs") {
+  Scenario s;
+  s.name = "arms";
+  s.workspace = {{-4, -4}, {12, 8}};
+  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              arm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
+              arm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
+  s.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {1.0, 1.0}));  // within c's reach
+  RobotModels m(s);
+  CollisionWorld world(s);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  // The arm with nothing in reach: the roadmap it has without the others.
+  Scenario alone = s;
+  alone.robots.resize(1);
+  RobotModels m_alone(alone);
+  CollisionWorld world_alone(alone);
+  RoadmapSet by_itself(world_alone, m_alone.raw, 300, 10, 1);
+  Roadmap& free = roadmaps.forRobot(0);
+  Roadmap& reference = by_itself.forRobot(0);
+  REQUIRE(free.size() == reference.size());
+  for (int v = 0; v < free.size(); ++v) {
+    CHECK(std::equal(free.config(v), free.config(v) + 5, reference.config(v)));
+    CHECK(free.edges(v).size() == reference.edges(v).size());
+  }
+  CHECK_FALSE(free.droppedAny());
+  for (int robot : {1, 2}) {
+    CAPTURE(robot);
+    Roadmap& rm = roadmaps.forRobot(robot);
+    const RobotModel& model = *m.raw[static_cast<std::size_t>(robot)];
+    REQUIRE(rm.size() == free.size());
+    int dropped = 0;
+    for (int v = 0; v < rm.size(); ++v) {
+      CHECK(std::equal(rm.config(v), rm.config(v) + 5, free.config(v)));
+      // Dropped exactly where the arm's surroundings take the vertex.
+      CHECK(rm.dropped(v) == !world.stateValid(model, rm.config(v)));
+      if (rm.dropped(v)) {
+        ++dropped;
+        continue;
+      }
+      // A vertex left is joined to at least k others left, by edges not
+      // marked invalid unchecked.
+      int joined = 0;
+      for (const Roadmap::Edge& e : rm.edges(v))
+        if (!rm.dropped(e.to)) {
+          ++joined;
+          CHECK_FALSE(rm.knownInvalid(e.id));
+        }
+      CHECK(joined >= 10);
+    }
+    CHECK(dropped > 0);
+    CHECK(dropped < rm.size() / 2);
+  }
+}
+
 TEST_CASE("A robot whose straight motion is free takes it without a roadmap; a wall makes it build one") {
   Scenario s = openScenario(6);
   s.robots = {disc("free", 0.3, {1, 1, 0}, {5, 1, 0}), disc("walled", 0.3, {1, 4.5, 0}, {5, 4.5, 0})};

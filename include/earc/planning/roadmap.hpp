@@ -51,6 +51,8 @@ class Roadmap {
     std::vector<std::int8_t> edge_state;
     PointIndex index{0};
     std::size_t edge_checks = 0;
+    std::vector<bool> dropped;
+    std::vector<int> candidates;
   };
   Snapshot snapshot() const;
   Roadmap(const CollisionWorld& world, const RobotModel& model, const Snapshot& snapshot,
@@ -62,6 +64,21 @@ class Roadmap {
   // leaving fewer vertices or some unconnected, once the deadline has
   // expired: on an arm of thousands of links this takes many seconds.
   void grow(int samples, const ConfigBox* within = nullptr);
+
+  // Drops the vertices not valid in this roadmap's world: their edges are
+  // marked invalid without a check, queries (QueryGraph) leave them out,
+  // and a vertex that lost neighbours is joined to its k nearest of the
+  // rest (from the kept candidates where they suffice), as a roadmap
+  // sampled in this world would be. For a roadmap copied from one built
+  // in another world (RoadmapSet's arms with something in reach). Stops,
+  // leaving the rest to the edge checks, once the deadline expires.
+  // Returns how many vertices it dropped.
+  int dropInvalidVertices();
+  bool dropped(int v) const { return static_cast<std::size_t>(v) < dropped_.size() && dropped_[static_cast<std::size_t>(v)]; }
+  bool droppedAny() const { return !dropped_.empty(); }
+  // Before the first grow: keep each vertex's 2k nearest, so that copies
+  // whose vertices are dropped join the rest without a search.
+  void keepCandidates() { keep_candidates_ = true; }
 
   // Where to grow the roadmap when a search found part of it cut off from
   // the rest: the box around that part's configurations (`configs`, one
@@ -110,6 +127,9 @@ class Roadmap {
   std::vector<std::vector<Edge>> adjacency_;
   std::vector<std::pair<int, int>> edge_ends_;
   std::vector<std::int8_t> edge_state_;  // 0 unknown, 1 valid, -1 invalid
+  std::vector<bool> dropped_;  // by dropInvalidVertices; empty: none
+  bool keep_candidates_ = false;
+  std::vector<int> candidates_;  // 2k per vertex, nearest first, -1 past the last
   PointIndex index_;
   std::size_t edge_checks_ = 0;
   DeadlinePoll poll_;  // one count of work for all of the roadmap's checks

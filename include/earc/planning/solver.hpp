@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -61,6 +62,18 @@ class RoadmapSet {
   std::uint64_t seed_;
   std::vector<int> slot_;  // robot -> roadmap index
   std::vector<bool> anywhere_;  // per roadmap: an arm's with nothing in reach
+  // Per arm geometry of which some arm has something in reach: the
+  // roadmap of its joint space with nothing in reach, built once; every
+  // roadmap of that geometry starts as a copy of it (see forRobot).
+  struct FreeSpace {
+    int seed_slot = -1;  // the seed's: the geometry's shared roadmap's, else its first arm's
+    std::optional<Roadmap::Snapshot> snapshot;
+    bool cut_short = false;  // the deadline stopped its building
+  };
+  std::map<std::string, FreeSpace> free_;
+  // The roadmap of `robot` (slot `slot`), built or copied; `cut_short`:
+  // building it saw the deadline.
+  std::unique_ptr<Roadmap> buildRoadmap(int robot, int slot, bool& cut_short);
   RoadmapCache* cache_ = nullptr;
   std::vector<std::string> cache_keys_;  // per roadmap
   std::size_t reused_ = 0;
