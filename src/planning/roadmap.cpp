@@ -29,8 +29,7 @@ Roadmap::Roadmap(const CollisionWorld& world, const RobotModel& model, const Sna
     : world_(world), model_(model), dim_(model.dim()), neighbors_(snapshot.neighbors), rng_(snapshot.rng),
       configs_(snapshot.configs), adjacency_(snapshot.adjacency), edge_ends_(snapshot.edge_ends),
       edge_state_(snapshot.edge_state), dropped_(snapshot.dropped), candidates_(snapshot.candidates),
-      index_(snapshot.index),
-      edge_checks_(snapshot.edge_checks), poll_(deadline, kWorkPerClockRead) {
+      index_(snapshot.index), edge_checks_(snapshot.edge_checks), poll_(deadline, kWorkPerClockRead) {
   model_.samplingBounds(world_.workspace(), lo_, hi_);
 }
 
@@ -87,26 +86,26 @@ void Roadmap::grow(int samples, const ConfigBox* within) {
 
 int Roadmap::dropInvalidVertices() {
   const auto work = static_cast<std::size_t>(dim_);
-  int dropped = 0;
+  int count = 0;
   for (int v = 0; v < size() && !poll_.expired(work); ++v)
     if (!world_.stateValid(model_, config(v))) {
       if (dropped_.empty()) dropped_.resize(static_cast<std::size_t>(size()), false);
       dropped_[static_cast<std::size_t>(v)] = true;
-      ++dropped;
+      ++count;
       for (const Edge& e : adjacency_[static_cast<std::size_t>(v)]) edge_state_[static_cast<std::size_t>(e.id)] = -1;
     }
   // A vertex that lost neighbours is joined to its k nearest of the rest,
   // as a roadmap sampled in this world would have been.
-  if (dropped > 0) {
+  if (count > 0) {
     std::vector<std::size_t> near;
     std::vector<double> scratch;
     for (int v = 0; v < size() && !poll_.expired(work); ++v) {
-      if (this->dropped(v)) continue;
+      if (dropped(v)) continue;
       const auto& mine = adjacency_[static_cast<std::size_t>(v)];
-      if (std::any_of(mine.begin(), mine.end(), [&](const Edge& e) { return this->dropped(e.to); })) connect(v, near, scratch);
+      if (std::any_of(mine.begin(), mine.end(), [&](const Edge& e) { return dropped(e.to); })) connect(v, near, scratch);
     }
   }
-  return dropped;
+  return count;
 }
 
 ConfigBox Roadmap::boxAround(const std::vector<double>& configs) const {
@@ -165,9 +164,15 @@ void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>
     near.assign(candidates_.begin() + static_cast<std::ptrdiff_t>(at),
                 candidates_.begin() + static_cast<std::ptrdiff_t>(at + listed));
   } else {
+    // Past the dropped neighbours already known (a new vertex of a grown
+    // copy knows none: room for as many again).
     std::size_t want = k + 1;
-    if (droppedAny())
-      for (const Edge& e : adjacency_[static_cast<std::size_t>(v)]) want += dropped(e.to);
+    if (droppedAny()) {
+      const auto& mine = adjacency_[static_cast<std::size_t>(v)];
+      want += mine.empty() ? k : static_cast<std::size_t>(std::count_if(mine.begin(), mine.end(), [&](const Edge& e) {
+        return dropped(e.to);
+      }));
+    }
     index_.nearest(index_.point(static_cast<std::size_t>(v)), want, near, scratch);
   }
   auto& mine = adjacency_[static_cast<std::size_t>(v)];

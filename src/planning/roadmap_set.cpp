@@ -58,12 +58,19 @@ RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel
       if (auto it = free_.find(models_[r]->geometrySignature()); it != free_.end()) it->second.seed_slot = slot_[r];
 }
 
+int RoadmapSet::seedSlot(int robot) const {
+  const RobotModel& model = *models_[static_cast<std::size_t>(robot)];
+  if (!model.isMobile())
+    if (auto it = free_.find(model.geometrySignature()); it != free_.end()) return it->second.seed_slot;
+  return slot_[static_cast<std::size_t>(robot)];
+}
+
 std::unique_ptr<Roadmap> RoadmapSet::buildRoadmap(int robot, int slot, bool& cut_short) {
   const RobotModel& model = *models_[static_cast<std::size_t>(robot)];
   auto free = model.isMobile() ? free_.end() : free_.find(model.geometrySignature());
   if (free == free_.end()) {
-    auto rm = std::make_unique<Roadmap>(world_, model, neighbors_, splitSeed(seed_, static_cast<std::uint64_t>(slot)),
-                                        deadline_);
+    auto rm = std::make_unique<Roadmap>(world_, model, neighbors_,
+                                        splitSeed(seed_, static_cast<std::uint64_t>(seedSlot(robot))), deadline_);
     rm->grow(initialSamples(robot));
     cut_short = rm->deadlineSeen();
     return rm;
@@ -76,7 +83,7 @@ std::unique_ptr<Roadmap> RoadmapSet::buildRoadmap(int robot, int slot, bool& cut
     const double reach = model.boundingRadius() + 1.0;
     nothing.workspace = {{base.x - reach, base.y - reach}, {base.x + reach, base.y + reach}};
     const CollisionWorld empty(nothing);
-    Roadmap rm(empty, model, neighbors_, splitSeed(seed_, static_cast<std::uint64_t>(f.seed_slot)), deadline_);
+    Roadmap rm(empty, model, neighbors_, splitSeed(seed_, static_cast<std::uint64_t>(seedSlot(robot))), deadline_);
     rm.keepCandidates();
     rm.grow(initialSamples(robot));
     f.snapshot = rm.snapshot();
@@ -114,7 +121,7 @@ void RoadmapSet::useCache(RoadmapCache& cache, const Scenario& scenario) {
     if (anywhere_[slot]) robot.erase("base");
     cache_keys_[slot] = world_key + "\n" + robot.dump() + "\n" + std::to_string(initialSamples(static_cast<int>(r))) +
                         " samples, " + std::to_string(neighbors_) + " neighbours, seed " +
-                        std::to_string(splitSeed(seed_, slot));
+                        std::to_string(splitSeed(seed_, static_cast<std::uint64_t>(seedSlot(static_cast<int>(r)))));
   }
 }
 

@@ -206,3 +206,41 @@ TEST_CASE("The roadmap cache drops the least recently used roadmaps once past it
   CHECK(small.size() == 0);
   CHECK(small.bytes() == 0);
 }
+
+TEST_CASE("A roadmap taken from the cache is the one building would have made, whatever the other robots") {
+  // Arms c and d have an obstacle or the workspace's edge in reach: their
+  // roadmaps are copies of the free space's, whose seed is the roadmap of
+  // the arms with nothing in reach where there are any (a), else the
+  // first such arm's. d is the third robot both times, with another seed.
+  auto cacheArm = [](const std::string& name, geo::Vec2 base) {
+    RobotSpec s = RobotSpec::arm(name, base, 0.0, {0.5, 0.5, 0.5, 0.5, 0.5}, 0.05);
+    s.joint_limits = {{-3.14159, 3.14159}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}};
+    s.start = s.goal = {0, 0, 0, 0, 0};
+    return s;
+  };
+  Scenario with_free;
+  with_free.name = "arms";
+  with_free.workspace = {{-4, -4}, {12, 8}};
+  with_free.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {1.0, 1.0}));
+  with_free.robots = {cacheArm("c", {6, 0}), cacheArm("a", {0, 0}), cacheArm("d", {10.5, 4})};
+  Scenario without = with_free;
+  without.robots[1] = cacheArm("e", {7.5, 4.5});  // the obstacle in reach too
+  RoadmapCache cache(std::size_t{1} << 28);
+  for (const Scenario* s : {&with_free, &without}) {
+    const RobotModels models(*s);
+    const CollisionWorld world(*s);
+    RoadmapSet kept(world, models.raw, 300, 10, 1), fresh(world, models.raw, 300, 10, 1);
+    kept.useCache(cache, *s);
+    for (int r = 0; r < 3; ++r) {
+      CAPTURE(r);
+      const Roadmap &a = kept.forRobot(r), &b = fresh.forRobot(r);
+      REQUIRE(a.size() == b.size());
+      for (int v = 0; v < a.size(); ++v) {
+        CHECK(std::equal(a.config(v), a.config(v) + 5, b.config(v)));
+        CHECK(a.dropped(v) == b.dropped(v));
+        CHECK(a.edges(v).size() == b.edges(v).size());
+      }
+    }
+    CHECK(kept.reused() == 0);  // nothing of the first scenario fits the second
+  }
+}

@@ -74,6 +74,9 @@ class RoadmapSet {
   // The roadmap of `robot` (slot `slot`), built or copied; `cut_short`:
   // building it saw the deadline.
   std::unique_ptr<Roadmap> buildRoadmap(int robot, int slot, bool& cut_short);
+  // The roadmap whose seed `robot`'s comes from: its own, or for an arm
+  // the free space's of its geometry (FreeSpace::seed_slot).
+  int seedSlot(int robot) const;
   RoadmapCache* cache_ = nullptr;
   std::vector<std::string> cache_keys_;  // per roadmap
   std::size_t reused_ = 0;
