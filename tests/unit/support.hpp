@@ -44,6 +44,23 @@ inline Path line(const std::vector<double>& a, const std::vector<double>& b, int
 
 inline constexpr double kPi = std::numbers::pi;
 
+// An arm of five links of 0.5 (radius 0.05), the generator's arm, at
+// `base` facing `angle`, from `start` to `goal`.
+inline RobotSpec fiveLinkArm(const std::string& name, geo::Vec2 base, double angle, std::vector<double> start,
+                             std::vector<double> goal) {
+  RobotSpec s;
+  s.name = name;
+  s.kind = RobotKind::Manipulator;
+  s.base_position = base;
+  s.base_angle = angle;
+  s.links = {0.5, 0.5, 0.5, 0.5, 0.5};
+  s.link_radius = 0.05;
+  s.joint_limits = {{-3.14159, 3.14159}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}};
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
 // The experience-class traits of a mobile disc robot.
 inline exp::RobotTraits discTraits(double radius = 0.3) {
   RobotSpec s;

@@ -18,6 +18,7 @@
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 
+using earc::test::fiveLinkArm;
 using earc::test::line;
 
 using namespace earc;
@@ -30,21 +31,6 @@ RobotSpec disc(const std::string& name, double r, std::vector<double> start, std
   s.kind = RobotKind::Mobile;
   s.shape = MobileShape::Disc;
   s.radius = r;
-  s.start = std::move(start);
-  s.goal = std::move(goal);
-  return s;
-}
-
-RobotSpec arm(const std::string& name, geo::Vec2 base, double angle, std::vector<double> start,
-              std::vector<double> goal) {
-  RobotSpec s;
-  s.name = name;
-  s.kind = RobotKind::Manipulator;
-  s.base_position = base;
-  s.base_angle = angle;
-  s.links = {0.5, 0.5, 0.5, 0.5, 0.5};
-  s.link_radius = 0.05;
-  s.joint_limits = {{-3.14159, 3.14159}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}};
   s.start = std::move(start);
   s.goal = std::move(goal);
   return s;
@@ -179,7 +165,7 @@ TEST_CASE("FindConflict agrees with all-pairs checking on wandering boxes and ar
   Scenario s = fourBoxes();
   s.workspace = {{0, 0}, {18, 6}};
   for (int i = 0; i < 4; ++i)
-    s.robots.push_back(arm("arm" + std::to_string(i), {12.0 + 2.2 * (i % 2), 1.0 + 4.0 * (i / 2)}, i % 2 ? 3.14159 : 0.0,
+    s.robots.push_back(fiveLinkArm("arm" + std::to_string(i), {12.0 + 2.2 * (i % 2), 1.0 + 4.0 * (i / 2)}, i % 2 ? 3.14159 : 0.0,
                            {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
   RobotModels m(s);
   const std::size_t n = m.raw.size();
@@ -240,8 +226,8 @@ TEST_CASE("clearOfMoving agrees with an instant-by-instant check on random box a
   // Boxes turn as they move and arms sweep their links, so the checks meet
   // near misses of the bounding discs that only the exact bodies decide.
   Scenario s = fourBoxes();
-  s.robots.push_back(arm("armA", {2, 3}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
-  s.robots.push_back(arm("armB", {4.2, 3}, 3.14159, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(fiveLinkArm("armA", {2, 3}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(fiveLinkArm("armB", {4.2, 3}, 3.14159, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
   RobotModels m(s);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> pos(1.0, 5.0), step(-0.12, 0.12), ang(-3.0, 3.0), turn(-0.3, 0.3);
@@ -857,8 +843,8 @@ TEST_CASE("ARC plans two facing arms whose straight motions collide, and the sol
   s.name = "arms";
   s.workspace = {{-4, -4}, {4, 8}};
   // Bases 4 apart facing each other; both reach for the middle and swap sides.
-  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
-              arm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0})};
+  s.robots = {fiveLinkArm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              fiveLinkArm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0})};
   PlannerSettings settings;
   settings.time_limit_s = 30;
   settings.seed = 5;
@@ -872,10 +858,10 @@ TEST_CASE("Arms with nothing in reach share one roadmap; an arm near an obstacle
   Scenario s;
   s.name = "arms";
   s.workspace = {{-4, -4}, {12, 8}};
-  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
-              arm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
-              arm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
-              arm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
+  s.robots = {fiveLinkArm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              fiveLinkArm("b", {0, 4}, -1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              fiveLinkArm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
+              fiveLinkArm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
   s.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {0.4, 0.4}));  // within c's reach (2.55)
   RobotModels m(s);
   CollisionWorld world(s);
@@ -890,9 +876,9 @@ TEST_CASE("An arm with something in reach gets the free space's roadmap less wha
   Scenario s;
   s.name = "arms";
   s.workspace = {{-4, -4}, {12, 8}};
-  s.robots = {arm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
-              arm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
-              arm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
+  s.robots = {fiveLinkArm("a", {0, 0}, 1.5708, {0.9, 0, 0, 0, 0}, {-0.9, 0, 0, 0, 0}),
+              fiveLinkArm("c", {6, 0}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}),
+              fiveLinkArm("d", {10.5, 4}, 0.0, {0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0})};
   s.obstacles.push_back(Obstacle::makeBox({7, 1.5}, {1.0, 1.0}));  // within c's reach
   RobotModels m(s);
   CollisionWorld world(s);
@@ -1093,9 +1079,9 @@ TEST_CASE("The space-time search keeps an arm clear of neighbouring arms that sw
   // (edges here take many steps). Every path it returns is checked here
   // instant by instant against the neighbours' exact bodies.
   Scenario s = openScenario(9);
-  s.robots.push_back(arm("mid", {4.5, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
-  s.robots.push_back(arm("left", {2.0, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
-  s.robots.push_back(arm("right", {7.0, 4.5}, 3.14159, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(fiveLinkArm("mid", {4.5, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(fiveLinkArm("left", {2.0, 4.5}, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
+  s.robots.push_back(fiveLinkArm("right", {7.0, 4.5}, 3.14159, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}));
   RobotModels m(s);
   CollisionWorld world(s);
   const RobotModel& model = *m.raw[0];

@@ -11,6 +11,7 @@
 #include "earc/planning/planner.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "support.hpp"
 
 using namespace earc;
 
@@ -213,10 +214,7 @@ TEST_CASE("A roadmap taken from the cache is the one building would have made, w
   // the arms with nothing in reach where there are any (a), else the
   // first such arm's. d is the third robot both times, with another seed.
   auto cacheArm = [](const std::string& name, geo::Vec2 base) {
-    RobotSpec s = RobotSpec::arm(name, base, 0.0, {0.5, 0.5, 0.5, 0.5, 0.5}, 0.05);
-    s.joint_limits = {{-3.14159, 3.14159}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}, {-2.6, 2.6}};
-    s.start = s.goal = {0, 0, 0, 0, 0};
-    return s;
+    return test::fiveLinkArm(name, base, 0.0, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0});
   };
   Scenario with_free;
   with_free.name = "arms";
