@@ -233,10 +233,12 @@ std::optional<std::string> findProblem(const Experience& e) {
   if (e.created_session < 0 || e.created_session > kMaxSession)
     return "created_session " + std::to_string(e.created_session) + " is not a session number (0.." +
            std::to_string(kMaxSession) + ")";
-  if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved)
+  if (e.retrieved < 0 || e.succeeded < 0 || e.succeeded > e.retrieved || e.retrieved > kMaxUseCount)
     return "usage counters out of range (retrieved " + std::to_string(e.retrieved) + ", succeeded " +
-           std::to_string(e.succeeded) + ")";
+           std::to_string(e.succeeded) + "; 0 <= succeeded <= retrieved <= " + std::to_string(kMaxUseCount) + ")";
   if (e.created_at < 0) return "created_at is negative";
+  if (e.created_at > kMaxCreatedAt)
+    return "created_at " + std::to_string(e.created_at) + " is after the year 9999";
   // A build's name, shown on one line by inspect: short, printable ASCII.
   if (e.made_by.size() > kMaxMadeBy) return "made_by longer than " + std::to_string(kMaxMadeBy) + " characters";
   if (std::any_of(e.made_by.begin(), e.made_by.end(), [](char ch) { return ch < 0x20 || ch > 0x7e; }))

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -33,6 +34,14 @@ std::int64_t fileSize(const std::string& path) {
   std::error_code ec;
   auto n = std::filesystem::file_size(path, ec);
   return ec ? 0 : static_cast<std::int64_t>(n);
+}
+
+// A non-negative sum read as a real number, as a count: the largest
+// 64-bit integer where it is more.
+std::int64_t saturatingInt64(double v) {
+  if (!(v > 0)) return 0;
+  if (v >= 9.2e18) return std::numeric_limits<std::int64_t>::max();
+  return std::llround(v);
 }
 
 std::int64_t count(Connection& db, const std::string& sql) {
@@ -162,7 +171,7 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries, int h
   r.wal_bytes = fileSize(databaseFile(path) + "-wal");  // beside the real file, through any link
   r.sessions = store.session();
   db.exec("BEGIN");  // one snapshot for every number
-  const std::string usage = r.schema_version >= 2 ? "sum(retrieved_count), sum(succeeded_count), avg(solve_time_s)"
+  const std::string usage = r.schema_version >= 2 ? "total(retrieved_count), total(succeeded_count), avg(solve_time_s)"
                                                   : "0, 0, 0.0";
   Statement classes = db.prepare(
       "SELECT kind, robot_count, signature, base_class, count(*), sum(length(key)), sum(length(paths)), " + usage +
@@ -175,8 +184,10 @@ InspectReport inspectDatabase(const std::string& path, int sample_entries, int h
     c.entries = classes.int64At(4);
     c.key_dim = c.entries ? classes.int64At(5) / c.entries / 8 : 0;
     c.path_bytes = classes.int64At(6);
-    c.retrieved = classes.int64At(7);
-    c.succeeded = classes.int64At(8);
+    // total(): a sum that cannot overflow, whatever a row holds (a row
+    // past kMaxUseCount is verify's to report).
+    c.retrieved = saturatingInt64(classes.doubleAt(7));
+    c.succeeded = saturatingInt64(classes.doubleAt(8));
     c.mean_solve_time_s = classes.doubleAt(9);
     c.mean_cost = classes.doubleAt(10);
     r.entries += c.entries;
@@ -512,7 +523,7 @@ void copyDatabase(const std::string& from, const std::string& to, bool full_chec
   // store opens its own files) refuses it as a write.
   source.connection().exec("PRAGMA query_only = OFF");
   Statement vacuum = source.connection().prepare("VACUUM INTO ?1");
-  vacuum.bind(1, std::string_view(to));
+  vacuum.bind(1, std::string_view(literalName(to)));  // INTO takes a URI too
   vacuum.run();
 }
 

@@ -118,10 +118,12 @@ std::optional<std::string> truncation(const std::string& file) {
     throw DamagedDatabaseError(file + ": damaged database file (" + message +
                                "); restore a copy or rebuild it (earc-db verify lists what is wrong)");
   }
-  if (primary == SQLITE_CANTOPEN) {
+  if (primary == SQLITE_CANTOPEN || primary == SQLITE_READONLY) {
     // A WAL database is read through a -shm file beside it, which SQLite
     // must be able to make: in a directory this user may not write to
-    // (a shared copy) it cannot, and says only "unable to open".
+    // (a shared copy) it cannot, and says only "unable to open" (where
+    // the file itself is writable, as for root) or "attempt to write a
+    // readonly database" (where it is not, as for another user).
     const RealFile real = realFile(file);
     if (::access(real.dir.c_str(), W_OK) != 0)
       throw StoreError(file + ": cannot read: SQLite needs to make " + real.path.filename().string() +
@@ -145,6 +147,15 @@ std::optional<std::string> truncation(const std::string& file) {
 }  // namespace
 
 bool startsLikeSqlite(const std::string& path) { return sqliteHeader(path).has_value(); }
+
+std::string literalName(const std::string& path) {
+  // Debian's SQLite takes a name beginning "file:" as a URI (built with
+  // SQLITE_USE_URI), and ":memory:" is no file at all: either would open
+  // something other than the file the name says, one the checks before
+  // opening never looked at.
+  if (path.rfind("file:", 0) == 0 || path == ":memory:") return "./" + path;
+  return path;
+}
 
 std::string databaseFile(const std::string& path) {
   sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
@@ -320,7 +331,7 @@ Connection::Connection(const std::string& path, OpenMode mode, const ConnectionS
   // The store serializes access itself; the connection need not.
   flags |= SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   sqlite3* raw = nullptr;
-  int rc = sqlite3_open_v2(memory ? ":memory:" : path.c_str(), &raw, flags, nullptr);
+  int rc = sqlite3_open_v2(memory ? ":memory:" : literalName(path).c_str(), &raw, flags, nullptr);
   db_.reset(raw);
   if (rc != SQLITE_OK) {
     std::string why = raw ? sqlite3_errmsg(raw) : sqlite3_errstr(rc);

@@ -569,11 +569,14 @@ void ExperienceStore::flushLocked() {
   if (pending_uses_.empty()) return;
   awaitCheckLocked();
   conn_->write([&] {
+    // Saturating at kMaxUseCount: past it SQLite's sum would turn into a
+    // real number, which no reader accepts. Both stop there, so succeeded
+    // stays at most retrieved.
     Statement update = conn_->prepare(
-        "UPDATE experiences SET retrieved_count = retrieved_count + ?2, succeeded_count = succeeded_count + ?3 "
-        "WHERE id = ?1");
+        "UPDATE experiences SET retrieved_count = min(retrieved_count + ?2, ?4), "
+        "succeeded_count = min(succeeded_count + ?3, ?4) WHERE id = ?1");
     for (const auto& [id, counts] : pending_uses_) {
-      update.bind(1, id).bind(2, counts.first).bind(3, counts.second);
+      update.bind(1, id).bind(2, counts.first).bind(3, counts.second).bind(4, kMaxUseCount);
       update.run();
       update.reset();
     }

@@ -57,4 +57,36 @@ done
 [ -e "$WORK/sol.json" ] || [ -e "$WORK/sol2.json" ] && fail "a refused plan wrote a solution"
 [ "$(md5sum < "$RO/r.db")" = "$before" ] || fail "the file changed"
 
+# Another user, for whom the directory and the file are read-only by their
+# mode alone: SQLite opens the file read-only and says "attempt to write a
+# readonly database" where root's open said "unable to open"; the same one
+# line either way. Needs root to become nobody, and a way for nobody to
+# the programs and the work directory; skipped otherwise.
+if [ "$(id -u)" -eq 0 ] && command -v runuser > /dev/null && id nobody > /dev/null 2>&1; then
+  chmod 755 "$WORK"
+  NOBODY_RO="$WORK/nobody-ro"
+  mkdir "$NOBODY_RO" "$WORK/out-any"
+  cp "$RO/r.db" "$NOBODY_RO/r.db"
+  chmod 755 "$NOBODY_RO"
+  chmod 644 "$NOBODY_RO/r.db"
+  chmod 777 "$WORK/out-any"
+  cp "$SCEN" "$WORK/scen.json" && chmod 644 "$WORK/scen.json"
+  if runuser -u nobody -- test -x "$DB" -a -r "$NOBODY_RO/r.db" 2> /dev/null; then
+    before_nobody=$(md5sum < "$NOBODY_RO/r.db")
+    for cmd in "$DB inspect --db" "$DB verify --db" "$DB export -o $WORK/out-any/r.jsonl --db" \
+      "$PLAN plan $WORK/scen.json -o $WORK/out-any/sol.json --method earc --no-learn --db"; do
+      runuser -u nobody -- $cmd "$NOBODY_RO/r.db" > "$WORK/out" 2> "$WORK/err"
+      rc=$?
+      [ $rc -eq 2 ] || fail "as nobody, $cmd: exit $rc, expected 2: $(cat "$WORK/err")"
+      [ "$(wc -l < "$WORK/err")" -eq 1 ] &&
+        grep -qF "cannot read: SQLite needs to make r.db-shm beside it and directory $(cd "$NOBODY_RO" && pwd -P) is not writable" \
+          "$WORK/err" || fail "as nobody, $cmd: $(cat "$WORK/err")"
+    done
+    [ "$(md5sum < "$NOBODY_RO/r.db")" = "$before_nobody" ] || fail "the file changed (as nobody)"
+    [ -e "$WORK/out-any/sol.json" ] && fail "a refused plan wrote a solution (as nobody)"
+  else
+    echo "note: nobody cannot reach $DB here; the other user's case was not run"
+  fi
+fi
+
 echo "ok"

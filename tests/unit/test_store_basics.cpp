@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <random>
 
+#include "earc/experience/maintenance.hpp"
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
@@ -140,6 +141,44 @@ TEST_CASE("usage counters are buffered and written by flush and at close") {
   ExperienceStore reopened(path, readOnly());
   CHECK(reopened.get(id)->retrieved == 3);
   CHECK(reopened.get(id)->succeeded == 2);
+}
+
+TEST_CASE("usage counters stop at kMaxUseCount instead of overflowing; rows past it are refused") {
+  // An imported file may carry counters near the 64-bit limit: SQLite's
+  // sum past it turned the column into a real number, and every reader
+  // then refused the file. inspect's sums over a class overflowed too.
+  ScratchDirectory dir("store");
+  std::mt19937_64 rng(16);
+  const std::string path = dir.file("e.db");
+  std::vector<std::int64_t> ids;
+  {
+    ExperienceStore store(path);
+    for (int i = 0; i < 3; ++i) {
+      Experience e = sample(rng);
+      e.retrieved = kMaxUseCount - 1;
+      e.succeeded = kMaxUseCount - 2;
+      ids.push_back(*store.insert(e, -1));
+    }
+    for (int use = 0; use < 3; ++use)
+      for (std::int64_t id : ids) store.recordUse(id, true);
+    store.flush();
+    for (std::int64_t id : ids) {
+      CHECK(store.get(id)->retrieved == kMaxUseCount);
+      CHECK(store.get(id)->succeeded == kMaxUseCount);
+    }
+    Experience over = sample(rng);
+    over.retrieved = over.succeeded = kMaxUseCount + 1;
+    CHECK_THROWS_WITH_AS(store.insert(over, -1), doctest::Contains("usage counters out of range"),
+                         std::invalid_argument);
+    Experience late = sample(rng);
+    late.created_at = kMaxCreatedAt + 1;
+    CHECK_THROWS_WITH_AS(store.insert(late, -1), doctest::Contains("after the year 9999"), std::invalid_argument);
+  }
+  CHECK(verifyDatabase(path).ok());
+  const InspectReport r = inspectDatabase(path, 3);
+  REQUIRE(r.classes.size() == 1);
+  CHECK(r.classes[0].retrieved == 3 * kMaxUseCount);
+  CHECK(r.classes[0].succeeded == 3 * kMaxUseCount);
 }
 
 TEST_CASE("a store sees rows another connection inserted since it opened") {

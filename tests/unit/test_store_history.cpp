@@ -217,7 +217,7 @@ TEST_CASE("exports say the schema version of the experiences table's columns, un
   // If a migration changes the experiences table, exports must say so:
   // raise kExperienceRowsSchemaVersion with it.
   auto columns = [](int version) {
-    Connection c(":memory:", OpenMode::ReadWrite);
+    Connection c(":memory:", OpenMode::Memory);
     migrate(c, version);
     Statement s = c.prepare("SELECT name, type, \"notnull\", dflt_value FROM pragma_table_info('experiences')");
     std::string out;

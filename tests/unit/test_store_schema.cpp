@@ -119,9 +119,9 @@ TEST_CASE("the embedded migrations are byte for byte the files in migrations/") 
 }
 
 TEST_CASE("schema.sql describes exactly what the migrations create") {
-  Connection migrated(":memory:", OpenMode::ReadWrite);
+  Connection migrated(":memory:", OpenMode::Memory);
   migrate(migrated);
-  Connection documented(":memory:", OpenMode::ReadWrite);
+  Connection documented(":memory:", OpenMode::Memory);
   documented.exec(readFile(std::filesystem::path(EARC_SOURCE_DIR) / "schema" / "schema.sql"));
   CHECK(describe(documented) == describe(migrated));
   CHECK(describe(migrated).find("col 13 created_session") != std::string::npos);

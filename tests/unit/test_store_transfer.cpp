@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/path_blob.hpp"
@@ -209,6 +210,33 @@ TEST_CASE("an export line with a bad row makes the import apply nothing and name
   CHECK(msg.find("line 6") != std::string::npos);
   CHECK(msg.find("nothing was imported") != std::string::npos);
   CHECK(rowCount(b) == 0);
+}
+
+TEST_CASE("an export row with usage counters or a date no earc file can hold is refused, naming the line") {
+  // Counters near 2^63 imported whole once, and the first plan's use then
+  // overflowed them into real numbers that verify and export refused;
+  // created_at past the year 9999 printed as a garbled date.
+  ScratchDirectory dir("transfer");
+  const std::string a = dir.file("a.db"), good = dir.file("good.jsonl"), bad = dir.file("bad.jsonl");
+  fill(a, 4);
+  exportJsonl(a, good);
+  const auto lines = readLines(good);
+  for (const auto& [field, value, says] :
+       {std::tuple<const char*, std::int64_t, const char*>{"retrieved", std::int64_t{1} << 62, "usage counters"},
+        {"retrieved", kMaxUseCount + 1, "usage counters"},
+        {"created_at", 99999999999999999, "after the year 9999"}}) {
+    CAPTURE(field);
+    auto changed = lines;
+    auto row = nlohmann::json::parse(changed[3]);
+    row[field] = value;
+    changed[3] = row.dump();
+    writeLines(bad, changed);
+    const std::string b = dir.file(std::string(field) + std::to_string(value) + ".db");
+    const std::string msg = importError(b, {bad});
+    CHECK(msg.find("line 4") != std::string::npos);
+    CHECK(msg.find(says) != std::string::npos);
+    CHECK(rowCount(b) == 0);
+  }
 }
 
 // Signatures that do not parse, or that disagree with the row's kind or

@@ -65,6 +65,16 @@ double pathCost(const std::vector<Path>& paths);
 // second for thirty years).
 inline constexpr std::int64_t kMaxSession = 1'000'000'000;
 
+// The most uses one experience may count (retrieved, succeeded): 2^40, a
+// million a second for twelve days. A row's counters stop there instead
+// of overflowing, and the sums over a class (inspect) stay far from
+// 64-bit overflow.
+inline constexpr std::int64_t kMaxUseCount = std::int64_t{1} << 40;
+
+// The latest creation time an experience may carry (created_at, Unix
+// seconds): the end of the year 9999, the last a date prints for.
+inline constexpr std::int64_t kMaxCreatedAt = 253'402'300'799;
+
 // The robots' geometry signatures a class's '|'-joined signature names.
 std::vector<std::string_view> signatureParts(const std::string& signature);
 

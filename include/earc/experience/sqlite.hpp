@@ -104,6 +104,11 @@ bool startsLikeSqlite(const std::string& path);
 // the filesystem only; messages name the path as given.
 std::string databaseFile(const std::string& path);
 
+// `path` as a name SQLite opens as that very file: a relative name that
+// SQLite would read as a URI ("file:...") or as an in-memory database
+// (":memory:") is given as "./" + path.
+std::string literalName(const std::string& path);
+
 // A StoreError's message without its leading "FILE: " (path as given, or
 // as SQLite names it, absolute), for errors that name the file themselves.
 std::string withoutFile(const std::string& message, const std::string& path);
