@@ -1,4 +1,4 @@
--- The experience database schema, current version (5).
+-- The experience database schema, current version (6).
 --
 -- This file documents the schema; the program never runs it. Databases are
 -- created and upgraded only by the numbered migrations in ../migrations/,
@@ -11,7 +11,7 @@
 -- schema version. A program refuses files with another application_id and
 -- files whose user_version is newer than its own.
 PRAGMA application_id = 1161908803;
-PRAGMA user_version = 5;
+PRAGMA user_version = 6;
 
 -- One row per solved subproblem, in canonical form
 -- (include/earc/experience/keys.hpp).
@@ -22,7 +22,7 @@ CREATE TABLE experiences (
   signature       TEXT    NOT NULL,  -- geometry signatures, canonical order, '|'-joined
   base_class      TEXT    NOT NULL,  -- arms: relative base transform class; mobile: ''
   key             BLOB    NOT NULL,  -- start/goal key, little-endian doubles
-  paths           BLOB    NOT NULL,  -- all paths, header + body (path_blob.hpp; version 2: keyframes and differences)
+  paths           BLOB    NOT NULL,  -- all paths, header + body (path_blob.hpp; version 3: keyframes, differences, CRC-32)
   cost            REAL    NOT NULL,  -- sum over robots of path length in steps
   source          TEXT    NOT NULL CHECK (source IN ('build', 'planner', 'import')),
   created_at      INTEGER NOT NULL,  -- Unix seconds, UTC

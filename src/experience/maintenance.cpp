@@ -112,19 +112,19 @@ std::int64_t deleteIds(Connection& db, const std::vector<std::int64_t>& ids) {
   return static_cast<std::int64_t>(ids.size());
 }
 
-// The rows whose path blob is in format version 1, the one older format:
-// the magic, then the version little-endian. Not any blob that differs
-// from the current format, which would count damaged blobs, and a newer
-// earc's, as older.
+// The rows whose path blob is in format version 1 or 2, the older formats
+// (no checksum; version 1 not compressed either): the magic, then the
+// version little-endian. Not any blob that differs from the current
+// format, which would count damaged blobs, and a newer earc's, as older.
 std::string olderBlobsWhere() {
-  static_assert(kPathBlobVersion == 2, "name every older version here");
+  static_assert(kPathBlobVersion == 3, "name every older version here");
   std::string hex;
   char byte[3];
   for (unsigned char c : kPathBlobMagic) {
     std::snprintf(byte, sizeof byte, "%02x", c);
     hex += byte;
   }
-  return " WHERE substr(paths, 1, 6) = x'" + hex + "0100'";
+  return " WHERE substr(paths, 1, 6) IN (x'" + hex + "0100', x'" + hex + "0200')";
 }
 
 // Rewrites those blobs, a batch of rows at a time (a blob in memory per

@@ -1,7 +1,9 @@
 #include "earc/experience/path_blob.hpp"
 
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -138,13 +140,42 @@ double keyframeEstimate(double a, double b, std::size_t i, std::size_t j, std::s
   return std::fma(s, b, (1.0 - s) * a);  // one rounding for the sum, never contracted differently
 }
 
-std::vector<unsigned char> encodePaths(const std::vector<Path>& paths) {
-  static_assert(kPathBlobVersion == 2, "encodePaths writes version 2");
+std::uint32_t crc32(std::span<const unsigned char> bytes) {
+  static constexpr auto kTable = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) c = kTable[(c ^ b) & 0xff] ^ (c >> 8);
+  return c ^ 0xffffffffu;
+}
+
+namespace {
+
+std::vector<unsigned char> encodeKeyframed(const std::vector<Path>& paths, std::uint16_t version) {
   const Shape shape = checkEncodable(paths);
-  std::vector<unsigned char> out = blobHeader(2, paths.size(), shape);
+  std::vector<unsigned char> out = blobHeader(version, paths.size(), shape);
   for (const Path& p : paths) encodeRobotV2(p, out);
   return out;
 }
+
+}  // namespace
+
+std::vector<unsigned char> encodePaths(const std::vector<Path>& paths) {
+  static_assert(kPathBlobVersion == 3, "encodePaths writes version 3");
+  std::vector<unsigned char> out = encodeKeyframed(paths, 3);
+  const std::uint32_t sum = crc32(out);
+  out.resize(out.size() + 4);
+  putU32(out, out.size() - 4, sum);
+  return out;
+}
+
+std::vector<unsigned char> encodePathsV2(const std::vector<Path>& paths) { return encodeKeyframed(paths, 2); }
 
 std::vector<unsigned char> encodePathsV1(const std::vector<Path>& paths) {
   const Shape shape = checkEncodable(paths);
@@ -167,8 +198,8 @@ PathBlobHeader readPathBlobHeader(std::span<const unsigned char> blob, std::int6
   const unsigned char* h = blob.data();
   if (std::memcmp(h, kPathBlobMagic, 4) != 0) fail("bad magic (expected \"EPTH\"): not an earc path blob");
   const std::uint16_t version = getU16(h + 4);
-  if (version != 1 && version != 2)
-    fail("format version " + std::to_string(version) + " is not a supported version (1 or 2)" +
+  if (version < 1 || version > 3)
+    fail("format version " + std::to_string(version) + " is not a supported version (1, 2 or 3)" +
          "; rebuild the database or use the earc that wrote it");
   if (h[6] != 8) fail("scalar size " + std::to_string(h[6]) + " bytes, expected 8 (double)");
   if (h[7] != 0) fail("unknown flags " + std::to_string(h[7]));
@@ -212,13 +243,16 @@ std::vector<Path> decodeV1(std::span<const unsigned char> blob, const PathBlobHe
   return paths;
 }
 
-std::vector<Path> decodeV2(std::span<const unsigned char> blob, const PathBlobHeader& header, std::int64_t row) {
+// Versions 2 and 3: `trailer` bytes at the end (version 3's checksum) are
+// not paths; messages give the whole blob's length.
+std::vector<Path> decodeKeyframed(std::span<const unsigned char> blob, const PathBlobHeader& header, std::int64_t row,
+                                  std::size_t trailer) {
   auto fail = [row](const std::string& why) { throw CorruptRowError(row, "path blob: " + why); };
   const std::size_t robots = static_cast<std::size_t>(header.robots);
   const std::size_t dim = static_cast<std::size_t>(header.dim);
   const std::size_t steps = header.steps;
   const unsigned char* p = blob.data() + kPathBlobHeaderSize;
-  const unsigned char* const end = blob.data() + blob.size();
+  const unsigned char* const end = blob.data() + blob.size() - trailer;
   auto left = [&] { return static_cast<std::size_t>(end - p); };
   auto truncated = [&](std::size_t r, const char* what) {
     fail("length " + std::to_string(blob.size()) + " bytes ends inside robot " + std::to_string(r) + "'s " + what);
@@ -286,7 +320,23 @@ std::vector<Path> decodeV2(std::span<const unsigned char> blob, const PathBlobHe
 
 std::vector<Path> decodePaths(std::span<const unsigned char> blob, std::int64_t row) {
   const PathBlobHeader header = readPathBlobHeader(blob, row);
-  return header.version == 1 ? decodeV1(blob, header, row) : decodeV2(blob, header, row);
+  if (header.version == 1) return decodeV1(blob, header, row);
+  if (header.version == 2) return decodeKeyframed(blob, header, row, 0);
+  // Version 3: the structure first, whose errors say what is cut short or
+  // left over; then the checksum, which finds what changed inside.
+  if (blob.size() < kPathBlobHeaderSize + 4)
+    throw CorruptRowError(row, "path blob: length " + std::to_string(blob.size()) +
+                                   " bytes ends inside its header and checksum");
+  std::vector<Path> paths = decodeKeyframed(blob, header, row, 4);
+  const std::span<const unsigned char> body = blob.first(blob.size() - 4);
+  const std::uint32_t stored = getU32(blob.data() + body.size()), computed = crc32(body);
+  if (stored != computed) {
+    char why[160];
+    std::snprintf(why, sizeof why,
+                  "path blob: checksum %08x, but its bytes give %08x: changed after it was written", stored, computed);
+    throw CorruptRowError(row, why);
+  }
+  return paths;
 }
 
 std::vector<unsigned char> encodeKey(std::span<const double> key) {

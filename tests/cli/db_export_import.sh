@@ -146,7 +146,7 @@ grep -q "0 merged" "$WORK/out" || fail "identical rows were merged again: $(cat 
 "$PY" -c 'import sqlite3,sys; sqlite3.connect(sys.argv[1]).backup(sqlite3.connect(sys.argv[2]))' \
   "$SRC/tests/fuzz/corpus/import/tiny.db" "$WORK/old.db"
 "$DB" inspect --db "$WORK/old.db" > "$WORK/out" || fail "inspect of the old file exited $?"
-grep -q "4 path blobs in an older, larger format (earc-db curate --compact rewrites them)" "$WORK/out" ||
+grep -q "4 path blobs in an older format, without a checksum (earc-db curate --compact rewrites them)" "$WORK/out" ||
   fail "inspect does not name the older blobs: $(cat "$WORK/out")"
 "$DB" export --db "$WORK/old.db" -o "$WORK/old.jsonl" > /dev/null || fail "export of the old file exited $?"
 "$DB" curate --db "$WORK/old.db" --compact > "$WORK/out" || fail "curate --compact exited $?"

@@ -1,8 +1,10 @@
-// The path blob format: versions 1 and 2 give back exactly the doubles
-// stored, version 2 is small for straight runs, and corrupt blobs are
-// rejected, each error naming the row.
+// The path blob format: versions 1, 2 and 3 give back exactly the doubles
+// stored, versions 2 and 3 are small for straight runs, version 3 finds a
+// changed byte by its checksum, and corrupt blobs are rejected, each error
+// naming the row.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -112,6 +114,42 @@ TEST_CASE("a path blob decodes to exactly the paths it was encoded from") {
   CHECK(sameBits(decodePaths(encodePaths({one}), 1), {one}));
 }
 
+TEST_CASE("a version 3 blob is version 2's with a CRC-32 of everything before it at its end") {
+  for (const auto& paths : {twoPaths(), awkwardPaths()}) {
+    const auto v3 = encodePaths(paths), v2 = encodePathsV2(paths);
+    REQUIRE(v3.size() == v2.size() + 4);
+    CHECK(readPathBlobHeader(v2, 1).version == 2);
+    CHECK(sameBits(decodePaths(v2, 1), paths));  // still read
+    CHECK(std::equal(v2.begin() + 6, v2.end(), v3.begin() + 6));  // but the version, the same bytes
+    const std::span<const unsigned char> body(v3.data(), v3.size() - 4);
+    const std::uint32_t stored = static_cast<std::uint32_t>(v3[v3.size() - 4]) | v3[v3.size() - 3] << 8 |
+                                 v3[v3.size() - 2] << 16 | static_cast<std::uint32_t>(v3[v3.size() - 1]) << 24;
+    CHECK(stored == crc32(body));
+  }
+  // zlib's crc32 of "123456789", the check value of CRC-32/ISO-HDLC.
+  const std::string nine = "123456789";
+  CHECK(crc32({reinterpret_cast<const unsigned char*>(nine.data()), nine.size()}) == 0xcbf43926u);
+}
+
+TEST_CASE("every single flipped bit of a version 3 blob is refused, naming the row") {
+  // A flip in a difference or a keyframe's state still decodes to finite
+  // numbers nearly always: only the checksum finds it.
+  const auto blob = encodePaths(awkwardPaths());
+  int by_checksum = 0;
+  for (std::size_t byte = 0; byte < blob.size(); ++byte)
+    for (int bit = 0; bit < 8; ++bit) {
+      auto flipped = blob;
+      flipped[byte] ^= static_cast<unsigned char>(1u << bit);
+      const std::string msg = decodeError(flipped, 11);
+      CAPTURE(byte);
+      CAPTURE(bit);
+      REQUIRE(msg.find("row 11") != std::string::npos);
+      if (msg.find("changed after it was written") != std::string::npos) ++by_checksum;
+    }
+  // Most flips decode as valid paths but for the checksum.
+  CHECK(by_checksum > static_cast<int>(blob.size()) * 8 / 2);
+}
+
 TEST_CASE("a version 1 path blob is still read, exactly") {
   for (const auto& paths : {twoPaths(), awkwardPaths()}) {
     auto blob = encodePathsV1(paths);
@@ -141,8 +179,11 @@ TEST_CASE("a path blob stores numbers little-endian whatever the host") {
   Path p(1);
   p.push(std::vector<double>{1.0});  // 0x3ff0000000000000
   auto blob = encodePaths({p});
-  // Keyframe count 1, keyframe step 0, its state.
-  REQUIRE(blob.size() == kPathBlobHeaderSize + 4 + 4 + 8);
+  // Keyframe count 1, keyframe step 0, its state, the checksum.
+  REQUIRE(blob.size() == kPathBlobHeaderSize + 4 + 4 + 8 + 4);
+  const std::uint32_t sum = crc32(std::span<const unsigned char>(blob.data(), blob.size() - 4));
+  CHECK(blob[blob.size() - 4] == (sum & 0xff));
+  CHECK(blob[blob.size() - 1] == (sum >> 24));
   CHECK(blob[kPathBlobHeaderSize] == 1);
   CHECK(blob[kPathBlobHeaderSize + 3] == 0);
   CHECK(blob[kPathBlobHeaderSize + 8 + 7] == 0x3f);
@@ -174,9 +215,9 @@ TEST_CASE("a path blob with a bad magic is rejected naming the row") {
 
 TEST_CASE("a path blob of another format version is rejected with what to do") {
   auto blob = encodePaths(twoPaths());
-  blob[4] = 3;
+  blob[4] = 4;
   auto msg = decodeError(blob, 7);
-  CHECK(msg.find("format version 3") != std::string::npos);
+  CHECK(msg.find("format version 4") != std::string::npos);
   CHECK(msg.find("rebuild") != std::string::npos);
 }
 
@@ -187,7 +228,7 @@ TEST_CASE("a path blob with another scalar size is rejected") {
 }
 
 TEST_CASE("a truncated or overlong path blob is rejected by its length") {
-  for (const auto& blob : {encodePaths(awkwardPaths()), encodePathsV1(twoPaths())}) {
+  for (const auto& blob : {encodePaths(awkwardPaths()), encodePathsV2(awkwardPaths()), encodePathsV1(twoPaths())}) {
     for (std::size_t cut : {std::size_t{1}, std::size_t{8}, blob.size() / 2, blob.size() - kPathBlobHeaderSize}) {
       auto shorter = std::vector<unsigned char>(blob.begin(), blob.end() - static_cast<std::ptrdiff_t>(cut));
       CHECK(decodeError(shorter, 5).find("length") != std::string::npos);

@@ -473,7 +473,7 @@ TEST_CASE("verify passes a sound database and names every bad row of a damaged o
     REQUIRE(get.step());
     auto blob = std::vector<unsigned char>(get.blobAt(0).begin(), get.blobAt(0).end());
     get.reset();
-    blob[4] = 3;  // format version 3
+    blob[4] = 4;  // format version 4
     Statement put = c.prepare("UPDATE experiences SET paths = ?1 WHERE id = 4");
     put.bindBlob(1, blob);
     put.run();
@@ -482,7 +482,7 @@ TEST_CASE("verify passes a sound database and names every bad row of a damaged o
   VerifyReport bad = verifyDatabase(a);
   CHECK_FALSE(bad.ok());
   REQUIRE(bad.problems.size() == 2);
-  CHECK(bad.problems[0].find("row 4: path blob: format version 3") != std::string::npos);
+  CHECK(bad.problems[0].find("row 4: path blob: format version 4") != std::string::npos);
   CHECK(bad.problems[1].find("row 9: key has 1 values") != std::string::npos);
 }
 

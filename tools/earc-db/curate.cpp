@@ -67,8 +67,8 @@ void setupCurate(CLI::App& app) {
   sub->add_option("-o,--output", opt->settings.output, "Curate a copy written here; the original stays untouched");
   sub->add_flag("--vacuum", opt->settings.vacuum, "Shrink the file afterwards");
   sub->add_flag("--compact", opt->settings.compact,
-                "Rewrite path blobs of an older format in the current, smaller one (the same paths exactly), "
-                "then shrink the file");
+                "Rewrite path blobs of an older format in the current one (the same paths exactly, with a checksum; "
+                "a fifth of version 1's size), then shrink the file");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] { runCurate(*opt, earc::cli::unlessQuiet(opt->quiet, std::cout)); });
 }

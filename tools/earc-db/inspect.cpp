@@ -93,7 +93,7 @@ void runInspect(const InspectOptions& opt, std::ostream& out) {
       << bytes(r.path_bytes) << " paths, " << bytes(r.key_bytes) << " keys\n";
   if (r.older_path_blobs > 0)
     out << "          " << r.older_path_blobs
-        << " path blobs in an older, larger format (earc-db curate --compact rewrites them)\n";
+        << " path blobs in an older format, without a checksum (earc-db curate --compact rewrites them)\n";
   out << "sessions  " << r.sessions << "\n"
       << "entries   " << r.entries << " in " << r.classes.size() << " classes\n";
   // Which builds made them: a few, most rows first.
