@@ -98,8 +98,15 @@ GridMap parseMovingAiMap(const std::string& text, const std::string& file) {
 
   GridMap map;
   map.name = std::filesystem::path(file).stem().string();
-  if (!next() || line.rfind("type ", 0) != 0)
+  // Lines count from 1: an empty file lacks line 1 (it said "line 0").
+  if (!next()) throw InputError(file, "line 1", "the file is empty: expected the header 'type octile'");
+  if (line.rfind("type ", 0) != 0)
     throw InputError(file, at(), "expected the header 'type octile' (is this a MovingAI .map file?)");
+  // The cells of the other types (a hex map's rows are offset) are not
+  // squares: read as octile, the obstacles would be in the wrong places.
+  if (line != "type octile")
+    throw InputError(file, at(), "expected the header 'type octile', got '" + printableText(line, 80) +
+                                     "': only octile maps are read");
   if (!next()) throw InputError(file, at(), "missing 'height' line");
   map.height = headerNumber(line, "height", file, line_no);
   if (!next()) throw InputError(file, at(), "missing 'width' line");

@@ -293,6 +293,31 @@ OutputTarget outputTarget(const NamedPath& output) {
   return target;
 }
 
+// A new file in dir for output not yet named: anonymous (O_TMPFILE, so a
+// process killed while writing leaves nothing behind) where the file system
+// has it, else created as `tmp`. -1, errno set, when neither can be made.
+int openUnnamed(const std::string& dir, const std::string& tmp, bool& anonymous) {
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  anonymous = fd >= 0;
+  if (!anonymous) fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  return fd;
+}
+
+std::string temporaryName(const std::string& path) {
+  std::random_device rd;
+  return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
+}
+
+// Why openUnnamed failed for path in dir, an existing directory. There
+// ENOENT means that the file system makes no new files (/proc), not that
+// anything is missing: "/proc/version: cannot write in /proc: No such file
+// or directory" was false twice.
+std::string cannotMakeFile(const std::string& path, const std::string& dir, int err) {
+  std::error_code ec;
+  const std::string why = err == ENOENT ? "its file system makes no new files" : std::strerror(err);
+  return (fs::exists(path, ec) ? "cannot replace it: " : "") + ("cannot write in " + dir + ": " + why);
+}
+
 }  // namespace
 
 namespace {
@@ -352,15 +377,10 @@ AtomicFile::AtomicFile(const std::string& given) : given_(given) {
   }
   const std::string dir = directoryOf(path_);
   // Same directory, so the rename stays on one file system and is atomic.
-  std::random_device rd;
-  tmp_ = path_ + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(rd());
-  // Written as an anonymous file (O_TMPFILE) and named only once complete
-  // and synced: a process killed while writing leaves nothing behind. A
-  // named temporary is the fallback where the file system has no O_TMPFILE.
-  fd_ = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
-  anonymous_ = fd_ >= 0;
-  if (!anonymous_) fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw InputError(given, "", "cannot write in " + dir + ": " + std::strerror(errno));
+  // Named only once complete and synced.
+  tmp_ = temporaryName(path_);
+  fd_ = openUnnamed(dir, tmp_, anonymous_);
+  if (fd_ < 0) throw InputError(given, "", cannotMakeFile(path_, dir, errno));
   named_ = !anonymous_;
 }
 
@@ -471,8 +491,15 @@ void requireWritableOutput(const NamedPath& output) {
   const OutputTarget target = outputTarget(output);
   if (target.special) return;  // a device or FIFO, written to directly
   const std::string dir = directoryOf(target.path);
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw InputError(output.path, output.name, "cannot write in " + dir + ": " + std::strerror(errno));
+  // Made and dropped as the writer will make it: access() lets root through
+  // where no file can be made (/proc), and the output then failed after
+  // the work, without naming the option.
+  bool anonymous = false;
+  const std::string tmp = temporaryName(target.path);
+  const int fd = openUnnamed(dir, tmp, anonymous);
+  if (fd < 0) throw InputError(output.path, output.name, cannotMakeFile(target.path, dir, errno));
+  ::close(fd);
+  if (!anonymous) ::unlink(tmp.c_str());
 }
 
 std::ostream& summaryStream(const std::vector<std::string>& outputs) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iterator>
 #include <memory>
 #include <ostream>
@@ -554,7 +555,7 @@ std::string render(const Scenario& sc, const Solution* sol, const SvgOptions& o)
   std::vector<std::size_t> steps = sol ? o.steps : std::vector<std::size_t>{};
   const bool timed = !steps.empty();
   if (!timed) steps.push_back(0);
-  const double total_w = static_cast<double>(steps.size()) * (o.panel_width_px + kPanelGapPx) - kPanelGapPx;
+  const double total_w = pictureWidthPx(steps.size(), o.panel_width_px);
   const double text_w = total_w - 2.0 * kPaddingPx;
 
   // A plan's facts under the panel titles, as many lines as they need.
@@ -678,6 +679,19 @@ std::vector<geo::Vec2> decimatePolyline(const std::vector<geo::Vec2>& pts, doubl
   for (std::size_t k = 0; k < pts.size(); ++k)
     if (keep[k]) out.push_back(pts[k]);
   return out;
+}
+
+double pictureWidthPx(std::size_t panels, double panel_width_px) {
+  return static_cast<double>(std::max<std::size_t>(panels, 1)) * (panel_width_px + kPanelGapPx) - kPanelGapPx;
+}
+
+PictureSize svgSizePx(const std::string& svg) {
+  const std::string_view root = std::string_view(svg).substr(0, svg.find('>'));
+  auto attribute = [&](std::string_view name) {
+    const std::size_t at = root.find(" " + std::string(name) + "=\"");
+    return at == std::string_view::npos ? 0.0 : std::strtod(root.data() + at + name.size() + 3, nullptr);
+  };
+  return {attribute("width"), attribute("height")};
 }
 
 std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options) {

@@ -69,6 +69,13 @@ refused "link.json: -o: is the same file as the scenario (s.json)" "$PLAN" plan 
 refused "nodir/x.json: -o: cannot write: no directory nodir" "$PLAN" plan s.json -o nodir/x.json
 refused "nodir/t.json: --trace: cannot write: no directory nodir" "$PLAN" plan s.json -o new.json --trace nodir/t.json
 [ -e new.json ] && fail "a refused plan wrote new.json"
+# So is a directory that takes no new file, as /proc takes none even from
+# root: it said "/proc/version: cannot write in /proc: No such file or
+# directory" after planning, of a file that exists, without the option.
+refused "/proc/version: -o: cannot replace it: cannot write in /proc: " "$PLAN" plan s.json -o /proc/version
+grep -qF "No such file" err && fail "-o /proc/version: says a file is missing: $(cat err)"
+refused "/proc/new.json: --trace: cannot write in /proc: " "$PLAN" plan s.json -o new.json --trace /proc/new.json
+[ -e new.json ] && fail "a refused plan wrote new.json"
 mkdir adir
 refused "adir: -o: is a directory, not a file" "$PLAN" plan s.json -o adir
 refused "adir: -o: is a directory, not a file" "$GEN" generate -n 2 -o adir

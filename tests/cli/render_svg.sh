@@ -106,6 +106,14 @@ bad_step() {  # bad_step TEXT ARGS...: exit 2 and one line containing TEXT
   [ $? -eq 2 ] || fail "render $* is not bad input: $(cat "$WORK/err")"
   [ "$(wc -l < "$WORK/err")" -eq 1 ] && grep -qF -- "$want" "$WORK/err" || fail "render $*: $(cat "$WORK/err")"
 }
+# An empty file name is named as such (it said "cannot open file: No such
+# file or directory", naming nothing); likewise for validate and view.
+bad_step "an empty file name" "" -o "$WORK/x.svg"
+bad_step "an empty file name" "$WORK/s.json" "" -o "$WORK/x.svg"
+for sub in validate "view -o $WORK/x.html"; do
+  refusedInOneLine "an empty file name" "$PLAN" $sub "" "$WORK/s.sol.json"
+  refusedInOneLine "an empty file name" "$PLAN" $sub "$WORK/s.json" ""
+done
 bad_step "s.sol.json: --step: step 21 is beyond the solution's makespan 20 (steps 0 to 20)" \
   "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --step 21
 bad_step "--strip: step 99 is beyond the solution's makespan 20" "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/x.svg" --strip 0,99
@@ -141,6 +149,11 @@ for steps in "--step 0" "--strip 0,10"; do
     "$WORK/s.json" "$WORK/uns.sol.json" -o "$WORK/x.svg" $steps
   grep -q makespan "$WORK/err" && fail "render $steps of an unsolved plan talks of a makespan: $(cat "$WORK/err")"
 done
+# --width refuses NaN as every numeric option does (CLI11's range let it
+# through, and the picture was width="nan").
+for w in nan -nan; do
+  bad_step "--width: '$w' is not a finite number" "$WORK/s.json" -o "$WORK/x.svg" --width $w
+done
 echo '{"format": "earc.scenario.v1"}' > "$WORK/bad.json"
 "$PLAN" render "$WORK/bad.json" -o "$WORK/x.svg" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "a broken scenario is not bad input"
@@ -168,5 +181,19 @@ grep -q "librsvg2-bin" "$WORK/err" || fail "PNG error does not name librsvg2-bin
 if command -v rsvg-convert > /dev/null; then
   "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/ok.png" --step 5 > /dev/null || fail "PNG render exited $?"
   head -c 8 "$WORK/ok.png" | grep -q PNG || fail "ok.png is not a PNG"
+  # librsvg makes no PNG of more than 32767 pixels a side; past it, render
+  # failed (exit 1) with librsvg's three lines. Too wide is known from the
+  # options, before the files are read; too tall from the workspace's shape.
+  bad_step "x.png: --width: 2 panels (--strip) of --width 20000 make a PNG 40016 pixels wide, more than librsvg's limit of 32767 pixels a side" \
+    "$WORK/bad.json" "$WORK/s.sol.json" -o "$WORK/x.png" --width 20000 --strip 0,10
+  { printf 'type octile\nheight 64\nwidth 2\nmap\n'; for _ in $(seq 64); do echo ..; done; } > "$WORK/tall.map"
+  "$GEN" movingai "$WORK/tall.map" --robots 2 --shape disc --radius 0.3 -o "$WORK/tall.json" > /dev/null ||
+    fail "the tall map's scenario exited $?"
+  bad_step "x.png: --width: --width 1200 makes a PNG 37713 pixels tall for this workspace, more than librsvg's limit of 32767 pixels a side" \
+    "$WORK/tall.json" -o "$WORK/x.png" --width 1200
+  [ -e "$WORK/x.png" ] && fail "a refused PNG render left a file"
+  # SVG has no such limit.
+  "$PLAN" render "$WORK/s.json" "$WORK/s.sol.json" -o "$WORK/wide.svg" --width 20000 --strip 0,10 > /dev/null ||
+    fail "an SVG 40016 pixels wide exited $?"
 fi
 echo "ok"

@@ -65,6 +65,17 @@ for m in tiny:1x1 strip:5x1; do
   "$GEN" movingai "$WORK/$name.map" --robots 1 --shape disc --radius 0.25 -o "$WORK/$name.json" > /dev/null ||
     fail "$name.map: the suggested disc does not fit"
 done
+# Only octile maps are read (a hex map's cells are not squares), and an
+# empty file lacks line 1 (it said "line 0"): lines count from 1.
+for type in hex whatever; do
+  printf 'type %s\nheight 1\nwidth 1\nmap\n.\n' "$type" > "$WORK/$type.map"
+  refusedInOneLine "$type.map: line 1: expected the header 'type octile', got 'type $type'" \
+    "$GEN" movingai "$WORK/$type.map" --shape disc --radius 0.25 -o "$WORK/x.json"
+done
+: > "$WORK/empty.map"
+refusedInOneLine "empty.map: line 1: the file is empty" "$GEN" movingai "$WORK/empty.map" -o "$WORK/x.json"
+# An empty name is refused as such, naming the argument (the error named nothing).
+refusedInOneLine "map: an empty file name" "$GEN" movingai "" -o "$WORK/x.json"
 # A name that is neither a file nor a compiled-in map says both, listing
 # the compiled-in maps (it said only "cannot open file").
 refusedInOneLine "empty-32-32: no such file, nor a compiled-in map (den520d, random-32-32-10, random-32-32-20)" \

@@ -118,6 +118,11 @@ TEST_CASE("a fully blocked map merges into one rectangle") {
 TEST_CASE("malformed map files name the line and the reason") {
   CHECK(whereOfParseError("type octile\nheight x\nwidth 3\nmap\n") == "line 2");
   CHECK(whereOfParseError("hello\n") == "line 1");
+  CHECK(whereOfParseError("") == "line 1");  // lines count from 1 (it said "line 0")
+  // Only octile maps: the other types' cells are not squares.
+  CHECK(whereOfParseError(mapText(1, {"."}).replace(0, 11, "type hex")) == "line 1");
+  CHECK(whereOfParseError(mapText(1, {"."}).replace(0, 11, "type whatever")) == "line 1");
+  CHECK_NOTHROW(parseMovingAiMap(mapText(1, {"."}), "octile.map"));
   CHECK(whereOfParseError("type octile\nheight 2\nwidth 3\nnot map\n") == "line 4");
   CHECK(whereOfParseError(mapText(3, {"...", ".x."})) == "line 6");  // unknown terrain
   CHECK(whereOfParseError(mapText(3, {"...", ".."})) == "line 6");   // short row

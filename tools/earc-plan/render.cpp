@@ -38,10 +38,35 @@ void requireKnownRobots(const earc::Scenario& sc, const earc::Solution& sol, con
   }
 }
 
+// librsvg makes no PNG of more than kMaxPngSidePx pixels a side, and said
+// so in three lines of its own after all the drawing: the panels' width
+// is known from the options alone, so it is refused first.
+void requirePngWidth(const RenderOptions& opt) {
+  const double wide = earc::render::pictureWidthPx(opt.steps.size(), opt.width);
+  if (wide <= earc::render::kMaxPngSidePx) return;
+  throw earc::InputError(opt.output, "--width",
+                         std::to_string(opt.steps.size()) + " panels (" + opt.steps_option + ") of --width " +
+                             earc::formatNumber(opt.width) + " make a PNG " + earc::formatNumber(wide) +
+                             " pixels wide, more than librsvg's limit of " + earc::formatNumber(earc::render::kMaxPngSidePx) +
+                             " pixels a side: use a smaller --width, fewer steps, or an .svg file");
+}
+
+// The height follows from the workspace's shape too (a tall map).
+void requirePngHeight(const RenderOptions& opt, const std::string& svg) {
+  const double tall = earc::render::svgSizePx(svg).height;
+  if (tall <= earc::render::kMaxPngSidePx) return;
+  throw earc::InputError(opt.output, "--width",
+                         "--width " + earc::formatNumber(opt.width) + " makes a PNG " +
+                             earc::formatNumber(tall) + " pixels tall for this workspace, more than librsvg's limit of " +
+                             earc::formatNumber(earc::render::kMaxPngSidePx) +
+                             " pixels a side: use a smaller --width, or an .svg file");
+}
+
 void runRender(const RenderOptions& opt) {
   earc::requireDistinctFiles({{"the scenario", opt.scenario}, {"the solution", opt.solution}, {"-o", opt.output}});
   earc::requireWritableOutput({"-o", opt.output});
-  earc::render::requireImageOutput(opt.output, "-o");
+  const bool png = earc::render::requireImageOutput(opt.output, "-o");
+  if (png) requirePngWidth(opt);
   // Drawn even when its geometry is wrong (a start in an obstacle, robots
   // overlapping): a picture helps most when the scenario is broken. But
   // said, in the line plan would refuse it with, so that a picture is not
@@ -85,6 +110,7 @@ void runRender(const RenderOptions& opt) {
                                    std::to_string(sol.makespan()) + " (steps 0 to " + std::to_string(sol.makespan()) + ")");
     svg = earc::render::solutionSvg(sc, sol, o);
   }
+  if (png) requirePngHeight(opt, svg);
   earc::printInputWarnings(warnings);
   earc::render::writeImage(opt.output, svg);
   earc::summaryStream({opt.output}) << opt.output << "\n";
@@ -93,8 +119,8 @@ void runRender(const RenderOptions& opt) {
 void setupRender(CLI::App& app) {
   auto opt = std::make_shared<RenderOptions>();
   CLI::App* sub = app.add_subcommand("render", "Draw a scenario or a solution as SVG (or PNG with rsvg-convert)");
-  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
-  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)");
+  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->check(earc::cli::kFileName)->required();
+  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->check(earc::cli::kFileName);
   sub->add_option("-o,--output", opt->output, "Picture to write: .svg, or .png (needs rsvg-convert)")->check(earc::cli::kFileName)->required();
   CLI::Option* step = sub->add_option_function<std::size_t>(
       "--step", [opt](std::size_t t) { opt->steps = {t}; }, "Draw the robots at time step T")->check(earc::cli::kWholeNumber);
@@ -120,7 +146,9 @@ void setupRender(CLI::App& app) {
                               },
                               "Draw several time steps side by side, left to right: T1,T2,... (increasing)")
                            ->excludes(step);
+  // CLI11's Range lets NaN through (no comparison fails), and it was drawn as width="nan".
   sub->add_option("--width", opt->width, "Width of one panel in pixels")
+      ->check(earc::cli::kFinite)
       ->check(CLI::Range(100.0, 20000.0))
       ->capture_default_str();
   sub->add_flag("--no-labels", opt->no_labels, "Leave out the robot names");

@@ -103,8 +103,8 @@ void setupValidate(CLI::App& app) {
   auto opt = std::make_shared<ValidateOptions>();
   CLI::App* sub = app.add_subcommand(
       "validate", "Check a solution against its scenario (exit 0 valid, 1 invalid, 2 bad input)");
-  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
-  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->required();
+  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->check(earc::cli::kFileName)->required();
+  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->check(earc::cli::kFileName)->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] { earc::cli::setExitCode(runValidate(*opt, std::cout)); });
 }

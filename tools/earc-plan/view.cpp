@@ -48,8 +48,8 @@ void runView(const ViewOptions& opt) {
 void setupView(CLI::App& app) {
   auto opt = std::make_shared<ViewOptions>();
   CLI::App* sub = app.add_subcommand("view", "Write one self-contained HTML page that animates a solution");
-  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->required();
-  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->required();
+  sub->add_option("scenario", opt->scenario, "Scenario file (earc.scenario.v1)")->check(earc::cli::kFileName)->required();
+  sub->add_option("solution", opt->solution, "Solution file (earc.solution.v1)")->check(earc::cli::kFileName)->required();
   sub->add_option("--trace", opt->trace, "Trace written by `earc-plan plan --trace` (earc.trace.v1)");
   sub->add_option("-o,--output", opt->output, "HTML page to write (.html or .htm)")->check(earc::cli::kFileName)->required();
   sub->callback([opt] { runView(*opt); });

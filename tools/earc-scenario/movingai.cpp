@@ -61,7 +61,9 @@ void runMovingAi(const MovingAiOptions& opt) {
 void setupMovingAi(CLI::App& app) {
   auto opt = std::make_shared<MovingAiOptions>();
   CLI::App* sub = app.add_subcommand("movingai", "Make a scenario from a MovingAI .map file");
-  sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (" + embeddedMapNames() + ")")->required();
+  sub->add_option("map", opt->map, "MovingAI .map file, or the name of a compiled-in map (" + embeddedMapNames() + ")")
+      ->check(earc::cli::kFileName)
+      ->required();
   sub->add_option("--robots,-n", opt->robots, "Number of robots")->check(earc::cli::wholeNumberIn(1, 1024))->capture_default_str();
   sub->add_option("--seed,-s", opt->seed, "Random seed")->check(earc::cli::kWholeNumber)->capture_default_str();
   CLI::Option* shape = sub->add_option("--shape", opt->shape, "Footprint: box (0.6 x 0.4) or disc")

@@ -84,7 +84,9 @@ bool sameFile(const std::string& a, const std::string& b);
 // identity (links included), others by their absolute normal form.
 void requireDistinctFiles(const std::vector<NamedPath>& paths);
 // Refuses an output path that cannot be written: a directory, or one whose
-// directory is missing or not writable. Cheap; call it before long work.
+// directory is missing or takes no new file (not writable; /proc, even for
+// root). Cheap, it makes the writer's temporary file and drops it; call it
+// before long work.
 void requireWritableOutput(const NamedPath& output);
 // A name's extension in lower case, with its dot ("R.SVG" -> ".svg").
 std::string lowerExtension(const std::string& path);

@@ -40,6 +40,22 @@ std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options = {}
 // dashed and faded.
 std::string solutionSvg(const Scenario& scenario, const Solution& solution, const SvgOptions& options = {});
 
+// The width in pixels of a picture of `panels` panels (1 without steps)
+// side by side, known before anything is drawn.
+double pictureWidthPx(std::size_t panels, double panel_width_px);
+
+// rsvg-convert (librsvg) makes no PNG wider or taller than this: beyond
+// it, it fails with three lines of its own.
+inline constexpr double kMaxPngSidePx = 32767;
+
+// The width and height in pixels that an SVG made here declares on its
+// root element (0 for one it does not declare).
+struct PictureSize {
+  double width = 0;
+  double height = 0;
+};
+PictureSize svgSizePx(const std::string& svg);
+
 // Douglas-Peucker simplification: keeps the first and last point and every
 // point needed so that no dropped point lies farther than tolerance from the
 // kept polyline.
