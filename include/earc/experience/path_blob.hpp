@@ -20,8 +20,8 @@
 //                         its IEEE bit pattern and that of the straight-line
 //                         estimate between the keyframes around it
 //                         (keyframeEstimate), usually 0 or 1 (one byte).
-// Version 3 body: version 2's, then a u32 CRC-32 (IEEE 802.3, as zlib's
-// crc32) of every byte before it, header included. SQLite checks its
+// Version 3 body: version 2's, then a u32 CRC-32C (Castagnoli) of every
+// byte before it, header included. SQLite checks its
 // pages' structure, not their contents: without it a flipped bit in a
 // stored path read back as another path (in 40 of 60 random bit flips
 // of a real file, earc-db verify passed and the export differed).
@@ -64,8 +64,11 @@ std::vector<unsigned char> encodePaths(const std::vector<Path>& paths);
 std::vector<unsigned char> encodePathsV1(const std::vector<Path>& paths);
 std::vector<unsigned char> encodePathsV2(const std::vector<Path>& paths);
 
-// The CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of `bytes`.
-std::uint32_t crc32(std::span<const unsigned char> bytes);
+// The CRC-32C (Castagnoli, reflected; iSCSI's, ext4's) of `bytes`: by
+// SSE 4.2's crc32 instruction where the processor has it, else by tables
+// (crc32cPortable, the same value).
+std::uint32_t crc32c(std::span<const unsigned char> bytes);
+std::uint32_t crc32cPortable(std::span<const unsigned char> bytes);
 
 // The straight-line estimate of coordinate values a (at step i) and b (at
 // step j) at step t, i < t < j, that version 2 stores differences from.
