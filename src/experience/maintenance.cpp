@@ -37,10 +37,10 @@ std::int64_t fileSize(const std::string& path) {
 }
 
 // A non-negative sum read as a real number, as a count: the largest
-// 64-bit integer where it is more.
+// 64-bit integer where it is more (2^63 and up).
 std::int64_t saturatingInt64(double v) {
   if (!(v > 0)) return 0;
-  if (v >= 9.2e18) return std::numeric_limits<std::int64_t>::max();
+  if (v >= 0x1p63) return std::numeric_limits<std::int64_t>::max();
   return std::llround(v);
 }
 

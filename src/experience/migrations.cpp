@@ -104,7 +104,7 @@ CREATE UNIQUE INDEX history_by_token ON history (token);
     {6, "0006_path_blob_checksums.sql", R"sql(-- Migration 6: path blobs that carry a checksum.
 -- No table changes. From this version on the paths column may hold path
 -- blobs of format version 3 (include/earc/experience/path_blob.hpp): a
--- CRC-32 of the blob at its end, so that a changed byte inside a stored
+-- CRC-32C of the blob at its end, so that a changed byte inside a stored
 -- path, which SQLite's checks cannot see, is found by earc-db verify and
 -- refused on reading. An earc of schema version 5 cannot read them: it
 -- refuses the file as newer, at once, instead of skipping its rows one by

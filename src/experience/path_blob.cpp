@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
+
+#include "earc/experience/sqlite.hpp"
 
 #if defined(__x86_64__)
 #include <nmmintrin.h>
 #endif
-#include <string>
-
-#include "earc/experience/sqlite.hpp"
 
 namespace earc::exp {
 
