@@ -81,6 +81,12 @@ struct PlannerSettings {
   // the waits it does not need (compactPlan, compact.hpp); stats
   // "compact". Not part of any method as published; off by default.
   bool compact = false;
+  // Anytime refinement (refinePlan, refine.hpp): seconds spent after the
+  // first valid plan improving it; 0: off. Stats "refine".
+  double refine_s = 0.0;
+  // Crowds: ARC and E-ARC hand a jam to the configuration-based crowd
+  // solver (lacam.hpp) when their local solvers fail on it; false: never.
+  bool crowd_fallback = true;
   // Lightning's whole-problem database file (OMPL's format): empty starts
   // from an empty database and writes none; a missing file is created when
   // db_learn is set.
