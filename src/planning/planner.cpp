@@ -22,14 +22,15 @@ const char* methodName(Method m) {
     case Method::Prioritized: return "prioritized";
     case Method::Coupled: return "coupled";
     case Method::Lightning: return "lightning";
+    case Method::Lacam: return "lacam";
   }
   return "?";
 }
 
 Method methodFromName(const std::string& name) {
-  for (Method m : {Method::Arc, Method::Earc, Method::Prioritized, Method::Coupled, Method::Lightning})
+  for (Method m : {Method::Arc, Method::Earc, Method::Prioritized, Method::Coupled, Method::Lightning, Method::Lacam})
     if (name == methodName(m)) return m;
-  throw std::invalid_argument("unknown method '" + name + "' (arc, earc, prioritized, coupled, lightning)");
+  throw std::invalid_argument("unknown method '" + name + "' (arc, earc, prioritized, coupled, lightning, lacam)");
 }
 
 const char* failureCauseName(FailureCause c) {
@@ -206,6 +207,7 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
       case Method::Prioritized: result = planPrioritized(scenario, settings); break;
       case Method::Coupled: result = planCoupled(scenario, settings); break;
       case Method::Lightning: result = planLightning(scenario, settings); break;
+      case Method::Lacam: result = planLacam(scenario, settings); break;
     }
   }
   result.solution.method = methodName(settings.method);

@@ -286,7 +286,7 @@ void setupPlan(CLI::App& app) {
   auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved)");
   cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->check(earc::cli::kFileName)->required();
   cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->check(earc::cli::kFileName)->required();
-  cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled or lightning")->capture_default_str();
+  cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled, lightning or lacam (crowds)")->capture_default_str();
   cmd->add_option("--db", opts->db,
                   "Experience database (method earc, SQLite); Lightning database (method lightning, OMPL's "
                   "format, created when missing unless --no-learn; without it Lightning starts empty)")

@@ -18,6 +18,8 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
 PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings);
 // E-ARC: ARC with the experience database solver first in the hierarchy.
 PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
+// The crowd solver (LaCAM over a lattice roadmap, lacam.hpp) on the whole problem.
+PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings);
 // Lightning (OMPL) with the whole-problem database settings.lightning_db.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
 

@@ -18,7 +18,7 @@ namespace earc {
 namespace exp { class ExperienceStore; }
 class RoadmapCache;
 
-enum class Method { Arc, Earc, Prioritized, Coupled, Lightning };
+enum class Method { Arc, Earc, Prioritized, Coupled, Lightning, Lacam };
 const char* methodName(Method m);
 Method methodFromName(const std::string& name);  // throws std::invalid_argument
 // Why `method` cannot plan with work budgets (PlannerSettings::

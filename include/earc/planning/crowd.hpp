@@ -1,0 +1,52 @@
+// Crowds of mobile robots planned together: the crowd roadmap, LaCAM on it,
+// and the configurations turned into time-stamped paths at the scenario's
+// resolution. Used as a whole-problem method and by ARC for a jam.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/crowd_roadmap.hpp"
+#include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
+
+namespace earc {
+
+struct CrowdOutcome {
+  std::optional<std::vector<Path>> paths;  // one per group robot, from start to goal
+  nlohmann::json stats = nlohmann::json::object();
+  std::string why;      // why not solved
+  bool timed_out = false;
+};
+
+// Plans robots[i] (indices into models, all mobile) from starts[i] to
+// goals[i] together, ignoring every other robot. Each roadmap step takes
+// ceil(spacing / resolution) time steps. Throws std::invalid_argument for an arm.
+CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
+                       const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
+                       const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed);
+
+// Time-stamped paths of LaCAM's configurations: each step is `per_step`
+// time steps of straight motion; headings turn from start to goal heading
+// while a robot is on lattice vertices or edges (pausing everyone where a
+// robot needs more time to turn). Nothing when a robot cannot turn anywhere.
+std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& roadmap, std::vector<std::vector<int>> configs,
+                                            int per_step, const std::vector<std::vector<double>>& starts,
+                                            const std::vector<std::vector<double>>& goals);
+
+}  // namespace earc
+
+namespace earc {
+
+// The robots ARC hands a jam to: `robots` (the conflict's group), then
+// `previous` (the last group handed over), then the others by how near their
+// paths pass `place`, up to `size` in all (ascending indices).
+std::vector<int> jamGroup(const std::vector<Path>& paths, std::vector<int> robots, const std::vector<int>& previous,
+                          geo::Vec2 place, std::size_t size);
+
+}  // namespace earc

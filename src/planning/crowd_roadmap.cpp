@@ -1,0 +1,268 @@
+#include "earc/planning/crowd_roadmap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+
+namespace earc {
+
+namespace {
+
+bool integral(double x) { return std::abs(x - std::round(x)) < 1e-9; }
+
+// A grid map's scenario (earc-scenario movingai): integral workspace and
+// axis-aligned boxes with integral sides. Its cells' centres are then the
+// natural lattice: robots of a benchmark file start and end on them.
+bool gridWorld(const CollisionWorld& world) {
+  const geo::Aabb& ws = world.workspace();
+  if (!integral(ws.lo.x) || !integral(ws.lo.y) || !integral(ws.hi.x) || !integral(ws.hi.y)) return false;
+  for (std::size_t i = 0; i < world.obstacleCount(); ++i) {
+    const geo::Body& b = world.obstacle(i);
+    if (b.kind != geo::CoreKind::Rect || b.radius != 0.0) return false;
+    if (std::abs(b.axis.y) > 1e-12 && std::abs(b.axis.x) > 1e-12) return false;
+    const geo::Aabb box = geo::bounds(b);
+    if (!integral(box.lo.x) || !integral(box.lo.y) || !integral(box.hi.x) || !integral(box.hi.y)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double closestApproach(geo::Vec2 a0, geo::Vec2 a1, geo::Vec2 b0, geo::Vec2 b1) {
+  // The relative position d(s) = d0 + s (d1 - d0) is linear in s: its
+  // smallest norm over [0, 1] is at the clamped projection of the origin.
+  const geo::Vec2 d0 = a0 - b0;
+  const geo::Vec2 dd = (a1 - b1) - d0;
+  const double len2 = geo::dot(dd, dd);
+  double s = 0.0;
+  if (len2 > 0.0) s = std::clamp(-geo::dot(d0, dd) / len2, 0.0, 1.0);
+  return geo::norm(d0 + dd * s);
+}
+
+CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
+                           const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
+                           const std::vector<std::vector<double>>& goals) {
+  for (int r : robots) {
+    const RobotModel* m = models[static_cast<std::size_t>(r)];
+    if (!m->isMobile())
+      throw std::invalid_argument("robot " + m->spec().name + " is an arm: the crowd solver plans mobile robots only");
+    group_models_.push_back(m);
+    radius_ = std::max(radius_, m->boundingRadius());
+  }
+  const geo::Aabb& ws = world.workspace();
+  // Every lattice vertex is R-clear of obstacles and walls. On a grid map
+  // with robots narrower than a cell the lattice is the cells' centres;
+  // elsewhere its spacing keeps robots on two lattice vertices apart.
+  grid_ = gridWorld(world) && radius_ < 0.5 - 1e-9;
+  spacing_ = grid_ ? 1.0 : 2.0 * radius_ + 0.01;
+  const double width = ws.hi.x - ws.lo.x, height = ws.hi.y - ws.lo.y;
+  if (grid_) {
+    cols_ = static_cast<int>(std::lround(width));
+    rows_ = static_cast<int>(std::lround(height));
+    origin_ = {ws.lo.x + 0.5, ws.lo.y + 0.5};
+  } else {
+    cols_ = std::max(0, static_cast<int>(std::floor((width - 2.0 * radius_) / spacing_)) + 1);
+    rows_ = std::max(0, static_cast<int>(std::floor((height - 2.0 * radius_) / spacing_)) + 1);
+    origin_ = {ws.lo.x + 0.5 * (width - (cols_ - 1) * spacing_), ws.lo.y + 0.5 * (height - (rows_ - 1) * spacing_)};
+  }
+  lattice_.assign(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(std::max(rows_, 0)), -1);
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c) {
+      const geo::Vec2 p{origin_.x + c * spacing_, origin_.y + r * spacing_};
+      if (world.bodyFree(geo::Body::disc(p, radius_)))
+        lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)] =
+            addVertex(p, -1);
+    }
+  auto at = [&](int c, int r) {
+    if (c < 0 || r < 0 || c >= cols_ || r >= rows_) return -1;
+    return lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+  };
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c) {
+      const int v = at(c, r);
+      if (v < 0) continue;
+      for (auto [dc, dr] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        const int w = at(c + dc, r + dr);
+        if (w >= 0 && world.bodyFree(geo::Body::capsule(pos_[static_cast<std::size_t>(v)],
+                                                        pos_[static_cast<std::size_t>(w)], radius_)))
+          addEdge(v, w);
+      }
+    }
+  longest_edge_ = spacing_;
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const int ri = static_cast<int>(i);
+    start_heading_.push_back(starts[i][2]);
+    goal_heading_.push_back(goals[i][2]);
+    start_.push_back(connectOwn(world, ri, starts[i]));
+    const geo::Vec2 s{starts[i][0], starts[i][1]}, g{goals[i][0], goals[i][1]};
+    goal_.push_back(geo::norm(s - g) < 1e-9 ? start_.back() : connectOwn(world, ri, goals[i]));
+  }
+  buildNear();
+  buildDistances();
+  for (std::size_t i = 0; i < start_.size() && problem_.empty(); ++i)
+    if (dist_[i][static_cast<std::size_t>(start_[i])] >= kUnreachable)
+      problem_ = "robot " + group_models_[i]->spec().name + ": no way from its start to its goal on the lattice of spacing " +
+                 std::to_string(spacing_);
+}
+
+int CrowdRoadmap::addVertex(geo::Vec2 p, int owner) {
+  pos_.push_back(p);
+  owner_.push_back(owner);
+  adj_.emplace_back();
+  return static_cast<int>(pos_.size()) - 1;
+}
+
+void CrowdRoadmap::addEdge(int a, int b) {
+  adj_[static_cast<std::size_t>(a)].push_back(b);
+  adj_[static_cast<std::size_t>(b)].push_back(a);
+}
+
+// A start or goal: the lattice vertex it stands on, or a vertex of the
+// robot's own joined to the lattice vertices within one spacing. Its
+// joining motions keep the robot's heading there and are checked with its
+// real footprint at the instants a plan's steps are validated (the robot
+// may stand closer to a wall than its bounding disc allows).
+int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q) {
+  const geo::Vec2 p{q[0], q[1]};
+  const int c0 = static_cast<int>(std::floor((p.x - origin_.x) / spacing_));
+  const int r0 = static_cast<int>(std::floor((p.y - origin_.y) / spacing_));
+  for (int r = r0; r <= r0 + 1; ++r)
+    for (int c = c0; c <= c0 + 1; ++c) {
+      if (c < 0 || r < 0 || c >= cols_ || r >= rows_) continue;
+      const int v = lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+      if (v >= 0 && geo::norm(pos_[static_cast<std::size_t>(v)] - p) < 1e-9) return v;
+    }
+  const RobotModel& m = *group_models_[static_cast<std::size_t>(robot)];
+  const int own = addVertex(p, robot);
+  const int steps = std::max(1, static_cast<int>(std::ceil(spacing_ / m.resolution().translation - 1e-9)));
+  for (int r = r0 - 1; r <= r0 + 2; ++r)
+    for (int c = c0 - 1; c <= c0 + 2; ++c) {
+      if (c < 0 || r < 0 || c >= cols_ || r >= rows_) continue;
+      const int v = lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+      if (v < 0) continue;
+      const geo::Vec2 w = pos_[static_cast<std::size_t>(v)];
+      if (geo::norm(w - p) > spacing_ + 1e-9) continue;
+      bool free = world.bodyFree(geo::Body::capsule(p, w, radius_));
+      for (int k = 0; !free && k <= 2 * steps; ++k) {
+        const double s = static_cast<double>(k) / (2.0 * steps);
+        const double x[3] = {p.x + (w.x - p.x) * s, p.y + (w.y - p.y) * s, q[2]};
+        if (!world.stateValid(m, x)) break;
+        if (k == 2 * steps) free = true;
+      }
+      if (free) addEdge(own, v);
+    }
+  return own;
+}
+
+void CrowdRoadmap::buildNear() {
+  // Two vertices' steps can meet only when the vertices are closer than
+  // 2R plus two edges: a bucket grid of that pitch finds the candidates,
+  // and every pair of their steps (stays included) decides.
+  const double reach = 2.0 * radius_ + 2.0 * longest_edge_ + 1e-9;
+  geo::Aabb box;
+  for (const auto& p : pos_) box.expand({p, p});
+  const double cell = reach;
+  const int bc = std::max(1, static_cast<int>((box.hi.x - box.lo.x) / cell) + 1);
+  const int br = std::max(1, static_cast<int>((box.hi.y - box.lo.y) / cell) + 1);
+  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(bc) * static_cast<std::size_t>(br));
+  auto key = [&](geo::Vec2 p) {
+    const int c = std::clamp(static_cast<int>((p.x - box.lo.x) / cell), 0, bc - 1);
+    const int r = std::clamp(static_cast<int>((p.y - box.lo.y) / cell), 0, br - 1);
+    return std::pair{c, r};
+  };
+  for (int v = 0; v < vertexCount(); ++v) {
+    auto [c, r] = key(pos_[static_cast<std::size_t>(v)]);
+    bucket[static_cast<std::size_t>(r) * static_cast<std::size_t>(bc) + static_cast<std::size_t>(c)].push_back(v);
+  }
+  near_.assign(pos_.size(), {});
+  const double touch = 2.0 * radius_;
+  for (int v = 0; v < vertexCount(); ++v) {
+    const geo::Vec2 pv = pos_[static_cast<std::size_t>(v)];
+    auto [c, r] = key(pv);
+    for (int rr = r - 1; rr <= r + 1; ++rr)
+      for (int cc = c - 1; cc <= c + 1; ++cc) {
+        if (cc < 0 || rr < 0 || cc >= bc || rr >= br) continue;
+        for (int w : bucket[static_cast<std::size_t>(rr) * static_cast<std::size_t>(bc) + static_cast<std::size_t>(cc)]) {
+          const geo::Vec2 pw = pos_[static_cast<std::size_t>(w)];
+          if (geo::norm(pw - pv) > reach) continue;
+          bool meets = w == v;
+          const auto& av = adj_[static_cast<std::size_t>(v)];
+          const auto& aw = adj_[static_cast<std::size_t>(w)];
+          for (std::size_t a = 0; !meets && a <= av.size(); ++a)
+            for (std::size_t b = 0; !meets && b <= aw.size(); ++b) {
+              const geo::Vec2 va = a < av.size() ? pos_[static_cast<std::size_t>(av[a])] : pv;
+              const geo::Vec2 wb = b < aw.size() ? pos_[static_cast<std::size_t>(aw[b])] : pw;
+              meets = closestApproach(pv, va, pw, wb) < touch + 1e-9;
+            }
+          if (meets) near_[static_cast<std::size_t>(v)].push_back(w);
+        }
+      }
+  }
+}
+
+void CrowdRoadmap::buildDistances() {
+  dist_.assign(start_.size(), {});
+  // Robots with the same goal vertex (only lattice goals can be shared)
+  // share one search.
+  for (std::size_t i = 0; i < start_.size(); ++i) {
+    const int g = goal_[i];
+    bool shared = false;
+    if (owner(g) < 0)
+      for (std::size_t j = 0; j < i && !shared; ++j)
+        if (goal_[j] == g && owner(start_[j]) < 0 && owner(start_[i]) < 0) {
+          dist_[i] = dist_[j];
+          shared = true;
+        }
+    if (shared) continue;
+    std::vector<int>& d = dist_[i];
+    d.assign(pos_.size(), kUnreachable);
+    std::deque<int> queue{g};
+    d[static_cast<std::size_t>(g)] = 0;
+    while (!queue.empty()) {
+      const int v = queue.front();
+      queue.pop_front();
+      for (int w : adj_[static_cast<std::size_t>(v)]) {
+        if (!usableBy(static_cast<int>(i), w) || d[static_cast<std::size_t>(w)] != kUnreachable) continue;
+        d[static_cast<std::size_t>(w)] = d[static_cast<std::size_t>(v)] + 1;
+        queue.push_back(w);
+      }
+    }
+  }
+}
+
+int CrowdRoadmap::distanceToGoal(int i, int v) const {
+  return dist_[static_cast<std::size_t>(i)][static_cast<std::size_t>(v)];
+}
+
+double CrowdRoadmap::headingAt(int i, int v) const {
+  return v == start(i) ? start_heading_[static_cast<std::size_t>(i)] : goal_heading_[static_cast<std::size_t>(i)];
+}
+
+bool CrowdRoadmap::conflict(int i, CrowdMove mi, int j, CrowdMove mj) const {
+  const double d = closestApproach(position(mi.from), position(mi.to), position(mj.from), position(mj.to));
+  if (d >= 2.0 * radius_ + 1e-9) return false;
+  const bool own_i = owner(mi.from) == i, own_j = owner(mj.from) == j;
+  if (mi.from != mi.to || mj.from != mj.to || (!own_i && !own_j)) return true;
+  // Both stay and one stands on its own start or goal, where its real
+  // footprint (inside the workspace and clear of obstacles) may poke out
+  // of the lattice's bound: decide on the footprints.
+  std::vector<geo::Body> bi, bj;
+  auto place = [&](int r, int v, bool own, std::vector<geo::Body>& out) {
+    const geo::Vec2 p = position(v);
+    if (own) {
+      const double q[3] = {p.x, p.y, headingAt(r, v)};
+      model(r).bodies(q, out);
+    } else {
+      out.push_back(geo::Body::disc(p, radius_));
+    }
+  };
+  place(i, mi.from, own_i, bi);
+  place(j, mj.from, own_j, bj);
+  for (const auto& a : bi)
+    for (const auto& b : bj)
+      if (geo::touches(a, b)) return true;
+  return false;
+}
+
+}  // namespace earc

@@ -1,0 +1,42 @@
+// The crowd solver as a whole-problem method (`--method lacam`).
+#include <stdexcept>
+
+#include "earc/planning/crowd.hpp"
+#include "earc/planning/methods.hpp"
+
+namespace earc {
+
+PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) {
+  Stopwatch clock;
+  PlanResult result;
+  result.solution.scenario = scenario.name;
+  const Deadline deadline(settings.time_limit_s);
+  const CollisionWorld world(scenario);
+  const RobotModels robots(scenario);
+  std::vector<int> group;
+  std::vector<std::vector<double>> starts, goals;
+  for (std::size_t r = 0; r < scenario.robots.size(); ++r) {
+    if (scenario.robots[r].kind != RobotKind::Mobile) {
+      result.failures.insert(FailureCause::InvalidInput);
+      result.stats["detail"] = "robot " + scenario.robots[r].name + " is an arm: lacam plans mobile robots only";
+      result.stats["planning_time_s"] = clock.seconds();
+      return result;
+    }
+    group.push_back(static_cast<int>(r));
+    starts.push_back(scenario.robots[r].start);
+    goals.push_back(scenario.robots[r].goal);
+  }
+  CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed);
+  result.stats["lacam"] = out.stats;
+  if (out.paths) {
+    result.solution.solved = true;
+    result.solution.paths = std::move(*out.paths);
+  } else {
+    result.failures.insert(out.timed_out ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
+    result.stats["detail"] = out.why;
+  }
+  result.stats["planning_time_s"] = clock.seconds();
+  return result;
+}
+
+}  // namespace earc
