@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "earc/planning/composite.hpp"
+#include "earc/planning/crowd.hpp"
 #include "earc/util/random.hpp"
 
 namespace earc {
@@ -245,6 +246,7 @@ class ArcRun {
 
  private:
   bool resolve(const Conflict& c, std::size_t max_robots);
+  std::optional<bool> handOverJam(const Conflict& c, const std::vector<int>& robots);
   std::optional<int> conflictsWithResolved(const Subproblem& sub, const LocalSolution& local);
   void traceEvent(nlohmann::json ev) {
     if (settings_.trace) events_.push_back(std::move(ev));
@@ -277,7 +279,71 @@ class ArcRun {
   std::size_t last_t_start_ = 0;
   ConflictRecurrence recurrence_;
   int cap_raised_ = 0;
+  // Jams handed to the crowd solver (handOverJam).
+  bool crowd_ok_ = false;
+  std::vector<int> jam_group_;
+  std::size_t jam_size_ = 0;
+  int conflicts_at_handover_ = 0;
+  int capped_since_handover_ = 0;
+  nlohmann::json handovers_ = nlohmann::json::array();
+  double crowd_s_ = 0.0;
 };
+
+// A jam: ARC's local solvers failed on a conflict's subproblem through
+// kJamLevel window levels, or since the last jam kJamConflictsPerRobot
+// conflicts a robot came and went or kJamCappedGroups conflicts' groups
+// grew to the merge cap. Its robots, the last jam's and those whose paths
+// pass nearest are planned together by the crowd solver from their starts
+// to their goals, the others left out; what their new paths meet is
+// resolved as any conflict. The first jam takes at least a quarter of the
+// robots, each later one kJamGrowth times the last one's, so a crowd that
+// keeps jamming is planned whole after a few.
+constexpr int kJamLevel = 1;
+constexpr double kJamConflictsPerRobot = 3.0;
+constexpr int kJamCappedGroups = 8;
+constexpr std::size_t kFirstJam = 16;
+constexpr std::size_t kJamGrowth = 4;
+constexpr double kJamMinBudgetS = 1.0;
+constexpr double kJamBudgetShare = 0.25;
+
+std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int>& robots) {
+  Stopwatch sw;
+  jam_size_ = jam_size_ == 0 ? std::max({kFirstJam, 4 * robots.size(), paths_.size() / 4}) : jam_size_ * kJamGrowth;
+  jam_size_ = std::min(jam_size_, paths_.size());
+  std::vector<int> group = jamGroup(paths_, robots, jam_group_, c.place, jam_size_);
+  std::vector<std::vector<double>> starts, goals;
+  for (int r : group) {
+    starts.push_back(scenario_.robots[static_cast<std::size_t>(r)].start);
+    goals.push_back(scenario_.robots[static_cast<std::size_t>(r)].goal);
+  }
+  // A jam gets a share of the time left: a crowd solver stuck on a
+  // lattice that does not suit these robots must not take ARC's time.
+  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, kJamBudgetShare * deadline_.remaining()));
+  CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
+                               splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())));
+  crowd_s_ += sw.seconds();
+  nlohmann::json ev = {{"type", "jam"}, {"conflict", conflicts_ - 1}, {"robots", group.size()},
+                       {"solved", out.paths.has_value()}, {"time_s", sw.seconds()}};
+  if (!out.why.empty()) ev["detail"] = out.why;
+  handovers_.push_back({{"robots", group.size()}, {"solved", out.paths.has_value()}, {"s", sw.seconds()}});
+  traceEvent(ev);
+  if (!out.paths) {
+    if (deadline_.expired()) return false;
+    crowd_ok_ = false;  // the lattice cannot serve these robots: ARC goes on alone
+    return std::nullopt;
+  }
+  for (std::size_t i = 0; i < group.size(); ++i) paths_[static_cast<std::size_t>(group[i])] = std::move((*out.paths)[i]);
+  std::erase_if(spans_, [&](const ResolvedSpan& s) {
+    for (int r : s.robots)
+      if (std::binary_search(group.begin(), group.end(), r)) return true;
+    return false;
+  });
+  jam_group_ = std::move(group);
+  conflicts_at_handover_ = conflicts_;
+  capped_since_handover_ = 0;
+  last_t_start_ = 0;
+  return true;
+}
 
 std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const LocalSolution& local) {
   // Would this local solution collide, inside its own span, with a robot
@@ -319,8 +385,14 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   // Levels beyond max_expansions re-solve the last level's subproblem (the
   // whole problem, unless the paths are very long) with ever larger
   // budgets, until the deadline: giving up with time left helps no one.
+  if (robots.size() >= static_cast<std::size_t>(settings_.max_merged_robots)) ++capped_since_handover_;
+  const bool jammed =
+      crowd_ok_ && (conflicts_ - conflicts_at_handover_ > kJamConflictsPerRobot * static_cast<double>(paths_.size()) ||
+                    capped_since_handover_ >= kJamCappedGroups);
   for (int level = 0, tried = 0;;) {
     if (deadline_.expired()) return false;
+    if (crowd_ok_ && (jammed || level >= kJamLevel))
+      if (auto handed = handOverJam(c, robots)) return *handed;
     // Every window tried counts, also when the plan then fails: the
     // stats say how far it went.
     if (level > tried) {
@@ -429,6 +501,8 @@ PlanResult ArcRun::run() {
     report(&PlanProgress::individual_paths, static_cast<int>(paths_.size()));
   }
   const double individual_s = clock.seconds();
+  crowd_ok_ = settings_.crowd_fallback;
+  for (const RobotModel* m : models_) crowd_ok_ = crowd_ok_ && m->isMobile();
   bool solved = false;
   if (failures_.empty()) {
     ConflictDetector detector(models_, deadline_);
@@ -484,6 +558,8 @@ PlanResult ArcRun::run() {
   st["solver_budgets"] = settings_.work_budgets ? "work" : "seconds";
   st["robots_merged"] = merged_;
   st["merge_cap_raised"] = cap_raised_;
+  st["crowd_handovers"] = handovers_;
+  st["crowd_s"] = crowd_s_;
   st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
   st["roadmaps_built"] = roadmaps_->built();
   if (settings_.roadmap_cache) st["roadmaps_reused"] = roadmaps_->reused();

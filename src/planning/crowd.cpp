@@ -25,8 +25,11 @@ std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& rm, std::vector<
     turn[k] = geo::angleDiff(starts[k][2], goals[k][2]);
     const double rate = rm.model(i).resolution().rotation;
     const auto need = static_cast<long long>(std::ceil(std::abs(turn[k]) / rate - 1e-9));
+    // Turned before it first reaches its own goal vertex (where the
+    // roadmap's conflicts take it at its goal heading).
     long long have = 0;
-    for (std::size_t t = 0; t + 1 < configs.size(); ++t)
+    const int own_goal = rm.owner(rm.goal(i)) == i ? rm.goal(i) : -1;
+    for (std::size_t t = 0; t + 1 < configs.size() && configs[t][k] != own_goal; ++t)
       if (onLattice(i, t)) have += per_step;
     if (have >= need) continue;
     std::size_t t0 = 0;
@@ -92,9 +95,7 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     return out;
   }
   out.stats["roadmap_steps"] = r.configs.size() - 1;
-  int per_step = 1;
-  for (int i = 0; i < rm.robotCount(); ++i)
-    per_step = std::max(per_step, static_cast<int>(std::ceil(rm.longestEdge() / rm.model(i).resolution().translation - 1e-9)));
+  const int per_step = rm.stepsPerEdge();
   out.stats["steps_per_roadmap_step"] = per_step;
   out.paths = crowdPaths(rm, r.configs, per_step, starts, goals);
   if (!out.paths) out.why = "a robot has to turn but never stands on a lattice vertex";

@@ -90,6 +90,8 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
       }
     }
   longest_edge_ = spacing_;
+  for (const RobotModel* m : group_models_)
+    steps_per_edge_ = std::max(steps_per_edge_, static_cast<int>(std::ceil(spacing_ / m->resolution().translation - 1e-9)));
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const int ri = static_cast<int>(i);
     start_heading_.push_back(starts[i][2]);
@@ -135,6 +137,7 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
     }
   const RobotModel& m = *group_models_[static_cast<std::size_t>(robot)];
   const int own = addVertex(p, robot);
+  const bool is_start = static_cast<int>(start_.size()) == robot;
   const int steps = std::max(1, static_cast<int>(std::ceil(spacing_ / m.resolution().translation - 1e-9)));
   for (int r = r0 - 1; r <= r0 + 2; ++r)
     for (int c = c0 - 1; c <= c0 + 2; ++c) {
@@ -150,7 +153,10 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
         if (!world.stateValid(m, x)) break;
         if (k == 2 * steps) free = true;
       }
-      if (free) addEdge(own, v);
+      // A robot leaves its own start for good: it is there only with its
+      // start heading, so that its real footprint can decide there.
+      if (free && is_start) adj_[static_cast<std::size_t>(own)].push_back(v);
+      else if (free) addEdge(own, v);
     }
   return own;
 }
@@ -219,6 +225,8 @@ void CrowdRoadmap::buildDistances() {
     d.assign(pos_.size(), kUnreachable);
     std::deque<int> queue{g};
     d[static_cast<std::size_t>(g)] = 0;
+    // Every edge but a start's goes both ways: search back from the goal
+    // over them, then a start is one step more than its best exit.
     while (!queue.empty()) {
       const int v = queue.front();
       queue.pop_front();
@@ -228,6 +236,10 @@ void CrowdRoadmap::buildDistances() {
         queue.push_back(w);
       }
     }
+    const int s = start_[i];
+    if (owner(s) == static_cast<int>(i) && s != g)
+      for (int w : adj_[static_cast<std::size_t>(s)])
+        d[static_cast<std::size_t>(s)] = std::min(d[static_cast<std::size_t>(s)], d[static_cast<std::size_t>(w)] + 1);
   }
 }
 
@@ -242,26 +254,34 @@ double CrowdRoadmap::headingAt(int i, int v) const {
 bool CrowdRoadmap::conflict(int i, CrowdMove mi, int j, CrowdMove mj) const {
   const double d = closestApproach(position(mi.from), position(mi.to), position(mj.from), position(mj.to));
   if (d >= 2.0 * radius_ + 1e-9) return false;
-  const bool own_i = owner(mi.from) == i, own_j = owner(mj.from) == j;
-  if (mi.from != mi.to || mj.from != mj.to || (!own_i && !own_j)) return true;
-  // Both stay and one stands on its own start or goal, where its real
-  // footprint (inside the workspace and clear of obstacles) may poke out
-  // of the lattice's bound: decide on the footprints.
+  // A robot on or beside its own start or goal has a known heading there
+  // (crowdPaths turns robots on the lattice only, before they first reach
+  // their own goal): its real footprint decides, at the instants at which
+  // a plan's steps are validated; a robot on the lattice is its disc.
+  const bool known_i = owner(mi.from) == i || owner(mi.to) == i;
+  const bool known_j = owner(mj.from) == j || owner(mj.to) == j;
+  if (!known_i && !known_j) return true;
   std::vector<geo::Body> bi, bj;
-  auto place = [&](int r, int v, bool own, std::vector<geo::Body>& out) {
-    const geo::Vec2 p = position(v);
-    if (own) {
-      const double q[3] = {p.x, p.y, headingAt(r, v)};
+  auto place = [&](int r, CrowdMove m, bool known, double s, std::vector<geo::Body>& out) {
+    out.clear();
+    const geo::Vec2 a = position(m.from), b = position(m.to);
+    const geo::Vec2 p = a + (b - a) * s;
+    if (known) {
+      const double q[3] = {p.x, p.y, headingAt(r, owner(m.from) == r ? m.from : m.to)};
       model(r).bodies(q, out);
     } else {
       out.push_back(geo::Body::disc(p, radius_));
     }
   };
-  place(i, mi.from, own_i, bi);
-  place(j, mj.from, own_j, bj);
-  for (const auto& a : bi)
-    for (const auto& b : bj)
-      if (geo::touches(a, b)) return true;
+  const int instants = 2 * steps_per_edge_;
+  for (int k = 0; k <= instants; ++k) {
+    const double s = static_cast<double>(k) / instants;
+    place(i, mi, known_i, s, bi);
+    place(j, mj, known_j, s, bj);
+    for (const auto& a : bi)
+      for (const auto& b : bj)
+        if (geo::touches(a, b)) return true;
+  }
   return false;
 }
 

@@ -40,6 +40,7 @@ struct PlanOptions {
   bool shadow_decoupled = false;
   bool deterministic = false;
   bool compact = false;
+  bool no_crowd = false;
   std::optional<int> db_k, db_repair_max;
   std::optional<double> db_max_stretch;
   bool quiet = false;
@@ -199,6 +200,7 @@ int runPlan(const PlanOptions& o) {
     throw InputError("", "--deterministic", kWorkBudgetsNotForLightning);
   s.work_budgets = o.deterministic;
   s.compact = o.compact;
+  s.crowd_fallback = !o.no_crowd;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "--shadow-decoupled"}, std::pair{o.db_k.has_value(), "--db-k"},
         std::pair{o.db_repair_max.has_value(), "--db-repair-max"},
@@ -304,6 +306,8 @@ void setupPlan(CLI::App& app) {
                 "ARC, E-ARC: count each solver attempt's budget in work done, not seconds, so that the same "
                 "seed gives the same plan on a busy or slower machine (only --time-limit stays wall-clock "
                 "time); prioritized and coupled plans are so already; not for lightning");
+  cmd->add_flag("--no-crowd", opts->no_crowd,
+                "ARC, E-ARC: never hand a jam to the crowd solver (lacam); the methods as published");
   cmd->add_flag("--compact", opts->compact,
                 "After planning, retime every robot along its own route to leave out the waits it does not "
                 "need and go at full speed where it crept (any method; shorter plans, same routes; stats "

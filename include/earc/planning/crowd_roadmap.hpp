@@ -54,8 +54,8 @@ class CrowdRoadmap {
   bool usableBy(int i, int v) const { return owner(v) < 0 || owner(v) == i; }
 
   // Whether robot i stepping m_i and robot j stepping m_j at once touch:
-  // bounding discs on moves; the real footprints where both stay and one
-  // stands on its own start or goal. Thread-safe.
+  // bounding discs, and real footprints at the validated instants where a
+  // robot is on or beside its own start or goal (heading known). Thread-safe.
   bool conflict(int i, CrowdMove mi, int j, CrowdMove mj) const;
 
   double radius() const { return radius_; }          // the bounding disc R
@@ -66,6 +66,8 @@ class CrowdRoadmap {
   // Robots in the group, and the longest edge.
   int robotCount() const { return static_cast<int>(start_.size()); }
   double longestEdge() const { return longest_edge_; }
+  // Time steps a roadmap step takes: the longest edge at the robots' resolution.
+  int stepsPerEdge() const { return steps_per_edge_; }
   // Robot i's model.
   const RobotModel& model(int i) const { return *group_models_[static_cast<std::size_t>(i)]; }
   // Why the roadmap cannot serve the group ("" when it can): a robot whose
@@ -82,6 +84,7 @@ class CrowdRoadmap {
   double radius_ = 0.0;
   double spacing_ = 1.0;
   double longest_edge_ = 0.0;
+  int steps_per_edge_ = 1;
   bool grid_ = false;
   geo::Vec2 origin_;
   int cols_ = 0, rows_ = 0;
