@@ -25,11 +25,11 @@ std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& rm, std::vector<
     turn[k] = geo::angleDiff(starts[k][2], goals[k][2]);
     const double rate = rm.model(i).resolution().rotation;
     const auto need = static_cast<long long>(std::ceil(std::abs(turn[k]) / rate - 1e-9));
-    // Turned before it first reaches its own goal vertex (where the
+    // Turned before it first reaches its own goal side (where the
     // roadmap's conflicts take it at its goal heading).
+    auto goalSide = [&](int v) { return rm.owner(v) == i && !rm.startSide(v); };
     long long have = 0;
-    const int own_goal = rm.owner(rm.goal(i)) == i ? rm.goal(i) : -1;
-    for (std::size_t t = 0; t + 1 < configs.size() && configs[t][k] != own_goal; ++t)
+    for (std::size_t t = 0; t + 1 < configs.size() && !goalSide(configs[t][k]); ++t)
       if (onLattice(i, t)) have += per_step;
     if (have >= need) continue;
     std::size_t t0 = 0;

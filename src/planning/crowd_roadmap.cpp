@@ -94,11 +94,9 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
     steps_per_edge_ = std::max(steps_per_edge_, static_cast<int>(std::ceil(spacing_ / m->resolution().translation - 1e-9)));
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const int ri = static_cast<int>(i);
-    start_heading_.push_back(starts[i][2]);
-    goal_heading_.push_back(goals[i][2]);
-    start_.push_back(connectOwn(world, ri, starts[i]));
+    start_.push_back(connectOwn(world, ri, starts[i], true));
     const geo::Vec2 s{starts[i][0], starts[i][1]}, g{goals[i][0], goals[i][1]};
-    goal_.push_back(geo::norm(s - g) < 1e-9 ? start_.back() : connectOwn(world, ri, goals[i]));
+    goal_.push_back(geo::norm(s - g) < 1e-9 ? start_.back() : connectOwn(world, ri, goals[i], false));
   }
   buildNear();
   buildDistances();
@@ -108,9 +106,11 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
                  std::to_string(spacing_);
 }
 
-int CrowdRoadmap::addVertex(geo::Vec2 p, int owner) {
+int CrowdRoadmap::addVertex(geo::Vec2 p, int owner, double heading, bool start_side) {
   pos_.push_back(p);
   owner_.push_back(owner);
+  heading_.push_back(heading);
+  start_side_.push_back(start_side ? 1 : 0);
   adj_.emplace_back();
   return static_cast<int>(pos_.size()) - 1;
 }
@@ -121,11 +121,14 @@ void CrowdRoadmap::addEdge(int a, int b) {
 }
 
 // A start or goal: the lattice vertex it stands on, or a vertex of the
-// robot's own joined to the lattice vertices within one spacing. Its
+// robot's own joined to the lattice vertices within one spacing, or where
+// none of those can be reached, to the nearest free one within a few
+// spacings by a chain of own vertices one spacing apart at most. Its
 // joining motions keep the robot's heading there and are checked with its
 // real footprint at the instants a plan's steps are validated (the robot
-// may stand closer to a wall than its bounding disc allows).
-int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q) {
+// may stand closer to a wall than its bounding disc allows). A robot
+// leaves its own start for good: it is there only with its start heading.
+int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q, bool is_start) {
   const geo::Vec2 p{q[0], q[1]};
   const int c0 = static_cast<int>(std::floor((p.x - origin_.x) / spacing_));
   const int r0 = static_cast<int>(std::floor((p.y - origin_.y) / spacing_));
@@ -136,28 +139,53 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
       if (v >= 0 && geo::norm(pos_[static_cast<std::size_t>(v)] - p) < 1e-9) return v;
     }
   const RobotModel& m = *group_models_[static_cast<std::size_t>(robot)];
-  const int own = addVertex(p, robot);
-  const bool is_start = static_cast<int>(start_.size()) == robot;
-  const int steps = std::max(1, static_cast<int>(std::ceil(spacing_ / m.resolution().translation - 1e-9)));
-  for (int r = r0 - 1; r <= r0 + 2; ++r)
-    for (int c = c0 - 1; c <= c0 + 2; ++c) {
+  auto motionFree = [&](geo::Vec2 a, geo::Vec2 b) {
+    if (world.bodyFree(geo::Body::capsule(a, b, radius_))) return true;
+    for (int k = 0; k <= 2 * steps_per_edge_; ++k) {
+      const double s = static_cast<double>(k) / (2.0 * steps_per_edge_);
+      const double x[3] = {a.x + (b.x - a.x) * s, a.y + (b.y - a.y) * s, q[2]};
+      if (!world.stateValid(m, x)) return false;
+    }
+    return true;
+  };
+  auto join = [&](int from, int to) {
+    if (is_start) adj_[static_cast<std::size_t>(from)].push_back(to);
+    else addEdge(from, to);
+  };
+  const int own = addVertex(p, robot, q[2], is_start);
+  std::vector<std::pair<double, int>> further;
+  constexpr int kReach = 3;
+  for (int r = r0 - kReach; r <= r0 + kReach + 1; ++r)
+    for (int c = c0 - kReach; c <= c0 + kReach + 1; ++c) {
       if (c < 0 || r < 0 || c >= cols_ || r >= rows_) continue;
       const int v = lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
       if (v < 0) continue;
       const geo::Vec2 w = pos_[static_cast<std::size_t>(v)];
-      if (geo::norm(w - p) > spacing_ + 1e-9) continue;
-      bool free = world.bodyFree(geo::Body::capsule(p, w, radius_));
-      for (int k = 0; !free && k <= 2 * steps; ++k) {
-        const double s = static_cast<double>(k) / (2.0 * steps);
-        const double x[3] = {p.x + (w.x - p.x) * s, p.y + (w.y - p.y) * s, q[2]};
-        if (!world.stateValid(m, x)) break;
-        if (k == 2 * steps) free = true;
+      const double d = geo::norm(w - p);
+      if (d > spacing_ + 1e-9) {
+        further.emplace_back(d, v);
+      } else if (motionFree(p, w)) {
+        join(own, v);
       }
-      // A robot leaves its own start for good: it is there only with its
-      // start heading, so that its real footprint can decide there.
-      if (free && is_start) adj_[static_cast<std::size_t>(own)].push_back(v);
-      else if (free) addEdge(own, v);
     }
+  if (!adj_[static_cast<std::size_t>(own)].empty()) return own;
+  std::sort(further.begin(), further.end());
+  for (const auto& [d, v] : further) {
+    const geo::Vec2 w = pos_[static_cast<std::size_t>(v)];
+    const int pieces = static_cast<int>(std::ceil(d / spacing_ - 1e-9));
+    bool free = true;
+    for (int k = 0; k < pieces && free; ++k)
+      free = motionFree(p + (w - p) * (static_cast<double>(k) / pieces), p + (w - p) * (static_cast<double>(k + 1) / pieces));
+    if (!free) continue;
+    int prev = own;
+    for (int k = 1; k < pieces; ++k) {
+      const int mid = addVertex(p + (w - p) * (static_cast<double>(k) / pieces), robot, q[2], is_start);
+      join(prev, mid);
+      prev = mid;
+    }
+    join(prev, v);
+    break;
+  }
   return own;
 }
 
@@ -236,10 +264,12 @@ void CrowdRoadmap::buildDistances() {
         queue.push_back(w);
       }
     }
-    const int s = start_[i];
-    if (owner(s) == static_cast<int>(i) && s != g)
-      for (int w : adj_[static_cast<std::size_t>(s)])
-        d[static_cast<std::size_t>(s)] = std::min(d[static_cast<std::size_t>(s)], d[static_cast<std::size_t>(w)] + 1);
+    // The start side's vertices were made start first: take them last first.
+    for (int v = vertexCount() - 1; v >= 0; --v) {
+      if (owner(v) != static_cast<int>(i) || !start_side_[static_cast<std::size_t>(v)] || v == g) continue;
+      for (int w : adj_[static_cast<std::size_t>(v)])
+        d[static_cast<std::size_t>(v)] = std::min(d[static_cast<std::size_t>(v)], d[static_cast<std::size_t>(w)] + 1);
+    }
   }
 }
 
@@ -247,9 +277,7 @@ int CrowdRoadmap::distanceToGoal(int i, int v) const {
   return dist_[static_cast<std::size_t>(i)][static_cast<std::size_t>(v)];
 }
 
-double CrowdRoadmap::headingAt(int i, int v) const {
-  return v == start(i) ? start_heading_[static_cast<std::size_t>(i)] : goal_heading_[static_cast<std::size_t>(i)];
-}
+double CrowdRoadmap::headingAt(int v) const { return heading_[static_cast<std::size_t>(v)]; }
 
 bool CrowdRoadmap::conflict(int i, CrowdMove mi, int j, CrowdMove mj) const {
   const double d = closestApproach(position(mi.from), position(mi.to), position(mj.from), position(mj.to));
@@ -267,7 +295,7 @@ bool CrowdRoadmap::conflict(int i, CrowdMove mi, int j, CrowdMove mj) const {
     const geo::Vec2 a = position(m.from), b = position(m.to);
     const geo::Vec2 p = a + (b - a) * s;
     if (known) {
-      const double q[3] = {p.x, p.y, headingAt(r, owner(m.from) == r ? m.from : m.to)};
+      const double q[3] = {p.x, p.y, headingAt(owner(m.from) == r ? m.from : m.to)};
       model(r).bodies(q, out);
     } else {
       out.push_back(geo::Body::disc(p, radius_));

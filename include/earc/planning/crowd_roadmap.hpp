@@ -61,8 +61,10 @@ class CrowdRoadmap {
   double radius() const { return radius_; }          // the bounding disc R
   double spacing() const { return spacing_; }        // lattice spacing
   bool gridAligned() const { return grid_; }          // lattice on a grid map's cell centres
-  // Heading robot i has at its own vertex v (its start or goal heading).
-  double headingAt(int i, int v) const;
+  // The heading its owner has at an own vertex (its start or goal heading).
+  double headingAt(int v) const;
+  // Whether v is on its owner's start side (left for good once left).
+  bool startSide(int v) const { return start_side_[static_cast<std::size_t>(v)] != 0; }
   // Robots in the group, and the longest edge.
   int robotCount() const { return static_cast<int>(start_.size()); }
   double longestEdge() const { return longest_edge_; }
@@ -75,9 +77,9 @@ class CrowdRoadmap {
   const std::string& problem() const { return problem_; }
 
  private:
-  int addVertex(geo::Vec2 p, int owner);
+  int addVertex(geo::Vec2 p, int owner, double heading = 0.0, bool start_side = false);
   void addEdge(int a, int b);
-  int connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q);
+  int connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q, bool is_start);
   void buildNear();
   void buildDistances();
 
@@ -94,7 +96,8 @@ class CrowdRoadmap {
   std::vector<std::vector<int>> adj_;
   std::vector<std::vector<int>> near_;
   std::vector<int> start_, goal_;
-  std::vector<double> start_heading_, goal_heading_;
+  std::vector<double> heading_;       // per vertex: its owner's heading there
+  std::vector<char> start_side_;      // per vertex
   std::vector<const RobotModel*> group_models_;
   std::vector<std::vector<int>> dist_;  // per robot, per vertex
   std::string problem_;

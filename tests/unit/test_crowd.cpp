@@ -1,0 +1,253 @@
+// The crowd solver: its conflict table against the validator, LaCAM on
+// instances that defeat prioritized planning, and ARC's hand-over of jams.
+#include <doctest/doctest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "earc/planning/crowd.hpp"
+#include "earc/planning/lacam.hpp"
+#include "earc/planning/methods.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/util/random.hpp"
+#include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+namespace earc {
+namespace {
+
+// A grid world of `rows` (row 0 on top, '#' blocked) as a scenario, one
+// box per blocked cell, and robots between the given cells.
+Scenario gridScenario(const std::vector<std::string>& rows, const std::vector<std::pair<geo::Vec2, geo::Vec2>>& moves,
+                      RobotSpec shape) {
+  Scenario sc;
+  sc.name = "grid";
+  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.front().size());
+  sc.workspace = {{0, 0}, {static_cast<double>(w), static_cast<double>(h)}};
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      if (rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] == '#')
+        sc.obstacles.push_back(Obstacle::makeBox({c + 0.5, h - 1 - r + 0.5}, {1, 1}));
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    RobotSpec s = shape;
+    s.name = "m" + std::to_string(i);
+    s.start = {moves[i].first.x, moves[i].first.y, 0.0};
+    s.goal = {moves[i].second.x, moves[i].second.y, 0.0};
+    sc.robots.push_back(s);
+  }
+  return sc;
+}
+
+// The validator's verdict on two robots stepping a -> b and c -> d over
+// `steps` time steps (steps and midpoints, the contract's instants).
+bool validatorSeesTouch(const Scenario& sc, geo::Vec2 a, geo::Vec2 b, geo::Vec2 c, geo::Vec2 d, int steps) {
+  InstantChecker checker(sc);
+  const int both[2] = {0, 1};
+  for (int k = 0; k <= 2 * steps; ++k) {
+    const double s = static_cast<double>(k) / (2.0 * steps);
+    const double qa[3] = {a.x + (b.x - a.x) * s, a.y + (b.y - a.y) * s, 0.0};
+    const double qc[3] = {c.x + (d.x - c.x) * s, c.y + (d.y - c.y) * s, 0.0};
+    const double* q[2] = {qa, qc};
+    std::vector<Violation> out;
+    checker.checkGeometry(both, q, k * 0.5, out);
+    for (const auto& v : out)
+      if (v.type == Violation::Type::RobotRobot) return true;
+  }
+  return false;
+}
+
+// Every pair of steps of two robots among the lattice vertices of an open
+// 5 x 5 grid, by the roadmap's conflict test and by the validator.
+struct Agreement {
+  int pairs = 0, conflicts = 0, disagreements = 0, unsafe = 0;
+};
+Agreement compareWithValidator(RobotSpec shape) {
+  const std::vector<std::string> open(5, ".....");
+  const Scenario sc = gridScenario(open, {{{0.5, 0.5}, {1.5, 0.5}}, {{4.5, 4.5}, {3.5, 4.5}}}, shape);
+  const CollisionWorld world(sc);
+  const RobotModels models(sc);
+  const CrowdRoadmap rm(world, models.raw, {0, 1}, {sc.robots[0].start, sc.robots[1].start},
+                        {sc.robots[0].goal, sc.robots[1].goal});
+  Agreement a;
+  for (int u = 0; u < rm.vertexCount(); ++u)
+    for (int w = 0; w < rm.vertexCount(); ++w) {
+      if (u == w) continue;
+      std::vector<int> su = rm.neighbours(u), sw = rm.neighbours(w);
+      su.push_back(u);
+      sw.push_back(w);
+      for (int v : su)
+        for (int x : sw) {
+          const bool table = rm.conflict(0, {u, v}, 1, {w, x});
+          const bool valid = validatorSeesTouch(sc, rm.position(u), rm.position(v), rm.position(w), rm.position(x),
+                                                rm.stepsPerEdge());
+          ++a.pairs;
+          a.conflicts += table;
+          a.disagreements += table != valid;
+          a.unsafe += !table && valid;
+        }
+    }
+  return a;
+}
+
+PlannerSettings lacamSettings(std::uint64_t seed = 1) {
+  PlannerSettings s;
+  s.method = Method::Lacam;
+  s.time_limit_s = 20;
+  s.seed = seed;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("closestApproach equals the smallest sampled distance of two synchronous straight motions") {
+  std::mt19937_64 rng(3);
+  for (int trial = 0; trial < 200; ++trial) {
+    geo::Vec2 p[4];
+    for (auto& v : p) v = {uniform(rng, -2, 2), uniform(rng, -2, 2)};
+    double best = 1e300;
+    for (int k = 0; k <= 20000; ++k) {
+      const double s = k / 20000.0;
+      best = std::min(best, geo::norm((p[0] + (p[1] - p[0]) * s) - (p[2] + (p[3] - p[2]) * s)));
+    }
+    const double exact = closestApproach(p[0], p[1], p[2], p[3]);
+    CHECK(exact <= best + 1e-12);
+    CHECK(exact >= best - 1e-3);
+  }
+}
+
+TEST_CASE("The crowd conflict table agrees with the validator for discs on every pair of lattice steps") {
+  for (double r : {0.3, 0.36, 0.45}) {
+    CAPTURE(r);
+    const Agreement a = compareWithValidator(RobotSpec::mobileDisc("", r));
+    CHECK(a.pairs > 5000);
+    CHECK(a.conflicts > 0);
+    CHECK(a.disagreements == 0);
+  }
+}
+
+TEST_CASE("For boxes the crowd conflict table is a bound: every touch the validator sees is a conflict") {
+  const Agreement a = compareWithValidator(RobotSpec::mobileBox("", {0.6, 0.4}));
+  CHECK(a.pairs > 5000);
+  CHECK(a.unsafe == 0);
+  CHECK(a.disagreements > 0);  // the bounding disc takes more room than the box
+}
+
+TEST_CASE("Swapping on an edge conflicts; following into a vertex another leaves does not, unless the discs reach round the corner") {
+  const std::vector<std::string> open(3, "...");
+  for (double r : {0.3, 0.36}) {
+    CAPTURE(r);
+    const Scenario sc = gridScenario(open, {{{0.5, 0.5}, {1.5, 0.5}}, {{2.5, 2.5}, {1.5, 2.5}}}, RobotSpec::mobileDisc("", r));
+    const CollisionWorld world(sc);
+    const RobotModels models(sc);
+    const CrowdRoadmap rm(world, models.raw, {0, 1}, {sc.robots[0].start, sc.robots[1].start},
+                          {sc.robots[0].goal, sc.robots[1].goal});
+    REQUIRE(rm.gridAligned());
+    REQUIRE(rm.vertexCount() == 9);
+    // Lattice vertex ids run row by row from the bottom left.
+    auto id = [](int c, int row) { return row * 3 + c; };
+    const int steps = rm.stepsPerEdge();
+    auto both = [&](int u, int v, int w, int x) {
+      const bool table = rm.conflict(0, {u, v}, 1, {w, x});
+      CHECK(table == validatorSeesTouch(sc, rm.position(u), rm.position(v), rm.position(w), rm.position(x), steps));
+      return table;
+    };
+    CHECK(both(id(0, 0), id(1, 0), id(1, 0), id(0, 0)));       // swap on an edge
+    CHECK(both(id(0, 0), id(1, 0), id(2, 0), id(1, 0)));       // both enter one vertex
+    CHECK_FALSE(both(id(0, 0), id(1, 0), id(1, 0), id(2, 0))); // following straight on
+    // Following round a corner: the discs come within 0.707 of each other.
+    CHECK(both(id(0, 0), id(1, 0), id(1, 0), id(1, 1)) == (2 * r > std::sqrt(0.5)));
+  }
+}
+
+TEST_CASE("LaCAM swaps two robots in a corridor with one niche, where prioritized planning cannot") {
+  const std::vector<std::string> rows = {"#######", "###.###", "#.....#", "#######"};
+  // Corridor cells (1..5, row 2 from the top), niche above cell 3.
+  const Scenario sc = gridScenario(rows, {{{2.5, 1.5}, {4.5, 1.5}}, {{4.5, 1.5}, {2.5, 1.5}}}, RobotSpec::mobileDisc("", 0.3));
+  const PlanResult lacam = plan(sc, lacamSettings());
+  REQUIRE(lacam.solution.solved);
+  CHECK(validateSolution(sc, lacam.solution).valid);
+  PlannerSettings pri;
+  pri.method = Method::Prioritized;
+  pri.time_limit_s = 3;
+  CHECK_FALSE(plan(sc, pri).solution.solved);
+}
+
+TEST_CASE("LaCAM turns four robots round a walled 2x2 block, where every robot's next cell is taken") {
+  const std::vector<std::string> rows = {"####", "#..#", "#..#", "####"};
+  const geo::Vec2 c00{1.5, 1.5}, c10{2.5, 1.5}, c11{2.5, 2.5}, c01{1.5, 2.5};
+  const Scenario sc = gridScenario(rows, {{c00, c10}, {c10, c11}, {c11, c01}, {c01, c00}}, RobotSpec::mobileDisc("", 0.3));
+  const PlanResult r = plan(sc, lacamSettings());
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(sc, r.solution).valid);
+  // One rotation of the block: a single roadmap step.
+  CHECK(r.stats["lacam"]["roadmap_steps"] == 1);
+}
+
+TEST_CASE("LaCAM plans box robots off the lattice in a free-form world, and the same seed gives the same plan") {
+  Scenario sc;
+  sc.name = "free";
+  sc.workspace = {{0, 0}, {8, 6}};
+  sc.obstacles.push_back(Obstacle::makeBox({4.0, 3.0}, {1.3, 2.2}, 0.4));
+  sc.obstacles.push_back(Obstacle::makeCircle({2.3, 5.2}, 0.5));
+  std::mt19937_64 rng(11);
+  const double headings[] = {0.0, 1.2, -2.5, 3.0, 0.7, -1.0};
+  for (int i = 0; i < 6; ++i) {
+    RobotSpec s = RobotSpec::mobileBox("b" + std::to_string(i), {0.6, 0.4});
+    s.start = {0.6 + 0.05 * i, 0.7 + 0.8 * i, headings[i]};
+    s.goal = {7.3 - 0.03 * i, 5.2 - 0.8 * i, -headings[i]};
+    sc.robots.push_back(s);
+  }
+  const PlanResult a = plan(sc, lacamSettings(5));
+  REQUIRE(a.solution.solved);
+  CHECK(validateSolution(sc, a.solution).valid);
+  CHECK(a.stats["lacam"]["grid_lattice"] == false);
+  const PlanResult b = plan(sc, lacamSettings(5));
+  REQUIRE(b.solution.solved);
+  CHECK(a.solution.paths == b.solution.paths);
+}
+
+TEST_CASE("LaCAM says why when a robot's goal is walled off, and refuses arms") {
+  const std::vector<std::string> rows = {".#.", ".#.", ".#."};
+  const Scenario sc = gridScenario(rows, {{{0.5, 0.5}, {2.5, 0.5}}}, RobotSpec::mobileDisc("", 0.3));
+  const PlanResult r = plan(sc, lacamSettings());
+  CHECK_FALSE(r.solution.solved);
+  CHECK(r.failures.count(FailureCause::NoIndividualPath) == 1);
+  CHECK(r.stats["detail"].get<std::string>().find("robot m0") != std::string::npos);
+
+  Scenario arms;
+  arms.name = "arms";
+  arms.workspace = {{0, 0}, {10, 10}};
+  arms.robots.push_back(test::fiveLinkArm("a0", {5, 5}, 0, {0, 0, 0, 0, 0}, {0.3, 0, 0, 0, 0}));
+  const PlanResult ra = plan(arms, lacamSettings());
+  CHECK_FALSE(ra.solution.solved);
+  CHECK(ra.failures.count(FailureCause::InvalidInput) == 1);
+}
+
+TEST_CASE("ARC hands a jam on a crowded grid to the crowd solver and solves it; without the hand-over it does not in the time") {
+  std::vector<std::string> rows(7, ".......");
+  rows[3] = "...#...";
+  // 28 robots on a 7 x 7 grid, each going to the cell mirrored through the
+  // centre: everyone meets in the middle.
+  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
+  for (int r = 0; r < 7 && moves.size() < 28; ++r)
+    for (int c = 0; c < 7 && moves.size() < 28; ++c) {
+      if (r == 3) continue;
+      moves.push_back({{c + 0.5, r + 0.5}, {6 - c + 0.5, 6 - r + 0.5}});
+    }
+  const Scenario sc = gridScenario(rows, moves, RobotSpec::mobileDisc("", 0.3));
+  PlannerSettings s;
+  s.method = Method::Arc;
+  s.time_limit_s = 30;
+  const PlanResult r = plan(sc, s);
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(sc, r.solution).valid);
+  CHECK(r.stats["crowd_handovers"].size() >= 1);
+  s.crowd_fallback = false;
+  s.time_limit_s = 3;
+  const PlanResult alone = plan(sc, s);
+  CHECK(alone.stats["crowd_handovers"].empty());
+  CHECK_FALSE(alone.solution.solved);
+}
+
+}  // namespace earc
