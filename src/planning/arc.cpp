@@ -225,14 +225,16 @@ class ArcRun {
   std::size_t jam_size_ = 0;
   int conflicts_at_handover_ = 0;
   int capped_since_handover_ = 0;
+  std::size_t jam_conflicts_since_handover_ = 0;
   nlohmann::json handovers_ = nlohmann::json::array();
   double crowd_s_ = 0.0;
 };
 
 // A jam: ARC's local solvers failed on a conflict's subproblem through
 // kJamLevel window levels, or since the last jam kJamConflictsPerRobot
-// conflicts a robot came and went or kJamCappedGroups conflicts' groups
-// grew to the merge cap. Its robots, the last jam's and those whose paths
+// conflicts a robot came and went, kJamCappedGroups conflicts' groups
+// grew to the merge cap, or a sixteenth of the robots' count of conflicts
+// (at least kJamMinRecurrences) involved the last jam's robots. Its robots, the last jam's and those whose paths
 // pass nearest are planned together by the crowd solver from their starts
 // to their goals, the others left out; what their new paths meet is
 // resolved as any conflict. The first jam takes at least a quarter of the
@@ -241,6 +243,7 @@ class ArcRun {
 constexpr int kJamLevel = 1;
 constexpr double kJamConflictsPerRobot = 3.0;
 constexpr int kJamCappedGroups = 8;
+constexpr std::size_t kJamMinRecurrences = 4;
 constexpr std::size_t kFirstJam = 16;
 constexpr std::size_t kJamGrowth = 4;
 constexpr double kJamMinBudgetS = 1.0;
@@ -281,6 +284,7 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   jam_group_ = std::move(group);
   conflicts_at_handover_ = conflicts_;
   capped_since_handover_ = 0;
+  jam_conflicts_since_handover_ = 0;
   last_t_start_ = 0;
   return true;
 }
@@ -326,9 +330,13 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   // whole problem, unless the paths are very long) with ever larger
   // budgets, until the deadline: giving up with time left helps no one.
   if (robots.size() >= static_cast<std::size_t>(settings_.max_merged_robots)) ++capped_since_handover_;
+  if (std::binary_search(jam_group_.begin(), jam_group_.end(), c.a) ||
+      std::binary_search(jam_group_.begin(), jam_group_.end(), c.b))
+    ++jam_conflicts_since_handover_;
   const bool jammed =
       crowd_ok_ && (conflicts_ - conflicts_at_handover_ > kJamConflictsPerRobot * static_cast<double>(paths_.size()) ||
-                    capped_since_handover_ >= kJamCappedGroups);
+                    capped_since_handover_ >= kJamCappedGroups ||
+                    jam_conflicts_since_handover_ > std::max<std::size_t>(kJamMinRecurrences, paths_.size() / 16));
   for (int level = 0, tried = 0;;) {
     if (deadline_.expired()) return false;
     if (crowd_ok_ && (jammed || level >= kJamLevel))
