@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "earc/planning/lacam.hpp"
+#include "earc/planning/lattice_lns.hpp"
 
 namespace earc {
 
@@ -75,7 +76,8 @@ std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& rm, std::vector<
 
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
-                       const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed) {
+                       const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
+                       double lattice_refine_s) {
   CrowdOutcome out;
   Stopwatch clock;
   const CrowdRoadmap rm(world, models, robots, starts, goals);
@@ -95,9 +97,16 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     return out;
   }
   out.stats["roadmap_steps"] = r.configs.size() - 1;
+  out.stats["first_solution_s"] = clock.seconds();
+  std::vector<std::vector<int>> configs = r.configs;
+  if (lattice_refine_s > 0) {
+    Stopwatch lns;
+    out.stats["lattice_refine"] = refineOnLattice(rm, configs, deadline.capped(lattice_refine_s), seed);
+    out.stats["lattice_refine"]["s"] = lns.seconds();
+  }
   const int per_step = rm.stepsPerEdge();
   out.stats["steps_per_roadmap_step"] = per_step;
-  out.paths = crowdPaths(rm, r.configs, per_step, starts, goals);
+  out.paths = crowdPaths(rm, std::move(configs), per_step, starts, goals);
   if (!out.paths) out.why = "a robot has to turn but never stands on a lattice vertex";
   return out;
 }

@@ -26,7 +26,10 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) 
     starts.push_back(scenario.robots[r].start);
     goals.push_back(scenario.robots[r].goal);
   }
-  CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed);
+  // With --refine, half of its time goes to shortening the plan on the
+  // roadmap, where a space-time search is cheap; the rest to refinePlan.
+  CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed,
+                               0.5 * settings.refine_s);
   result.stats["lacam"] = out.stats;
   if (out.paths) {
     result.solution.solved = true;

@@ -8,6 +8,7 @@
 
 #include "earc/planning/crowd.hpp"
 #include "earc/planning/lacam.hpp"
+#include "earc/planning/lattice_lns.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/util/random.hpp"
@@ -248,6 +249,65 @@ TEST_CASE("ARC hands a jam on a crowded grid to the crowd solver and solves it; 
   const PlanResult alone = plan(sc, s);
   CHECK(alone.stats["crowd_handovers"].empty());
   CHECK_FALSE(alone.solution.solved);
+}
+
+}  // namespace earc
+
+namespace earc {
+
+TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every step conflict-free, and shortens a crowded plan") {
+  std::vector<std::string> rows(8, "........");
+  rows[2] = "..##.#..";
+  rows[5] = ".#..##..";
+  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
+  std::mt19937_64 rng(7);
+  std::vector<geo::Vec2> cells;
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c)
+      if (rows[static_cast<std::size_t>(7 - r)][static_cast<std::size_t>(c)] == '.') cells.push_back({c + 0.5, r + 0.5});
+  std::vector<geo::Vec2> goals = cells;
+  std::shuffle(cells.begin(), cells.end(), rng);
+  std::shuffle(goals.begin(), goals.end(), rng);
+  for (int i = 0; i < 24; ++i) moves.push_back({cells[static_cast<std::size_t>(i)], goals[static_cast<std::size_t>(i)]});
+  const Scenario sc = gridScenario(rows, moves, RobotSpec::mobileDisc("", 0.3));
+  const CollisionWorld world(sc);
+  const RobotModels models(sc);
+  std::vector<int> group;
+  std::vector<std::vector<double>> starts, ends;
+  for (int i = 0; i < 24; ++i) {
+    group.push_back(i);
+    starts.push_back(sc.robots[static_cast<std::size_t>(i)].start);
+    ends.push_back(sc.robots[static_cast<std::size_t>(i)].goal);
+  }
+  const CrowdRoadmap rm(world, models.raw, group, starts, ends);
+  const LacamResult first = solveLacam(rm, Deadline(10), 3);
+  REQUIRE(first.solved);
+  auto conflictFree = [&](const std::vector<std::vector<int>>& configs) {
+    for (std::size_t t = 0; t + 1 < configs.size(); ++t)
+      for (int i = 0; i < 24; ++i)
+        for (int j = i + 1; j < 24; ++j)
+          if (rm.conflict(i, {configs[t][static_cast<std::size_t>(i)], configs[t + 1][static_cast<std::size_t>(i)]}, j,
+                          {configs[t][static_cast<std::size_t>(j)], configs[t + 1][static_cast<std::size_t>(j)]}))
+            return false;
+    return true;
+  };
+  REQUIRE(conflictFree(first.configs));
+  const long long before = latticeSumOfCosts(rm, first.configs);
+  long long last = before;
+  for (int rounds : {1, 10, 200}) {
+    std::vector<std::vector<int>> configs = first.configs;
+    const nlohmann::json st = refineOnLattice(rm, configs, Deadline(), 3, rounds);
+    const long long after = latticeSumOfCosts(rm, configs);
+    CHECK(st["sum_of_costs_after"] == after);
+    CHECK(after <= last);
+    last = after;
+    CHECK(conflictFree(configs));
+    for (int i = 0; i < 24; ++i) {
+      CHECK(configs.front()[static_cast<std::size_t>(i)] == rm.start(i));
+      CHECK(configs.back()[static_cast<std::size_t>(i)] == rm.goal(i));
+    }
+  }
+  CHECK(last < before);
 }
 
 }  // namespace earc

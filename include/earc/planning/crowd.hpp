@@ -25,11 +25,12 @@ struct CrowdOutcome {
 };
 
 // Plans robots[i] (indices into models, all mobile) from starts[i] to
-// goals[i] together, ignoring every other robot. Each roadmap step takes
-// ceil(spacing / resolution) time steps. Throws std::invalid_argument for an arm.
+// goals[i] together, ignoring every other robot, then shortens the plan on
+// the roadmap for up to lattice_refine_s seconds. Throws std::invalid_argument for an arm.
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
-                       const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed);
+                       const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
+                       double lattice_refine_s = 0.0);
 
 // Time-stamped paths of LaCAM's configurations: each step is `per_step`
 // time steps of straight motion; headings turn from start to goal heading

@@ -1,0 +1,27 @@
+// Shortening a crowd solver's plan on its own roadmap: large-neighbourhood
+// search as in MAPF-LNS (Li et al., IJCAI 2021): a few robots at a time are
+// replanned by space-time A* against everyone else's steps, and the new
+// paths are kept when their sum of costs is lower.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "earc/planning/crowd_roadmap.hpp"
+#include "earc/util/deadline.hpp"
+
+namespace earc {
+
+// Roadmap steps until each robot is at its goal for good, summed.
+long long latticeSumOfCosts(const CrowdRoadmap& roadmap, const std::vector<std::vector<int>>& configs);
+
+// Improves configs (LaCAM's steps: conflict-free, starts to goals) until
+// the deadline; never makes the sum of costs larger, and the result is
+// again conflict-free from starts to goals. Returns stats (sums of costs
+// before and after, neighbourhoods tried and kept). Same seed, same result
+// when the deadline does not end it.
+nlohmann::json refineOnLattice(const CrowdRoadmap& roadmap, std::vector<std::vector<int>>& configs,
+                               const Deadline& deadline, std::uint64_t seed, int max_rounds = 1 << 30);
+
+}  // namespace earc
