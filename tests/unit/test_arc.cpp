@@ -767,6 +767,7 @@ TEST_CASE("ARC's retries beyond the last level ignore the robots outside the gro
   settings.time_limit_s = 20;
   settings.max_expansions = 2;
   settings.initial_window = 64;  // the window spans the paths: level 2 is the whole problem
+  settings.crowd_fallback = false;  // ARC's own retries, not a jam handed over
   std::vector<std::pair<bool, bool>> seen;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<Recorder>(&seen));
@@ -818,6 +819,7 @@ TEST_CASE("Groups at the merge cap that undo each other grow until the plan is s
   const Scenario s = gen::generateMobile(crowd);
   PlannerSettings settings;
   settings.time_limit_s = 30;
+  settings.crowd_fallback = false;  // the merge cap as published, not a jam handed over
   settings.max_merged_robots = 2;
   settings.work_budgets = true;  // the same plan under sanitizers
   settings.trace = true;
