@@ -70,8 +70,8 @@ def plot_crowds(rows, out, save, suites, methods, label, colors, markers):
         top.set_ylabel("time to first solution (s)")
         bottom.axhline(1.0, color="0.4", linestyle=":", linewidth=1)
         bottom.set_ylabel("sum of costs / lower bound")
+        bottom.set_xlabel("robots")
         for ax in (top, bottom):
-            ax.set_xlabel("robots")
             ax.grid(True, which="both", alpha=0.3)
         if col == len(suites) - 1:
             top.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.0, 1.0))
