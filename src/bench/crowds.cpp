@@ -60,6 +60,9 @@ void readRefineStats(const nlohmann::json& stats, TrialRecord& t) {
   t.refine_final_makespan = count(*r, "final_makespan");
 }
 
+// Columns: solved/trials, median time to the first solution, median sum
+// of costs and makespan of the first plan, the bound, median sum of costs
+// over it, and where trials refined the refined sum of costs and ratio.
 std::string crowdTable(const std::vector<TrialRecord>& trials) {
   // (suite's rank, time limit, robots, method's rank) -> the cell's trials.
   using Key = std::tuple<std::size_t, double, int, std::size_t, std::string>;

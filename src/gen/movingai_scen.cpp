@@ -243,6 +243,9 @@ std::int64_t scenLowerBound(const GridMap& map, const MovingAiScen& scen, int ro
   return moves * stepsPerCell(translation);
 }
 
+// Refused: another map name or size; any agent's cell blocked (the whole
+// file must fit the map); among the first `robots`, two agents on one
+// start or one goal cell, or a goal out of reach; fewer agents than asked.
 Scenario scenarioFromScen(const GridMap& map, const MovingAiScen& scen, const ScenSettings& settings) {
   const int n = settings.robots;
   const MobileFootprint& f = settings.footprint;

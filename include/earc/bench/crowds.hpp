@@ -19,10 +19,8 @@ namespace earc::bench {
 void readRefineStats(const nlohmann::json& stats, TrialRecord& t);
 
 // Markdown: per crowd suite (and time limit) a row per robot count and
-// method: solved/trials, median time to the first solution, median sum of
-// costs and makespan, the lower bound, median sum of costs over it, and
-// the refined ones where trials refined. "" when no trial is of a crowd
-// suite; other suites' trials are left out.
+// method: success, medians of first-solution time, cost and cost over the
+// bound (and refined cost); "" without crowd trials, which alone it shows.
 std::string crowdTable(const std::vector<TrialRecord>& trials);
 
 }  // namespace earc::bench

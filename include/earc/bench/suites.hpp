@@ -64,8 +64,8 @@ TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t r
 
 // The scenario of a trial, named "<suite>-<robots>-t<trial>". Generation
 // that fails (too crowded) is retried with seeds derived from the first,
-// so the result is still a function of the arguments. A crowd suite's is
-// its file's first `robots` agents, whatever the trial and seed.
+// so the result is still a function of the arguments (for a crowd suite,
+// of robots alone: its file's first agents).
 Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
 
 // The scenario of problem `index` for growing a database of this suite's

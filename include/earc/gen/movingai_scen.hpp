@@ -41,19 +41,14 @@ struct ScenSettings {
   MobileFootprint footprint = defaultScenFootprint();
 };
 
-// The instance of the file's first `robots` agents on `map` (the map's
-// obstacles, robots m0.. at cell centres, heading 0). Throws InputError
-// naming scen.file and a line when the file does not fit the map (its map
-// name or size, any agent's cell out of bounds or blocked, among the first
-// `robots` two agents on one start or one goal cell or a goal out of reach,
-// fewer agents than asked), SettingError("robots"/"radius"/"shape") for a
-// count out of range or a footprint larger than a cell.
+// The instance of the file's first `robots` agents on `map`: robots m0.. at
+// cell centres, heading 0. Throws InputError(scen.file, "line N", why) when
+// the file does not fit the map, SettingError for a count or footprint that does not.
 Scenario scenarioFromScen(const GridMap& map, const MovingAiScen& scen, const ScenSettings& settings);
 
-// Moves from start to goal on the 4-connected grid of free cells, by
-// breadth-first search, of each of the first `robots` agents; -1 where the
-// goal cannot be reached. Throws InputError as scenarioFromScen does for
-// cells out of bounds.
+// Each of the first `robots` agents' moves from start to goal on the
+// 4-connected grid of free cells (BFS), -1 where out of reach. Throws
+// InputError for another map or fewer agents, SettingError for a bad count.
 std::vector<int> scenGridDistances(const GridMap& map, const MovingAiScen& scen, int robots);
 
 // Steps a robot takes to cross one cell at `translation` per step:
