@@ -6,7 +6,8 @@
 # columns, and the lower bound it divides by is the one computed here
 # independently (breadth-first search on the map's free cells, 20 steps a
 # move). A method that fails a count is not run at larger ones (--cutoff),
-# an invalid solution is a failure, and plot draws the crowd figure.
+# an invalid solution is a failure, a refined plan's stats.refine are
+# recorded and tabled, and plot draws the crowd figure.
 # Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
@@ -77,6 +78,30 @@ writeTeleportingPlanner "$WORK/teleports"
   --plan-program "$WORK/teleports" --results bad.sqlite > out 2> err
 [ "$(sqlValue bad.sqlite "SELECT success FROM trials")" -eq 0 ] || fail "an invalid crowd solution counted as solved"
 sqlValue bad.sqlite "SELECT failure FROM trials" | grep -q "^invalid solution" || fail "not failed as invalid"
+
+# A refined plan's stats.refine are recorded and tabled: a stand-in for
+# earc-plan that plans and then adds them as --refine would.
+cat > "$WORK/refines" <<FAKE
+#!/bin/bash
+"$BUILD/earc-plan" "\$@" || exit \$?
+[ "\$1" = plan ] || exit 0
+while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
+exec "$PY" -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+st = d["stats"]
+st["refine"] = {"first_time_s": 0.125, "first_sum_of_costs": st["sum_of_costs"] + 100,
+                "final_sum_of_costs": st["sum_of_costs"], "final_makespan": st["makespan"]}
+json.dump(d, open(sys.argv[1], "w"))' "\$out"
+FAKE
+chmod +x "$WORK/refines"
+"$BENCH" run --suites crowd-empty-16-16 --robots 4 --methods prioritized --trials 1 --time-limit 20 \
+  --plan-program "$WORK/refines" --results refined.sqlite > out 2> err || fail "the refined run exited $?"
+read -r soc first final < <(sqlValue refined.sqlite \
+  "SELECT sum_of_costs || ' ' || refine_first_sum_of_costs || ' ' || refine_final_sum_of_costs FROM trials")
+[ "$first" = $((soc + 100)) ] && [ "$final" = "$soc" ] || fail "refine stats not recorded: $soc $first $final"
+"$BENCH" table --results refined.sqlite > table || fail "table of the refined run exited $?"
+grep -qE "^\| 4 \| prioritized \| 1/1 \| 0.125 \| $first \| [0-9]+ \| [0-9]+ \| [0-9.]+ \| $final \| [0-9.]+ \|$" table ||
+  fail "no refined columns: $(cat table)"
 
 # A count the file does not have is refused, naming the suite's range.
 refusedInOneLine "--robots: no suite of this run has 129 robots (crowd-empty-16-16: 2 to 128)" \
