@@ -505,12 +505,10 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
     return jobs;
   }
   const Suite& suite = suiteByName(o.suite, "--suite");
-  if (std::find(suite.robots.begin(), suite.robots.end(), o.robots) == suite.robots.end()) {
-    std::string counts;
-    for (int n : suite.robots) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
+  // A crowd suite takes any count up to its file's agents.
+  if (!suiteTakes(suite, o.robots))
     throw InputError("", "--robots", "suite " + suite.name + " has no " + std::to_string(o.robots) + "-robot trials (" +
-                                         counts + ")");
-  }
+                                         suiteCountsText(suite) + ")");
   fs::create_directories(o.work_dir + "/scenarios");
   for (int t = 0; t < o.trials; ++t) {
     const TrialSeeds seeds = trialSeeds(suite, o.robots, t, o.seed);

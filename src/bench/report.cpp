@@ -524,7 +524,8 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
          "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file,lightning_problems,"
-         "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state\n";
+         "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state,lower_bound,"
+         "refine_first_time_s,refine_first_sum_of_costs,refine_final_sum_of_costs,refine_final_makespan\n";
   for (const auto& t : trials) {
     const std::optional<LightningSettings>& l = t.lightning;
     out << csvField(t.suite) << ',' << t.robots << ',' << csvField(t.method) << ',' << t.trial << ',' << t.seed
@@ -538,7 +539,9 @@ void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
         << opt(l ? l->problems : std::nullopt) << ',' << opt(l ? l->problems_per_robot : std::nullopt) << ','
         << opt(l ? std::optional<double>(l->problem_time_limit_s) : std::nullopt) << ','
         << opt(t.learn) << ',' << csvField(t.earc_db) << ','
-        << opt(t.earc_db_state) << "\n";
+        << opt(t.earc_db_state) << ',' << opt(t.lower_bound) << ',' << opt(t.refine_first_time_s) << ','
+        << opt(t.refine_first_sum_of_costs) << ',' << opt(t.refine_final_sum_of_costs) << ','
+        << opt(t.refine_final_makespan) << "\n";
   }
 }
 

@@ -88,6 +88,9 @@ CREATE TABLE databases (
 //    lightning trial, and on each earc trial which E-ARC database it used
 //    and how that database stood: a resumed run on another database, or
 //    with learning switched, must not pool its trials with the first.
+// 9: what the crowd suites report beside the time: the sum-of-costs lower
+//    bound of the trial's scenario, and refinement's first and final plan
+//    (earc-plan --refine), so that cost is compared with the bound.
 constexpr std::string_view kMigrations[] = {
     "ALTER TABLE trials ADD COLUMN jobs INTEGER",
     "ALTER TABLE trials ADD COLUMN planner_version TEXT",
@@ -99,6 +102,10 @@ constexpr std::string_view kMigrations[] = {
     " ALTER TABLE trials ADD COLUMN lightning_problem_time_limit_s REAL",
     "ALTER TABLE trials ADD COLUMN learn INTEGER; ALTER TABLE trials ADD COLUMN earc_db TEXT;"
     " ALTER TABLE trials ADD COLUMN earc_db_state INTEGER",
+    "ALTER TABLE trials ADD COLUMN lower_bound INTEGER; ALTER TABLE trials ADD COLUMN refine_first_time_s REAL;"
+    " ALTER TABLE trials ADD COLUMN refine_first_sum_of_costs INTEGER;"
+    " ALTER TABLE trials ADD COLUMN refine_final_sum_of_costs INTEGER;"
+    " ALTER TABLE trials ADD COLUMN refine_final_makespan INTEGER",
 };
 static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
@@ -331,6 +338,11 @@ TrialRecord readTrialRow(const CheckedResultRow& r) {
     r.bad(31, r.value(31) + " beside earc_db NULL: only a trial that records its E-ARC database records its state");
   t.earc_db_state = r.optInteger(31, std::numeric_limits<std::int64_t>::min(),
                                  std::numeric_limits<std::int64_t>::max(), "a history token (a whole number)");
+  t.lower_bound = r.optCount(32);
+  t.refine_first_time_s = r.optSeconds(33);
+  t.refine_first_sum_of_costs = r.optCount(34);
+  t.refine_final_sum_of_costs = r.optCount(35);
+  t.refine_final_makespan = r.optCount(36);
   return t;
 }
 
@@ -364,11 +376,13 @@ constexpr const char* kInsertTrial =
     " planning_time_s, wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status,"
     " term_signal, failure, finished_at, jobs, planner_version, bench_version, planner_args, scenario_file,"
     " lightning_problems, lightning_problems_per_robot, lightning_problem_time_limit_s, learn, earc_db,"
-    " earc_db_state)"
+    " earc_db_state, lower_bound, refine_first_time_s, refine_first_sum_of_costs, refine_final_sum_of_costs,"
+    " refine_final_makespan)"
     " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, NULLIF(?10, ''), ?11, NULLIF(?12, ''), NULLIF(?13, ''),"
     " NULLIF(?14, ''), NULLIF(?15, ''), NULLIF(?16, ''), NULLIF(?17, ''), NULLIF(?18, ''), NULLIF(?19, ''), ?20,"
     " NULLIF(?21, ''), NULLIF(?22, ''), NULLIF(?23, ''), NULLIF(?24, ''), NULLIF(?25, ''), NULLIF(?26, ''),"
-    " NULLIF(?27, ''), NULLIF(?28, ''), NULLIF(?29, ''), NULLIF(?30, ''), NULLIF(?31, '')) ON CONFLICT DO NOTHING";
+    " NULLIF(?27, ''), NULLIF(?28, ''), NULLIF(?29, ''), NULLIF(?30, ''), NULLIF(?31, ''), NULLIF(?32, ''),"
+    " NULLIF(?33, ''), NULLIF(?34, ''), NULLIF(?35, ''), NULLIF(?36, '')) ON CONFLICT DO NOTHING";
 // A trial of the method run with other planner arguments (NULLIF as the
 // insert writes them): the trial would make the file mix two settings.
 constexpr const char* kOtherPlannerArgs =
@@ -411,6 +425,11 @@ constexpr AddedColumn kAddedTrialColumns[] = {
     {"learn", 8},
     {"earc_db", 8},
     {"earc_db_state", 8},
+    {"lower_bound", 9},
+    {"refine_first_time_s", 9},
+    {"refine_first_sum_of_costs", 9},
+    {"refine_final_sum_of_costs", 9},
+    {"refine_final_makespan", 9},
 };
 static_assert(kAddedTrialColumns[std::size(kAddedTrialColumns) - 1].since == kResultsSchemaVersion,
               "the columns of every version");
@@ -581,6 +600,11 @@ bool ResultsDb::addTrial(const TrialRecord& t) {
     bindOpt(s, 29, t.learn ? std::optional<int>(*t.learn ? 1 : 0) : std::nullopt);
     s.bind(30, std::string_view(t.earc_db));
     bindOpt(s, 31, t.earc_db_state);
+    bindOpt(s, 32, t.lower_bound);
+    bindOpt(s, 33, t.refine_first_time_s);
+    bindOpt(s, 34, t.refine_first_sum_of_costs);
+    bindOpt(s, 35, t.refine_final_sum_of_costs);
+    bindOpt(s, 36, t.refine_final_makespan);
     s.run();
     const bool added = sqlite3_changes(c.handle()) > 0;
     if (added) impl_->trials_read.reset();

@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "earc/bench/child.hpp"
+#include "earc/bench/crowds.hpp"
 #include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
@@ -540,8 +541,7 @@ class Runner {
     if (!files_.empty()) return cells;
     for (const std::string& name : o_.suites) {
       const Suite& s = suiteByName(name);
-      for (int n : s.robots) {
-        if (!o_.robots.empty() && std::find(o_.robots.begin(), o_.robots.end(), n) == o_.robots.end()) continue;
+      for (int n : suiteCounts(s, o_.robots)) {
         // One job: the methods take turns trial by trial, so that a drift
         // of the machine's speed touches every method alike. Several
         // jobs: each method's trials of this cell in a row, so that trials
@@ -810,6 +810,7 @@ class Runner {
     t.makespan = num("makespan");
     t.sum_of_costs = num("sum_of_costs");
     t.conflicts = num("conflicts");
+    readRefineStats(st, t);
     t.planner_version = plannerVersion(doc);
     // E-ARC's database answers, retrieved as they are or repaired, as its
     // summary line and db_hit_rate count them (its db_hits stat counts the
@@ -852,6 +853,7 @@ class Runner {
     const TrialSeeds seeds = seedsOf(c);
     t.scenario_seed = seeds.scenario;
     t.planner_seed = seeds.planner;
+    if (c.suite) t.lower_bound = suiteLowerBound(*c.suite, c.robots);
     std::string scenario;
     try {
       scenario = scenarioFile(c);
@@ -1009,7 +1011,7 @@ class Runner {
                                        : t.suite == kFilesSuite && given.count({t.robots, t.trial});
       if (ours) mine.push_back(std::move(t));
     }
-    log_ << "\n" << markdownTable(mine, db_.databases());
+    log_ << "\n" << markdownTable(mine, db_.databases()) << crowdTable(mine);
   }
 
   const RunOptions& o_;
@@ -1107,7 +1109,7 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
     throw InputError("", "--memory-limit-mb", "too large");
   for (const std::string& m : o.methods)
     if (std::find(allMethods().begin(), allMethods().end(), m) == allMethods().end())
-      throw InputError("", "--methods", "unknown method '" + m + "' (earc, arc, lightning, prioritized, coupled)");
+      throw InputError("", "--methods", "unknown method '" + m + "' (" + allMethodsText() + ")");
   std::vector<const Suite*> suites;
   if (!files.empty() && o.cutoff)
     throw InputError("", "--cutoff", "is for suites (robot counts that grow), not scenario files");
@@ -1124,17 +1126,15 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   for (const std::string& name : files.empty() ? o.suites : std::vector<std::string>{}) {
     const Suite& s = suiteByName(name);
     suites.push_back(&s);
-    counts += (counts.empty() ? "" : "; ") + s.name + ":";
-    for (std::size_t i = 0; i < s.robots.size(); ++i) counts += (i ? ", " : " ") + std::to_string(s.robots[i]);
+    counts += (counts.empty() ? "" : "; ") + suiteCountsText(s);
   }
   // A count no suite runs would make "nothing to run: all 0 trials are in ...".
   for (int n : files.empty() ? o.robots : std::vector<int>{})
-    if (std::none_of(suites.begin(), suites.end(),
-                     [n](const Suite* s) { return std::count(s->robots.begin(), s->robots.end(), n) > 0; }))
+    if (std::none_of(suites.begin(), suites.end(), [n](const Suite* s) { return suiteTakes(*s, n); }))
       throw InputError("", "--robots", "no suite of this run has " + std::to_string(n) + " robots (" + counts + ")");
   for (const auto& [method, args] : o.method_args) {
     if (std::find(allMethods().begin(), allMethods().end(), method) == allMethods().end())
-      throw InputError("", "--method-arg", "unknown method '" + method + "' (earc, arc, lightning, prioritized, coupled)");
+      throw InputError("", "--method-arg", "unknown method '" + method + "' (" + allMethodsText() + ")");
     if (std::find(o.methods.begin(), o.methods.end(), method) == o.methods.end())
       throw InputError("", "--method-arg", "method " + method + " is not one of this run's methods (--methods)");
     requirePlannerArgs(args, "--method-arg " + method);

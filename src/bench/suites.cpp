@@ -1,5 +1,6 @@
 #include "earc/bench/suites.hpp"
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 #include "earc/bench/results_db.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/gen/movingai_scen.hpp"
 #include "earc/gen/placement.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
@@ -36,6 +38,8 @@ Scenario generate(const Suite& suite, int robots, std::uint64_t seed) {
     gen::MovingAiSettings s;
     s.robots = robots;
     s.seed = seed;
+    // A crowd suite's random problems (databases) have its file's robots.
+    if (suite.crowd()) s.footprint = gen::defaultScenFootprint();
     return gen::generateMovingAi(*map, s);
   }
   if (suite.family == "arms") {
@@ -65,20 +69,74 @@ Scenario generateRetrying(const Suite& suite, int robots, std::uint64_t seed) {
                            " robots after " + std::to_string(kGenerationAttempts) + " attempts: " + last);
 }
 
+gen::GridMap suiteMap(const Suite& suite) {
+  std::optional<gen::GridMap> map = gen::embeddedMovingAiMap(suite.map);
+  if (!map) throw std::logic_error("suite " + suite.name + ": map " + suite.map + " is not compiled in");
+  return *map;
+}
+
+gen::MovingAiScen suiteScen(const Suite& suite) {
+  std::optional<gen::MovingAiScen> scen = gen::embeddedMovingAiScen(suite.scen);
+  if (!scen) throw std::logic_error("suite " + suite.name + ": scenario file " + suite.scen + " is not compiled in");
+  return *scen;
+}
+
+// The crowd suite of a map and its file random-1: 50 robots, then 100 to
+// 200 by 50 and on by 100, as far as the file goes, and the whole file.
+Suite crowdSuite(const std::string& map) {
+  Suite s{"crowd-" + map, "mobile", true, {}, map, map + "-random-1", 0};
+  s.most_robots = static_cast<int>(suiteScen(s).agents.size());
+  for (int n = 50; n < s.most_robots; n += n < 200 ? 50 : 100) s.robots.push_back(n);
+  s.robots.push_back(s.most_robots);
+  return s;
+}
+
 }  // namespace
 
 const std::vector<Suite>& allSuites() {
   static const std::vector<Suite> suites = {
-      {"mobile", "mobile", false, {2, 4, 8, 16, 32}, ""},
-      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}, ""},
-      {"arms", "arms", false, {2, 4, 8, 16}, ""},
-      {"arms-obst", "arms", true, {2, 4, 8, 16}, ""},
+      {"mobile", "mobile", false, {2, 4, 8, 16, 32}, "", "", 0},
+      {"mobile-obst", "mobile", true, {2, 4, 8, 16, 32}, "", "", 0},
+      {"arms", "arms", false, {2, 4, 8, 16}, "", "", 0},
+      {"arms-obst", "arms", true, {2, 4, 8, 16}, "", "", 0},
       // A 32x32 field with 20% of its cells blocked at random, and a game
       // level of 256x257 cells: corridors one cell wide.
-      {"movingai-random", "mobile", true, {2, 4, 8, 16, 32}, "random-32-32-20"},
-      {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d"},
+      {"movingai-random", "mobile", true, {2, 4, 8, 16, 32}, "random-32-32-20", "", 0},
+      {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d", "", 0},
+      // Crowds: the benchmark's own agent lists on open floor, a random
+      // field, rooms joined by narrow doors, and a warehouse's aisles.
+      crowdSuite("empty-16-16"),
+      crowdSuite("random-32-32-20"),
+      crowdSuite("room-32-32-4"),
+      crowdSuite("warehouse-10-20-10-2-1"),
   };
   return suites;
+}
+
+bool suiteTakes(const Suite& suite, int robots) {
+  if (suite.crowd()) return robots >= 2 && robots <= suite.most_robots;
+  return std::count(suite.robots.begin(), suite.robots.end(), robots) > 0;
+}
+
+std::vector<int> suiteCounts(const Suite& suite, const std::vector<int>& asked) {
+  std::vector<int> out;
+  if (suite.crowd() && !asked.empty()) {
+    for (int n : asked)
+      if (suiteTakes(suite, n)) out.push_back(n);
+  } else {
+    for (int n : suite.robots)
+      if (asked.empty() || std::count(asked.begin(), asked.end(), n)) out.push_back(n);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::string suiteCountsText(const Suite& suite) {
+  if (suite.crowd()) return suite.name + ": 2 to " + std::to_string(suite.most_robots);
+  std::string counts = suite.name + ":";
+  for (std::size_t i = 0; i < suite.robots.size(); ++i) counts += (i ? ", " : " ") + std::to_string(suite.robots[i]);
+  return counts;
 }
 
 const Suite& suiteByName(const std::string& name, const std::string& option) {
@@ -91,8 +149,15 @@ const Suite& suiteByName(const std::string& name, const std::string& option) {
 }
 
 const std::vector<std::string>& allMethods() {
-  static const std::vector<std::string> methods = {"earc", "arc", "lightning", "prioritized", "coupled"};
+  // lacam: the configuration-based crowd solver (issue 49).
+  static const std::vector<std::string> methods = {"earc", "arc", "lightning", "prioritized", "coupled", "lacam"};
   return methods;
+}
+
+std::string allMethodsText() {
+  std::string text;
+  for (const std::string& m : allMethods()) text += (text.empty() ? "" : ", ") + m;
+  return text;
 }
 
 TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t run_seed) {
@@ -103,9 +168,21 @@ TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t r
 }
 
 Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed) {
-  Scenario s = generateRetrying(suite, robots, trialSeeds(suite, robots, trial, run_seed).scenario);
+  Scenario s;
+  if (suite.crowd()) {
+    gen::ScenSettings settings;
+    settings.robots = robots;
+    s = gen::scenarioFromScen(suiteMap(suite), suiteScen(suite), settings);
+  } else {
+    s = generateRetrying(suite, robots, trialSeeds(suite, robots, trial, run_seed).scenario);
+  }
   s.name = suite.name + "-" + std::to_string(robots) + "-t" + std::to_string(trial);
   return s;
+}
+
+std::optional<std::int64_t> suiteLowerBound(const Suite& suite, int robots) {
+  if (!suite.crowd()) return std::nullopt;
+  return gen::scenLowerBound(suiteMap(suite), suiteScen(suite), robots, Resolution{}.translation);
 }
 
 Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_t seed) {

@@ -99,7 +99,8 @@ notBuilt "resumed on the old database"
 "$PY" - <<'PY' || fail "could not make a version 7 file"
 import sqlite3
 c = sqlite3.connect("old7.sqlite")
-for column in ("learn", "earc_db", "earc_db_state"):
+for column in ("learn", "earc_db", "earc_db_state", "lower_bound", "refine_first_time_s", "refine_first_sum_of_costs",
+               "refine_final_sum_of_costs", "refine_final_makespan"):
     c.execute("ALTER TABLE trials DROP COLUMN %s" % column)
 c.execute("PRAGMA user_version = 7")
 c.commit()

@@ -104,7 +104,8 @@ grep -qF "; other.sqlite is another$tail" err || fail "not refused as another da
 import sqlite3
 src, dst = sqlite3.connect("r.sqlite"), sqlite3.connect("old.sqlite")
 src.backup(dst)
-for column in ("learn", "earc_db", "earc_db_state"):
+for column in ("learn", "earc_db", "earc_db_state", "lower_bound", "refine_first_time_s",
+               "refine_first_sum_of_costs", "refine_final_sum_of_costs", "refine_final_makespan"):
     dst.execute("ALTER TABLE trials DROP COLUMN %s" % column)
 dst.execute("PRAGMA user_version = 7")
 dst.commit()
@@ -114,5 +115,5 @@ refusedInOneLine "old.sqlite: --earc-db-count: its E-ARC database $BUILT was bui
 "$BENCH" "${NO_COUNT[@]}" --trials 2 --learn --db-mobile other.sqlite --results old.sqlite > out 2> err ||
   fail "a version 7 file resumed on another database with --learn: exit $?"
 grep -q "^nothing to run" out || fail "the version 7 file's trials were not skipped"
-[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 7 file was not migrated"
+[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 9 ] || fail "the version 7 file was not migrated"
 echo "ok: a resumed run is held to its trials' E-ARC database, count and --learn"

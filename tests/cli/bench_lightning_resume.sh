@@ -65,7 +65,8 @@ import sqlite3
 src, dst = sqlite3.connect("r.sqlite"), sqlite3.connect("old.sqlite")
 src.backup(dst)
 for column in ("lightning_problems", "lightning_problems_per_robot", "lightning_problem_time_limit_s", "learn",
-               "earc_db", "earc_db_state"):
+               "earc_db", "earc_db_state", "lower_bound", "refine_first_time_s", "refine_first_sum_of_costs",
+               "refine_final_sum_of_costs", "refine_final_makespan"):
     dst.execute("ALTER TABLE trials DROP COLUMN %s" % column)
 dst.execute("PRAGMA user_version = 6")
 dst.commit()
@@ -73,7 +74,7 @@ PY
 "$BENCH" "${RUN[@]}" --lightning-problem-time-limit 3 --results old.sqlite --work-dir r.sqlite.work > out 2> err ||
   fail "a version 6 file resumed with other settings: exit $?"
 grep -q "^nothing to run" out || fail "the version 6 file's trials were not skipped"
-[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 8 ] || fail "the version 6 file was not migrated"
+[ "$(sqlValue old.sqlite "PRAGMA user_version")" -eq 9 ] || fail "the version 6 file was not migrated"
 [ "$(sqlValue old.sqlite "SELECT count(*) FROM trials WHERE lightning_problem_time_limit_s IS NULL")" -eq 2 ] ||
   fail "the old trials gained settings"
 # A limit per problem reaches lightning-db exactly, however small: 1e-07,

@@ -42,7 +42,7 @@ print(sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True).execute(sys.arg
 "$PY" - "$WORK/r.sqlite" <<'PYEOF' || fail "results database"
 import sqlite3, sys
 con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
-assert con.execute("PRAGMA user_version").fetchone()[0] == 8
+assert con.execute("PRAGMA user_version").fetchone()[0] == 9
 rows = sorted(con.execute("SELECT method, trial, planner_args FROM trials"))
 assert rows == [("arc", 0, '["--window","4"]'), ("arc", 1, '["--window","4"]'),
                 ("prioritized", 0, None), ("prioritized", 1, None)], rows

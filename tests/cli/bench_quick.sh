@@ -43,7 +43,7 @@ bench_version=$("$BENCH" --version) || fail "earc-bench --version exited $?"
 import sqlite3, sys
 con = sqlite3.connect("file:%s?mode=ro" % sys.argv[1], uri=True)
 assert con.execute("PRAGMA application_id").fetchone()[0] == 0x45424E43
-assert con.execute("PRAGMA user_version").fetchone()[0] == 8
+assert con.execute("PRAGMA user_version").fetchone()[0] == 9
 assert {j for (j,) in con.execute("SELECT jobs FROM trials")} == {1}, "trials must record --jobs 1"
 versions = {v for (v,) in con.execute("SELECT planner_version FROM trials")}
 assert versions == {sys.argv[2]}, (versions, sys.argv[2])
@@ -245,7 +245,7 @@ PYEOF
   refused "$WORK/a-file: -o: exists and is not a directory" plot --results "$WORK/r.sqlite" -o "$WORK/a-file"
   "$PY" -c 'import sqlite3,sys
 c = sqlite3.connect(sys.argv[1]); c.execute("PRAGMA user_version = 99"); c.commit()' "$WORK/odd.sqlite"
-  refused "$WORK/odd.sqlite: schema version 99 is newer than this program's version 8; use a newer earc-bench" \
+  refused "$WORK/odd.sqlite: schema version 99 is newer than this program's version 9; use a newer earc-bench" \
     plot --results "$WORK/odd.sqlite" -o "$WORK/fig3"
   echo "not a database" > "$WORK/text.txt"
   refused "$WORK/text.txt: cannot open the results database: not a SQLite database" plot --results "$WORK/text.txt" -o "$WORK/fig3"

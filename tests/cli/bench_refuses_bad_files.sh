@@ -41,7 +41,7 @@ refused() {  # refused TEXT ARGS...: exit 2, one line on stderr containing TEXT,
 
 for f in no-trials no-databases foreign text; do
   case $f in
-    no-*) file=$f.sqlite; want="$file: damaged database file (table ${f#no-} is missing; schema version 8 has it)" ;;
+    no-*) file=$f.sqlite; want="$file: damaged database file (table ${f#no-} is missing; schema version 9 has it)" ;;
     foreign) file=$f.sqlite; want="$file: not an earc-bench results database" ;;
     text) file=text.txt; want="$file: cannot open the results database: not a SQLite database" ;;
   esac

@@ -28,15 +28,15 @@ mkdir "$WORK/d" && cd "$WORK/d" || exit 1
 
 # NAME|SQL|what the error says after "NAME.sqlite: ".
 cases=(
-  "robots|UPDATE trials SET robots = -3|trials row id 1, column robots: -3 is not a robot count from 2 to 128"
+  "robots|UPDATE trials SET robots = -3|trials row id 1, column robots: -3 is not a robot count from 2 to 1024"
   "text-time|UPDATE trials SET planning_time_s = 'NaN'|trials row id 1, column planning_time_s: 'NaN' is not a number of seconds (0 or more)"
   "negative-time|UPDATE trials SET wall_time_s = -0.5|trials row id 1, column wall_time_s: -0.5 is not a number of seconds (0 or more)"
   "infinite-limit|UPDATE trials SET time_limit_s = 1e999|trials row id 1, column time_limit_s: inf is not a number of seconds above 0"
   "success|PRAGMA ignore_check_constraints = ON; UPDATE trials SET success = 2|trials row id 1, column success: 2 is not 0 or 1"
-  "method|UPDATE trials SET method = 'magic'|trials row id 1, column method: 'magic' is not a method earc-bench runs (earc, arc, lightning, prioritized, coupled)"
+  "method|UPDATE trials SET method = 'magic'|trials row id 1, column method: 'magic' is not a method earc-bench runs (earc, arc, lightning, prioritized, coupled, lacam)"
   "seed|UPDATE trials SET seed = '-7'|trials row id 1, column seed: '-7' is not a seed"
   "late|UPDATE trials SET success = 1, failure = NULL, planning_time_s = 60|trials row id 1, column planning_time_s: 60 s of a solved trial is beyond its time limit of 5 s"
-  "db-robots|UPDATE databases SET robots = -1|databases row id 1, column robots: -1 is not 0 (every robot count) or a robot count from 2 to 128"
+  "db-robots|UPDATE databases SET robots = -1|databases row id 1, column robots: -1 is not 0 (every robot count) or a robot count from 2 to 1024"
 )
 for c in "${cases[@]}"; do
   IFS='|' read -r name sql want <<< "$c"
@@ -55,7 +55,7 @@ for c in "${cases[@]}"; do
   refused "$name.sqlite: $want" export --results "$name.sqlite" --csv out.csv
 done
 # Every reader checks the rows when it opens the file, before any work.
-want="robots.sqlite: trials row id 1, column robots: -3 is not a robot count from 2 to 128"
+want="robots.sqlite: trials row id 1, column robots: -3 is not a robot count from 2 to 1024"
 refused "$want" table --results robots.sqlite --wide
 refused "$want" export --results robots.sqlite --ompl-log logs
 refused "$want" plot --results robots.sqlite -o figures

@@ -110,7 +110,7 @@ PY
 "$BENCH" run --methods earc --time-limit 5 --results g.sqlite far.json > out 2> err || fail "far arms alone exited $?"
 [ "$(sqlite3 g.sqlite "select success from trials")" = 1 ] || fail "far arms alone: E-ARC failed"
 
-refusedInOneLine "one.json: 1 robot: earc-bench run takes scenarios of 2 to 128 robots" \
+refusedInOneLine "one.json: 1 robot: earc-bench run takes scenarios of 2 to 1024 robots" \
   "$BENCH" run d3.json one.json --results other.sqlite
 refusedInOneLine 'mixed.json: $.robots: mixes mobile robots and arms' "$BENCH" run mixed.json --results other.sqlite
 [ -e other.sqlite ] && fail "a refused run created its results file"

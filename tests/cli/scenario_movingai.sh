@@ -78,7 +78,7 @@ refusedInOneLine "empty.map: line 1: the file is empty" "$GEN" movingai "$WORK/e
 refusedInOneLine "map: an empty file name" "$GEN" movingai "" -o "$WORK/x.json"
 # A name that is neither a file nor a compiled-in map says both, listing
 # the compiled-in maps (it said only "cannot open file").
-refusedInOneLine "empty-32-32: no such file, nor a compiled-in map (den520d, random-32-32-10, random-32-32-20)" \
+refusedInOneLine "empty-32-32: no such file, nor a compiled-in map (den520d, empty-16-16, random-32-32-10, random-32-32-20, room-32-32-4, warehouse-10-20-10-2-1)" \
   "$GEN" movingai empty-32-32 --robots 2 -o "$WORK/x.json"
 # A compiled-in map by name, from a directory without it: the same scenario.
 (cd "$WORK" && "$GEN" movingai random-32-32-10 --robots 8 --seed 1 -o "$WORK/e.json" > /dev/null) ||

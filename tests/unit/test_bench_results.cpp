@@ -110,6 +110,10 @@ std::vector<std::map<std::string, std::string>> csvByColumn(const std::string& t
 // the columns later versions added are dropped, user_version set.
 void makeOlder(const std::string& path, int version) {
   exp::Connection c(path, exp::OpenMode::ReadWrite);
+  if (version < 9)
+    c.exec("ALTER TABLE trials DROP COLUMN lower_bound; ALTER TABLE trials DROP COLUMN refine_first_time_s; ALTER "
+           "TABLE trials DROP COLUMN refine_first_sum_of_costs; ALTER TABLE trials DROP COLUMN "
+           "refine_final_sum_of_costs; ALTER TABLE trials DROP COLUMN refine_final_makespan");
   if (version < 8)
     c.exec("ALTER TABLE trials DROP COLUMN learn; ALTER TABLE trials DROP COLUMN earc_db; ALTER TABLE trials DROP "
            "COLUMN earc_db_state");
@@ -586,7 +590,8 @@ TEST_CASE("the CSV has the Lightning settings, --learn and the E-ARC database af
         "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
         "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
         "finished_at,jobs,planner_version,bench_version,planner_args,scenario_file,lightning_problems,"
-        "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state");
+        "lightning_problems_per_robot,lightning_problem_time_limit_s,learn,earc_db,earc_db_state,lower_bound,"
+        "refine_first_time_s,refine_first_sum_of_costs,refine_final_sum_of_costs,refine_final_makespan");
   const auto rows = csvByColumn(csv.str());
   REQUIRE(rows.size() == 5);
   const auto fields = [&](std::size_t r) {
@@ -600,7 +605,7 @@ TEST_CASE("the CSV has the Lightning settings, --learn and the E-ARC database af
   CHECK(fields(2) == "|4|2.5|1||");
   CHECK(fields(3) == "20||1.0000001|||");  // recorded before schema 8: no --learn
   CHECK(fields(4) == "|||1|e.sqlite|");    // a database without a history
-  CHECK(csv.str().find(",\"w/e, mobile.sqlite\",-5\n") != std::string::npos);
+  CHECK(csv.str().find(",\"w/e, mobile.sqlite\",-5,,,,,\n") != std::string::npos);
 }
 
 TEST_CASE("one read of the trials, at open, serves the queries a resumed run asks before it starts") {
@@ -759,8 +764,8 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
     const char* says;
   };
   const Edit edits[] = {
-      {"UPDATE trials SET robots = -3 WHERE id = 2", "trials row id 2, column robots: -3 is not a robot count from 2 to 128"},
-      {"UPDATE trials SET robots = 2.5", "trials row id 1, column robots: 2.5 is not a robot count from 2 to 128"},
+      {"UPDATE trials SET robots = -3 WHERE id = 2", "trials row id 2, column robots: -3 is not a robot count from 2 to 1024"},
+      {"UPDATE trials SET robots = 2.5", "trials row id 1, column robots: 2.5 is not a robot count from 2 to 1024"},
       {"UPDATE trials SET planning_time_s = 'fast' WHERE id = 2",
        "trials row id 2, column planning_time_s: 'fast' is not a number of seconds (0 or more)"},
       {"UPDATE trials SET wall_time_s = -1e999", "trials row id 1, column wall_time_s: -inf is not a number of seconds (0 or more)"},
@@ -833,7 +838,7 @@ TEST_CASE("a results row with a value no run writes refuses the file, naming the
        "trials row id 1, column earc_db_state: 'x' is not a history token (a whole number)"},
       {"UPDATE databases SET method = 'arc'", "databases row id 1, column method: 'arc' is not a method with a database (earc, lightning)"},
       {"UPDATE databases SET robots = 1",
-       "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 128"},
+       "databases row id 1, column robots: 1 is not 0 (every robot count) or a robot count from 2 to 1024"},
       {"UPDATE databases SET size_bytes = -1", "databases row id 1, column size_bytes: -1 is not a count (0 or more)"},
   };
   for (const Edit& e : edits) {
@@ -1234,6 +1239,16 @@ TEST_CASE("the MovingAI suites put robots on the compiled-in maps, which are the
   }
   CHECK(files == gen::embeddedMovingAiMaps().size());
   CHECK(gen::findEmbeddedMovingAiMap("no-such-map") == nullptr);
+  // And every scenario file.
+  std::size_t scens = 0;
+  for (const auto& f : std::filesystem::directory_iterator(std::filesystem::path(EARC_SOURCE_DIR) / "datasets" / "movingai")) {
+    if (f.path().extension() != ".scen") continue;
+    ++scens;
+    const gen::EmbeddedMap* m = gen::findEmbeddedMovingAiScen(f.path().stem().string());
+    REQUIRE_MESSAGE(m != nullptr, f.path());
+    CHECK(m->text == readTextFile(f.path().string()));
+  }
+  CHECK(scens == gen::embeddedMovingAiScens().size());
 
   int paper = 0;
   for (const Suite& s : allSuites()) {
@@ -1252,7 +1267,11 @@ TEST_CASE("the MovingAI suites put robots on the compiled-in maps, which are the
     CHECK(a.workspace.hi.x == map.width);
     CHECK(a.workspace.hi.y == map.height);
     for (std::size_t i = 0; i < a.robots.size(); ++i) CHECK(a.robots[i].start == b.robots[i].start);
-    CHECK(a.robots[0].start != c.robots[0].start);
+    // A crowd suite's trials are all its file's first agents.
+    if (s.crowd())
+      CHECK(a.robots[0].start == c.robots[0].start);
+    else
+      CHECK(a.robots[0].start != c.robots[0].start);
     CHECK(databaseProblem(s, 8, 0, 1).robots[0].start != a.robots[0].start);
   }
   CHECK(paper == 4);

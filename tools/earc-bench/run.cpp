@@ -1,7 +1,7 @@
 // earc-bench run: the E-ARC paper's experiments (see earc/bench/runner.hpp).
 //
-//   earc-bench run [--suites mobile,mobile-obst,arms,arms-obst] [--robots 2,4,8]
-//     [--methods earc,arc,lightning,prioritized,coupled] [--trials N]
+//   earc-bench run [--suites mobile,mobile-obst,arms,arms-obst|crowd|...] [--robots 2,4,8]
+//     [--methods earc,arc,lightning,prioritized,coupled,lacam] [--trials N]
 //     [--time-limit S] [--seed S] [--results FILE.sqlite] [--db-mobile FILE]
 //     [--db-arms FILE] [--lightning-dir DIR] [--jobs N] [--full]
 //     [--method-arg METHOD=ARG]... [SCENARIO...]
@@ -12,6 +12,7 @@
 // Exit status 0 when the run finished (failed trials are results, not
 // errors), 1 when some solution was INVALID, 2 for bad options, 130 when
 // interrupted (run the same command again to resume).
+#include <algorithm>
 #include <iostream>
 #include <map>
 
@@ -50,6 +51,34 @@ std::vector<int> parseCounts(const std::string& list) {
   return out;
 }
 
+bool isCrowdSuite(const std::string& name) {
+  for (const bench::Suite& s : bench::allSuites())
+    if (s.name == name) return s.crowd();
+  return false;
+}
+
+// "crowd-empty-16-16, ...".
+std::string crowdSuiteNames() {
+  std::string names;
+  for (const bench::Suite& s : bench::allSuites())
+    if (s.crowd()) names += (names.empty() ? "" : ", ") + s.name;
+  return names;
+}
+
+// --suites with "crowd" standing for every crowd suite.
+std::vector<std::string> expandCrowd(const std::vector<std::string>& given) {
+  std::vector<std::string> out;
+  for (const std::string& name : given) {
+    if (name != "crowd") {
+      out.push_back(name);
+      continue;
+    }
+    for (const bench::Suite& s : bench::allSuites())
+      if (s.crowd()) out.push_back(s.name);
+  }
+  return out;
+}
+
 // --method-arg METHOD=ARG, in the order given, by method; METHOD is
 // checked with the other options (runBenchmark), ARG by
 // plannerArgsProblem there.
@@ -75,10 +104,12 @@ void setupRun(CLI::App& app) {
                   "E-ARC's database is built for their robots")
       ->check(earc::cli::kFileName);
   auto* suites = cmd->add_option("--suites", o->suites, "Suites: mobile, mobile-obst, arms, arms-obst (the paper's), movingai-random, movingai-den520d "
-                  "(MovingAI maps) (default mobile-obst,arms)");
-  auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full every count of the suite)");
+                  "(MovingAI maps), " + crowdSuiteNames() + " (crowds: a MovingAI scenario file's first N agents; "
+                  "'crowd' for all four) (default mobile-obst,arms)");
+  auto* robots = cmd->add_option("--robots", o->robots, "Robot counts (default 2,4,8; with --full, or crowd suites "
+                  "alone, every count of the suite; a crowd suite takes any count up to its file's agents)");
   auto* methods = cmd->add_option("--methods", o->methods,
-                                  "Methods: earc, arc, lightning, prioritized, coupled (default earc,arc,lightning,prioritized)");
+                                  "Methods: " + bench::allMethodsText() + " (default earc,arc,lightning,prioritized)");
   auto* trials = cmd->add_option("--trials", r.trials, "Trials per cell (default 2; --full: 20)")
                      ->check(earc::cli::kPositiveWholeNumber);
   cmd->add_option("--time-limit", r.time_limit_s, "Planning time limit per trial, seconds")
@@ -143,10 +174,15 @@ void setupRun(CLI::App& app) {
       for (const auto& s : bench::allSuites())
         if (s.paper()) r.suites.push_back(s.name);
       r.robots.clear();
-      r.methods = bench::allMethods();
+      // The paper's methods: lacam, the crowd solver, is none of them.
+      r.methods.clear();
+      for (const std::string& m : bench::allMethods())
+        if (m != "lacam") r.methods.push_back(m);
       if (!trials->count()) r.trials = kFullTrials;
     }
-    if (suites->count()) r.suites = bench::splitOptionList(o->suites, "--suites");
+    if (suites->count()) r.suites = expandCrowd(bench::splitOptionList(o->suites, "--suites"));
+    // Crowd suites alone grow to their own counts (hundreds of robots).
+    if (!robots->count() && std::all_of(r.suites.begin(), r.suites.end(), isCrowdSuite)) r.robots.clear();
     if (robots->count()) r.robots = parseCounts(o->robots);
     if (methods->count()) r.methods = bench::splitOptionList(o->methods, "--methods");
     r.method_args = parseMethodArgs(o->method_args);

@@ -1,11 +1,13 @@
 // earc-bench table: the results as markdown: success rate and median
 // planning time (IQR) per suite, robot count and method, the E-ARC/ARC
 // ratio paired by seed, and the databases; a table per time limit where a
-// suite ran under several.
+// suite ran under several; then, for crowd suites, cost against the lower
+// bound (bench/crowds.hpp).
 //
 //   earc-bench table --results FILE [--seed S] [--time-limit S] [--wide]
 #include <iostream>
 
+#include "earc/bench/crowds.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/util/subcommands.hpp"
@@ -31,7 +33,8 @@ void setupTable(CLI::App& app) {
   cmd->callback([o] {
     bench::ResultsDb db(o->results, true);
     const std::vector<bench::TrialRecord> trials = o->filter.applyRequired(db.recordedTrials(), o->results);
-    std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()));
+    std::cout << (o->wide ? bench::markdownWideTable(trials) : bench::markdownTable(trials, db.databases()))
+              << bench::crowdTable(trials);
   });
 }
 

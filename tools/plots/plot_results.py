@@ -11,7 +11,10 @@ all failed an x on the time limit's dotted line; each method with its own
 marker, its points moved a little aside so that equal times both show)
 and success_<suite> (success rate per robot count and method), and
 databases (construction time per method against robot count; a database
-that serves every robot count, like E-ARC's, is a horizontal line).
+that serves every robot count, like E-ARC's, is a horizontal line), and,
+when the results hold crowd suites, crowds (per map: time to the first
+solution and success against robot count per method, and sum of costs
+over the lower bound; tools/plots/crowd_figure.py).
 Trials under different time limits are different experiments: a suite run
 under several gets a pair of figures per limit, time_<suite>-tl<limit>
 and success_<suite>-tl<limit> (as `earc-bench table` gives it a table per
@@ -23,7 +26,7 @@ no date and fixed ids: the same file gives the same figures, byte for
 byte.
 A row with a value no run writes (a planning time that is not a number,
 or is negative or beyond its solved trial's time limit; a robot count
-outside 2..128; an unknown suite or method; ...) refuses the file, as
+outside 2..1024; an unknown suite or method; ...) refuses the file, as
 earc-bench's reader does (src/bench/results_db.cpp, which `earc-bench
 plot` runs before this script). Every error is one line naming the file:
 exit status 2 for a missing, foreign or newer results file, a row no run
@@ -50,38 +53,47 @@ try:
     matplotlib.rcParams["svg.hashsalt"] = "earc-bench"
     import matplotlib.pyplot as plt
     import numpy as np
+
+    import crowd_figure
 except ImportError as e:
     print("plot_results.py: needs matplotlib and numpy (%s)" % e, file=sys.stderr)
     sys.exit(1)
 
 APPLICATION_ID = 0x45424E43  # "EBNC", include/earc/bench/results_db.hpp
-SCHEMA_VERSION = 8  # kResultsSchemaVersion there
+SCHEMA_VERSION = 9  # kResultsSchemaVersion there
 # A solved trial's planning time may be this much over its limit (the
 # planners poll their deadline): kSolvedTimeLimitSlack in results_db.hpp.
 TIME_LIMIT_SLACK = 1.01
-MAX_ROBOTS = 128  # kMaxResultsRobots there
+MAX_ROBOTS = 1024  # kMaxResultsRobots there
 # allSuites() then kFilesSuite (earc-bench run FILE...): suites.hpp.
-SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d", "files"]
-METHODS = ["earc", "arc", "lightning", "prioritized", "coupled"]
+CROWD_SUITES = ["crowd-empty-16-16", "crowd-random-32-32-20", "crowd-room-32-32-4", "crowd-warehouse-10-20-10-2-1"]
+SUITES = ["mobile", "mobile-obst", "arms", "arms-obst", "movingai-random", "movingai-den520d"] + CROWD_SUITES + ["files"]
+METHODS = ["earc", "arc", "lightning", "prioritized", "coupled", "lacam"]
 LABELS = {"earc": "E-ARC", "arc": "ARC", "lightning": "Lightning", "prioritized": "Prioritized",
-          "coupled": "Coupled RRT-Connect"}
+          "coupled": "Coupled RRT-Connect", "lacam": "LaCAM"}
 # Line style and marker per suite: databases of one method for several
 # suites share its colour.
 SUITE_STYLES = {"mobile": ("-", "o"), "mobile-obst": ("--", "^"), "arms": (":", "s"), "arms-obst": ("-.", "D"),
                 "movingai-random": ((0, (5, 1)), "v"), "movingai-den520d": ((0, (1, 1, 3, 1)), "P"),
                 "files": ((0, (3, 1, 1, 1, 1, 1)), "X")}
 COLORS = {"earc": "tab:red", "arc": "tab:blue", "lightning": "tab:green", "prioritized": "tab:purple",
-          "coupled": "tab:orange"}
+          "coupled": "tab:orange", "lacam": "tab:brown"}
 # Marker per method in the time figures, and how far apart (in octaves of
 # the robot count) the methods' points of one count are drawn: E-ARC and
 # ARC often take the same time, and one point hid the other.
-MARKERS = {"earc": "o", "arc": "s", "lightning": "^", "prioritized": "D", "coupled": "v"}
+MARKERS = {"earc": "o", "arc": "s", "lightning": "^", "prioritized": "D", "coupled": "v", "lacam": "P"}
 DODGE_OCTAVES = 0.05
 
 
 # One trial as the figures need it; args: the planner arguments it ran
-# with (earc-bench run --method-arg), a tuple, () for none.
-Trial = collections.namedtuple("Trial", "suite time_limit robots method success planning_time args")
+# with (earc-bench run --method-arg), a tuple, () for none; the cost
+# columns (schema 9) for the crowd figure, None where a trial has none.
+Trial = collections.namedtuple("Trial", "suite time_limit robots method success planning_time args sum_of_costs "
+                               "lower_bound refine_first_time refine_first_sum_of_costs refine_final_sum_of_costs",
+                               defaults=(None,) * 5)
+# Read without a check of their own: whole numbers of 0 or more, or None.
+COST_COLUMNS = ["sum_of_costs", "lower_bound", "refine_first_time_s", "refine_first_sum_of_costs",
+                "refine_final_sum_of_costs"]
 
 
 def ordered(values, order):
@@ -224,8 +236,11 @@ def load(path, seed, time_limit):
             con.row_factory = sqlite3.Row
             # Schema 5 added planner_args; older files ran with none.
             args_column = "planner_args" if version >= 5 else "NULL AS planner_args"
-            rows = con.execute("SELECT id, %s, %s FROM trials ORDER BY id"
-                               % (", ".join(TRIAL_COLUMNS), args_column)).fetchall()
+            # Schema 9 added the lower bound and the refine columns.
+            cost_columns = ", ".join(c if version >= 9 or c == "sum_of_costs" else "NULL AS " + c
+                                     for c in COST_COLUMNS)
+            rows = con.execute("SELECT id, %s, %s, %s FROM trials ORDER BY id"
+                               % (", ".join(TRIAL_COLUMNS), args_column, cost_columns)).fetchall()
             db_rows = con.execute("SELECT id, %s FROM databases ORDER BY id"
                                   % ", ".join(DATABASE_COLUMNS)).fetchall()
         except sqlite3.DatabaseError as e:
@@ -247,7 +262,7 @@ def load(path, seed, time_limit):
                            % (path, r["id"], shown(r["planner_args"]), shown(first[2]), r["method"], first[0]))
         if (seed is None or r["seed"] == str(seed)) and (time_limit is None or r["time_limit_s"] == time_limit):
             trials.append(Trial(r["suite"], r["time_limit_s"], r["robots"], r["method"], bool(r["success"]),
-                                r["planning_time_s"], args))
+                                r["planning_time_s"], args, *(r[c] for c in COST_COLUMNS)))
     dbs = []
     for r in db_rows:
         check_row(path, "databases", r, DATABASE_COLUMNS)
@@ -449,6 +464,11 @@ def main():
             written.append(plot_times(rows, name, title, a.output))
             written.append(plot_success(rows, name, title, a.output))
         written.append(plot_databases(dbs, a.output))
+        crowds = [t for t in trials if t.suite in CROWD_SUITES]
+        if crowds:
+            written.append(crowd_figure.plot_crowds(crowds, a.output, save, ordered(set(CROWD_SUITES), CROWD_SUITES),
+                                                    ordered({t.method for t in crowds}, METHODS),
+                                                    lambda m: label(m, crowds), COLORS, MARKERS))
     except OSError as e:
         print("plot_results.py: %s: cannot write a figure: %s" % (e.filename or a.output, e.strerror or e),
               file=sys.stderr)

@@ -51,6 +51,12 @@
 //     of its method with another; so is a run whose E-ARC database is not
 //     the one the file's earc trials of that kind of robot and --seed
 //     used, as they found it (runner.cpp).
+//   Version 9 adds trials.lower_bound (a crowd suite's trial: the sum of
+//     its robots' own shortest paths in steps, bench/crowds.hpp) and
+//     refine_first_time_s, refine_first_sum_of_costs,
+//     refine_final_sum_of_costs, refine_final_makespan: the solution's
+//     stats.refine (earc-plan --refine) when it has them; NULL otherwise
+//     and on every trial recorded before it.
 //   An older file is migrated when opened for writing, each version in one
 //   BEGIN IMMEDIATE transaction with its version bump, and read as it is
 //   otherwise.
@@ -63,7 +69,7 @@
 // writes, by a hand edit or another program, refuses the file like a
 // missing column does, in one line naming the file, the table, the row's
 // id and the column:
-//   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 128
+//   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 1024
 // What a run writes: suite and method names earc-bench has (bench/suites.hpp,
 // resultSuiteNames: the suites and kFilesSuite;
 // databases: method earc or lightning, robots 0 or a count); robot counts
@@ -100,13 +106,13 @@
 namespace earc::bench {
 
 inline constexpr std::int64_t kResultsApplicationId = 0x45424E43;  // "EBNC"
-inline constexpr int kResultsSchemaVersion = 8;
+inline constexpr int kResultsSchemaVersion = 9;
 // A solution may report a planning time this much over its time limit
 // (the planners poll their deadline) and still count as solved; later than
 // that it is "solved after the time limit", a failure.
 inline constexpr double kSolvedTimeLimitSlack = 1.01;
 // The most robots a run or lightning-db plans for (lightning-db --robots).
-inline constexpr int kMaxResultsRobots = 128;
+inline constexpr int kMaxResultsRobots = 1024;
 
 // How a run grows its Lightning databases (run --lightning-problems,
 // --lightning-problems-per-robot, --lightning-problem-time-limit): one of
@@ -168,6 +174,13 @@ struct TrialRecord {
   // (and every trial before schema 8).
   std::string earc_db;
   std::optional<std::int64_t> earc_db_state;
+  // A crowd suite's trial: the lower bound its sum of costs is compared
+  // with; unset elsewhere (and every trial before schema 9).
+  std::optional<std::int64_t> lower_bound;
+  // The solution's stats.refine, when the planner refined (--refine):
+  // when the first plan was found, its sum of costs, and the final plan's.
+  std::optional<double> refine_first_time_s;
+  std::optional<std::int64_t> refine_first_sum_of_costs, refine_final_sum_of_costs, refine_final_makespan;
 };
 
 struct DatabaseRecord {

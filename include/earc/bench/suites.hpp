@@ -2,12 +2,14 @@
 // and facing pairs of 5-DOF arms, each without and with random obstacles
 // that move from trial to trial, at growing robot counts; and, beside
 // them, mobile robots on MovingAI benchmark maps (fixed obstacles, random
-// starts and goals per trial). A trial's
+// starts and goals per trial), and the crowd suites: the first N agents
+// of a MovingAI scenario file, N growing to hundreds. A trial's
 // scenario is a pure function of (suite, robots, trial, run seed): every
 // method sees the same scenarios, so results are paired by seed.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,19 +25,34 @@ struct Suite {
   bool obstacles = false;
   std::vector<int> robots;  // the robot counts run by default
   std::string map;          // MovingAI suites: the embedded map's name
+  std::string scen;         // crowd suites: the embedded scenario file's name
+  int most_robots = 0;      // crowd suites: the file's agents
 
   // One of the paper's suites (earc-bench run --full): the generated ones.
   bool paper() const { return map.empty(); }
+  // Robots from a scenario file, any count from 2 to most_robots.
+  bool crowd() const { return !scen.empty(); }
 };
 
-// The paper's suites first, then the MovingAI ones.
+// The paper's suites first, then the MovingAI ones, then the crowd ones.
 const std::vector<Suite>& allSuites();
 // Throws InputError naming `option` (the one the name came from) and the
 // suites for an unknown name.
 const Suite& suiteByName(const std::string& name, const std::string& option = "--suites");
 
+// Whether a run may plan this many robots of the suite: one of its
+// counts, or for a crowd suite any from 2 to its file's agents.
+bool suiteTakes(const Suite& suite, int robots);
+// The counts a run plans, ascending: the suite's, or of `asked` (when not
+// empty) those it takes.
+std::vector<int> suiteCounts(const Suite& suite, const std::vector<int>& asked);
+// "mobile: 2, 4, 8, 16, 32", "crowd-empty-16-16: 2 to 128", for messages.
+std::string suiteCountsText(const Suite& suite);
+
 // The methods of the comparison, in the order tables list them.
 const std::vector<std::string>& allMethods();
+// "earc, arc, ...", for messages.
+std::string allMethodsText();
 
 // Seeds of one trial: the scenario's, and the planner's (one for every
 // method, so that a method's randomness is paired too).
@@ -47,13 +64,18 @@ TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t r
 
 // The scenario of a trial, named "<suite>-<robots>-t<trial>". Generation
 // that fails (too crowded) is retried with seeds derived from the first,
-// so the result is still a function of the arguments.
+// so the result is still a function of the arguments (for a crowd suite,
+// of robots alone: its file's first agents).
 Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
 
 // The scenario of problem `index` for growing a database of this suite's
 // kind: drawn from a stream of `seed` disjoint from trialSeeds(), so that a
 // database built with the benchmark's seed never holds its test problems.
 Scenario databaseProblem(const Suite& suite, int robots, int index, std::uint64_t seed);
+
+// A crowd suite's lower bound on the sum of costs of `robots` robots
+// (bench/crowds.hpp); nothing for other suites.
+std::optional<std::int64_t> suiteLowerBound(const Suite& suite, int robots);
 
 // Trials that come from scenario files (earc-bench run FILE...) are of
 // this suite: one trial per file and method, with the file's robots.
