@@ -1,6 +1,7 @@
 #include "earc/planning/planner.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/planning/refine.hpp"
+#include "earc/planning/roadmap.hpp"
 #include "earc/util/random.hpp"
 #include "earc/util/version.hpp"
 #include "earc/validate/validator.hpp"
@@ -259,8 +261,16 @@ Scenario requireRobots(Scenario scenario, const std::string& source) {
   return scenario;
 }
 
-PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
+PlanResult plan(const Scenario& scenario, const PlannerSettings& given, exp::ExperienceStore* store) {
   PlanResult result;
+  // Refinement replans on the methods' roadmaps: kept from planning when
+  // no cache outlives the plan (the same plan either way, RoadmapCache).
+  PlannerSettings settings = given;
+  std::unique_ptr<RoadmapCache> roadmaps_for_refining;
+  if (settings.refine_s > 0 && !settings.roadmap_cache) {
+    roadmaps_for_refining = std::make_unique<RoadmapCache>(std::size_t{256} << 20);
+    settings.roadmap_cache = roadmaps_for_refining.get();
+  }
   if (!refuseTooLarge(scenario, settings, result)) {
     switch (settings.method) {
       case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;

@@ -252,8 +252,8 @@ class Refiner {
   // when clear. Whether it was kept.
   bool tryShortcut(std::size_t r, std::size_t t0, std::size_t t1, std::size_t waits);
   // One large-neighbourhood step of the given kind; whether it was kept.
-  bool lns(Op kind);
-  std::vector<std::size_t> neighbourhood(Op kind);
+  bool lns(Op kind, std::size_t size);
+  std::vector<std::size_t> neighbourhood(Op kind, std::size_t size);
   std::size_t pickByDelay();
 
   const Scenario& scenario_;
@@ -339,9 +339,9 @@ bool Refiner::tryShortcut(std::size_t r, std::size_t t0, std::size_t t1, std::si
   return true;
 }
 
-std::vector<std::size_t> Refiner::neighbourhood(Op kind) {
+std::vector<std::size_t> Refiner::neighbourhood(Op kind, std::size_t size) {
   const std::size_t n = paths_.size();
-  const std::size_t k = std::min(settings_.neighbourhood, n);
+  const std::size_t k = std::min(size, n);
   std::vector<std::size_t> out;
   auto add = [&](std::size_t r) {
     if (out.size() < k && std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
@@ -396,8 +396,8 @@ std::vector<std::size_t> Refiner::neighbourhood(Op kind) {
   return out;
 }
 
-bool Refiner::lns(Op kind) {
-  std::vector<std::size_t> group = neighbourhood(kind);
+bool Refiner::lns(Op kind, std::size_t size) {
+  std::vector<std::size_t> group = neighbourhood(kind, size);
   if (group.empty()) return false;
   ++report_.lns_tries;
   if (!roadmaps_)
@@ -513,18 +513,30 @@ RefineReport Refiner::run() {
   score.fill(std::numeric_limits<double>::infinity());
   std::array<bool, kOps> on{settings_.shortcuts, settings_.lns, settings_.lns, settings_.lns};
   if (paths_.size() < 2) on[kLnsAgent] = on[kLnsPoint] = false;
-  while (!stop() && soc_ > report_.lower_bound) {
-    std::vector<int> choices;
-    for (int o = 0; o < kOps; ++o)
-      if (on[static_cast<std::size_t>(o)]) choices.push_back(o);
-    if (choices.empty()) break;
-    int op = choices[uniformIndex(rng_, choices.size())];
+  // Neighbourhoods of 2, 4 or 8 robots (at most settings.neighbourhood),
+  // chosen the same way: a larger one finds more, a smaller one is cheaper.
+  std::vector<std::size_t> sizes;
+  for (std::size_t k = 2; k <= std::max<std::size_t>(2, settings_.neighbourhood); k *= 2)
+    sizes.push_back(std::min(k, settings_.neighbourhood));
+  std::vector<double> size_score(sizes.size(), std::numeric_limits<double>::infinity());
+  auto choose = [&](const auto& scores, const std::vector<std::size_t>& among) {
+    std::size_t pick = among[uniformIndex(rng_, among.size())];
     if (uniformIndex(rng_, 6) != 0)
-      for (int o : choices)
-        if (score[static_cast<std::size_t>(o)] > score[static_cast<std::size_t>(op)]) op = o;
+      for (std::size_t o : among)
+        if (scores[o] > scores[pick]) pick = o;
+    return pick;
+  };
+  auto update = [](double& s, double value) { s = std::isinf(s) ? value : 0.8 * s + 0.2 * value; };
+  std::vector<std::size_t> ops, size_index(sizes.size());
+  std::iota(size_index.begin(), size_index.end(), std::size_t{0});
+  for (std::size_t o = 0; o < kOps; ++o)
+    if (on[o]) ops.push_back(o);
+  while (!ops.empty() && !stop() && soc_ > report_.lower_bound) {
+    const std::size_t op = choose(score, ops);
     ++report_.iterations;
     const std::uint64_t work0 = t_work_done;
     const std::size_t before = soc_, makespan_before = makespan_;
+    std::size_t si = 0;
     bool kept = false;
     if (op == kShortcut) {
       const std::size_t r = pickByDelay();
@@ -532,15 +544,16 @@ RefineReport Refiner::run() {
       kept = shortcut(r);
       if (kept) ++report_.shortcut_improvements;
     } else {
-      kept = lns(static_cast<Op>(op));
+      si = choose(size_score, size_index);
+      kept = lns(static_cast<Op>(op), sizes[si]);
       if (kept) ++report_.lns_improvements;
     }
     if (kept) improved();
     const double work = static_cast<double>(t_work_done - work0) + 1.0;
     const double gain = static_cast<double>(before) - static_cast<double>(soc_) +
                         0.5 * (static_cast<double>(makespan_before) - static_cast<double>(makespan_));
-    double& s = score[static_cast<std::size_t>(op)];
-    s = std::isinf(s) ? gain / work : 0.8 * s + 0.2 * gain / work;
+    update(score[op], gain / work);
+    if (op != kShortcut) update(size_score[si], gain / work);
   }
   report_.final_sum_of_costs = soc_;
   report_.final_makespan = makespan_;

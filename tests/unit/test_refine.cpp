@@ -53,10 +53,12 @@ std::size_t refineMakespan(const std::vector<Path>& paths) {
 
 // Refines with a budget of work and iterations, nothing of wall-clock time:
 // the same result on any machine.
-RefineReport refineCounted(const Scenario& s, std::vector<Path>& paths, std::uint64_t seed, std::size_t iterations) {
+RefineReport refineCounted(const Scenario& s, std::vector<Path>& paths, std::uint64_t seed, std::size_t iterations,
+                           bool lns = true) {
   const CollisionWorld world(s);
   const RobotModels models(s);
   RefineSettings rs;
+  rs.lns = lns;
   rs.seed = seed;
   rs.seconds = 1000;  // of work (kWorkPerBudgetSecond units a second): never reached here
   rs.max_iterations = iterations;
@@ -92,6 +94,8 @@ Path refinePolyline(const std::vector<std::vector<double>>& points) {
 }  // namespace
 
 TEST_CASE("Refinement makes a detour with needless waits strictly shorter, and keeps clear of a standing robot") {
+ for (bool lns : {false, true}) {
+  CAPTURE(lns);
   Scenario s;
   s.name = "refine-detour";
   s.workspace = {{0, 0}, {12, 12}};
@@ -103,7 +107,8 @@ TEST_CASE("Refinement makes a detour with needless waits strictly shorter, and k
   std::vector<Path> paths{a, test::line({{6, 6, 0}})};
   REQUIRE(refineValid(s, paths));
   const std::size_t before = refineSoc(paths);
-  const RefineReport rep = refineCounted(s, paths, 1, 400);
+  const RefineReport rep = refineCounted(s, paths, 1, 400, lns);
+  MESSAGE(refineSoc(paths));
   CHECK(refineValid(s, paths));
   CHECK(rep.first_sum_of_costs == before);
   CHECK(rep.final_sum_of_costs == refineSoc(paths));
@@ -116,6 +121,7 @@ TEST_CASE("Refinement makes a detour with needless waits strictly shorter, and k
   CHECK(paths[1].size() == 1);  // b had nothing to gain
   CHECK(rep.history.size() == rep.shortcut_improvements + rep.lns_improvements);
   for (std::size_t i = 1; i < rep.history.size(); ++i) CHECK(rep.history[i][1] < rep.history[i - 1][1]);
+ }
 }
 
 TEST_CASE("Refinement never returns an invalid or a costlier plan, on random mobile robots and arms") {
