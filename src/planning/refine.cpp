@@ -256,9 +256,12 @@ bool Refiner::lns(Op kind, std::size_t size) {
   sub.t_start = 0;
   sub.t_end = makespan_;
   sub.whole_problem = true;
+  // One priority order, and a search cut short: one that succeeds seldom
+  // needs many expansions, and one that cannot succeed would otherwise
+  // explore every (vertex, step) pair within the horizon.
   DecoupledSettings ds;
-  ds.time_budget_s = 1.0;
-  ds.max_expansions = 200000;
+  ds.time_budget_s = 0.5;
+  ds.max_expansions = 30000;
   ds.expansions_per_horizon_step = 0;
   ds.max_orders = 1;
   ds.horizon_windows = 1.0;
