@@ -1,6 +1,7 @@
 #include "earc/planning/planner.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +10,8 @@
 #include "earc/planning/compact.hpp"
 #include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/methods.hpp"
+#include "earc/planning/refine.hpp"
+#include "earc/planning/roadmap.hpp"
 #include "earc/util/random.hpp"
 #include "earc/util/version.hpp"
 #include "earc/validate/validator.hpp"
@@ -191,6 +194,67 @@ void compactResult(const Scenario& scenario, const PlannerSettings& settings, Pl
   result.stats["planning_time_s"] = spent + s;
 }
 
+// refinePlan on a validated result (PlannerSettings::refine_s), within
+// the plan's time limit; the refined plan is validated again and kept only
+// if it passes. planning_time_s stays the time to the first valid plan;
+// "refine" says what refinement did and when (times on the same clock).
+void refineResult(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result,
+                  ValidationReport& report, const ValidatorSettings& vs) {
+  Stopwatch clock;
+  double first_s = 0.0;
+  if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
+    first_s = result.stats["planning_time_s"].get<double>();
+  const std::vector<Path> first = result.solution.paths;
+  const RobotModels models(scenario);
+  const CollisionWorld world(scenario);
+  const Deadline deadline =
+      Deadline(std::max(0.0, settings.time_limit_s - first_s)).withWorkBudgets(settings.work_budgets);
+  RefineSettings rs;
+  rs.seconds = settings.refine_s;
+  rs.seed = splitSeed(settings.seed, 0x7ef1e);
+  rs.roadmap_samples = settings.roadmap_samples;
+  rs.roadmap_neighbors = settings.roadmap_neighbors;
+  rs.roadmap_seed = splitSeed(settings.seed, 1);  // the methods' roadmaps, as a cache keeps them
+  rs.roadmap_cache = settings.roadmap_cache;
+  const double start = first_s + clock.seconds();
+  const RefineReport rep = refinePlan(scenario, world, models.raw, result.solution.paths, rs, deadline);
+  nlohmann::json history = nlohmann::json::array();
+  history.push_back({first_s, rep.first_sum_of_costs, rep.first_makespan});
+  for (const auto& h : rep.history)
+    history.push_back({start + h[0], static_cast<std::size_t>(h[1]), static_cast<std::size_t>(h[2])});
+  nlohmann::json j = {{"first_sum_of_costs", rep.first_sum_of_costs},
+                      {"first_makespan", rep.first_makespan},
+                      {"first_s", first_s},
+                      {"final_sum_of_costs", rep.final_sum_of_costs},
+                      {"final_makespan", rep.final_makespan},
+                      {"final_s", rep.history.empty() ? first_s : start + rep.final_s},
+                      {"budget_s", settings.refine_s},
+                      {"lower_bound", rep.lower_bound},
+                      {"iterations", rep.iterations},
+                      {"shortcut_tries", rep.shortcut_tries},
+                      {"shortcut_improvements", rep.shortcut_improvements},
+                      {"lns_tries", rep.lns_tries},
+                      {"lns_improvements", rep.lns_improvements},
+                      {"lns_failed", rep.lns_failed},
+                      {"history", history}};
+  if (!rep.history.empty()) {
+    ValidationReport again = validateSolution(scenario, result.solution, vs);
+    if (again.valid) {
+      report = std::move(again);
+    } else {
+      // Refinement checks every change it keeps; should the refined plan
+      // not validate all the same, the first plan stands, and says so.
+      j["rejected"] = again.violations.empty() ? "invalid" : again.violations.front().detail;
+      j["final_sum_of_costs"] = rep.first_sum_of_costs;
+      j["final_makespan"] = rep.first_makespan;
+      j["final_s"] = first_s;
+      result.solution.paths = first;
+    }
+  }
+  j["seconds_spent"] = clock.seconds();
+  result.stats["refine"] = std::move(j);
+}
+
 }  // namespace
 
 Scenario requireRobots(Scenario scenario, const std::string& source) {
@@ -198,8 +262,16 @@ Scenario requireRobots(Scenario scenario, const std::string& source) {
   return scenario;
 }
 
-PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
+PlanResult plan(const Scenario& scenario, const PlannerSettings& given, exp::ExperienceStore* store) {
   PlanResult result;
+  // Refinement replans on the methods' roadmaps: kept from planning when
+  // no cache outlives the plan (the same plan either way, RoadmapCache).
+  PlannerSettings settings = given;
+  std::unique_ptr<RoadmapCache> roadmaps_for_refining;
+  if (settings.refine_s > 0 && !settings.roadmap_cache) {
+    roadmaps_for_refining = std::make_unique<RoadmapCache>(std::size_t{256} << 20);
+    settings.roadmap_cache = roadmaps_for_refining.get();
+  }
   if (!refuseTooLarge(scenario, settings, result)) {
     switch (settings.method) {
       case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
@@ -237,6 +309,7 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
       result.solution.paths = std::move(uncompacted);
       report = validateSolution(scenario, result.solution, vs);
     }
+    if (report.valid && settings.refine_s > 0) refineResult(scenario, settings, result, report, vs);
     if (!report.valid) {
       result.solution.solved = false;
       result.failures.insert(FailureCause::InvalidResult);

@@ -76,6 +76,11 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
     if (!c.is_boolean()) throw badField("compact", "must be true or false");
     s.compact = c.get<bool>();
   }
+  if (const json& r = field(request, "refine"); !r.is_null()) {
+    if (!r.is_number() || !std::isfinite(r.get<double>()) || r.get<double>() < 0)
+      throw badField("refine", "must be a number of seconds >= 0 (0: off)");
+    s.refine_s = r.get<double>();
+  }
   if (const json& w = field(request, "window"); !w.is_null()) {
     if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
@@ -174,7 +179,7 @@ json Service::handle(const json& request) {
     json response;
     if (name == "plan") {
       requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
-                                 "deterministic", "compact", "window", "db_k", "db_repair_max", "db_max_stretch"});
+                                 "deterministic", "compact", "refine", "window", "db_k", "db_repair_max", "db_max_stretch"});
       response = plan(request);
     } else if (name == "ping") {
       requireKnownKeys(request, {"id", "op"});

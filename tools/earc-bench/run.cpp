@@ -4,7 +4,7 @@
 //     [--methods earc,arc,lightning,prioritized,coupled,lacam] [--trials N]
 //     [--time-limit S] [--seed S] [--results FILE.sqlite] [--db-mobile FILE]
 //     [--db-arms FILE] [--lightning-dir DIR] [--jobs N] [--full]
-//     [--method-arg METHOD=ARG]... [SCENARIO...]
+//     [--method-arg METHOD=ARG]... [--refine S] [SCENARIO...]
 //
 // Scenario files given instead of suites are the trials (suite "files",
 // one trial per file and method).
@@ -33,6 +33,7 @@ struct RunCli {
   bench::RunOptions run;
   std::string suites, robots, methods;
   std::vector<std::string> method_args;  // METHOD=ARG
+  double refine = 0.0;                   // --refine S, passed to every plan
   bool full = false;
 };
 
@@ -156,6 +157,10 @@ void setupRun(CLI::App& app) {
   cmd->add_option("--method-arg", o->method_args,
                   "METHOD=ARG: one argument added to every earc-plan plan of METHOD and recorded with its trials "
                   "(repeatable: earc=--db-k=5 arc=--window=4; an option and its value as two: earc=--window earc=4)");
+  cmd->add_option("--refine", o->refine,
+                  "Seconds each plan spends refining its first valid plan (earc-plan plan --refine, within the time "
+                  "limit; recorded with the trials as a method argument; default 0: off)")
+      ->check(earc::cli::kFiniteNonNegative);
   auto* full = cmd->add_flag("--full", o->full, "The paper's experiments: its four suites, all robot counts and methods, 20 trials per cell "
                 "(with --suites: those suites instead)");
   cmd->add_flag("--learn", r.learn, "Let E-ARC and Lightning add to their databases during trials (default: fixed databases)");
@@ -186,6 +191,8 @@ void setupRun(CLI::App& app) {
     if (robots->count()) r.robots = parseCounts(o->robots);
     if (methods->count()) r.methods = bench::splitOptionList(o->methods, "--methods");
     r.method_args = parseMethodArgs(o->method_args);
+    if (o->refine > 0)
+      for (const std::string& m : r.methods) r.method_args[m].push_back("--refine=" + exactNumber(o->refine));
     if (r.suites.empty()) throw InputError("", "--suites", "no suite given");
     if (r.methods.empty()) throw InputError("", "--methods", "no method given");
     bench::RunSummary s = bench::runBenchmark(r, std::cout);

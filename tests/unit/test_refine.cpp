@@ -1,0 +1,214 @@
+// Anytime refinement: shortcuts and large-neighbourhood search never make a
+// valid plan invalid or costlier, make a wasteful one shorter, and give the
+// same plan for the same seed when their budgets count work.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "earc/collision/collision_world.hpp"
+#include "earc/gen/generators.hpp"
+#include "earc/planning/planner.hpp"
+#include "earc/planning/refine.hpp"
+#include "earc/validate/validator.hpp"
+#include "support.hpp"
+
+using namespace earc;
+
+namespace {
+
+RobotSpec refineDisc(const std::string& name, std::vector<double> start, std::vector<double> goal) {
+  RobotSpec s = RobotSpec::mobileDisc(name, 0.3);
+  s.start = std::move(start);
+  s.goal = std::move(goal);
+  return s;
+}
+
+Solution refineSolution(const Scenario& scenario, const std::vector<Path>& paths) {
+  Solution sol;
+  sol.solved = true;
+  sol.paths = paths;
+  sol.scenario = scenario.name;
+  sol.nameRobots(scenario);
+  return sol;
+}
+
+bool refineValid(const Scenario& scenario, const std::vector<Path>& paths) {
+  const ValidationReport rep = validateSolution(scenario, refineSolution(scenario, paths));
+  if (!rep.valid && !rep.violations.empty()) MESSAGE(rep.violations.front().detail);
+  return rep.valid;
+}
+
+std::size_t refineSoc(const std::vector<Path>& paths) {
+  std::size_t s = 0;
+  for (const Path& p : paths) s += p.size() - 1;
+  return s;
+}
+
+std::size_t refineMakespan(const std::vector<Path>& paths) {
+  std::size_t m = 0;
+  for (const Path& p : paths) m = std::max(m, p.size() - 1);
+  return m;
+}
+
+// Refines with a budget of work and iterations, nothing of wall-clock time:
+// the same result on any machine.
+RefineReport refineCounted(const Scenario& s, std::vector<Path>& paths, std::uint64_t seed, std::size_t iterations,
+                           bool lns = true) {
+  const CollisionWorld world(s);
+  const RobotModels models(s);
+  RefineSettings rs;
+  rs.lns = lns;
+  rs.seed = seed;
+  rs.seconds = 1000;  // of work (kWorkPerBudgetSecond units a second): never reached here
+  rs.max_iterations = iterations;
+  return refinePlan(s, world, models.raw, paths, rs, Deadline().withWorkBudgets(true));
+}
+
+// `waits` copies of the path's state at step `at` inserted there.
+Path refineWaitAt(const Path& p, std::size_t at, int waits) {
+  Path out(p.dim());
+  for (std::size_t t = 0; t < p.size(); ++t) {
+    out.push(p.at(t));
+    if (t == at)
+      for (int k = 0; k < waits; ++k) out.push(p.at(t));
+  }
+  return out;
+}
+
+// Straight pieces through the given points, each at full speed (steps of
+// at most 0.05, the default resolution).
+Path refinePolyline(const std::vector<std::vector<double>>& points) {
+  Path p(3);
+  p.push(points.front().data());
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const auto& a = points[i - 1];
+    const auto& b = points[i];
+    const int n = static_cast<int>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / 0.05 - 1e-9));
+    const Path piece = test::line(a, b, n + 1);
+    p.append(piece, 1);
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Refinement makes a detour with needless waits strictly shorter, and keeps clear of a standing robot") {
+ for (bool lns : {false, true}) {
+  CAPTURE(lns);
+  Scenario s;
+  s.name = "refine-detour";
+  s.workspace = {{0, 0}, {12, 12}};
+  // b stands still in the middle of a's straight way; a detours far
+  // around it and waits twice on the way for nothing.
+  s.robots = {refineDisc("a", {1, 6, 0}, {11, 6, 0}), refineDisc("b", {6, 6, 0}, {6, 6, 0})};
+  Path a = refinePolyline({{1, 6, 0}, {2, 10, 0}, {10, 10, 0}, {11, 6, 0}});
+  a = refineWaitAt(refineWaitAt(a, 30, 40), 200, 25);
+  std::vector<Path> paths{a, test::line({{6, 6, 0}})};
+  REQUIRE(refineValid(s, paths));
+  const std::size_t before = refineSoc(paths);
+  const RefineReport rep = refineCounted(s, paths, 1, 400, lns);
+  MESSAGE(refineSoc(paths));
+  CHECK(refineValid(s, paths));
+  CHECK(rep.first_sum_of_costs == before);
+  CHECK(rep.final_sum_of_costs == refineSoc(paths));
+  CHECK(rep.final_sum_of_costs < before);
+  // The waits alone are 65 steps; the straight line through b is 200
+  // steps, and the way around b's disc is not much longer.
+  CHECK(refineSoc(paths) + 65 < before);
+  CHECK(refineSoc(paths) < 260);
+  CHECK(rep.shortcut_improvements + rep.lns_improvements > 0);
+  CHECK(paths[1].size() == 1);  // b had nothing to gain
+  CHECK(rep.history.size() == rep.shortcut_improvements + rep.lns_improvements);
+  for (std::size_t i = 1; i < rep.history.size(); ++i) CHECK(rep.history[i][1] < rep.history[i - 1][1]);
+ }
+}
+
+TEST_CASE("Refinement never returns an invalid or a costlier plan, on random mobile robots and arms") {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    gen::MobileSettings ms;
+    ms.robots = 8;
+    ms.obstacles = 8;
+    ms.workspace = 12;
+    ms.seed = seed;
+    gen::ArmSettings as;
+    as.robots = 4;
+    as.obstacles = gen::defaultArmObstacles(4);
+    as.seed = seed;
+    for (const Scenario& s : {gen::generateMobile(ms), gen::generateArms(as)}) {
+      CAPTURE(s.name);
+      PlannerSettings settings;
+      settings.method = Method::Prioritized;
+      settings.time_limit_s = 60;
+      settings.seed = seed;
+      const PlanResult first = plan(s, settings);
+      if (!first.solution.solved) continue;
+      std::vector<Path> paths = first.solution.paths;
+      const std::size_t soc = refineSoc(paths), makespan = refineMakespan(paths);
+      const RefineReport rep = refineCounted(s, paths, seed, 60);
+      CHECK(refineValid(s, paths));
+      CHECK(refineSoc(paths) <= soc);
+      CHECK(refineMakespan(paths) <= makespan);
+      CHECK(rep.final_sum_of_costs == refineSoc(paths));
+      CHECK(rep.final_makespan == refineMakespan(paths));
+      CHECK(rep.lower_bound <= refineSoc(paths));
+      for (std::size_t r = 0; r < paths.size(); ++r) {
+        CHECK(std::equal(paths[r].at(0), paths[r].at(0) + paths[r].dim(), first.solution.paths[r].at(0)));
+        CHECK(std::equal(paths[r].back(), paths[r].back() + paths[r].dim(), first.solution.paths[r].back()));
+      }
+    }
+  }
+}
+
+TEST_CASE("Refinement with the same seed and counted budgets gives the same plan") {
+  gen::MobileSettings ms;
+  ms.robots = 10;
+  ms.obstacles = 6;
+  ms.workspace = 12;
+  ms.seed = 5;
+  const Scenario s = gen::generateMobile(ms);
+  PlannerSettings settings;
+  settings.method = Method::Prioritized;
+  const PlanResult first = plan(s, settings);
+  REQUIRE(first.solution.solved);
+  std::vector<Path> one = first.solution.paths, two = first.solution.paths;
+  const RefineReport a = refineCounted(s, one, 7, 80);
+  const RefineReport b = refineCounted(s, two, 7, 80);
+  CHECK(one == two);
+  CHECK(a.final_sum_of_costs == b.final_sum_of_costs);
+  CHECK(a.iterations == b.iterations);
+  CHECK(a.lns_tries == b.lns_tries);
+  CHECK(a.shortcut_improvements == b.shortcut_improvements);
+  CHECK(a.final_sum_of_costs < a.first_sum_of_costs);  // there was something to refine
+}
+
+TEST_CASE("Refinement through plan(): the stats say what it did and the plan returned validates") {
+  gen::MobileSettings ms;
+  ms.robots = 8;
+  ms.obstacles = 6;
+  ms.workspace = 12;
+  ms.seed = 4;
+  const Scenario s = gen::generateMobile(ms);
+  PlannerSettings settings;
+  settings.method = Method::Arc;
+  settings.work_budgets = true;
+  settings.refine_s = 0.3;
+  const PlanResult r = plan(s, settings);
+  REQUIRE(r.solution.solved);
+  REQUIRE(r.stats.contains("refine"));
+  const auto& st = r.stats["refine"];
+  CHECK_FALSE(st.contains("rejected"));
+  CHECK(st["final_sum_of_costs"] == r.stats["sum_of_costs"]);
+  CHECK(st["final_makespan"] == r.stats["makespan"]);
+  CHECK(st["final_sum_of_costs"].get<long>() <= st["first_sum_of_costs"].get<long>());
+  CHECK(st["first_s"] == r.stats["planning_time_s"]);
+  CHECK(st["final_s"].get<double>() >= st["first_s"].get<double>());
+  CHECK(st["history"].size() >= 1);
+  CHECK(st["history"][0][1] == st["first_sum_of_costs"]);
+  CHECK(st["history"].back()[1] == st["final_sum_of_costs"]);
+  CHECK(st["seconds_spent"].get<double>() >= 0);
+  CHECK(refineValid(s, r.solution.paths));
+  // Off by default: no stats, the plan as planned.
+  settings.refine_s = 0;
+  CHECK_FALSE(plan(s, settings).stats.contains("refine"));
+}
