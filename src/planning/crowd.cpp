@@ -100,6 +100,17 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
   out.stats["first_solution_s"] = clock.seconds();
   std::vector<std::vector<int>> configs = r.configs;
   if (lattice_refine_s > 0) {
+    // The first plan's costs, for refinement's record of cost over time.
+    if (auto first = crowdPaths(rm, configs, rm.stepsPerEdge(), starts, goals)) {
+      std::size_t soc = 0, makespan = 0;
+      for (Path& p : *first) {
+        p.dropTrailingWaits();
+        soc += p.size() - 1;
+        makespan = std::max(makespan, p.size() - 1);
+      }
+      out.stats["first_sum_of_costs"] = soc;
+      out.stats["first_makespan"] = makespan;
+    }
     Stopwatch lns;
     out.stats["lattice_refine"] = refineOnLattice(rm, configs, deadline.capped(lattice_refine_s), seed);
     out.stats["lattice_refine"]["s"] = lns.seconds();

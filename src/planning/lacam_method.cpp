@@ -6,6 +6,10 @@
 
 namespace earc {
 
+namespace {
+constexpr double kLatticeRefineShare = 0.8;
+}  // namespace
+
 PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) {
   Stopwatch clock;
   PlanResult result;
@@ -26,10 +30,12 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) 
     starts.push_back(scenario.robots[r].start);
     goals.push_back(scenario.robots[r].goal);
   }
-  // With --refine, half of its time goes to shortening the plan on the
-  // roadmap, where a space-time search is cheap; the rest to refinePlan.
+  // With --refine, most of its time goes to shortening the plan on the
+  // roadmap, where a space-time search is cheap next to refinePlan's on
+  // the timed paths; refinePlan takes the rest (shortcuts off the axes).
+  const double setup_s = clock.seconds();
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed,
-                               0.5 * settings.refine_s);
+                               kLatticeRefineShare * settings.refine_s);
   result.stats["lacam"] = out.stats;
   if (out.paths) {
     result.solution.solved = true;
@@ -38,7 +44,9 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) 
     result.failures.insert(out.timed_out ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
     result.stats["detail"] = out.why;
   }
-  result.stats["planning_time_s"] = clock.seconds();
+  // With a lattice refinement, the first plan was found before it.
+  result.stats["planning_time_s"] =
+      out.stats.contains("lattice_refine") ? setup_s + out.stats["first_solution_s"].get<double>() : clock.seconds();
   return result;
 }
 

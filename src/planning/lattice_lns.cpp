@@ -14,17 +14,17 @@ namespace {
 
 using VertexPath = std::vector<int>;  // a vertex per roadmap step; then the last, for ever
 
-int at(const VertexPath& p, std::size_t t) { return t < p.size() ? p[t] : p.back(); }
+int vertexAt(const VertexPath& p, std::size_t t) { return t < p.size() ? p[t] : p.back(); }
 
 // Steps until the robot is at its goal for good (trailing stays dropped).
-void trim(VertexPath& p) {
+void dropStays(VertexPath& p) {
   while (p.size() > 1 && p[p.size() - 2] == p.back()) p.pop_back();
 }
 
 // Who stands where at every step, for the robots whose paths are in.
-class Occupancy {
+class LatticeOccupancy {
  public:
-  Occupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths) : rm_(rm), paths_(paths) {
+  LatticeOccupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths) : rm_(rm), paths_(paths) {
     std::size_t h = 1;
     for (const auto& p : paths) h = std::max(h, p.size());
     grow(h);
@@ -34,12 +34,12 @@ class Occupancy {
   void put(int i) {
     const VertexPath& p = paths_[static_cast<std::size_t>(i)];
     grow(p.size());
-    for (std::size_t t = 0; t < occ_.size(); ++t) occ_[t][static_cast<std::size_t>(at(p, t))] = i;
+    for (std::size_t t = 0; t < occ_.size(); ++t) occ_[t][static_cast<std::size_t>(vertexAt(p, t))] = i;
   }
   void remove(int i) {
     const VertexPath& p = paths_[static_cast<std::size_t>(i)];
     for (std::size_t t = 0; t < occ_.size(); ++t) {
-      int& o = occ_[t][static_cast<std::size_t>(at(p, t))];
+      int& o = occ_[t][static_cast<std::size_t>(vertexAt(p, t))];
       if (o == i) o = -1;
     }
   }
@@ -51,7 +51,7 @@ class Occupancy {
     for (int w : rm_.near(u)) {
       const int j = now[static_cast<std::size_t>(w)];
       if (j < 0 || j == i) continue;
-      if (rm_.conflict(i, {u, v}, j, {w, at(paths_[static_cast<std::size_t>(j)], t + 1)})) return true;
+      if (rm_.conflict(i, {u, v}, j, {w, vertexAt(paths_[static_cast<std::size_t>(j)], t + 1)})) return true;
     }
     return false;
   }
@@ -74,8 +74,8 @@ class Occupancy {
 
 // Space-time A* for robot i against the occupancy; nothing when no path
 // arrives by `limit` steps or the deadline passes.
-// Closed (vertex, step) pairs, stamped so that a search clears nothing.
-struct Closed {
+// StepStamps (vertex, step) pairs, stamped so that a search clears nothing.
+struct StepStamps {
   std::vector<std::uint32_t> stamp;
   std::uint32_t now = 0;
   void reset(std::size_t size) {
@@ -93,8 +93,8 @@ struct Closed {
   }
 };
 
-std::optional<VertexPath> spaceTimeAStar(const CrowdRoadmap& rm, const Occupancy& occ, int i, std::size_t limit,
-                                         const Deadline& deadline, Closed& closed) {
+std::optional<VertexPath> spaceTimeAStar(const CrowdRoadmap& rm, const LatticeOccupancy& occ, int i, std::size_t limit,
+                                         const Deadline& deadline, StepStamps& closed) {
   struct Node {
     int v;
     std::size_t t;
@@ -136,7 +136,7 @@ std::optional<VertexPath> spaceTimeAStar(const CrowdRoadmap& rm, const Occupancy
   return std::nullopt;
 }
 
-long long cost(const VertexPath& p) { return static_cast<long long>(p.size()) - 1; }
+long long pathCost(const VertexPath& p) { return static_cast<long long>(p.size()) - 1; }
 
 }  // namespace
 
@@ -145,8 +145,8 @@ long long latticeSumOfCosts(const CrowdRoadmap& rm, const std::vector<std::vecto
   for (int i = 0; i < rm.robotCount(); ++i) {
     VertexPath p;
     for (const auto& c : configs) p.push_back(c[static_cast<std::size_t>(i)]);
-    trim(p);
-    soc += cost(p);
+    dropStays(p);
+    soc += pathCost(p);
   }
   return soc;
 }
@@ -157,19 +157,19 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
   std::vector<VertexPath> paths(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     for (const auto& c : configs) paths[static_cast<std::size_t>(i)].push_back(c[static_cast<std::size_t>(i)]);
-    trim(paths[static_cast<std::size_t>(i)]);
+    dropStays(paths[static_cast<std::size_t>(i)]);
   }
   long long soc = 0;
-  for (const auto& p : paths) soc += cost(p);
+  for (const auto& p : paths) soc += pathCost(p);
   const long long first = soc;
-  Occupancy occ(rm, paths);
-  Closed closed;
+  LatticeOccupancy occ(rm, paths);
+  StepStamps closed;
   std::mt19937_64 rng(splitSeed(seed, 11));
   int tried = 0, kept = 0;
   // Robots most delayed (steps beyond their own shortest way) first.
   std::vector<int> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
-  auto delay = [&](int i) { return cost(paths[static_cast<std::size_t>(i)]) - rm.distanceToGoal(i, rm.start(i)); };
+  auto delay = [&](int i) { return pathCost(paths[static_cast<std::size_t>(i)]) - rm.distanceToGoal(i, rm.start(i)); };
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delay(a) > delay(b); });
   // Replans `group` one after another (random order) and keeps the new
   // paths when they cost less; else puts the old ones back.
@@ -179,7 +179,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
     ++tried;
     long long before = 0;
     for (int i : group) {
-      before += cost(paths[static_cast<std::size_t>(i)]);
+      before += pathCost(paths[static_cast<std::size_t>(i)]);
       occ.remove(i);
     }
     std::vector<int> shuffled = group;
@@ -190,7 +190,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
     for (int i : shuffled) {
       const std::size_t limit = occ.horizon() + static_cast<std::size_t>(rm.distanceToGoal(i, rm.start(i))) + 16;
       auto p = spaceTimeAStar(rm, occ, i, limit, deadline, closed);
-      if (!p || (after += cost(*p)) >= before) {
+      if (!p || (after += pathCost(*p)) >= before) {
         ok = false;
         break;
       }
@@ -236,7 +236,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
         for (int i = 0; i < n; ++i) {
           const VertexPath& q = paths[static_cast<std::size_t>(i)];
           for (int w : rm.near(v))
-            if (at(q, t + dt) == w || (t >= dt && at(q, t - dt) == w)) add(i);
+            if (vertexAt(q, t + dt) == w || (t >= dt && vertexAt(q, t - dt) == w)) add(i);
         }
     }
     while (group.size() < std::min<std::size_t>(kNeighbourhood, static_cast<std::size_t>(n)))
@@ -250,7 +250,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
   for (const auto& p : paths) h = std::max(h, p.size());
   configs.assign(h, std::vector<int>(static_cast<std::size_t>(n)));
   for (std::size_t t = 0; t < h; ++t)
-    for (int i = 0; i < n; ++i) configs[t][static_cast<std::size_t>(i)] = at(paths[static_cast<std::size_t>(i)], t);
+    for (int i = 0; i < n; ++i) configs[t][static_cast<std::size_t>(i)] = vertexAt(paths[static_cast<std::size_t>(i)], t);
   return {{"sum_of_costs_before", first}, {"sum_of_costs_after", soc}, {"neighbourhoods", tried}, {"kept", kept}};
 }
 
