@@ -53,8 +53,7 @@ std::string median(std::vector<double> v, const char* format) {
 void readRefineStats(const nlohmann::json& stats, TrialRecord& t) {
   const auto r = stats.find("refine");
   if (r == stats.end() || !r->is_object()) return;
-  t.refine_first_time_s = seconds(*r, "first_time_s");
-  if (!t.refine_first_time_s) t.refine_first_time_s = seconds(*r, "first_solution_time_s");
+  t.refine_first_time_s = seconds(*r, "first_s");
   t.refine_first_sum_of_costs = count(*r, "first_sum_of_costs");
   t.refine_final_sum_of_costs = count(*r, "final_sum_of_costs");
   t.refine_final_makespan = count(*r, "final_makespan");

@@ -89,7 +89,7 @@ while [ \$# -gt 0 ]; do [ "\$1" = -o ] && out=\$2; shift; done
 exec "$PY" -c 'import json, sys
 d = json.load(open(sys.argv[1]))
 st = d["stats"]
-st["refine"] = {"first_time_s": 0.125, "first_sum_of_costs": st["sum_of_costs"] + 100,
+st["refine"] = {"first_s": 0.125, "first_sum_of_costs": st["sum_of_costs"] + 100,
                 "final_sum_of_costs": st["sum_of_costs"], "final_makespan": st["makespan"]}
 json.dump(d, open(sys.argv[1], "w"))' "\$out"
 FAKE

@@ -61,14 +61,14 @@ TEST_CASE("refine stats are read when a solution has them") {
   TrialRecord t;
   readRefineStats(nlohmann::json::parse(R"({"sum_of_costs": 90})"), t);
   CHECK_FALSE(t.refine_final_sum_of_costs);
-  readRefineStats(nlohmann::json::parse(R"({"refine": {"first_time_s": 0.5, "first_sum_of_costs": 120,
+  readRefineStats(nlohmann::json::parse(R"({"refine": {"first_s": 0.5, "first_sum_of_costs": 120,
       "final_sum_of_costs": 90, "final_makespan": 40}})"), t);
   CHECK(t.refine_first_time_s == 0.5);
   CHECK(t.refine_first_sum_of_costs == 120);
   CHECK(t.refine_final_sum_of_costs == 90);
   CHECK(t.refine_final_makespan == 40);
   TrialRecord u;
-  readRefineStats(nlohmann::json::parse(R"({"refine": {"first_time_s": -1, "final_sum_of_costs": 2.5}})"), u);
+  readRefineStats(nlohmann::json::parse(R"({"refine": {"first_s": -1, "final_sum_of_costs": 2.5}})"), u);
   CHECK_FALSE(u.refine_first_time_s);
   CHECK_FALSE(u.refine_final_sum_of_costs);
 }
