@@ -10,6 +10,8 @@
 #include "earc/gen/generators.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/planning/refine.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/service/service.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 
@@ -211,4 +213,24 @@ TEST_CASE("Refinement through plan(): the stats say what it did and the plan ret
   // Off by default: no stats, the plan as planned.
   settings.refine_s = 0;
   CHECK_FALSE(plan(s, settings).stats.contains("refine"));
+}
+
+TEST_CASE("serve protocol: \"refine\" refines a request's plan, and a bad value is refused in one line") {
+  service::Service svc(nullptr, {});
+  const std::string file = EARC_SOURCE_DIR "/datasets/mobile-obst-16-s1.json";
+  for (const nlohmann::json& bad : {nlohmann::json(-1), nlohmann::json("1"), nlohmann::json(true)}) {
+    const auto r = nlohmann::json::parse(
+        svc.handleLine(nlohmann::json{{"scenario_file", file}, {"method", "prioritized"}, {"refine", bad}}.dump()));
+    CHECK(r["ok"] == false);
+    CHECK(r["error"].get<std::string>().find("$.refine: must be a number of seconds >= 0") != std::string::npos);
+  }
+  const auto r = nlohmann::json::parse(svc.handleLine(
+      nlohmann::json{{"scenario_file", file}, {"method", "prioritized"}, {"refine", 0.5}}.dump()));
+  REQUIRE(r["solved"] == true);
+  REQUIRE(r["stats"].contains("refine"));
+  CHECK(r["stats"]["sum_of_costs"] == r["stats"]["refine"]["final_sum_of_costs"]);
+  CHECK(r["stats"]["sum_of_costs"] <= r["stats"]["refine"]["first_sum_of_costs"]);
+  const Scenario scenario = loadScenario(file);
+  CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
+  svc.close();
 }
