@@ -245,6 +245,7 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, Pla
                       {"final_s", rep.history.empty() ? last_s : start + rep.final_s},
                       {"budget_s", settings.refine_s},
                       {"lower_bound", rep.lower_bound},
+                      {"retimed_steps", rep.retimed_steps},
                       {"iterations", rep.iterations},
                       {"shortcut_tries", rep.shortcut_tries},
                       {"shortcut_improvements", rep.shortcut_improvements},

@@ -10,6 +10,8 @@
 #include "earc/gen/generators.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/planning/refine.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/service/service.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 
@@ -94,34 +96,33 @@ Path refinePolyline(const std::vector<std::vector<double>>& points) {
 }  // namespace
 
 TEST_CASE("Refinement makes a detour with needless waits strictly shorter, and keeps clear of a standing robot") {
- for (bool lns : {false, true}) {
-  CAPTURE(lns);
-  Scenario s;
-  s.name = "refine-detour";
-  s.workspace = {{0, 0}, {12, 12}};
-  // b stands still in the middle of a's straight way; a detours far
-  // around it and waits twice on the way for nothing.
-  s.robots = {refineDisc("a", {1, 6, 0}, {11, 6, 0}), refineDisc("b", {6, 6, 0}, {6, 6, 0})};
-  Path a = refinePolyline({{1, 6, 0}, {2, 10, 0}, {10, 10, 0}, {11, 6, 0}});
-  a = refineWaitAt(refineWaitAt(a, 30, 40), 200, 25);
-  std::vector<Path> paths{a, test::line({{6, 6, 0}})};
-  REQUIRE(refineValid(s, paths));
-  const std::size_t before = refineSoc(paths);
-  const RefineReport rep = refineCounted(s, paths, 1, 400, lns);
-  MESSAGE(refineSoc(paths));
-  CHECK(refineValid(s, paths));
-  CHECK(rep.first_sum_of_costs == before);
-  CHECK(rep.final_sum_of_costs == refineSoc(paths));
-  CHECK(rep.final_sum_of_costs < before);
-  // The waits alone are 65 steps; the straight line through b is 200
-  // steps, and the way around b's disc is not much longer.
-  CHECK(refineSoc(paths) + 65 < before);
-  CHECK(refineSoc(paths) < 260);
-  CHECK(rep.shortcut_improvements + rep.lns_improvements > 0);
-  CHECK(paths[1].size() == 1);  // b had nothing to gain
-  CHECK(rep.history.size() == rep.shortcut_improvements + rep.lns_improvements);
-  for (std::size_t i = 1; i < rep.history.size(); ++i) CHECK(rep.history[i][1] < rep.history[i - 1][1]);
- }
+  for (bool lns : {false, true}) {  // shortcuts alone, and with neighbourhoods
+    CAPTURE(lns);
+    Scenario s;
+    s.name = "refine-detour";
+    s.workspace = {{0, 0}, {12, 12}};
+    // b stands still in the middle of a's straight way; a detours far
+    // around it and waits twice on the way for nothing.
+    s.robots = {refineDisc("a", {1, 6, 0}, {11, 6, 0}), refineDisc("b", {6, 6, 0}, {6, 6, 0})};
+    Path a = refinePolyline({{1, 6, 0}, {2, 10, 0}, {10, 10, 0}, {11, 6, 0}});
+    a = refineWaitAt(refineWaitAt(a, 30, 40), 200, 25);
+    std::vector<Path> paths{a, test::line({{6, 6, 0}})};
+    REQUIRE(refineValid(s, paths));
+    const std::size_t before = refineSoc(paths);
+    const RefineReport rep = refineCounted(s, paths, 1, 400, lns);
+    CHECK(refineValid(s, paths));
+    CHECK(rep.first_sum_of_costs == before);
+    CHECK(rep.final_sum_of_costs == refineSoc(paths));
+    CHECK(rep.final_sum_of_costs < before);
+    // The waits alone are 65 steps; the straight line through b is 200
+    // steps, and the way around b's disc is not much longer.
+    CHECK(refineSoc(paths) + 65 < before);
+    CHECK(refineSoc(paths) < 260);
+    CHECK(rep.shortcut_improvements + rep.lns_improvements > 0);
+    CHECK(paths[1].size() == 1);  // b had nothing to gain
+    CHECK(rep.history.size() == rep.shortcut_improvements + rep.lns_improvements + (rep.retimed_steps > 0 ? 1 : 0));
+    for (std::size_t i = 1; i < rep.history.size(); ++i) CHECK(rep.history[i][1] < rep.history[i - 1][1]);
+  }
 }
 
 TEST_CASE("Refinement never returns an invalid or a costlier plan, on random mobile robots and arms") {
@@ -211,4 +212,24 @@ TEST_CASE("Refinement through plan(): the stats say what it did and the plan ret
   // Off by default: no stats, the plan as planned.
   settings.refine_s = 0;
   CHECK_FALSE(plan(s, settings).stats.contains("refine"));
+}
+
+TEST_CASE("serve protocol: \"refine\" refines a request's plan, and a bad value is refused in one line") {
+  service::Service svc(nullptr, {});
+  const std::string file = EARC_SOURCE_DIR "/datasets/mobile-obst-16-s1.json";
+  for (const nlohmann::json& bad : {nlohmann::json(-1), nlohmann::json("1"), nlohmann::json(true)}) {
+    const auto r = nlohmann::json::parse(
+        svc.handleLine(nlohmann::json{{"scenario_file", file}, {"method", "prioritized"}, {"refine", bad}}.dump()));
+    CHECK(r["ok"] == false);
+    CHECK(r["error"].get<std::string>().find("$.refine: must be a number of seconds >= 0") != std::string::npos);
+  }
+  const auto r = nlohmann::json::parse(svc.handleLine(
+      nlohmann::json{{"scenario_file", file}, {"method", "prioritized"}, {"refine", 0.5}}.dump()));
+  REQUIRE(r["solved"] == true);
+  REQUIRE(r["stats"].contains("refine"));
+  CHECK(r["stats"]["sum_of_costs"] == r["stats"]["refine"]["final_sum_of_costs"]);
+  CHECK(r["stats"]["sum_of_costs"] <= r["stats"]["refine"]["first_sum_of_costs"]);
+  const Scenario scenario = loadScenario(file);
+  CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
+  svc.close();
 }

@@ -82,7 +82,8 @@ struct PlannerSettings {
   // "compact". Not part of any method as published; off by default.
   bool compact = false;
   // Anytime refinement (refinePlan, refine.hpp): seconds spent after the
-  // first valid plan improving it; 0: off. Stats "refine".
+  // first valid plan improving it, within time_limit_s; 0: off. Stats
+  // "refine"; planning_time_s stays the time to the first valid plan.
   double refine_s = 0.0;
   // Crowds: ARC and E-ARC hand a jam to the configuration-based crowd
   // solver (lacam.hpp) when their local solvers fail on it; false: never.

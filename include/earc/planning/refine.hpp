@@ -46,6 +46,7 @@ struct RefineReport {
   std::size_t lower_bound = 0;       // summed straight-line steps from start to goal
   double final_s = 0.0;              // seconds into refinement when the best plan was found
   double seconds_spent = 0.0;
+  std::size_t retimed_steps = 0;      // saved by first retiming every robot along its route (compactPlan)
   std::size_t iterations = 0;
   std::size_t shortcut_tries = 0, shortcut_improvements = 0;
   std::size_t lns_tries = 0, lns_improvements = 0, lns_failed = 0;
