@@ -228,6 +228,7 @@ class ArcRun {
   std::size_t jam_conflicts_since_handover_ = 0;
   nlohmann::json handovers_ = nlohmann::json::array();
   double crowd_s_ = 0.0;
+  Stopwatch plan_clock_;
 };
 
 // A jam: ARC's local solvers failed on a conflict's subproblem through
@@ -246,8 +247,7 @@ constexpr int kJamCappedGroups = 8;
 constexpr std::size_t kJamMinRecurrences = 4;
 constexpr std::size_t kFirstJam = 16;
 constexpr std::size_t kJamGrowth = 4;
-constexpr double kJamMinBudgetS = 1.0;
-constexpr double kJamBudgetShare = 0.25;
+constexpr double kJamMinBudgetS = 0.25;
 
 std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int>& robots) {
   Stopwatch sw;
@@ -259,9 +259,11 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
     starts.push_back(scenario_.robots[static_cast<std::size_t>(r)].start);
     goals.push_back(scenario_.robots[static_cast<std::size_t>(r)].goal);
   }
-  // A jam gets a share of the time left: a crowd solver stuck on a
-  // lattice that does not suit these robots must not take ARC's time.
-  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, kJamBudgetShare * deadline_.remaining()));
+  // A jam may take as long as the plan has taken so far: the crowd
+  // solver answers a jam it can solve in well under that, and one stuck
+  // on a lattice that does not suit these robots (a dense few box robots)
+  // must not take ARC's time.
+  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, plan_clock_.seconds()));
   CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
                                splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())));
   crowd_s_ += sw.seconds();
