@@ -234,7 +234,7 @@ class ArcRun {
 // A jam: ARC's local solvers failed on a conflict's subproblem through
 // kJamLevel window levels, or since the last jam kJamConflictsPerRobot
 // conflicts a robot came and went, kJamCappedGroups conflicts' groups
-// grew to the merge cap, or a sixteenth of the robots' count of conflicts
+// grew to the merge cap, or a thirty-second of the robots' count of conflicts
 // (at least kJamMinRecurrences) involved the last jam's robots. Its robots, the last jam's and those whose paths
 // pass nearest are planned together by the crowd solver from their starts
 // to their goals, the others left out; what their new paths meet is
@@ -338,7 +338,7 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   const bool jammed =
       crowd_ok_ && (conflicts_ - conflicts_at_handover_ > kJamConflictsPerRobot * static_cast<double>(paths_.size()) ||
                     capped_since_handover_ >= kJamCappedGroups ||
-                    jam_conflicts_since_handover_ > std::max<std::size_t>(kJamMinRecurrences, paths_.size() / 16));
+                    jam_conflicts_since_handover_ > std::max<std::size_t>(kJamMinRecurrences, paths_.size() / 32));
   for (int level = 0, tried = 0;;) {
     if (deadline_.expired()) return false;
     if (crowd_ok_ && (jammed || level >= kJamLevel))
