@@ -234,13 +234,14 @@ class ArcRun {
 // A jam: ARC's local solvers failed on a conflict's subproblem through
 // kJamLevel window levels, or since the last jam kJamConflictsPerRobot
 // conflicts a robot came and went, kJamCappedGroups conflicts' groups
-// grew to the merge cap, or a thirty-second of the robots' count of conflicts
-// (at least kJamMinRecurrences) involved the last jam's robots. Its robots, the last jam's and those whose paths
-// pass nearest are planned together by the crowd solver from their starts
-// to their goals, the others left out; what their new paths meet is
-// resolved as any conflict. The first jam takes at least a quarter of the
-// robots, each later one kJamGrowth times the last one's, so a crowd that
-// keeps jamming is planned whole after a few.
+// grew to the merge cap, or a thirty-second of the robots' count of
+// conflicts (at least kJamMinRecurrences) involved the last jam's robots.
+// Its robots, the last jam's and those whose paths pass nearest are
+// planned together by the crowd solver from their starts to their goals,
+// the others left out; what their new paths meet is resolved as any
+// conflict. The first jam takes at least a quarter of the robots, each
+// later one kJamGrowth times the last one's, so a crowd that keeps
+// jamming is planned whole after a few.
 constexpr int kJamLevel = 1;
 constexpr double kJamConflictsPerRobot = 3.0;
 constexpr int kJamCappedGroups = 8;
