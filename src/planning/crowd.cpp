@@ -122,9 +122,6 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
   return out;
 }
 
-}  // namespace earc
-
-namespace earc {
 
 std::vector<int> jamGroup(const std::vector<Path>& paths, std::vector<int> robots, const std::vector<int>& previous,
                           geo::Vec2 place, std::size_t size) {

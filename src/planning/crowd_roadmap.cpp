@@ -74,16 +74,12 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
         lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)] =
             addVertex(p, -1);
     }
-  auto at = [&](int c, int r) {
-    if (c < 0 || r < 0 || c >= cols_ || r >= rows_) return -1;
-    return lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
-  };
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
-      const int v = at(c, r);
+      const int v = latticeAt(c, r);
       if (v < 0) continue;
       for (auto [dc, dr] : {std::pair{1, 0}, std::pair{0, 1}}) {
-        const int w = at(c + dc, r + dr);
+        const int w = latticeAt(c + dc, r + dr);
         if (w >= 0 && world.bodyFree(geo::Body::capsule(pos_[static_cast<std::size_t>(v)],
                                                         pos_[static_cast<std::size_t>(w)], radius_)))
           addEdge(v, w);
@@ -104,6 +100,17 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
     if (dist_[i][static_cast<std::size_t>(start_[i])] >= kUnreachable)
       problem_ = "robot " + group_models_[i]->spec().name + ": no way from its start to its goal on the lattice of spacing " +
                  std::to_string(spacing_);
+}
+
+int CrowdRoadmap::latticeAt(int c, int r) const {
+  if (c < 0 || r < 0 || c >= cols_ || r >= rows_) return -1;
+  return lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+}
+
+void CrowdRoadmap::placesFrom(int i, int u, std::vector<int>& out) const {
+  out.assign(1, u);
+  for (int v : neighbours(u))
+    if (usableBy(i, v)) out.push_back(v);
 }
 
 int CrowdRoadmap::addVertex(geo::Vec2 p, int owner, double heading, bool start_side) {
@@ -134,8 +141,7 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
   const int r0 = static_cast<int>(std::floor((p.y - origin_.y) / spacing_));
   for (int r = r0; r <= r0 + 1; ++r)
     for (int c = c0; c <= c0 + 1; ++c) {
-      if (c < 0 || r < 0 || c >= cols_ || r >= rows_) continue;
-      const int v = lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+      const int v = latticeAt(c, r);
       if (v >= 0 && geo::norm(pos_[static_cast<std::size_t>(v)] - p) < 1e-9) return v;
     }
   const RobotModel& m = *group_models_[static_cast<std::size_t>(robot)];
@@ -157,8 +163,7 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
   constexpr int kReach = 3;
   for (int r = r0 - kReach; r <= r0 + kReach + 1; ++r)
     for (int c = c0 - kReach; c <= c0 + kReach + 1; ++c) {
-      if (c < 0 || r < 0 || c >= cols_ || r >= rows_) continue;
-      const int v = lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)];
+      const int v = latticeAt(c, r);
       if (v < 0) continue;
       const geo::Vec2 w = pos_[static_cast<std::size_t>(v)];
       const double d = geo::norm(w - p);

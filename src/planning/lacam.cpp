@@ -83,9 +83,7 @@ class Pibt {
   bool step(int i) {
     const int u = (*now_)[static_cast<std::size_t>(i)];
     std::vector<int> cands;
-    cands.push_back(u);
-    for (int v : rm_.neighbours(u))
-      if (rm_.usableBy(i, v)) cands.push_back(v);
+    rm_.placesFrom(i, u, cands);
     std::shuffle(cands.begin(), cands.end(), rng_);
     std::stable_sort(cands.begin(), cands.end(),
                      [&](int a, int b) { return rm_.distanceToGoal(i, a) < rm_.distanceToGoal(i, b); });
@@ -316,9 +314,7 @@ LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::ui
       // place it may go to, in random order.
       const int i = top->order[static_cast<std::size_t>(c->depth)];
       const int u = top->config[static_cast<std::size_t>(i)];
-      cands.assign(1, u);
-      for (int v : rm.neighbours(u))
-        if (rm.usableBy(i, v)) cands.push_back(v);
+      rm.placesFrom(i, u, cands);
       std::shuffle(cands.begin(), cands.end(), rng);
       for (int v : cands) top->tree.push_back(&constraints.emplace_back(Constraint{c, i, v, c->depth + 1}));
     }

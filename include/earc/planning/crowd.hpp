@@ -40,9 +40,6 @@ std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& roadmap, std::ve
                                             int per_step, const std::vector<std::vector<double>>& starts,
                                             const std::vector<std::vector<double>>& goals);
 
-}  // namespace earc
-
-namespace earc {
 
 // The robots ARC hands a jam to: `robots` (the conflict's group), then
 // `previous` (the last group handed over), then the others by how near their

@@ -52,6 +52,9 @@ class CrowdRoadmap {
   static constexpr int kUnreachable = 1 << 29;
   // Whether robot i may stand on v (lattice vertices and its own).
   bool usableBy(int i, int v) const { return owner(v) < 0 || owner(v) == i; }
+  // Where robot i may be one step after standing on u: u itself first,
+  // then the neighbours it may use. Thread-safe.
+  void placesFrom(int i, int u, std::vector<int>& out) const;
 
   // Whether robot i stepping m_i and robot j stepping m_j at once touch:
   // bounding discs, and real footprints at the validated instants where a
@@ -77,6 +80,7 @@ class CrowdRoadmap {
   const std::string& problem() const { return problem_; }
 
  private:
+  int latticeAt(int c, int r) const;  // vertex id, or -1 (blocked or outside)
   int addVertex(geo::Vec2 p, int owner, double heading = 0.0, bool start_side = false);
   void addEdge(int a, int b);
   int connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q, bool is_start);
