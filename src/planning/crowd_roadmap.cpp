@@ -29,7 +29,10 @@ bool gridWorld(const CollisionWorld& world) {
 
 }  // namespace
 
-double closestApproach(geo::Vec2 a0, geo::Vec2 a1, geo::Vec2 b0, geo::Vec2 b1) {
+namespace {
+
+// The squared closestApproach (no square root: the hot test compares it).
+double closestApproachSquared(geo::Vec2 a0, geo::Vec2 a1, geo::Vec2 b0, geo::Vec2 b1) {
   // The relative position d(s) = d0 + s (d1 - d0) is linear in s: its
   // smallest norm over [0, 1] is at the clamped projection of the origin.
   const geo::Vec2 d0 = a0 - b0;
@@ -37,7 +40,14 @@ double closestApproach(geo::Vec2 a0, geo::Vec2 a1, geo::Vec2 b0, geo::Vec2 b1) {
   const double len2 = geo::dot(dd, dd);
   double s = 0.0;
   if (len2 > 0.0) s = std::clamp(-geo::dot(d0, dd) / len2, 0.0, 1.0);
-  return geo::norm(d0 + dd * s);
+  const geo::Vec2 d = d0 + dd * s;
+  return geo::dot(d, d);
+}
+
+}  // namespace
+
+double closestApproach(geo::Vec2 a0, geo::Vec2 a1, geo::Vec2 b0, geo::Vec2 b1) {
+  return std::sqrt(closestApproachSquared(a0, a1, b0, b1));
 }
 
 CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
@@ -70,9 +80,12 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
       const geo::Vec2 p{origin_.x + c * spacing_, origin_.y + r * spacing_};
-      if (world.bodyFree(geo::Body::disc(p, radius_)))
+      if (world.bodyFree(geo::Body::disc(p, radius_))) {
         lattice_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)] =
             addVertex(p, -1);
+        cell_c_.back() = c;
+        cell_r_.back() = r;
+      }
     }
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
@@ -87,7 +100,8 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
     }
   longest_edge_ = spacing_;
   for (const RobotModel* m : group_models_)
-    steps_per_edge_ = std::max(steps_per_edge_, static_cast<int>(std::ceil(spacing_ / m->resolution().translation - 1e-9)));
+    steps_per_edge_ =
+        std::max(steps_per_edge_, static_cast<int>(std::ceil(spacing_ / m->resolution().translation - 1e-9)));
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const int ri = static_cast<int>(i);
     start_.push_back(connectOwn(world, ri, starts[i], true));
@@ -95,11 +109,12 @@ CrowdRoadmap::CrowdRoadmap(const CollisionWorld& world, const std::vector<const 
     goal_.push_back(geo::norm(s - g) < 1e-9 ? start_.back() : connectOwn(world, ri, goals[i], false));
   }
   buildNear();
+  buildLatticeConflicts();
   buildDistances();
   for (std::size_t i = 0; i < start_.size() && problem_.empty(); ++i)
     if (dist_[i][static_cast<std::size_t>(start_[i])] >= kUnreachable)
-      problem_ = "robot " + group_models_[i]->spec().name + ": no way from its start to its goal on the lattice of spacing " +
-                 std::to_string(spacing_);
+      problem_ = "robot " + group_models_[i]->spec().name +
+                 ": no way from its start to its goal on the lattice of spacing " + std::to_string(spacing_);
 }
 
 int CrowdRoadmap::latticeAt(int c, int r) const {
@@ -118,6 +133,8 @@ int CrowdRoadmap::addVertex(geo::Vec2 p, int owner, double heading, bool start_s
   owner_.push_back(owner);
   heading_.push_back(heading);
   start_side_.push_back(start_side ? 1 : 0);
+  cell_c_.push_back(-1);
+  cell_r_.push_back(-1);
   adj_.emplace_back();
   return static_cast<int>(pos_.size()) - 1;
 }
@@ -155,8 +172,10 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
     return true;
   };
   auto join = [&](int from, int to) {
-    if (is_start) adj_[static_cast<std::size_t>(from)].push_back(to);
-    else addEdge(from, to);
+    if (is_start)
+      adj_[static_cast<std::size_t>(from)].push_back(to);
+    else
+      addEdge(from, to);
   };
   const int own = addVertex(p, robot, q[2], is_start);
   std::vector<std::pair<double, int>> further;
@@ -180,7 +199,8 @@ int CrowdRoadmap::connectOwn(const CollisionWorld& world, int robot, const std::
     const int pieces = static_cast<int>(std::ceil(d / spacing_ - 1e-9));
     bool free = true;
     for (int k = 0; k < pieces && free; ++k)
-      free = motionFree(p + (w - p) * (static_cast<double>(k) / pieces), p + (w - p) * (static_cast<double>(k + 1) / pieces));
+      free = motionFree(p + (w - p) * (static_cast<double>(k) / pieces),
+                        p + (w - p) * (static_cast<double>(k + 1) / pieces));
     if (!free) continue;
     int prev = own;
     for (int k = 1; k < pieces; ++k) {
@@ -222,7 +242,8 @@ void CrowdRoadmap::buildNear() {
     for (int rr = r - 1; rr <= r + 1; ++rr)
       for (int cc = c - 1; cc <= c + 1; ++cc) {
         if (cc < 0 || rr < 0 || cc >= bc || rr >= br) continue;
-        for (int w : bucket[static_cast<std::size_t>(rr) * static_cast<std::size_t>(bc) + static_cast<std::size_t>(cc)]) {
+        for (int w :
+             bucket[static_cast<std::size_t>(rr) * static_cast<std::size_t>(bc) + static_cast<std::size_t>(cc)]) {
           const geo::Vec2 pw = pos_[static_cast<std::size_t>(w)];
           if (geo::norm(pw - pv) > reach) continue;
           bool meets = w == v;
@@ -284,9 +305,55 @@ int CrowdRoadmap::distanceToGoal(int i, int v) const {
 
 double CrowdRoadmap::headingAt(int v) const { return heading_[static_cast<std::size_t>(v)]; }
 
+// Two lattice robots' steps conflict or not by their cells' offsets
+// alone: a table of them all, computed once, answers the hot test.
+void CrowdRoadmap::buildLatticeConflicts() {
+  table_reach_ = static_cast<int>(std::ceil((2.0 * radius_ + 2.0 * longest_edge_) / spacing_));
+  const int side = 2 * table_reach_ + 1;
+  lattice_conflicts_.assign(static_cast<std::size_t>(5 * side * side * 5), 0);
+  static constexpr int kStep[5][2] = {{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  const double touch = 2.0 * radius_ + 1e-9;
+  for (int a = 0; a < 5; ++a)
+    for (int dr = -table_reach_; dr <= table_reach_; ++dr)
+      for (int dc = -table_reach_; dc <= table_reach_; ++dc)
+        for (int b = 0; b < 5; ++b) {
+          const geo::Vec2 a0{0.0, 0.0}, a1{kStep[a][0] * spacing_, kStep[a][1] * spacing_};
+          const geo::Vec2 b0{dc * spacing_, dr * spacing_};
+          const geo::Vec2 b1{b0.x + kStep[b][0] * spacing_, b0.y + kStep[b][1] * spacing_};
+          const std::size_t k =
+              static_cast<std::size_t>(((a * side + (dr + table_reach_)) * side + (dc + table_reach_)) * 5 + b);
+          lattice_conflicts_[k] = closestApproachSquared(a0, a1, b0, b1) < touch * touch ? 1 : 0;
+        }
+}
+
+int CrowdRoadmap::latticeConflict(CrowdMove mi, CrowdMove mj) const {
+  auto cell = [&](int v, int& c, int& r) {
+    c = cell_c_[static_cast<std::size_t>(v)];
+    r = cell_r_[static_cast<std::size_t>(v)];
+    return c >= 0;
+  };
+  int c0, r0, c1, r1, c2, r2, c3, r3;
+  if (!cell(mi.from, c0, r0) || !cell(mi.to, c1, r1) || !cell(mj.from, c2, r2) || !cell(mj.to, c3, r3)) return -1;
+  auto stepIndex = [](int dc, int dr) {
+    if (dc == 0 && dr == 0) return 0;
+    if (dr == 0 && (dc == 1 || dc == -1)) return dc == 1 ? 1 : 2;
+    if (dc == 0 && (dr == 1 || dr == -1)) return dr == 1 ? 3 : 4;
+    return -1;
+  };
+  const int a = stepIndex(c1 - c0, r1 - r0), b = stepIndex(c3 - c2, r3 - r2);
+  const int dc = c2 - c0, dr = r2 - r0;
+  if (a < 0 || b < 0) return -1;
+  if (std::abs(dc) > table_reach_ || std::abs(dr) > table_reach_) return 0;
+  const int side = 2 * table_reach_ + 1;
+  return lattice_conflicts_[static_cast<std::size_t>(
+      ((a * side + (dr + table_reach_)) * side + (dc + table_reach_)) * 5 + b)];
+}
+
 bool CrowdRoadmap::conflict(int i, CrowdMove mi, int j, CrowdMove mj) const {
-  const double d = closestApproach(position(mi.from), position(mi.to), position(mj.from), position(mj.to));
-  if (d >= 2.0 * radius_ + 1e-9) return false;
+  if (const int known = latticeConflict(mi, mj); known >= 0) return known == 1;
+  const double touch = 2.0 * radius_ + 1e-9;
+  if (closestApproachSquared(position(mi.from), position(mi.to), position(mj.from), position(mj.to)) >= touch * touch)
+    return false;
   // A robot on or beside its own start or goal has a known heading there
   // (crowdPaths turns robots on the lattice only, before they first reach
   // their own goal): its real footprint decides, at the instants at which

@@ -14,6 +14,7 @@
 #include "earc/util/random.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
+#include "../../src/planning/lattice_search.hpp"
 
 namespace earc {
 namespace {
@@ -309,6 +310,42 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
     }
   }
   CHECK(last < before);
+}
+
+TEST_CASE("One robot's search through the others' steps waits until its goal stays free, and meets no one") {
+  const std::vector<std::string> rows(3, ".....");
+  // Robot 0 crosses the middle row; robot 1's goal is on its way.
+  const Scenario sc = gridScenario(rows, {{{0.5, 1.5}, {4.5, 1.5}}, {{2.5, 0.5}, {2.5, 1.5}}}, RobotSpec::mobileDisc("", 0.3));
+  const CollisionWorld world(sc);
+  const RobotModels models(sc);
+  const CrowdRoadmap rm(world, models.raw, {0, 1}, {sc.robots[0].start, sc.robots[1].start},
+                        {sc.robots[0].goal, sc.robots[1].goal});
+  std::vector<lattice::VertexPath> paths(2);
+  int v = rm.start(0);
+  paths[0].push_back(v);
+  while (v != rm.goal(0)) {
+    for (int w : rm.neighbours(v))
+      if (rm.distanceToGoal(0, w) < rm.distanceToGoal(0, v)) {
+        v = w;
+        break;
+      }
+    paths[0].push_back(v);
+  }
+  REQUIRE(paths[0].size() == 5);
+  paths[1] = {rm.start(1)};
+  lattice::Occupancy occ(rm, paths);
+  occ.remove(1);
+  lattice::StepSearch search(rm);
+  const auto p = search.search(occ, 1, Deadline(), 16, 100000);
+  REQUIRE(p.has_value());
+  CHECK(p->front() == rm.start(1));
+  CHECK(p->back() == rm.goal(1));
+  // Robot 0 stands on robot 1's goal at step 2: one step is no longer enough.
+  CHECK(p->size() - 1 == 3);
+  for (std::size_t t = 0; t + 1 < std::max(p->size(), paths[0].size()) + 2; ++t)
+    CHECK_FALSE(rm.conflict(1, {lattice::vertexAt(*p, t), lattice::vertexAt(*p, t + 1)}, 0,
+                            {lattice::vertexAt(paths[0], t), lattice::vertexAt(paths[0], t + 1)}));
+  CHECK(search.expansions() > 0);
 }
 
 }  // namespace earc

@@ -61,9 +61,9 @@ class CrowdRoadmap {
   // robot is on or beside its own start or goal (heading known). Thread-safe.
   bool conflict(int i, CrowdMove mi, int j, CrowdMove mj) const;
 
-  double radius() const { return radius_; }          // the bounding disc R
-  double spacing() const { return spacing_; }        // lattice spacing
-  bool gridAligned() const { return grid_; }          // lattice on a grid map's cell centres
+  double radius() const { return radius_; }    // the bounding disc R
+  double spacing() const { return spacing_; }  // lattice spacing
+  bool gridAligned() const { return grid_; }   // lattice on a grid map's cell centres
   // The heading its owner has at an own vertex (its start or goal heading).
   double headingAt(int v) const;
   // Whether v is on its owner's start side (left for good once left).
@@ -86,6 +86,9 @@ class CrowdRoadmap {
   int connectOwn(const CollisionWorld& world, int robot, const std::vector<double>& q, bool is_start);
   void buildNear();
   void buildDistances();
+  void buildLatticeConflicts();
+  // Whether two steps between lattice vertices conflict: 0 or 1; -1 when not on the table.
+  int latticeConflict(CrowdMove mi, CrowdMove mj) const;
 
   double radius_ = 0.0;
   double spacing_ = 1.0;
@@ -94,14 +97,17 @@ class CrowdRoadmap {
   bool grid_ = false;
   geo::Vec2 origin_;
   int cols_ = 0, rows_ = 0;
-  std::vector<int> lattice_;  // cols_ x rows_, vertex id or -1
+  std::vector<int> lattice_;          // cols_ x rows_, vertex id or -1
+  std::vector<int> cell_c_, cell_r_;  // per vertex: its lattice column and row; -1 off it
+  int table_reach_ = 0;               // the conflict table's offsets between the robots, in cells
+  std::vector<signed char> lattice_conflicts_;
   std::vector<geo::Vec2> pos_;
   std::vector<int> owner_;
   std::vector<std::vector<int>> adj_;
   std::vector<std::vector<int>> near_;
   std::vector<int> start_, goal_;
-  std::vector<double> heading_;       // per vertex: its owner's heading there
-  std::vector<char> start_side_;      // per vertex
+  std::vector<double> heading_;   // per vertex: its owner's heading there
+  std::vector<char> start_side_;  // per vertex
   std::vector<const RobotModel*> group_models_;
   std::vector<std::vector<int>> dist_;  // per robot, per vertex
   std::string problem_;

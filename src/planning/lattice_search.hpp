@@ -1,0 +1,62 @@
+// One robot's way through the others' steps on the crowd roadmap: who
+// stands where at every roadmap step, and space-time A* against it. Internal to
+// the lattice refinement (lattice_lns.cpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "earc/planning/crowd_roadmap.hpp"
+#include "earc/util/deadline.hpp"
+
+namespace earc::lattice {
+
+using VertexPath = std::vector<int>;  // a vertex per roadmap step; then the last, for ever
+
+inline int vertexAt(const VertexPath& p, std::size_t t) { return t < p.size() ? p[t] : p.back(); }
+
+// Who stands where at every step, for the robots whose paths are in, with
+// per vertex and step the number of robots near it (a quick all-clear).
+// Not thread-safe; refers to `paths`, which the caller keeps current.
+class Occupancy {
+ public:
+  // Puts every robot's path in.
+  Occupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths);
+
+  void put(int i);
+  void remove(int i);
+  // Rows kept; the last one holds for ever after.
+  std::size_t horizon() const { return occ_.size(); }
+  // Whether robot i's step u -> v from step t meets anyone in.
+  bool blocked(int i, int u, int v, std::size_t t) const;
+
+ private:
+  void grow(std::size_t h);
+  void count(int v, std::size_t t, int delta);
+  const CrowdRoadmap& rm_;
+  std::vector<VertexPath>& paths_;
+  std::vector<std::vector<int>> occ_;     // [t][v]: robot or -1
+  std::vector<std::vector<int>> nearby_;  // [t][v]: robots on near(v)
+};
+
+// Space-time A* for robot i (not in occ) from its start to its goal,
+// arriving to stay for good; nothing when there is no way within `slack`
+// steps beyond the horizon and the robot's own distance, after
+// max_expansions, or past the deadline. Reuses its buffers; not thread-safe.
+class StepSearch {
+ public:
+  explicit StepSearch(const CrowdRoadmap& rm) : rm_(rm) {}
+  std::optional<VertexPath> search(const Occupancy& occ, int i, const Deadline& deadline, std::size_t slack,
+                                   std::size_t max_expansions);
+  long long expansions() const { return expansions_; }
+
+ private:
+  const CrowdRoadmap& rm_;
+  std::vector<std::uint32_t> closed_;  // per (step, vertex): the search that closed it
+  std::uint32_t stamp_ = 0;
+  long long expansions_ = 0;
+};
+
+}  // namespace earc::lattice
