@@ -285,10 +285,12 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
   const int n = graph.size();
   const auto un = static_cast<std::size_t>(n);
   const RobotModel& model = graph.model();
-  // Edges found invalid, by this search or earlier ones on the roadmap, are
-  // left out; the search repeats until its path has no invalid edge. The
-  // goal stays, so each vertex's distance to it (the heuristic, a tenth of
-  // a search's time on den520d) is worked out once for all the repeats.
+  // Lazy weighted A*: the queue holds (vertex, parent edge) pairs, and an
+  // edge is checked only when its pair comes first; an invalid one is
+  // dropped and the vertex waits for its next way in. Each edge is thus
+  // checked at most once and the search never starts over, where checking
+  // a whole candidate path and repeating searched a warehouse's roadmap
+  // about twenty times per robot while its edges were unknown.
   std::vector<double> h(un, -1.0);
   // Polled as it works: a whole map's roadmap can have 80,000 vertices.
   DeadlinePoll poll(deadline, kWorkPerClockRead);
@@ -297,68 +299,55 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
     if (hv < 0) hv = model.distance(graph.config(v), graph.config(to));
     return hv;
   };
-  std::vector<double> g(un);
-  std::vector<int> parent(un), parent_edge(un);
-  std::vector<char> closed(un);
-  using Item = std::pair<double, int>;
-  for (;;) {
-    // An edge left unchecked when the roadmap's deadline passed reads as
-    // invalid without being marked so: the same path would come back.
-    if (deadline.expired() || graph.roadmap().poll().seenExpired()) return std::nullopt;
-    std::fill(g.begin(), g.end(), std::numeric_limits<double>::infinity());
-    std::fill(parent.begin(), parent.end(), -1);
-    std::fill(parent_edge.begin(), parent_edge.end(), 0);
-    std::fill(closed.begin(), closed.end(), 0);
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-    g[static_cast<std::size_t>(from)] = 0;
-    open.push({heuristic(from), from});
-    bool found = false;
-    while (!open.empty()) {
-      if (poll.expired(kWorkPerGraphPop)) return std::nullopt;
-      int v = open.top().second;
-      open.pop();
-      if (closed[static_cast<std::size_t>(v)]) continue;
-      closed[static_cast<std::size_t>(v)] = 1;
-      if (v == to) {
-        found = true;
-        break;
-      }
-      graph.forEachEdge(v, [&](int u, int steps, int key) {
-        if (closed[static_cast<std::size_t>(u)] || graph.knownInvalid(key)) return;
-        double cand = g[static_cast<std::size_t>(v)] + steps;
-        if (cand < g[static_cast<std::size_t>(u)]) {
-          g[static_cast<std::size_t>(u)] = cand;
-          parent[static_cast<std::size_t>(u)] = v;
-          parent_edge[static_cast<std::size_t>(u)] = key;
-          open.push({cand + heuristic(u), u});
-        }
-      });
+  // An edge left unchecked when the roadmap's deadline passed reads as
+  // invalid without being marked so: the search then stops.
+  auto cut = [&] { return deadline.expired() || graph.roadmap().poll().seenExpired(); };
+  std::vector<int> parent(un, -1);
+  std::vector<char> closed(un, 0);
+  struct Item {
+    double f, g;
+    int v, from, key;
+    bool operator>(const Item& o) const { return f != o.f ? f > o.f : g < o.g; }
+  };
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  open.push({heuristic(from), 0.0, from, -1, 0});
+  bool found = false;
+  while (!open.empty()) {
+    if (poll.expired(kWorkPerGraphPop)) return std::nullopt;
+    const Item it = open.top();
+    open.pop();
+    if (closed[static_cast<std::size_t>(it.v)]) continue;
+    if (it.from >= 0 && !graph.edgeValid(it.key)) {
+      if (cut()) return std::nullopt;
+      continue;
     }
-    if (!found) {
-      // The search ran out of vertices: those it closed are from's part.
-      if (reached && !deadline.expired() && !graph.roadmap().poll().seenExpired()) {
-        reached->clear();
-        for (int v = 0; v < n; ++v)
-          if (closed[static_cast<std::size_t>(v)]) reached->push_back(v);
-      }
-      return std::nullopt;
+    closed[static_cast<std::size_t>(it.v)] = 1;
+    parent[static_cast<std::size_t>(it.v)] = it.from;
+    if (it.v == to) {
+      found = true;
+      break;
     }
-    std::vector<int> path{to};
-    std::vector<int> keys;
-    for (int v = to; v != from; v = parent[static_cast<std::size_t>(v)]) {
-      keys.push_back(parent_edge[static_cast<std::size_t>(v)]);
-      path.push_back(parent[static_cast<std::size_t>(v)]);
-    }
-    std::reverse(path.begin(), path.end());
-    std::reverse(keys.begin(), keys.end());
-    bool ok = true;
-    for (int key : keys) {
-      // Each edge check can be long at a fine resolution: poll between them.
-      if (deadline.expired()) return std::nullopt;
-      if (!graph.edgeValid(key)) ok = false;
-    }
-    if (ok) return path;
+    graph.forEachEdge(it.v, [&](int u, int steps, int key) {
+      if (closed[static_cast<std::size_t>(u)] || graph.knownInvalid(key)) return;
+      // Every way in is queued: a cheaper one may yet prove invalid.
+      const double cand = it.g + steps;
+      open.push({cand + heuristic(u), cand, u, it.v, key});
+    });
   }
+  if (cut()) return std::nullopt;
+  if (!found) {
+    // The search ran out of ways: the vertices it closed are from's part.
+    if (reached) {
+      reached->clear();
+      for (int v = 0; v < n; ++v)
+        if (closed[static_cast<std::size_t>(v)]) reached->push_back(v);
+    }
+    return std::nullopt;
+  }
+  std::vector<int> path;
+  for (int v = to; v >= 0; v = parent[static_cast<std::size_t>(v)]) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
 }
 
 Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& waypoints) {
