@@ -91,6 +91,7 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
   out.stats["search_s"] = clock.seconds() - roadmap_s;
   out.stats["configurations"] = r.nodes;
   out.stats["expansions"] = r.expansions;
+  out.stats["spread_meetings"] = r.spread_meetings;
   if (!r.solved) {
     out.why = r.why;
     out.timed_out = r.timed_out;

@@ -7,11 +7,15 @@
 #include <random>
 #include <unordered_map>
 
+#include "crowd_spread.hpp"
 #include "earc/util/random.hpp"
 
 namespace earc {
 
 namespace {
+
+// Steps a spread-out way may take beyond the robot's shortest.
+constexpr int kSpreadMargin = 10;
 
 // A low-level constraint: robot `who` goes to `where`, on top of the
 // parent's constraints.
@@ -49,8 +53,8 @@ struct ConfigHash {
 // left a robot nowhere to go.
 class Pibt {
  public:
-  Pibt(const CrowdRoadmap& rm, std::mt19937_64& rng)
-      : rm_(rm), rng_(rng), occupant_(static_cast<std::size_t>(rm.vertexCount()), -1) {}
+  Pibt(const CrowdRoadmap& rm, const crowd::Spread& spread, std::mt19937_64& rng)
+      : rm_(rm), spread_(spread), rng_(rng), occupant_(static_cast<std::size_t>(rm.vertexCount()), -1) {}
 
   bool generate(const Node& node, const Constraint* constraints, std::vector<int>& next) {
     const std::vector<int>& now = node.config;
@@ -87,6 +91,9 @@ class Pibt {
     std::shuffle(cands.begin(), cands.end(), rng_);
     std::stable_sort(cands.begin(), cands.end(),
                      [&](int a, int b) { return rm_.distanceToGoal(i, a) < rm_.distanceToGoal(i, b); });
+    // The next vertex of the robot's spread-out way, where it has one, first.
+    if (const int guide = spread_.next(i, u); guide >= 0)
+      if (auto it = std::find(cands.begin(), cands.end(), guide); it != cands.end()) std::rotate(cands.begin(), it, it + 1);
     // Head-on in a corridor, the robot ahead cannot make way by stepping
     // aside: the robot turns back instead and pulls the other after it
     // (the swap of LaCAM3's PIBT, Okumura 2024).
@@ -228,6 +235,7 @@ class Pibt {
   }
 
   const CrowdRoadmap& rm_;
+  const crowd::Spread& spread_;
   std::mt19937_64& rng_;
   std::vector<int> occupant_;
   const std::vector<int>* now_ = nullptr;
@@ -288,7 +296,11 @@ LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::ui
   std::vector<int> starts(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) starts[static_cast<std::size_t>(i)] = rm.start(i);
   open.push_back(makeNode(starts, nullptr));
-  Pibt pibt(rm, rng);
+  // Up to a quarter of the time left (at most a second) spreads the ways out.
+  const crowd::Spread spread(rm, kSpreadMargin, deadline.capped(std::min(1.0, deadline.remaining() / 4)),
+                             splitSeed(seed, 8));
+  result.spread_meetings = spread.meetings();
+  Pibt pibt(rm, spread, rng);
   std::vector<int> next;
   const Node* goal_node = nullptr;
   std::vector<int> cands;

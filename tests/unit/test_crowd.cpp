@@ -2,6 +2,7 @@
 // instances that defeat prioritized planning, and ARC's hand-over of jams.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "earc/util/random.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
+#include "../../src/planning/crowd_spread.hpp"
 #include "../../src/planning/lattice_search.hpp"
 
 namespace earc {
@@ -346,6 +348,35 @@ TEST_CASE("One robot's search through the others' steps waits until its goal sta
     CHECK_FALSE(rm.conflict(1, {lattice::vertexAt(*p, t), lattice::vertexAt(*p, t + 1)}, 0,
                             {lattice::vertexAt(paths[0], t), lattice::vertexAt(paths[0], t + 1)}));
   CHECK(search.expansions() > 0);
+}
+
+TEST_CASE("Spread-out ways lead each robot to its goal and avoid a meeting that the shortest ways make") {
+  // Two robots cross the middle of an open 5 x 5 grid: their only
+  // shortest ways meet on the centre at step 2.
+  const std::vector<std::string> rows(5, ".....");
+  const Scenario sc =
+      gridScenario(rows, {{{0.5, 2.5}, {4.5, 2.5}}, {{2.5, 0.5}, {2.5, 4.5}}}, RobotSpec::mobileDisc("", 0.3));
+  const CollisionWorld world(sc);
+  const RobotModels models(sc);
+  const CrowdRoadmap rm(world, models.raw, {0, 1}, {sc.robots[0].start, sc.robots[1].start},
+                        {sc.robots[0].goal, sc.robots[1].goal});
+  for (int margin : {0, 4}) {
+    const crowd::Spread spread(rm, margin, Deadline(), 1);
+    CHECK(spread.meetings() == (margin == 0 ? 1 : 0));
+    for (int i = 0; i < 2; ++i) {
+      int v = rm.start(i), steps = 0;
+      while (v != rm.goal(i) && steps <= 20) {
+        const int next = spread.next(i, v);
+        REQUIRE(next >= 0);
+        const auto& nb = rm.neighbours(v);
+        CHECK(std::find(nb.begin(), nb.end(), next) != nb.end());
+        v = next;
+        ++steps;
+      }
+      CHECK(v == rm.goal(i));
+      CHECK(steps <= rm.distanceToGoal(i, rm.start(i)) + margin);
+    }
+  }
 }
 
 }  // namespace earc

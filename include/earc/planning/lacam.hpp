@@ -22,6 +22,7 @@ struct LacamResult {
   std::size_t nodes = 0;        // configurations generated
   std::size_t expansions = 0;   // successor generations tried
   bool timed_out = false;       // the deadline ended the search
+  long long spread_meetings = 0;  // meetings left between the guiding ways
   std::string why;              // why not solved
 };
 
