@@ -56,7 +56,8 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
   auto delay = [&](int i) { return pathCost(paths[static_cast<std::size_t>(i)]) - rm.distanceToGoal(i, rm.start(i)); };
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delay(a) > delay(b); });
   // Replans `group` one after another (random order) and keeps the new
-  // paths when they cost less; else puts the old ones back.
+  // paths when they cost no more (equal ones let the search move along a
+  // plateau); else puts the old ones back.
   auto replanGroup = [&](const std::vector<int>& group) {
     std::vector<lattice::VertexPath> old;
     for (int i : group) old.push_back(paths[static_cast<std::size_t>(i)]);
@@ -73,7 +74,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
     bool ok = true;
     for (int i : shuffled) {
       auto p = search.search(occ, i, deadline, 16, searchCap(rm));
-      if (!p || (after += pathCost(*p)) >= before) {
+      if (!p || (after += pathCost(*p)) > before) {
         ok = false;
         break;
       }
@@ -99,7 +100,7 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
   }
   // Then neighbourhoods: random robots, or the robots around a random
   // vertex on a delayed robot's path (where robots get in each other's way).
-  constexpr std::size_t kNeighbourhood = 8;
+  constexpr std::size_t kNeighbourhood = 4;
   while (rounds++ < max_rounds && !deadline.expired() && n > 1) {
     std::vector<int> group;
     std::vector<char> in(static_cast<std::size_t>(n), 0);

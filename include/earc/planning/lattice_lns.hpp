@@ -16,11 +16,9 @@ namespace earc {
 // Roadmap steps until each robot is at its goal for good, summed.
 long long latticeSumOfCosts(const CrowdRoadmap& roadmap, const std::vector<std::vector<int>>& configs);
 
-// Improves configs (LaCAM's steps: conflict-free, starts to goals) until
-// the deadline; never makes the sum of costs larger, and the result is
-// again conflict-free from starts to goals. Returns stats (sums of costs
-// before and after, neighbourhoods tried and kept). Same seed, same result
-// when the deadline does not end it.
+// Shortens configs (conflict-free steps, starts to goals) until the deadline or
+// max_rounds; the result is again such steps, never costlier. Returns stats
+// (sums of costs, neighbourhoods tried and kept). Deterministic per seed and rounds.
 nlohmann::json refineOnLattice(const CrowdRoadmap& roadmap, std::vector<std::vector<int>>& configs,
                                const Deadline& deadline, std::uint64_t seed, int max_rounds = 1 << 30);
 
