@@ -12,15 +12,17 @@
 #include <thread>
 #include <utility>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/planning/database_solver.hpp"
+#include "earc/methods/database_solver.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/scene/pass_through.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 #include "plan_store.hpp"
 
