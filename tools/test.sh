@@ -26,4 +26,4 @@ bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DCMAKE_BUILD_TY
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
 (cd "$src/build-asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-   ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench")
+   ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench|package|python")
