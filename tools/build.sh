@@ -12,5 +12,13 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build}
 shift || true
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON "$@" >/dev/null
+# Ninja, where installed, for a new build directory: it compiles a target's
+# files without waiting for the libraries it links to be archived, so the
+# layers' libraries, the programs and the tests compile side by side (Make
+# builds them one target after another). A directory keeps its generator.
+generator=()
+if [[ ! -f "$build/CMakeCache.txt" ]] && command -v ninja > /dev/null; then
+  generator=(-G Ninja)
+fi
+cmake -S "$src" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON "$@" >/dev/null
 cmake --build "$build" -j"$jobs"

@@ -2,21 +2,22 @@
 # Installs the Debian packages earc needs that are missing, and nothing else.
 # Idempotent and quick when everything is present (one dpkg query).
 #   tools/setup.sh            build and run dependencies
-#   tools/setup.sh --tests    also what the tests use (python3-numpy for the
-#                             agreement tests, chromium and jq for the viewer tests,
+#   tools/setup.sh --tests    also what the tests use (python3-pytest for the
+#                             Python module's, chromium and jq for the viewer tests,
 #                             clang for the fuzz targets, strace for the
 #                             socket test, faketime for --deterministic's)
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libsqlite3-dev sqlite3 libnanoflann-dev libeigen3-dev libfcl-dev libompl-dev
   libboost-serialization-dev libboost-filesystem-dev
   libcli11-dev doctest-dev nlohmann-json3-dev
   python3 python3-numpy python3-matplotlib librsvg2-bin
+  pybind11-dev python3-pybind11 python3-dev
 )
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(chromium jq clang libclang-rt-14-dev strace faketime)
+  packages+=(chromium jq clang libclang-rt-14-dev strace faketime python3-pytest)
 fi
 
 missing=()

@@ -24,6 +24,7 @@
 #include "earc/render/svg.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 namespace fs = std::filesystem;
 

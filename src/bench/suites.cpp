@@ -14,6 +14,7 @@
 #include "earc/io/json_io.hpp"
 #include "earc/util/hash.hpp"
 #include "earc/util/random.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 namespace earc::bench {
 
@@ -83,7 +84,7 @@ gen::MovingAiScen suiteScen(const Suite& suite) {
 
 // The crowd suite of a map and its file random-1: 50 robots, then 100 to
 // 200 by 50 and on by 100, as far as the file goes, and the whole file.
-Suite crowdSuite(const std::string& map) {
+Suite crowdMapSuite(const std::string& map) {
   Suite s{"crowd-" + map, "mobile", true, {}, map, map + "-random-1", 0};
   s.most_robots = static_cast<int>(suiteScen(s).agents.size());
   for (int n = 50; n < s.most_robots; n += n < 200 ? 50 : 100) s.robots.push_back(n);
@@ -105,10 +106,10 @@ const std::vector<Suite>& allSuites() {
       {"movingai-den520d", "mobile", true, {2, 4, 8, 16, 32}, "den520d", "", 0},
       // Crowds: the benchmark's own agent lists on open floor, a random
       // field, rooms joined by narrow doors, and a warehouse's aisles.
-      crowdSuite("empty-16-16"),
-      crowdSuite("random-32-32-20"),
-      crowdSuite("room-32-32-4"),
-      crowdSuite("warehouse-10-20-10-2-1"),
+      crowdMapSuite("empty-16-16"),
+      crowdMapSuite("random-32-32-20"),
+      crowdMapSuite("room-32-32-4"),
+      crowdMapSuite("warehouse-10-20-10-2-1"),
   };
   return suites;
 }

@@ -2,7 +2,6 @@
 #include <map>
 #include <string>
 
-#include "earc/io/json_io.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
@@ -11,6 +10,29 @@ namespace earc {
 
 namespace {
 constexpr int kArmRoadmapSamples = 1000;
+
+// A cache key's fields, each written as its exact bytes: equal keys only
+// for equal values, with no formatting in between.
+class CacheKeyWriter {
+ public:
+  CacheKeyWriter& operator<<(double v) { return raw(&v, sizeof v); }
+  CacheKeyWriter& operator<<(std::uint64_t v) { return raw(&v, sizeof v); }
+  CacheKeyWriter& operator<<(geo::Vec2 v) { return *this << v.x << v.y; }
+  CacheKeyWriter& operator<<(const std::vector<double>& v) {
+    *this << static_cast<std::uint64_t>(v.size());
+    for (double x : v) *this << x;
+    return *this;
+  }
+  std::string take() { return std::move(key_); }
+
+ private:
+  CacheKeyWriter& raw(const void* p, std::size_t n) {
+    key_.append(static_cast<const char*>(p), n);
+    return *this;
+  }
+  std::string key_;
+};
+
 }  // namespace
 
 RoadmapSet::RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples,
@@ -101,27 +123,40 @@ std::unique_ptr<Roadmap> RoadmapSet::buildRoadmap(int robot, int slot, bool& cut
 }
 
 void RoadmapSet::useCache(RoadmapCache& cache, const Scenario& scenario) {
-  // Everything building depends on, numbers written exactly (JSON's
-  // shortest round trip): the scenario but its robots and name, the
-  // robot's description but where it starts and ends (and for an arm with
-  // nothing in reach, its base), the sample count, the neighbours and the
-  // roadmap's own seed. Equal keys build equal roadmaps.
-  nlohmann::json world = scenarioToJson(scenario);
-  const nlohmann::json robots = std::move(world["robots"]);
-  world.erase("robots");
-  world.erase("name");
-  const std::string world_key = world.dump();
+  // Everything building depends on, numbers written exactly: the scenario
+  // but its robots and name, the robot's description but where it starts
+  // and ends (and for an arm with nothing in reach, its base), the sample
+  // count, the neighbours and the roadmap's own seed. Equal keys build
+  // equal roadmaps.
+  CacheKeyWriter world;
+  world << scenario.workspace.lo << scenario.workspace.hi << scenario.resolution.translation
+        << scenario.resolution.rotation << scenario.resolution.joint
+        << static_cast<std::uint64_t>(scenario.obstacles.size());
+  for (const Obstacle& o : scenario.obstacles) {
+    if (o.type == Obstacle::Type::Box) world << std::uint64_t{0} << o.center << o.size << o.angle;
+    else world << std::uint64_t{1} << o.center << o.radius;
+  }
+  const std::string world_key = world.take();
   cache_ = &cache;
   cache_keys_.assign(roadmaps_.size(), {});
   for (std::size_t r = 0; r < slot_.size(); ++r) {
     const auto slot = static_cast<std::size_t>(slot_[r]);
     if (!cache_keys_[slot].empty()) continue;
-    nlohmann::json robot = robots.at(r);
-    for (const char* f : {"start", "goal", "name"}) robot.erase(f);
-    if (anywhere_[slot]) robot.erase("base");
-    cache_keys_[slot] = world_key + "\n" + robot.dump() + "\n" + std::to_string(initialSamples(static_cast<int>(r))) +
-                        " samples, " + std::to_string(neighbors_) + " neighbours, seed " +
-                        std::to_string(splitSeed(seed_, static_cast<std::uint64_t>(seedSlot(static_cast<int>(r)))));
+    const RobotSpec& spec = scenario.robots.at(r);
+    CacheKeyWriter robot;
+    if (spec.kind == RobotKind::Mobile) {
+      if (spec.shape == MobileShape::Disc) robot << std::uint64_t{0} << spec.radius;
+      else robot << std::uint64_t{1} << spec.box_size;
+    } else {
+      robot << std::uint64_t{2};
+      if (!anywhere_[slot]) robot << spec.base_position << spec.base_angle;
+      robot << spec.links << spec.link_radius << static_cast<std::uint64_t>(spec.joint_limits.size());
+      for (const auto& [lo, hi] : spec.joint_limits) robot << lo << hi;
+    }
+    robot << static_cast<std::uint64_t>(initialSamples(static_cast<int>(r)))
+          << static_cast<std::uint64_t>(neighbors_)
+          << splitSeed(seed_, static_cast<std::uint64_t>(seedSlot(static_cast<int>(r))));
+    cache_keys_[slot] = world_key + robot.take();
   }
 }
 

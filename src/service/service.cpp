@@ -10,12 +10,14 @@
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/planning/database_solver.hpp"
+#include "earc/methods/database_solver.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/scene/pass_through.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/memory_reserve.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 namespace earc::service {
 

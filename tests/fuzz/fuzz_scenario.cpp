@@ -8,6 +8,7 @@
 
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

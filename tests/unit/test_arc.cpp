@@ -11,6 +11,7 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/planner.hpp"

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "earc/bench/compare.hpp"
+#include "earc/methods/plan.hpp"
 
 using namespace earc::bench;
 

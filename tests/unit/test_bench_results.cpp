@@ -18,12 +18,12 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 
 using namespace earc;
 using namespace earc::bench;

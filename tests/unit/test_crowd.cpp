@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "earc/methods/plan.hpp"
 #include "earc/planning/crowd.hpp"
 #include "earc/planning/lacam.hpp"
 #include "earc/planning/lattice_lns.hpp"

@@ -7,11 +7,11 @@
 #include <random>
 #include <sstream>
 
-#include "earc/experience/builder.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/methods/builder.hpp"
 #include "earc/validate/validator.hpp"
 
 using namespace earc;

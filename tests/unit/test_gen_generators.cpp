@@ -12,6 +12,7 @@
 #include "earc/gen/placement.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 using namespace earc;
 using namespace earc::gen;

@@ -7,6 +7,7 @@
 #include "earc/gen/movingai.hpp"
 #include "earc/gen/random.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 using namespace earc;
 using namespace earc::gen;

@@ -5,6 +5,7 @@
 #include "earc/gen/generators.hpp"
 #include "earc/gen/placement.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 using namespace earc;
 using namespace earc::gen;

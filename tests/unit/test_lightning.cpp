@@ -10,6 +10,7 @@
 #include "earc/baselines/lightning.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/io/input_error.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/validate/validator.hpp"
 

@@ -8,6 +8,7 @@
 #include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/scene/pass_through.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 

@@ -8,10 +8,12 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/io/json_io.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/planning/refine.hpp"
-#include "earc/io/json_io.hpp"
 #include "earc/service/service.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 

@@ -8,6 +8,7 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/gen/generators.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/scene/robot_model.hpp"

@@ -8,9 +8,11 @@
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/service/service.hpp"
 #include "earc/util/deadline.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 
 using namespace earc;

@@ -5,7 +5,6 @@
 #include <fstream>
 #include <random>
 
-#include "earc/experience/builder.hpp"
 #include "earc/experience/history.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/sampling.hpp"
@@ -13,6 +12,7 @@
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/experience/transfer.hpp"
+#include "earc/methods/builder.hpp"
 #include "earc/util/version.hpp"
 #include "support.hpp"
 

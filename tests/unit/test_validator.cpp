@@ -11,6 +11,7 @@
 #include "earc/collision/collision_world.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "earc/io/json_io.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/view/viewer.hpp"
 #include "support.hpp"
 

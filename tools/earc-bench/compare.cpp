@@ -11,8 +11,8 @@
 #include <iostream>
 
 #include "earc/bench/compare.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace earc {
 namespace {

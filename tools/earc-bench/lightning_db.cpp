@@ -23,11 +23,11 @@
 #include "earc/bench/options.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/progress.hpp"
 #include "earc/util/random.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace earc {
 namespace {

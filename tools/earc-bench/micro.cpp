@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "earc/bench/options.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/collision/collision_world.hpp"
 #include "earc/io/input_error.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace earc {
 namespace {

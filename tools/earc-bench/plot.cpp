@@ -11,9 +11,9 @@
 #include "earc/bench/options.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
 #include "trial_filter_options.hpp"
 
 namespace earc {

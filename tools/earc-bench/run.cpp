@@ -19,9 +19,9 @@
 #include "earc/bench/options.hpp"
 #include "earc/bench/runner.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace earc {
 namespace {

@@ -10,7 +10,7 @@
 #include "earc/bench/crowds.hpp"
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "trial_filter_options.hpp"
 
 namespace earc {

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "earc/bench/report.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/cli/subcommands.hpp"
 
 namespace earc {
 

@@ -13,12 +13,12 @@
 #include <iostream>
 #include <random>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/util/random.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // [--shape box|disc --size LxW --radius R] [--seed S] [--threads T]
 // [--time-per-problem S] [--report FILE]: fills a database with solved
 // random subproblems (paper, "Database Construction"); see
-// earc/experience/builder.hpp.
+// earc/methods/builder.hpp.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -15,11 +15,12 @@
 #include <iostream>
 #include <set>
 
-#include "earc/experience/builder.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/keys.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/methods/builder.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 namespace {
 
@@ -78,31 +79,6 @@ earc::geo::Vec2 parseSize(const std::string& text) {
   return {l, w};
 }
 
-// The scenario's distinct mobile footprints (signature -> one robot of it
-// and how many robots have it), in the order they first appear.
-struct Footprints {
-  std::vector<std::string> signatures;
-  std::vector<earc::RobotSpec> robots;
-  std::vector<double> counts;
-};
-
-Footprints scenarioFootprints(const earc::Scenario& scenario) {
-  Footprints f;
-  for (const auto& r : scenario.robots) {
-    if (r.kind != earc::RobotKind::Mobile) continue;
-    const std::string sig = earc::makeRobotModel(r, scenario.resolution)->geometrySignature();
-    const auto at = std::find(f.signatures.begin(), f.signatures.end(), sig);
-    if (at != f.signatures.end()) {
-      f.counts[static_cast<std::size_t>(at - f.signatures.begin())] += 1;
-      continue;
-    }
-    f.signatures.push_back(sig);
-    f.robots.push_back(r);
-    f.counts.push_back(1);
-  }
-  return f;
-}
-
 // The footprints to build for: the scenario's distinct mobile robots (each
 // problem's robots drawn in proportion to their numbers there), or the one
 // given by --shape/--size/--radius, or the builder's default.
@@ -114,7 +90,7 @@ void setMobileRobots(const BuildOptions& opt, const earc::Scenario* scenario, ea
   const std::string shape = !opt.shape.empty() ? opt.shape : !opt.size.empty() || opt.radius != 0.0 ? "box" : "";
   if (shape == "disc" && !opt.size.empty()) throw earc::InputError("", "--size", "is for --shape box");
   if (shape == "box" && opt.radius != 0.0) throw earc::InputError("", "--radius", "is for --shape disc");
-  const Footprints fleet = scenario ? scenarioFootprints(*scenario) : Footprints{};
+  const earc::exp::Footprints fleet = scenario ? earc::exp::scenarioFootprints(*scenario) : earc::exp::Footprints{};
   if (scenario && shape.empty()) {
     if (fleet.robots.empty()) throw earc::InputError(opt.scenario, "$.robots", "no mobile robot to build for");
     out = fleet.robots;

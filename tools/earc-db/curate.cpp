@@ -5,9 +5,9 @@
 // copy is changed.
 #include <iostream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

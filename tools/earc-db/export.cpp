@@ -2,10 +2,10 @@
 // (a header line, then one object per row; doubles round-trip exactly).
 #include <iostream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/transfer.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

@@ -5,11 +5,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/transfer.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 // all (missing, not SQLite, foreign, newer, damaged schema). Never writes.
 #include <iostream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
-#include "earc/util/subcommands.hpp"
 
 namespace {
 

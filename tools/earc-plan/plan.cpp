@@ -12,15 +12,18 @@
 #include <thread>
 #include <utility>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/planning/database_solver.hpp"
+#include "earc/methods/database_solver.hpp"
+#include "earc/methods/options.hpp"
+#include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/scene/pass_through.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 #include "plan_store.hpp"
 
@@ -197,44 +200,28 @@ int runPlan(const PlanOptions& o) {
   printInputWarnings(read_warnings);
   if (const std::string line = passThroughWarningLine(scenario, o.scenario, "earc-plan"); !line.empty())
     std::cerr << line << "\n";
-  PlannerSettings s;
-  try {
-    s.method = methodFromName(o.method);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("", "--method", e.what());
-  }
-  s.time_limit_s = o.time_limit;
-  s.seed = o.seed;
-  s.trace = !o.trace.empty();
-  if (o.window > 0) s.initial_window = o.window;
-  s.db_learn = !o.no_learn;
-  if (o.deterministic && s.method == Method::Lightning)
-    throw InputError("", "--deterministic", kWorkBudgetsNotForLightning);
-  s.work_budgets = o.deterministic;
-  s.compact = o.compact;
-  s.crowd_fallback = !o.no_crowd;
-  s.refine_s = o.refine;
-  for (const auto& [given, option] :
-       {std::pair{o.shadow_decoupled, "--shadow-decoupled"}, std::pair{o.db_k.has_value(), "--db-k"},
-        std::pair{o.db_repair_max.has_value(), "--db-repair-max"},
-        std::pair{o.db_max_stretch.has_value(), "--db-max-stretch"}})
-    if (given && s.method != Method::Earc) throw InputError("", option, "is for method earc");
-  s.db_shadow_decoupled = o.shadow_decoupled;
-  if (o.db_k) s.db_k = *o.db_k;
-  if (o.db_max_stretch) s.db_max_stretch = *o.db_max_stretch;
-  if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;
-  // Only ARC and E-ARC find conflicts and make subproblems to trace.
-  if (!o.trace.empty() && s.method != Method::Arc && s.method != Method::Earc)
-    throw InputError("", "--trace", "is for methods arc and earc (the others make no subproblems to trace)");
-  // A database the method would not read is a mistake, not a no-op.
-  if (!o.db.empty() && s.method != Method::Earc && s.method != Method::Lightning)
-    throw InputError("", "--db", "is for methods earc and lightning");
+  MethodOptions m;
+  m.method = o.method;
+  m.time_limit = o.time_limit;
+  m.seed = o.seed;
+  m.db = o.db;
+  m.trace = !o.trace.empty();
+  if (o.window > 0) m.window = o.window;
+  m.learn = !o.no_learn;
+  m.deterministic = o.deterministic;
+  m.crowd = !o.no_crowd;
+  m.compact = o.compact;
+  m.refine = o.refine;
+  m.shadow_decoupled = o.shadow_decoupled;
+  m.db_k = o.db_k;
+  m.db_repair_max = o.db_repair_max;
+  m.db_max_stretch = o.db_max_stretch;
+  PlannerSettings s = plannerSettingsFor(m, OptionStyle::Cli);
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
     // Written after planning: its directory is checked before.
     if (!o.no_learn) requireWritableOutput({"--db", o.db});
-    s.lightning_db = o.db;
   }
   // A disk too full to open the database for learning costs the lesson,
   // not the plan (said after the plan is written).

@@ -8,11 +8,12 @@
 #include <vector>
 
 #include "earc/bench/options.hpp"
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/format.hpp"
 #include "earc/render/svg.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/util/format.hpp"
+#include "earc/validate/scenario_check.hpp"
 
 namespace {
 

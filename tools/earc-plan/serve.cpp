@@ -24,12 +24,12 @@
 #include <deque>
 #include <list>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/service/service.hpp"
 #include "earc/util/deadline.hpp"
-#include "earc/util/subcommands.hpp"
 #include "plan_store.hpp"
 
 namespace earc {

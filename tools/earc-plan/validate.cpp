@@ -5,9 +5,10 @@
 #include <cstdio>
 #include <iostream>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/scene/pass_through.hpp"
-#include "earc/util/subcommands.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "earc/validate/validator.hpp"
 
 namespace {

@@ -13,8 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 #include "earc/view/viewer.hpp"
 
 namespace {

@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/gen/scenario_text.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/util/format.hpp"
-#include "earc/util/subcommands.hpp"
 #include "refusals.hpp"
 
 namespace {

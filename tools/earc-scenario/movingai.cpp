@@ -10,11 +10,11 @@
 #include <memory>
 #include <string>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/gen/embedded_maps.hpp"
 #include "earc/gen/movingai.hpp"
 #include "earc/gen/scenario_text.hpp"
 #include "earc/io/json_io.hpp"
-#include "earc/util/subcommands.hpp"
 #include "refusals.hpp"
 
 namespace {

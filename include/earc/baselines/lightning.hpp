@@ -72,4 +72,7 @@ class LightningDatabase {
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
                          const LightningSettings& lightning);
 
+// plan()'s Lightning: the database file settings.lightning_db, if any.
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
+
 }  // namespace earc

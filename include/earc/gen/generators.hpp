@@ -2,7 +2,7 @@
 // mobile robots in an open or cluttered square, and facing pairs of planar
 // 5-DOF arms. Each generator is a pure function of its settings: the same
 // seed gives the same scenario on every platform (see random.hpp), and
-// every scenario it returns passes checkScenarioGeometry.
+// every scenario it returns passes checkScenarioGeometry (validate/scenario_check.hpp).
 #pragma once
 
 #include <cstdint>

@@ -121,12 +121,9 @@ void printInputWarnings(const InputWarnings& warnings);
 Scenario scenarioFromJson(const nlohmann::json& doc, const std::string& file, InputWarnings* warnings = nullptr);
 nlohmann::json scenarioToJson(const Scenario& s);
 
-// Structure, types, and the geometric validity of starts and goals (inside
-// the workspace, free of obstacles, no self-collision, within joint limits,
-// no two starts or two goals touching; an arm's base inside the workspace).
-Scenario loadScenario(const std::string& path, InputWarnings* warnings = nullptr);
-// Throws InputError for the first geometric problem of a parsed scenario.
-void checkScenarioGeometry(const Scenario& s, const std::string& file);
+// A scenario file read: structure and types only (no geometry; loadScenario
+// in validate/scenario_check.hpp also checks starts and goals).
+Scenario readScenarioFile(const std::string& path, InputWarnings* warnings = nullptr);
 
 // Paths must match the scenario's robots (names, dimensions) when one is given.
 Solution solutionFromJson(const nlohmann::json& doc, const Scenario* scenario, const std::string& file,

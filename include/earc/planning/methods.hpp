@@ -1,4 +1,5 @@
-// The planning methods behind plan(), each callable on its own.
+// The planning-layer methods behind plan() (methods/plan.hpp), each
+// callable on its own; E-ARC and Lightning are in the methods layer.
 #pragma once
 
 #include <memory>
@@ -16,11 +17,7 @@ std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy();
 PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings);
 // Whole-problem RRT-Connect in the composite space of all robots.
 PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings);
-// E-ARC: ARC with the experience database solver first in the hierarchy.
-PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
 // The crowd solver (LaCAM over a lattice roadmap, lacam.hpp) on the whole problem.
 PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings);
-// Lightning (OMPL) with the whole-problem database settings.lightning_db.
-PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
 
 }  // namespace earc

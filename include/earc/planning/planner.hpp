@@ -1,7 +1,6 @@
-// The multi-robot planners behind `earc-plan plan`: a planner is a function
-// of (scenario, settings, optional experience store) that returns a result
-// value carrying the solution, why it failed if it did, its statistics and
-// (on request) a trace of what it did.
+// What every planning method takes and returns: the method's name, its
+// settings, and a result carrying the solution, why it failed if it did,
+// its statistics and (on request) a trace. plan() is in methods/plan.hpp.
 #pragma once
 
 #include <atomic>
@@ -110,15 +109,8 @@ struct PlanResult {
   nlohmann::json trace = nullptr;       // earc.trace.v1 when settings.trace
 };
 
-// Plans with settings.method. The store is used (and learned into) only by
-// Method::Earc; pass nullptr otherwise. The solution reported as solved has
-// passed validateSolution; a solution that did not is reported unsolved
-// with FailureCause::InvalidResult.
 // The scenario, unless it has no robot: "solved: 0 robots" would hide a
 // scenario that lost its robots (InputError naming `source` and $.robots).
 Scenario requireRobots(Scenario scenario, const std::string& source);
-
-PlanResult plan(const Scenario& scenario, const PlannerSettings& settings,
-                exp::ExperienceStore* store = nullptr);
 
 }  // namespace earc

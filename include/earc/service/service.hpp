@@ -34,7 +34,7 @@
 #include <string_view>
 #include <vector>
 
-#include "earc/planning/database_solver.hpp"
+#include "earc/methods/database_solver.hpp"
 
 namespace earc::exp { class ExperienceStore; }
 

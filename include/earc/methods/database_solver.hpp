@@ -17,6 +17,7 @@
 
 #include "earc/experience/store.hpp"
 #include "earc/planning/composite.hpp"
+#include "earc/planning/planner.hpp"
 #include "earc/planning/solver.hpp"
 
 namespace earc {
@@ -114,5 +115,9 @@ class DatabaseSolver : public SubproblemSolver {
     std::map<std::string, int> database_failed_where_decoupled_failed;  // by reason
   } shadow_;
 };
+
+// E-ARC: ARC with the database solver over `store` first in its hierarchy.
+// Throws std::invalid_argument when store is null.
+PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
 
 }  // namespace earc

@@ -1,4 +1,4 @@
-#include "earc/experience/builder.hpp"
+#include "earc/methods/builder.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -409,6 +409,23 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
   if (progress) progress->finish();
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
+}
+
+Footprints scenarioFootprints(const Scenario& scenario) {
+  Footprints f;
+  for (const auto& r : scenario.robots) {
+    if (r.kind != RobotKind::Mobile) continue;
+    const std::string sig = makeRobotModel(r, scenario.resolution)->geometrySignature();
+    const auto at = std::find(f.signatures.begin(), f.signatures.end(), sig);
+    if (at != f.signatures.end()) {
+      f.counts[static_cast<std::size_t>(at - f.signatures.begin())] += 1;
+      continue;
+    }
+    f.signatures.push_back(sig);
+    f.robots.push_back(r);
+    f.counts.push_back(1);
+  }
+  return f;
 }
 
 }  // namespace earc::exp

@@ -1,4 +1,4 @@
-#include "earc/util/subcommands.hpp"
+#include "earc/cli/subcommands.hpp"
 
 #include <algorithm>
 #include <cmath>

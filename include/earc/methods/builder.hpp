@@ -106,4 +106,13 @@ std::string noArmPairClassReason(const std::vector<RobotSpec>& arms);
 // Throws std::invalid_argument for unusable settings.
 BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& settings, Progress* progress = nullptr);
 
+// A scenario's distinct mobile footprints (by geometry signature): one robot
+// of each and how many robots have it, in the order they first appear.
+struct Footprints {
+  std::vector<std::string> signatures;
+  std::vector<RobotSpec> robots;
+  std::vector<double> counts;
+};
+Footprints scenarioFootprints(const Scenario& scenario);
+
 }  // namespace earc::exp

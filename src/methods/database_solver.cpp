@@ -1,18 +1,18 @@
 // E-ARC's database solver (the paper's Algorithm 2) and planEarc.
-#include "earc/planning/database_solver.hpp"
+#include "earc/methods/database_solver.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string_view>
 
 #include "earc/experience/keys.hpp"
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/retrieval.hpp"
 #include "earc/experience/sqlite.hpp"
-#include "earc/io/input_error.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/coupled_solver.hpp"
@@ -522,7 +522,9 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
 }
 
 PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
-  if (store == nullptr) throw InputError("", "--db", "method earc needs an experience database (--db FILE)");
+  // The caller's mistake, not the input's: the programs refuse a missing
+  // database file before planning, naming their own option.
+  if (store == nullptr) throw std::invalid_argument("method earc needs an experience store (none was given)");
   DatabaseSolverSettings ds;
   ds.k = static_cast<std::size_t>(settings.db_k);
   ds.max_invalid_segments = settings.db_max_invalid_segments;

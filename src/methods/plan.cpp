@@ -1,0 +1,228 @@
+// plan(): the dispatcher over every method, with the checks, compaction
+// and refinement that all of them share.
+#include "earc/methods/plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "earc/baselines/lightning.hpp"
+#include "earc/methods/database_solver.hpp"
+#include "earc/planning/arc.hpp"
+#include "earc/planning/compact.hpp"
+#include "earc/planning/methods.hpp"
+#include "earc/planning/refine.hpp"
+#include "earc/planning/roadmap.hpp"
+#include "earc/util/random.hpp"
+#include "earc/util/version.hpp"
+#include "earc/validate/validator.hpp"
+
+namespace earc {
+
+namespace {
+
+// The scalars of every robot's path if each went straight from start to
+// goal at the scenario's resolution: a lower bound on what any plan holds.
+// (In steps of the distance metric, as a double: a resolution fine
+// enough to overflow a step count is simply too large.)
+double straightPathScalars(const Scenario& scenario) {
+  double total = 0.0;
+  for (const auto& model : makeRobotModels(scenario)) {
+    const RobotSpec& r = model->spec();
+    total += (std::ceil(model->distance(r.start.data(), r.goal.data())) + 1.0) * model->dim();
+  }
+  return total;
+}
+
+// Refuses a scenario too large to hold (PlannerSettings::max_path_scalars).
+bool refuseTooLarge(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result) {
+  const double need = straightPathScalars(scenario);
+  if (need <= static_cast<double>(settings.max_path_scalars)) return false;
+  result.failures.insert(FailureCause::TooLarge);
+  result.stats["too_large"] = {
+      {"straight_path_scalars", need},
+      {"limit", settings.max_path_scalars},
+      {"detail", "the robots' straight start-to-goal paths alone hold " +
+                     std::to_string(static_cast<long long>(std::min(need, 9e18))) +
+                     " scalars at this resolution (limit " + std::to_string(settings.max_path_scalars) +
+                     "): coarsen the resolution or split the problem"}};
+  result.stats["planning_time_s"] = 0.0;
+  return true;
+}
+
+// compactPlan on a solved result; its time counts in the planning time.
+void compactResult(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result) {
+  Stopwatch clock;
+  std::vector<Path>& paths = result.solution.paths;
+  const RobotModels models(scenario);
+  const std::size_t makespan = result.solution.makespan(), sum_of_costs = result.solution.sumOfCosts();
+  double spent = 0.0;
+  if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
+    spent = result.stats["planning_time_s"].get<double>();
+  const Deadline deadline = Deadline(std::max(0.0, settings.time_limit_s - spent)).withWorkBudgets(settings.work_budgets);
+  const CollisionWorld world(scenario);
+  const CompactReport rep = compactPlan(models.raw, paths, &world, deadline);
+  const double s = clock.seconds();
+  result.stats["compact"] = {{"s", s},
+                             {"passes", rep.passes},
+                             {"robots_retimed", rep.robots_retimed},
+                             {"steps_saved", rep.steps_saved},
+                             {"states", rep.states},
+                             {"interrupted", rep.interrupted},
+                             {"makespan_before", makespan},
+                             {"sum_of_costs_before", sum_of_costs}};
+  result.stats["planning_time_s"] = spent + s;
+}
+
+// refinePlan on a validated result (PlannerSettings::refine_s), within
+// the plan's time limit; the refined plan is validated again and kept only
+// if it passes. planning_time_s stays the time to the first valid plan;
+// "refine" says what refinement did and when (times on the same clock).
+void refineResult(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result,
+                  ValidationReport& report, const ValidatorSettings& vs) {
+  Stopwatch clock;
+  double first_s = 0.0;
+  if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
+    first_s = result.stats["planning_time_s"].get<double>();
+  const std::vector<Path> first = result.solution.paths;
+  const RobotModels models(scenario);
+  const CollisionWorld world(scenario);
+  const Deadline deadline =
+      Deadline(std::max(0.0, settings.time_limit_s - first_s)).withWorkBudgets(settings.work_budgets);
+  // The crowd solver spent part of the budget shortening its plan on its
+  // roadmap: that part and the plan before it enter the record.
+  double lattice_s = 0.0;
+  const nlohmann::json* lacam = result.stats.contains("lacam") ? &result.stats["lacam"] : nullptr;
+  if (lacam && lacam->contains("lattice_refine")) lattice_s = (*lacam)["lattice_refine"].value("s", 0.0);
+  RefineSettings rs;
+  rs.seconds = std::max(0.0, settings.refine_s - lattice_s);
+  rs.seed = splitSeed(settings.seed, 0x7ef1e);
+  rs.roadmap_samples = settings.roadmap_samples;
+  rs.roadmap_neighbors = settings.roadmap_neighbors;
+  rs.roadmap_seed = splitSeed(settings.seed, 1);  // the methods' roadmaps, as a cache keeps them
+  rs.roadmap_cache = settings.roadmap_cache;
+  const double start = first_s + lattice_s + clock.seconds();
+  const RefineReport rep = refinePlan(scenario, world, models.raw, result.solution.paths, rs, deadline);
+  nlohmann::json history = nlohmann::json::array();
+  std::size_t first_soc = rep.first_sum_of_costs, first_makespan = rep.first_makespan;
+  if (lattice_s > 0 && lacam->contains("first_sum_of_costs")) {
+    first_soc = (*lacam)["first_sum_of_costs"].get<std::size_t>();
+    first_makespan = (*lacam)["first_makespan"].get<std::size_t>();
+    history.push_back({first_s, first_soc, first_makespan});
+    if (first_soc != rep.first_sum_of_costs || first_makespan != rep.first_makespan)
+      history.push_back({first_s + lattice_s, rep.first_sum_of_costs, rep.first_makespan});
+  } else {
+    history.push_back({first_s, rep.first_sum_of_costs, rep.first_makespan});
+  }
+  for (const auto& h : rep.history)
+    history.push_back({start + h[0], static_cast<std::size_t>(h[1]), static_cast<std::size_t>(h[2])});
+  const double last_s = history.back()[0].get<double>();
+  nlohmann::json j = {{"first_sum_of_costs", first_soc},
+                      {"first_makespan", first_makespan},
+                      {"first_s", first_s},
+                      {"final_sum_of_costs", rep.final_sum_of_costs},
+                      {"final_makespan", rep.final_makespan},
+                      {"final_s", rep.history.empty() ? last_s : start + rep.final_s},
+                      {"budget_s", settings.refine_s},
+                      {"lower_bound", rep.lower_bound},
+                      {"retimed_steps", rep.retimed_steps},
+                      {"iterations", rep.iterations},
+                      {"shortcut_tries", rep.shortcut_tries},
+                      {"shortcut_improvements", rep.shortcut_improvements},
+                      {"lns_tries", rep.lns_tries},
+                      {"lns_improvements", rep.lns_improvements},
+                      {"lns_failed", rep.lns_failed},
+                      {"history", history}};
+  if (!rep.history.empty()) {
+    ValidationReport again = validateSolution(scenario, result.solution, vs);
+    if (again.valid) {
+      report = std::move(again);
+    } else {
+      // Refinement checks every change it keeps; should the refined plan
+      // not validate all the same, the first plan stands, and says so.
+      j["rejected"] = again.violations.empty() ? "invalid" : again.violations.front().detail;
+      j["final_sum_of_costs"] = rep.first_sum_of_costs;
+      j["final_makespan"] = rep.first_makespan;
+      j["final_s"] = last_s;
+      result.solution.paths = first;
+    }
+  }
+  j["seconds_spent"] = lattice_s + clock.seconds();
+  if (lattice_s > 0) j["lattice_s"] = lattice_s;
+  result.stats["refine"] = std::move(j);
+}
+
+}  // namespace
+
+PlanResult plan(const Scenario& scenario, const PlannerSettings& given, exp::ExperienceStore* store) {
+  PlanResult result;
+  // Refinement replans on the methods' roadmaps: kept from planning when
+  // no cache outlives the plan (the same plan either way, RoadmapCache).
+  PlannerSettings settings = given;
+  std::unique_ptr<RoadmapCache> roadmaps_for_refining;
+  if (settings.refine_s > 0 && !settings.roadmap_cache) {
+    roadmaps_for_refining = std::make_unique<RoadmapCache>(std::size_t{256} << 20);
+    settings.roadmap_cache = roadmaps_for_refining.get();
+  }
+  if (!refuseTooLarge(scenario, settings, result)) {
+    switch (settings.method) {
+      case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
+      case Method::Earc: result = planEarc(scenario, settings, store); break;
+      case Method::Prioritized: result = planPrioritized(scenario, settings); break;
+      case Method::Coupled: result = planCoupled(scenario, settings); break;
+      case Method::Lightning: result = planLightning(scenario, settings); break;
+      case Method::Lacam: result = planLacam(scenario, settings); break;
+    }
+  }
+  result.solution.method = methodName(settings.method);
+  result.solution.scenario = scenario.name;
+  // An unsolved result may still carry paths (an invalid one is kept for
+  // inspection): name them so that it can be written too.
+  if (!result.solution.paths.empty()) result.solution.nameRobots(scenario);
+  // A fast wrong answer is a wrong answer: nothing is reported solved
+  // unless the validator agrees.
+  if (result.solution.solved) {
+    // Solvers pad every path of a subproblem to its common length (the
+    // prioritized baseline: to the whole makespan), which made its sum of
+    // costs n x makespan: a robot waiting at its goal is not counted.
+    for (Path& p : result.solution.paths) p.dropTrailingWaits();
+    ValidatorSettings vs;
+    vs.max_listed = 3;
+    std::vector<Path> uncompacted;
+    if (settings.compact) {
+      uncompacted = result.solution.paths;
+      compactResult(scenario, settings, result);
+    }
+    ValidationReport report = validateSolution(scenario, result.solution, vs);
+    if (!report.valid && settings.compact) {
+      // Compaction keeps a valid plan valid; should it not have, the plan
+      // as planned is checked and reported instead, and the stats say so.
+      result.stats["compact"]["rejected"] = report.violations.empty() ? "invalid" : report.violations.front().detail;
+      result.solution.paths = std::move(uncompacted);
+      report = validateSolution(scenario, result.solution, vs);
+    }
+    if (report.valid && settings.refine_s > 0) refineResult(scenario, settings, result, report, vs);
+    if (!report.valid) {
+      result.solution.solved = false;
+      result.failures.insert(FailureCause::InvalidResult);
+      nlohmann::json v = nlohmann::json::array();
+      for (const auto& x : report.violations) v.push_back(x.detail);
+      result.stats["invalid_result"] = v;
+    } else {
+      result.stats["makespan"] = report.makespan;
+      result.stats["sum_of_costs"] = report.sum_of_costs;
+    }
+  }
+  if (!result.solution.solved) {
+    nlohmann::json why = nlohmann::json::array();
+    for (FailureCause c : result.failures) why.push_back(failureCauseName(c));
+    result.stats["failure"] = why;
+  }
+  result.stats["method"] = methodName(settings.method);
+  result.stats["seed"] = settings.seed;
+  result.stats["earc_version"] = version();
+  result.solution.stats = result.stats;
+  return result;
+}
+
+}  // namespace earc
