@@ -167,6 +167,10 @@ std::string hostName() {
 
 }  // namespace
 
+// A 95% bootstrap interval (percentile method) of a statistic of n paired
+// items: `statistic` gets the indices of one resample (n draws from 0..n-1
+// with replacement); 2,000 resamples from a generator seeded with `seed`,
+// so the same items and seed give the same interval. n must be positive.
 std::pair<double, double> bootstrapInterval(std::size_t n,
                                             const std::function<double(const std::vector<std::size_t>&)>& statistic,
                                             std::uint64_t seed) {
@@ -412,6 +416,12 @@ std::string trialsNotes(const std::vector<TrialRecord>& trials) {
   return "\n" + jobsNote(trials) + "\n" + versionNote(trials) + "\n" + benchNote(trials) + "\n";
 }
 
+// The same results laid out like the paper's figures: one table per suite,
+// a row per robot count, a column per method ("solved/trials median s";
+// "-" where the method was not run; headed as markdownTable names them), then E-ARC's time over ARC's on the
+// same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
+// (subproblems solved from the database, directly or repaired, over
+// conflicts); then trialsNotes.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
   std::ostringstream out;
   const auto cells = summarize(trials);
@@ -468,6 +478,12 @@ std::string markdownWideTable(const std::vector<TrialRecord>& trials) {
   return out.str();
 }
 
+// Markdown: per suite a table of success rate and median planning time
+// (IQR) per robot count and method (named with the planner arguments its
+// trials ran with, where they ran with any: "earc --db-k=5"), the E-ARC/ARC paired ratio, then the
+// databases, then trialsNotes. A suite run under several time limits has
+// a table per limit, headed "SUITE, time limit S s", and its ratios are
+// paired within one limit (markdownWideTable too).
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases) {
   std::ostringstream out;
   const auto cells = summarize(trials);
@@ -520,6 +536,11 @@ std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vec
   return out.str();
 }
 
+// One row per trial, RFC 4180 quoting, a header line first: the columns
+// of the trials table but its id, each version's added last (so that a
+// script that reads the first columns by position reads them still);
+// planner_args as plannerArgsText writes them, learn as 1 or 0, and ""
+// for what a trial does not record (NULL).
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out) {
   out << "suite,robots,method,trial,seed,time_limit_s,scenario_seed,planner_seed,success,planning_time_s,"
          "wall_time_s,makespan,sum_of_costs,conflicts,db_hits,peak_memory_kb,exit_status,term_signal,failure,"
@@ -587,6 +608,13 @@ std::vector<std::string> omplLogFiles(const std::vector<TrialRecord>& trials, co
   return files;
 }
 
+// One log per (suite, robots, time limit) experiment, planners = methods
+// (named as markdownTable names them),
+// into dir (created), named SUITE-ROBOTS.log (SUITE-ROBOTS-tlLIMIT.log
+// where a cell has several limits). A suite name with characters outside
+// [A-Za-z0-9._-] or a leading '.' is made safe (those become '_', plus a
+// hash of the name): no file is ever written outside dir. Returns the
+// files written.
 std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir) {
   std::filesystem::create_directories(dir);
   // Run properties: "name TYPE", as Benchmark::saveResultsToStream writes

@@ -1039,6 +1039,12 @@ class Runner {
 
 double wallMargin(double time_limit_s) { return 15.0 + 0.25 * time_limit_s; }
 
+// A plan child's solution file, read once childFailure has found nothing
+// wrong with the child (it exited 0 or 1). Nothing, with `doc` filled,
+// when it can be used; else why not, in one line: "exit N without a
+// readable solution: <last line of err_path>" (no file, not JSON, no
+// boolean "solved"), or "exit status N disagrees with the solution's
+// solved flag" (earc-plan exits 0 exactly when it solved).
 std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::string& solution,
                                             const std::string& err_path, nlohmann::json& doc) {
   const int status = run.exit_code.value_or(-1);
@@ -1056,6 +1062,12 @@ std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::
   return std::nullopt;
 }
 
+// Whether a plan child refused the command it was given rather than its
+// scenario: exit status 2 (earc-plan's bad input: an option it does not
+// know or a value it refuses, a database too new for it) with a failure
+// (childFailure's line) that does not name the scenario file. Every plan
+// given the same options would be refused alike, so compare stops at its
+// first plan and run at a trial of a method given --method-arg.
 bool refusedItsCommand(const ChildOutcome& run, const std::string& failure, const std::string& scenario_file) {
   return run.started && !run.cancelled && !run.killed_at_limit && !run.signal && run.exit_code == 2 &&
          failure.find(scenario_file) == std::string::npos;
@@ -1073,6 +1085,10 @@ std::string exitDescription(const ChildOutcome& outcome) {
   return "exit " + std::to_string(outcome.exit_code.value_or(-1));
 }
 
+// `validator validate SCENARIO SOLUTION` (an earc-plan) in a child, its
+// output in LOG_STEM.validate.out and .err (removed when valid): nothing
+// when the solution is valid, else why in one line ("interrupted" when
+// interruptFlag() was raised).
 std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
                                             const std::string& solution, const std::string& log_stem,
                                             std::size_t memory_limit_mb) {
@@ -1165,6 +1181,24 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
 
 }  // namespace
 
+// Runs what is missing; progress on a terminal, `log` gets per-trial lines
+// (verbose) and the table of this run's cells at the end. Bad options
+// (a robot count no suite of the run has, a --plan-program that cannot
+// run, an E-ARC database that was given but cannot be read, or given
+// beside --earc-db-count, a
+// --method-arg for a method not run or that plannerArgsProblem refuses,
+// or that differs from the one the results file's trials of that method
+// ran with; Lightning settings or a --learn other than the file's trials
+// ran with, an E-ARC database other than the one its earc trials of the
+// run's seed found, or an --earc-db-count other than the one its
+// databases were built from)
+// throw InputError before anything is run or recorded: they are
+// not trial failures. So does, once the run has begun, a trial of a
+// method given --method-arg that the planner refused (refusedItsCommand):
+// the run stops as an interrupt stops it, that trial is not recorded, and
+// the error names the method, its arguments and what the planner said.
+// Single numbers (positive, finite) are the caller's to check: earc-bench
+// run checks them as it parses its options.
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
   const std::vector<ScenarioFile> files = loadScenarioFiles(options.scenario_files);
   ExistingEarcDbs existing = validateOptions(options, files);

@@ -190,9 +190,7 @@ std::int64_t Compactor::search(std::size_t r) {
   if (route.size() - 1 >= arrival && !faster) return 0;  // it moves on at every step, as fast as it can
   // The last instant at which another robot touches it standing at its
   // goal: it may arrive only after that, to stay there. Only robots whose
-  // reach takes in the goal can (64 discs of radius 0.6 in a 30 x 30
-  // square, seed 1: compaction 0.86 s when every robot near the route was
-  // scanned, 0.75 s now).
+  // reach takes in the goal can.
   const geo::Vec2 gc = model.boundingCenter(route.back());
   const double gr = model.boundingRadius();
   const geo::Aabb at_goal{{gc.x - gr, gc.y - gr}, {gc.x + gr, gc.y + gr}};
