@@ -177,6 +177,10 @@ void forEachInstant(const RobotModel& robot, const double* a, const double* b, V
 
 }  // namespace
 
+// A straight motion a -> b is valid when the configuration at every
+// instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
+// exactly the instants (steps and midpoints) at which a time-stamped
+// solution of that motion is validated. Thread-safe.
 bool CollisionWorld::motionValid(const RobotModel& robot, const double* a, const double* b) const {
   bool valid = true;
   forEachInstant(robot, a, b, [&](const double* q) {

@@ -324,6 +324,15 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 
 }  // namespace
 
+// Retimes `paths` (one per robot, each ending at its goal, trailing waits
+// dropped) in place. Each pass takes the robots latest arrival first; a
+// pass that saves nothing ends it, as does `max_passes`. A robot's search
+// tries at most `states_per_position` (route position, step) pairs per
+// position of its route: a search that finds nothing tries every pair in
+// reach, and a lower cap loses much of the gain (docs/performance-log.md).
+// With a world, a robot's route also goes at full speed where it went
+// slower along a straight motion, the new steps checked against the world;
+// without one, only waits are left out.
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                           const CollisionWorld* world, const Deadline& deadline, int max_passes,
                           std::size_t states_per_position) {

@@ -21,10 +21,8 @@ inline constexpr const char* kTraceFormat = "earc.trace.v1";
 // picture cannot show finer, and 128 robots x 5,000 steps stay a few MB.
 inline constexpr double kStateQuantum = 1e-4;
 
-// Checks that a solution belongs to the scenario: the same scenario name
-// (when the solution names one) and, unless it has no paths at all (an
-// unsolved solution), one non-empty path per robot in the scenario's order
-// with the robot's dimension. Throws InputError naming `file`.
+// Checks that a solution belongs to the scenario (its name, one path per
+// robot of the right dimension unless it has none). Throws InputError naming `file`.
 void checkSolutionMatches(const Scenario& scenario, const Solution& solution, const std::string& file);
 
 // Reads an earc.trace.v1 document (see tools/earc-plan/view.cpp) and returns
