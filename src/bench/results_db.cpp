@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "earc/bench/options.hpp"
+#include "earc/bench/results_migrations.hpp"
 #include "earc/bench/suites.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
@@ -26,88 +27,6 @@ namespace {
 using exp::Connection;
 using exp::OpenMode;
 using exp::Statement;
-
-constexpr std::string_view kSchemaV1 = R"sql(
-CREATE TABLE trials (
-  id INTEGER PRIMARY KEY,
-  suite TEXT NOT NULL,
-  robots INTEGER NOT NULL,
-  method TEXT NOT NULL,
-  trial INTEGER NOT NULL,
-  seed TEXT NOT NULL,
-  time_limit_s REAL NOT NULL,
-  scenario_seed TEXT NOT NULL,
-  planner_seed TEXT NOT NULL,
-  success INTEGER NOT NULL CHECK (success IN (0, 1)),
-  planning_time_s REAL,
-  wall_time_s REAL NOT NULL,
-  makespan INTEGER,
-  sum_of_costs INTEGER,
-  conflicts INTEGER,
-  db_hits INTEGER,
-  peak_memory_kb INTEGER,
-  exit_status INTEGER,
-  term_signal INTEGER,
-  failure TEXT,
-  finished_at TEXT NOT NULL,
-  UNIQUE (suite, robots, method, trial, seed, time_limit_s)
-);
-CREATE TABLE databases (
-  id INTEGER PRIMARY KEY,
-  method TEXT NOT NULL,
-  suite TEXT NOT NULL,
-  robots INTEGER NOT NULL,
-  path TEXT NOT NULL,
-  construction_time_s REAL,
-  entries INTEGER,
-  size_bytes INTEGER,
-  problems INTEGER,
-  seed TEXT,
-  recorded_at TEXT NOT NULL
-);
-)sql";
-
-// The steps from version 1, kMigrations[v - 2] making version v:
-// 2: how many trials ran at once. Side by side, trials disturb each
-//    other's timings, and how depends on the order (see runner.cpp).
-// 3: which build planned the trial, so that every figure can be traced to
-//    its code.
-// 4: which earc-bench ran and timed it: how trials are run changes their
-//    timings too (see d3acb53 in the README), and --plan-program plans
-//    with another build than the one timing.
-// 5: what the planner was told beyond the benchmark's own options (run
-//    --method-arg): E-ARC with --db-k=5 is another experiment than E-ARC.
-//    Every trial before it ran with none: NULL, as none is written.
-// 6: which scenario file a trial of earc-bench run FILE... planned: its
-//    suite, robot count and trial number say only where among the files
-//    given it came. Unknown (NULL) for the files' trials before it.
-// 7: how the run grew its Lightning databases, on each lightning trial: a
-//    database grown from other problems or under another limit is another
-//    experiment, which a resumed run must not pool with the first.
-// 8: whether the run let the databases learn (--learn), on each earc and
-//    lightning trial, and on each earc trial which E-ARC database it used
-//    and how that database stood: a resumed run on another database, or
-//    with learning switched, must not pool its trials with the first.
-// 9: what the crowd suites report beside the time: the sum-of-costs lower
-//    bound of the trial's scenario, and refinement's first and final plan
-//    (earc-plan --refine), so that cost is compared with the bound.
-constexpr std::string_view kMigrations[] = {
-    "ALTER TABLE trials ADD COLUMN jobs INTEGER",
-    "ALTER TABLE trials ADD COLUMN planner_version TEXT",
-    "ALTER TABLE trials ADD COLUMN bench_version TEXT",
-    "ALTER TABLE trials ADD COLUMN planner_args TEXT",
-    "ALTER TABLE trials ADD COLUMN scenario_file TEXT",
-    "ALTER TABLE trials ADD COLUMN lightning_problems INTEGER;"
-    " ALTER TABLE trials ADD COLUMN lightning_problems_per_robot INTEGER;"
-    " ALTER TABLE trials ADD COLUMN lightning_problem_time_limit_s REAL",
-    "ALTER TABLE trials ADD COLUMN learn INTEGER; ALTER TABLE trials ADD COLUMN earc_db TEXT;"
-    " ALTER TABLE trials ADD COLUMN earc_db_state INTEGER",
-    "ALTER TABLE trials ADD COLUMN lower_bound INTEGER; ALTER TABLE trials ADD COLUMN refine_first_time_s REAL;"
-    " ALTER TABLE trials ADD COLUMN refine_first_sum_of_costs INTEGER;"
-    " ALTER TABLE trials ADD COLUMN refine_final_sum_of_costs INTEGER;"
-    " ALTER TABLE trials ADD COLUMN refine_final_makespan INTEGER",
-};
-static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
 // What the file must be, checked as the experience store checks its own.
 constexpr exp::TableSince kResultsTables[] = {{"trials", 1}, {"databases", 1}};
@@ -149,8 +68,38 @@ bool isUtcTimeText(std::string_view t) {
   return true;
 }
 
+// Every row is read back through one check of every column against what
+// addTrial and addDatabase write (a run, lightning-db): a value no run
+// writes, by a hand edit or another program, refuses the file like a
+// missing column does, in one line naming the file, the table, the row's
+// id and the column:
+//   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 1024
+// What a run writes: suite and method names earc-bench has (bench/suites.hpp,
+// resultSuiteNames: the suites and kFilesSuite;
+// databases: method earc or lightning, robots 0 or a count); robot counts
+// 2 to kMaxResultsRobots; trial numbers, counts (makespan, sum_of_costs,
+// conflicts, db_hits, peak_memory_kb, entries, size_bytes, problems) and
+// times (seconds, finite) of 0 or more; a positive time limit; success 0
+// or 1, with a failure exactly when 0 and a planning time of at most
+// kSolvedTimeLimitSlack times the limit when 1; exit status 0 to 255;
+// signals 1 to 127; jobs 1 or more; seeds as decimal TEXT of a 64-bit
+// unsigned number, as std::to_string writes it (no sign, no leading zero);
+// times of day as utcNow() writes them; failure, versions and path as TEXT
+// (path not empty); scenario_file NULL or a path (not empty) of a trial
+// of kFilesSuite; planner_args NULL or a JSON array of at least one
+// string that plannerArgsProblem (bench/options.hpp) accepts, the same
+// (or NULL) in every row of a method:
+//   r.sqlite: trials row id 7, column planner_args: '["--db-k=5"]' beside
+//   no planner arguments for method earc in row id 1: ...
+// and the Lightning settings NULL, or on a lightning trial a positive time
+// and one positive count (lightning_problems or
+// lightning_problems_per_robot), the same in every lightning trial that
+// has them; learn NULL, or 0 or 1 on an earc or lightning trial, the same
+// in every trial of a method that has it; earc_db NULL or a path (not
+// empty) on an earc trial, and earc_db_state NULL or an integer beside one.
+//
 // One row of a results table as read back: each value checked, as it is
-// read, against what addTrial and addDatabase write (results_db.hpp). A
+// read, against what addTrial and addDatabase write (above). A
 // value no run writes throws InputError naming the file, the table, the
 // row's id (column 0 of every select) and the column (SQLite's name of
 // it). Columns an older schema lacks are selected as NULL and read as
@@ -407,7 +356,7 @@ constexpr const char* kTrialColumnsV1 =
     " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure,"
     " finished_at";
 namespace {
-// The trial columns each later version added (kMigrations), in the order
+// The trial columns each later version added (resultsMigrations()), in the order
 // readTrialRow reads them after version 1's.
 struct AddedColumn {
   const char* name;
@@ -498,8 +447,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     if (read_only) throw exp::notYetADatabase(path, "an earc-bench results database");
     c.enableWal();
     c.write([&] {
-      c.exec(kSchemaV1);
-      for (std::string_view step : kMigrations) c.exec(step);
+      for (const ResultsMigration& m : resultsMigrations()) c.exec(m.sql);
       c.exec("PRAGMA application_id = " + std::to_string(kResultsApplicationId));
       c.exec("PRAGMA user_version = " + std::to_string(kResultsSchemaVersion));
     });
@@ -511,7 +459,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
       // under the write lock.
       c.write([&] {
         if (c.pragmaInt("user_version") < next) {
-          c.exec(kMigrations[next - 2]);
+          c.exec(resultsMigrations()[static_cast<std::size_t>(next - 1)].sql);
           c.exec("PRAGMA user_version = " + std::to_string(next));
         }
       });
