@@ -15,6 +15,7 @@
 #include "earc/geometry/shapes.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/ompl_composite.hpp"
+#include "earc/planning/solver.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
 
@@ -214,6 +215,26 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
     if (settings.polish) polishComposite(checker, waypoints, rng, deadline);
   }
   return timeStampComposite(query.robots, waypoints);
+}
+
+SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
+  const Subproblem& sub = ctx.sub;
+  CoupledQuery q;
+  for (int r : sub.robots) q.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  q.starts = sub.starts;
+  q.goals = sub.goals;
+  q.region = sub.region;
+  CoupledSettings cs;
+  cs.time_limit_s = settings_.time_budget_s * ctx.budget_scale;
+  cs.within = ctx.deadline;
+  cs.polish = true;
+  if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
+  auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
+  if (!sol) return {std::nullopt, name(), -1};
+  const std::size_t len = std::max(sol->length(), sub.t_end - sub.t_start + 1);
+  for (auto& p : sol->paths)
+    while (p.size() < len) p.push(p.back());
+  return {std::move(sol), name(), -1};
 }
 
 }  // namespace earc
