@@ -171,6 +171,11 @@ std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options) {
   return render(scenario, nullptr, options);
 }
 
+// Paths as polylines in one colour per robot (mobile robots: the reference
+// point; arms: the end of the last link), starts and goals, and the robots
+// at options.steps (a robot past its last state stays there), each step's
+// panel drawing the part of a path travelled solid and the part to go
+// dashed and faded.
 std::string solutionSvg(const Scenario& scenario, const Solution& solution, const SvgOptions& options) {
   return render(scenario, &solution, options);
 }
