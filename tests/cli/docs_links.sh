@@ -7,6 +7,7 @@ BUILD=$1
 SRC=$2
 . "$(dirname "$0")/common.bash"
 needPython
+cd "$SRC" || fail "no source directory $SRC"
 "$PY" - "$SRC" README.md docs/*.md <<'PY' > "$WORK/out" 2>&1 || fail "broken links: $(cat "$WORK/out")"
 import os, re, sys
 src, files = sys.argv[1], sys.argv[2:]
@@ -46,5 +47,5 @@ for f in files:
 print('\n'.join(bad))
 sys.exit(1 if bad else 0)
 PY
-grep -q '](docs/' "$SRC/README.md" || fail "README.md links to nothing in docs/"
+grep -q '](docs/' README.md || fail "README.md links to nothing in docs/"
 echo ok
