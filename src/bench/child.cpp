@@ -161,6 +161,10 @@ void onInterrupt(int) { g_interrupted.store(true); }
 
 std::atomic<bool>& interruptFlag() { return g_interrupted; }
 
+// SIGINT and SIGTERM, while a guard lives, set interruptFlag() instead of
+// ending the process: a long run stops between children and kills the
+// running ones (pass &interruptFlag() as runChild's cancel). The guard
+// clears the flag when made; the previous handlers come back when it ends.
 InterruptGuard::InterruptGuard() {
   g_interrupted.store(false);
   struct sigaction sa{};
@@ -189,6 +193,11 @@ const char* signalName(int sig) {
   }
 }
 
+// Why a child that was meant to write a result did not, in one line: ""
+// when it exited 0 or 1 (it reports through its output file), else
+// "killed at the wall-clock limit (N s)", "crashed: SIGSEGV (11)",
+// "exit N: <last line of its stderr>", "interrupted", or why it did not
+// start. `err_path` is the child's stderr file.
 std::string childFailure(const ChildOutcome& outcome, const ChildSpec& spec, const std::string& err_path) {
   if (outcome.cancelled) return "interrupted";
   if (!outcome.started) return outcome.error;

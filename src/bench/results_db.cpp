@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "earc/bench/options.hpp"
+#include "earc/bench/results_migrations.hpp"
 #include "earc/bench/suites.hpp"
+#include "results_rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
@@ -21,93 +23,16 @@
 
 namespace earc::bench {
 
+using results_detail::CheckedResultRow;
+using results_detail::lightningColumn;
+using results_detail::readDatabaseRow;
+using results_detail::readTrialRow;
+
 namespace {
 
 using exp::Connection;
 using exp::OpenMode;
 using exp::Statement;
-
-constexpr std::string_view kSchemaV1 = R"sql(
-CREATE TABLE trials (
-  id INTEGER PRIMARY KEY,
-  suite TEXT NOT NULL,
-  robots INTEGER NOT NULL,
-  method TEXT NOT NULL,
-  trial INTEGER NOT NULL,
-  seed TEXT NOT NULL,
-  time_limit_s REAL NOT NULL,
-  scenario_seed TEXT NOT NULL,
-  planner_seed TEXT NOT NULL,
-  success INTEGER NOT NULL CHECK (success IN (0, 1)),
-  planning_time_s REAL,
-  wall_time_s REAL NOT NULL,
-  makespan INTEGER,
-  sum_of_costs INTEGER,
-  conflicts INTEGER,
-  db_hits INTEGER,
-  peak_memory_kb INTEGER,
-  exit_status INTEGER,
-  term_signal INTEGER,
-  failure TEXT,
-  finished_at TEXT NOT NULL,
-  UNIQUE (suite, robots, method, trial, seed, time_limit_s)
-);
-CREATE TABLE databases (
-  id INTEGER PRIMARY KEY,
-  method TEXT NOT NULL,
-  suite TEXT NOT NULL,
-  robots INTEGER NOT NULL,
-  path TEXT NOT NULL,
-  construction_time_s REAL,
-  entries INTEGER,
-  size_bytes INTEGER,
-  problems INTEGER,
-  seed TEXT,
-  recorded_at TEXT NOT NULL
-);
-)sql";
-
-// The steps from version 1, kMigrations[v - 2] making version v:
-// 2: how many trials ran at once. Side by side, trials disturb each
-//    other's timings, and how depends on the order (see runner.cpp).
-// 3: which build planned the trial, so that every figure can be traced to
-//    its code.
-// 4: which earc-bench ran and timed it: how trials are run changes their
-//    timings too (see d3acb53 in the README), and --plan-program plans
-//    with another build than the one timing.
-// 5: what the planner was told beyond the benchmark's own options (run
-//    --method-arg): E-ARC with --db-k=5 is another experiment than E-ARC.
-//    Every trial before it ran with none: NULL, as none is written.
-// 6: which scenario file a trial of earc-bench run FILE... planned: its
-//    suite, robot count and trial number say only where among the files
-//    given it came. Unknown (NULL) for the files' trials before it.
-// 7: how the run grew its Lightning databases, on each lightning trial: a
-//    database grown from other problems or under another limit is another
-//    experiment, which a resumed run must not pool with the first.
-// 8: whether the run let the databases learn (--learn), on each earc and
-//    lightning trial, and on each earc trial which E-ARC database it used
-//    and how that database stood: a resumed run on another database, or
-//    with learning switched, must not pool its trials with the first.
-// 9: what the crowd suites report beside the time: the sum-of-costs lower
-//    bound of the trial's scenario, and refinement's first and final plan
-//    (earc-plan --refine), so that cost is compared with the bound.
-constexpr std::string_view kMigrations[] = {
-    "ALTER TABLE trials ADD COLUMN jobs INTEGER",
-    "ALTER TABLE trials ADD COLUMN planner_version TEXT",
-    "ALTER TABLE trials ADD COLUMN bench_version TEXT",
-    "ALTER TABLE trials ADD COLUMN planner_args TEXT",
-    "ALTER TABLE trials ADD COLUMN scenario_file TEXT",
-    "ALTER TABLE trials ADD COLUMN lightning_problems INTEGER;"
-    " ALTER TABLE trials ADD COLUMN lightning_problems_per_robot INTEGER;"
-    " ALTER TABLE trials ADD COLUMN lightning_problem_time_limit_s REAL",
-    "ALTER TABLE trials ADD COLUMN learn INTEGER; ALTER TABLE trials ADD COLUMN earc_db TEXT;"
-    " ALTER TABLE trials ADD COLUMN earc_db_state INTEGER",
-    "ALTER TABLE trials ADD COLUMN lower_bound INTEGER; ALTER TABLE trials ADD COLUMN refine_first_time_s REAL;"
-    " ALTER TABLE trials ADD COLUMN refine_first_sum_of_costs INTEGER;"
-    " ALTER TABLE trials ADD COLUMN refine_final_sum_of_costs INTEGER;"
-    " ALTER TABLE trials ADD COLUMN refine_final_makespan INTEGER",
-};
-static_assert(std::size(kMigrations) + 1 == kResultsSchemaVersion, "a migration for every version after 1");
 
 // What the file must be, checked as the experience store checks its own.
 constexpr exp::TableSince kResultsTables[] = {{"trials", 1}, {"databases", 1}};
@@ -126,247 +51,8 @@ void bindOpt(Statement& s, int i, const std::optional<int>& v) {
   if (v) s.bind(i, static_cast<std::int64_t>(*v)); else s.bind(i, std::string_view(""));
 }
 
-constexpr std::int64_t kNoCountLimit = std::numeric_limits<std::int64_t>::max();
-
-// A value of a results row as a message shows it: 12, 1.5, inf, 'text'
-// (cut short, on one line), NULL, a blob.
-std::string resultValueText(const Statement& s, int c) {
-  switch (s.columnType(c)) {
-    case SQLITE_INTEGER: return std::to_string(s.int64At(c));
-    case SQLITE_FLOAT: return formatNumber(s.doubleAt(c));
-    case SQLITE_TEXT: return "'" + printableText(s.textAt(c), 40) + "'";
-    case SQLITE_BLOB: return "a blob";
-    default: return "NULL";
-  }
-}
-
-// "2026-11-24T01:02:03Z", as utcNow() writes it.
-bool isUtcTimeText(std::string_view t) {
-  constexpr std::string_view kShape = "0000-00-00T00:00:00Z";
-  if (t.size() != kShape.size()) return false;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (kShape[i] == '0' ? !isDigits(t.substr(i, 1)) : t[i] != kShape[i]) return false;
-  return true;
-}
-
-// One row of a results table as read back: each value checked, as it is
-// read, against what addTrial and addDatabase write (results_db.hpp). A
-// value no run writes throws InputError naming the file, the table, the
-// row's id (column 0 of every select) and the column (SQLite's name of
-// it). Columns an older schema lacks are selected as NULL and read as
-// optional, so they never fail.
-class CheckedResultRow {
- public:
-  CheckedResultRow(const Statement& s, const std::string& path, std::string_view table)
-      : s_(s), path_(path), table_(table), id_(s.int64At(0)) {}
-
-  [[noreturn]] void bad(int c, const std::string& reason) const {
-    throw InputError(path_, std::string(table_) + " row id " + std::to_string(id_) + ", column " +
-                                s_.columnName(c),
-                     reason);
-  }
-  bool isNull(int c) const { return s_.columnType(c) == SQLITE_NULL; }
-  std::string value(int c) const { return resultValueText(s_, c); }
-
-  // An INTEGER from lo to most; `what` is what it must be ("a robot count
-  // from 2 to 128").
-  std::int64_t integer(int c, std::int64_t lo, std::int64_t most, std::string_view what) const {
-    // The type first: after a conversion (int64At of a TEXT value) SQLite
-    // no longer says what the value was.
-    if (s_.columnType(c) != SQLITE_INTEGER || s_.int64At(c) < lo || s_.int64At(c) > most)
-      bad(c, value(c) + " is not " + std::string(what));
-    return s_.int64At(c);
-  }
-  std::optional<std::int64_t> optInteger(int c, std::int64_t lo, std::int64_t most, std::string_view what) const {
-    if (isNull(c)) return std::nullopt;
-    return integer(c, lo, most, what);
-  }
-  std::optional<std::int64_t> optCount(int c) const { return optInteger(c, 0, kNoCountLimit, "a count (0 or more)"); }
-  // Seconds: a finite REAL (or a whole number SQLite stored as INTEGER),
-  // 0 or more, above 0 where `positive`.
-  double seconds(int c, bool positive = false) const {
-    const int type = s_.columnType(c);
-    const bool number = type == SQLITE_FLOAT || type == SQLITE_INTEGER;
-    if (!number || !std::isfinite(s_.doubleAt(c)) || s_.doubleAt(c) < 0 || (positive && s_.doubleAt(c) == 0))
-      bad(c, value(c) + " is not a number of seconds" + (positive ? " above 0" : " (0 or more)"));
-    return s_.doubleAt(c);
-  }
-  std::optional<double> optSeconds(int c) const {
-    if (isNull(c)) return std::nullopt;
-    return seconds(c);
-  }
-  std::string text(int c) const {
-    if (s_.columnType(c) != SQLITE_TEXT) bad(c, value(c) + " is not text");
-    return s_.textAt(c);
-  }
-  // TEXT or NULL; NULL reads as "".
-  std::string optText(int c) const { return isNull(c) ? std::string() : text(c); }
-  // One of `names`, which the message lists.
-  std::string oneOf(int c, const std::vector<std::string>& names, const char* what) const {
-    const std::string v = text(c);
-    if (std::find(names.begin(), names.end(), v) == names.end()) {
-      std::string list;
-      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-      bad(c, value(c) + " is not " + what + " (" + list + ")");
-    }
-    return v;
-  }
-  // A seed as addTrial writes it: std::to_string of a 64-bit unsigned number.
-  std::uint64_t seed(int c) const {
-    std::uint64_t v = 0;
-    const std::string t = s_.columnType(c) == SQLITE_TEXT ? s_.textAt(c) : std::string();
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || std::to_string(v) != t)
-      bad(c, value(c) + " is not a seed (a whole number from 0 to 2^64-1 as decimal text)");
-    return v;
-  }
-  // NULL (none), or a JSON array of the arguments, as addTrial writes
-  // them: at least one, each a string plannerArgsProblem accepts.
-  std::vector<std::string> plannerArgs(int c) const {
-    if (isNull(c)) return {};
-    const std::string t = text(c);
-    std::vector<std::string> args;
-    const nlohmann::json j = nlohmann::json::parse(t, nullptr, /*allow_exceptions=*/false);
-    const bool strings = j.is_array() && !j.empty() &&
-                         std::all_of(j.begin(), j.end(), [](const nlohmann::json& a) { return a.is_string(); });
-    if (!strings) bad(c, value(c) + " is not a JSON array of planner arguments (strings)");
-    for (const auto& a : j) args.push_back(a.get<std::string>());
-    if (const auto why = plannerArgsProblem(args)) bad(c, value(c) + " is not what a run gives a planner: " + *why);
-    return args;
-  }
-  std::string utcTime(int c) const {
-    if (s_.columnType(c) != SQLITE_TEXT || !isUtcTimeText(s_.textAt(c)))
-      bad(c, value(c) + " is not a UTC time like 2026-11-24T01:02:03Z");
-    return s_.textAt(c);
-  }
-
- private:
-  const Statement& s_;
-  const std::string& path_;
-  std::string_view table_;
-  std::int64_t id_;
-};
-
-// What a trial's robot count must be, in messages.
-const std::string& robotCountText() {
-  static const std::string text = "a robot count from 2 to " + std::to_string(kMaxResultsRobots);
-  return text;
-}
-
-// The trial column of a Lightning option.
-int lightningColumn(const std::string& option) {
-  return option == "--lightning-problems" ? 26 : option == "--lightning-problems-per-robot" ? 27 : 28;
-}
-
-// Columns 26 to 28 of a trial row (readTrialRow): NULL, or on a lightning
-// trial a positive time and exactly one of the two counts, positive.
-constexpr int kLightningColumns[] = {26, 27, 28};
-std::optional<LightningSettings> readLightningSettings(const CheckedResultRow& r, const std::string& method) {
-  const auto set = std::find_if_not(std::begin(kLightningColumns), std::end(kLightningColumns),
-                                    [&r](int c) { return r.isNull(c); });
-  if (set == std::end(kLightningColumns)) return std::nullopt;
-  if (method != "lightning")
-    r.bad(*set, r.value(*set) + " beside method " + method + ": only a lightning trial records Lightning settings");
-  constexpr std::int64_t most = std::numeric_limits<int>::max();
-  LightningSettings l;
-  if (auto v = r.optInteger(26, 1, most, "a number of problems (1 or more)")) l.problems = static_cast<int>(*v);
-  if (auto v = r.optInteger(27, 1, most, "a number of problems per robot (1 or more)"))
-    l.problems_per_robot = static_cast<int>(*v);
-  if (l.problems && l.problems_per_robot)
-    r.bad(27, r.value(27) + " beside lightning_problems " + r.value(26) +
-                  ": problems per robot are for a run without a number of problems");
-  if (!l.problems && !l.problems_per_robot)
-    r.bad(26, "NULL beside lightning_problems_per_robot NULL: a lightning trial records one of them");
-  l.problem_time_limit_s = r.seconds(28, true);
-  return l;
-}
-
-TrialRecord readTrialRow(const CheckedResultRow& r) {
-  static const std::vector<std::string> suites = resultSuiteNames();
-  TrialRecord t;
-  t.suite = r.oneOf(1, suites, "a suite earc-bench runs");
-  t.robots = static_cast<int>(r.integer(2, 2, kMaxResultsRobots, robotCountText()));
-  t.method = r.oneOf(3, allMethods(), "a method earc-bench runs");
-  t.trial = static_cast<int>(r.integer(4, 0, std::numeric_limits<int>::max(), "a trial number (0 or more)"));
-  t.seed = r.seed(5);
-  t.time_limit_s = r.seconds(6, true);
-  t.scenario_seed = r.seed(7);
-  t.planner_seed = r.seed(8);
-  t.success = r.integer(9, 0, 1, "0 or 1") == 1;
-  t.planning_time_s = r.optSeconds(10);
-  t.wall_time_s = r.seconds(11);
-  t.makespan = r.optCount(12);
-  t.sum_of_costs = r.optCount(13);
-  t.conflicts = r.optCount(14);
-  t.db_hits = r.optCount(15);
-  t.peak_memory_kb = r.optCount(16);
-  if (auto v = r.optInteger(17, 0, 255, "an exit status from 0 to 255")) t.exit_status = static_cast<int>(*v);
-  if (auto v = r.optInteger(18, 1, 127, "a signal number from 1 to 127")) t.term_signal = static_cast<int>(*v);
-  t.failure = r.optText(19);
-  // A solved trial has no failure, a failed one says why (runner.cpp).
-  if (t.success && !r.isNull(19)) r.bad(19, r.value(19) + " beside success 1: a solved trial has no failure");
-  if (!t.success && t.failure.empty()) r.bad(19, r.value(19) + " beside success 0: a failed trial says why it failed");
-  if (t.success && t.planning_time_s && *t.planning_time_s > t.time_limit_s * kSolvedTimeLimitSlack)
-    r.bad(10, formatNumber(*t.planning_time_s) + " s of a solved trial is beyond its time limit of " +
-                  formatNumber(t.time_limit_s) + " s");
-  t.finished_at = r.utcTime(20);
-  if (auto v = r.optInteger(21, 1, std::numeric_limits<int>::max(), "a number of jobs (1 or more)"))
-    t.jobs = static_cast<int>(*v);
-  t.planner_version = r.optText(22);
-  t.bench_version = r.optText(23);
-  t.planner_args = r.plannerArgs(24);
-  t.scenario_file = r.optText(25);
-  // A scenario file's trial names its file (or did not, before schema 6);
-  // a suite's has none.
-  if (!r.isNull(25) && t.suite != kFilesSuite)
-    r.bad(25, r.value(25) + " beside suite " + t.suite + ": only a scenario file's trial (suite " + kFilesSuite +
-                  ") names a file");
-  if (!r.isNull(25) && t.scenario_file.empty()) r.bad(25, "'' is not a path");
-  t.lightning = readLightningSettings(r, t.method);
-  // Whether the databases learned: a database method's trial says (or did
-  // not, before schema 8); another method's has none to learn.
-  if (!r.isNull(29) && !usesDatabase(t.method))
-    r.bad(29, r.value(29) + " beside method " + t.method +
-                  ": only a trial of a method with a database (earc, lightning) records --learn");
-  if (auto v = r.optInteger(29, 0, 1, "0 or 1")) t.learn = *v == 1;
-  // An earc trial's E-ARC database, and where its history stood.
-  if (!r.isNull(30) && t.method != "earc")
-    r.bad(30, r.value(30) + " beside method " + t.method + ": only an earc trial records an E-ARC database");
-  t.earc_db = r.optText(30);
-  if (!r.isNull(30) && t.earc_db.empty()) r.bad(30, "'' is not a path");
-  if (!r.isNull(31) && r.isNull(30))
-    r.bad(31, r.value(31) + " beside earc_db NULL: only a trial that records its E-ARC database records its state");
-  t.earc_db_state = r.optInteger(31, std::numeric_limits<std::int64_t>::min(),
-                                 std::numeric_limits<std::int64_t>::max(), "a history token (a whole number)");
-  t.lower_bound = r.optCount(32);
-  t.refine_first_time_s = r.optSeconds(33);
-  t.refine_first_sum_of_costs = r.optCount(34);
-  t.refine_final_sum_of_costs = r.optCount(35);
-  t.refine_final_makespan = r.optCount(36);
-  return t;
-}
-
-DatabaseRecord readDatabaseRow(const CheckedResultRow& r) {
-  static const std::vector<std::string> suites = resultSuiteNames();
-  static const std::vector<std::string> methods = {"earc", "lightning"};
-  DatabaseRecord d;
-  d.method = r.oneOf(1, methods, "a method with a database");
-  d.suite = r.oneOf(2, suites, "a suite earc-bench runs");
-  static const std::string robots = "0 (every robot count) or " + robotCountText();
-  d.robots = static_cast<int>(r.integer(3, 0, kMaxResultsRobots, robots));
-  if (d.robots == 1) r.bad(3, "1 is not " + robots);
-  d.path = r.text(4);
-  if (d.path.empty()) r.bad(4, "'' is not a path");
-  d.construction_time_s = r.optSeconds(5);
-  d.entries = r.optCount(6);
-  d.size_bytes = r.optCount(7);
-  d.problems = r.optCount(8);
-  if (!r.isNull(9)) d.seed = r.seed(9);
-  d.recorded_at = r.utcTime(10);
-  return d;
-}
-
 }  // namespace
+
 
 // Every statement this program runs on a results database; each is
 // prepared once at open, so a file without a column they name is refused
@@ -407,7 +93,7 @@ constexpr const char* kTrialColumnsV1 =
     " wall_time_s, makespan, sum_of_costs, conflicts, db_hits, peak_memory_kb, exit_status, term_signal, failure,"
     " finished_at";
 namespace {
-// The trial columns each later version added (kMigrations), in the order
+// The trial columns each later version added (resultsMigrations()), in the order
 // readTrialRow reads them after version 1's.
 struct AddedColumn {
   const char* name;
@@ -498,8 +184,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
     if (read_only) throw exp::notYetADatabase(path, "an earc-bench results database");
     c.enableWal();
     c.write([&] {
-      c.exec(kSchemaV1);
-      for (std::string_view step : kMigrations) c.exec(step);
+      for (const ResultsMigration& m : resultsMigrations()) c.exec(m.sql);
       c.exec("PRAGMA application_id = " + std::to_string(kResultsApplicationId));
       c.exec("PRAGMA user_version = " + std::to_string(kResultsSchemaVersion));
     });
@@ -511,7 +196,7 @@ ResultsDb::ResultsDb(const std::string& path, bool read_only) {
       // under the write lock.
       c.write([&] {
         if (c.pragmaInt("user_version") < next) {
-          c.exec(kMigrations[next - 2]);
+          c.exec(resultsMigrations()[static_cast<std::size_t>(next - 1)].sql);
           c.exec("PRAGMA user_version = " + std::to_string(next));
         }
       });

@@ -168,6 +168,10 @@ TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t r
   return {scenario, splitSeed(scenario, 1)};
 }
 
+// The scenario of a trial, named "<suite>-<robots>-t<trial>". Generation
+// that fails (too crowded) is retried with seeds derived from the first,
+// so the result is still a function of the arguments (for a crowd suite,
+// of robots alone: its file's first agents).
 Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed) {
   Scenario s;
   if (suite.crowd()) {
@@ -201,6 +205,10 @@ std::vector<std::string> resultSuiteNames() {
   return names;
 }
 
+// What a scenario's problems share with others of their kind: its JSON
+// (scenarioToJson) without its name and without its robots' starts and
+// goals. Hashed, it is ScenarioFile::world; its robots, without their
+// names, say which E-ARC database build covers the file.
 nlohmann::json scenarioWorldJson(const Scenario& scenario) {
   nlohmann::json doc = scenarioToJson(scenario);
   doc.erase("name");

@@ -98,6 +98,10 @@ namespace {
 std::string printable(std::string_view message) { return printableText(message, 16384); }
 }  // namespace
 
+// Builds the app for `program` from the registry, runs it, and maps
+// exceptions to exit codes: earc::InputError -> one line on stderr, exit 2;
+// any other std::exception -> one line, exit 1. Subcommand callbacks set
+// the exit code through the returned reference.
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv) {
   armMemoryReserve();
   CLI::App app{description, program};

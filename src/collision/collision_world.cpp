@@ -16,14 +16,10 @@
 namespace earc {
 namespace {
 
-// Below this many obstacles a plain loop over their AABBs beats FCL's tree.
-// Measured with `earc-bench micro` (Release, CPU time, box robot at random
-// poses on ~25 % blocked grid maps; ns per stateValid, loop / tree):
-//   4: 64 / 65   16: 83 / 82   24: 93 / 93   32: 102 / 93   64: 146 / 108
-//   128: 240 / 125   1000: 2760 / 215   4000: 12600 / 320
-// The two tie at about 24 obstacles; the tree is ahead from 32 on.
-// (FCL's own manager.collide() needs a heap-allocated query object and cost
-// ~390 ns per query at 1000 boxes, so the tree is walked directly instead.)
+// Below this many obstacles a plain loop over their AABBs beats FCL's tree
+// (`earc-bench micro`; the figures are in docs/performance-log.md). FCL's
+// own manager.collide() needs a heap-allocated query object, so the tree is
+// walked directly instead.
 constexpr std::size_t kTreeMinObstacles = 32;
 
 // Thickness of the 3-D stand-ins for planar obstacles in FCL; any positive
@@ -181,6 +177,10 @@ void forEachInstant(const RobotModel& robot, const double* a, const double* b, V
 
 }  // namespace
 
+// A straight motion a -> b is valid when the configuration at every
+// instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
+// exactly the instants (steps and midpoints) at which a time-stamped
+// solution of that motion is validated. Thread-safe.
 bool CollisionWorld::motionValid(const RobotModel& robot, const double* a, const double* b) const {
   bool valid = true;
   forEachInstant(robot, a, b, [&](const double* q) {

@@ -150,6 +150,10 @@ std::optional<GridMap> embeddedMovingAiMap(std::string_view name) {
   return parseMovingAiMap(std::string(m->text), "datasets/movingai/" + std::string(name) + ".map");
 }
 
+// Blocked cells as few rectangles as a greedy sweep finds: take the first
+// uncovered blocked cell in reading order, extend it right along the row,
+// then down while the whole run below is blocked and uncovered. The
+// rectangles are disjoint and their union is exactly the blocked cells.
 std::vector<CellRect> mergeBlockedCells(const GridMap& map) {
   std::vector<unsigned char> covered(map.blocked.size(), 0);
   auto index = [&](int col, int row) {

@@ -37,6 +37,11 @@ bool clearOfEarlier(const std::vector<std::shared_ptr<const RobotModel>>& models
 // Adding 0.0 turns -0 into 0, which the JSON would print as "-0.0".
 double roundCoordinate(double v) { return std::round(v * 1e4) / 1e4 + 0.0; }
 
+// The free space of a disc robot, cut into 4-connected components on a
+// coarse grid. A cell is free when a disc of radius + cell/2 at its centre
+// is free, so a disc can move between the centres of adjacent free cells:
+// two points with the same component are connected for the disc (the test
+// is conservative; it never joins two separated regions).
 FreeSpaceGrid::FreeSpaceGrid(const geo::Aabb& workspace, double cell, double radius, DiscFree free)
     : workspace_(workspace), cell_(cell), radius_(radius), free_(std::move(free)) {
   cols_ = static_cast<int>(std::floor((workspace.hi.x - workspace.lo.x) / cell));
@@ -95,6 +100,12 @@ bool clearOfWorld(const CollisionWorld& world, const RobotModel& robot, const do
   return true;
 }
 
+// Draws every robot's start and goal from its sampling bounds, in robot
+// order, by rejection: clear of the world, kClearance from every earlier
+// robot's start (goal), and start and goal in the same region (region may
+// be empty: one region). Fills s.robots[i].start and .goal. Returns false
+// when a robot found no place within the attempt budget; the caller then
+// tries another obstacle layout.
 bool placeStartsAndGoals(Scenario& s, const CollisionWorld& world, Random& rng, const RegionOf& region) {
   for (auto& r : s.robots) {  // models may look at the configuration sizes
     r.start.assign(static_cast<std::size_t>(r.dim()), 0.0);
@@ -130,6 +141,10 @@ bool placeStartsAndGoals(Scenario& s, const CollisionWorld& world, Random& rng, 
   return true;
 }
 
+// placeStartsAndGoals for mobile robots, each start and goal in one
+// component (FreeSpaceGrid, kFreeSpaceCell) of the free space of the
+// largest bounding disc among the robots; `free` tests a disc against the
+// scenario's workspace and obstacles.
 bool placeMobileRobots(Scenario& s, const CollisionWorld& world, const DiscFree& free, Random& rng) {
   double radius = 0.0;
   for (const auto& r : s.robots) radius = std::max(radius, makeRobotModel(r, s.resolution)->boundingRadius());
@@ -139,6 +154,11 @@ bool placeMobileRobots(Scenario& s, const CollisionWorld& world, const DiscFree&
   });
 }
 
+// Problems of the same kind as `base`: its workspace, obstacles, robots
+// and resolution, every robot's start and goal drawn again (as
+// placeMobileRobots places them when every robot is mobile, else as
+// placeStartsAndGoals does). A function of (base, seed). Throws
+// CrowdedError when no placement is found in a few attempts.
 Scenario redrawStartsAndGoals(const Scenario& base, std::uint64_t seed) {
   constexpr int kAttempts = 20;
   Scenario s = base;

@@ -31,8 +31,8 @@ using nlohmann::json;
 // duplicate key (which json::parse would silently drop) or a syntax error
 // can be located by path as well as by line and column. (nlohmann's DOM
 // parser with a callback scans the whole enclosing array at the end of
-// every object in it: 200,000 obstacles took 40 s to read; a separate
-// tracking pass before json::parse lexed every number twice.)
+// every object in it, quadratic on large arrays; a separate tracking pass
+// before json::parse lexed every number twice.)
 class CheckedDomBuilder {
  public:
   explicit CheckedDomBuilder(const std::string& file) : file_(file) {}
@@ -418,6 +418,11 @@ void AtomicFile::commit() {
   syncDirectoryOf(path_);  // make the rename itself durable
 }
 
+// Write atomically (temporary file, fsync, rename): a crash leaves the old
+// file or the new one, never half of one. A symbolic link is written
+// through (its target replaced, the link kept); a device or FIFO (such as
+// /dev/stdout) is written to directly, never replaced by a file. Throws
+// InputError naming the file when it cannot be written.
 void writeTextFileAtomic(const std::string& path, const std::string& text) {
   AtomicFile file(path);
   file.write(text);
@@ -453,6 +458,10 @@ bool sameFile(const std::string& a, const std::string& b) {
   return normal(a) == normal(b);
 }
 
+// Refuses (InputError naming the later path) when two of the paths are
+// one file, so that an output never overwrites an input or another
+// output. Empty paths are ignored. Existing files are compared by
+// identity (links included), others by their absolute normal form.
 void requireDistinctFiles(const std::vector<NamedPath>& paths) {
   // A database's companion files hold committed rows (-wal) and its lock
   // state (-shm): an output written over one loses or corrupts them.
@@ -486,6 +495,10 @@ void requireDistinctFiles(const std::vector<NamedPath>& paths) {
     }
 }
 
+// Refuses an output path that cannot be written: a directory, or one whose
+// directory is missing or takes no new file (not writable; /proc, even for
+// root). Cheap, it makes the writer's temporary file and drops it; call it
+// before long work.
 void requireWritableOutput(const NamedPath& output) {
   if (output.path.empty()) return;
   const OutputTarget target = outputTarget(output);
@@ -519,6 +532,12 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// Refuses (InputError naming the output) a file name that does not end in
+// one of `extensions` (".svg", in any case): the name says what the file
+// holds, and SVG written to "r.txt" is mislabelled. The target of a
+// symbolic link may have it instead; a device or FIFO (-o /dev/stdout)
+// has no name to check. Returns the extension matched, "" for a device or
+// FIFO.
 std::string requireOutputExtension(const NamedPath& output, const std::vector<std::string>& extensions) {
   const OutputTarget target = outputTarget(output);
   if (target.special) return "";

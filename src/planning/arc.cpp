@@ -102,8 +102,7 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
   // same subproblem level by level. So is one whose regions together
   // already span the workspace: the levels left would only widen the
   // region of a robot whose path keeps to one part of it, a margin a
-  // level, each at the same budget (48 robots on a dense MovingAI map:
-  // six such levels, 0.8 s each, before the budgets grew).
+  // level, each at the same budget.
   if (saturated && (regions_full || sub.workspace_region.inflated(1e-9).contains(world.workspace()))) sub.whole_problem = true;
   return sub;
 }
@@ -156,6 +155,11 @@ int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& 
   return added;
 }
 
+// Past the cap an answer that undoes a resolved robot's span is accepted,
+// and two groups at the cap can then undo each other for ever. The same
+// conflict found again means its resolution was undone, so its group grows
+// to take in the robot whose span it keeps undoing. It is keyed on the
+// place, not the instant: every resolution shifts the later paths in time.
 std::size_t ConflictRecurrence::capFor(const Conflict& c, std::size_t max_robots) {
   const auto cell = [](double v) { return static_cast<long long>(std::floor(v / kCell)); };
   const int before = seen_[{std::min(c.a, c.b), std::max(c.a, c.b), cell(c.place.x), cell(c.place.y)}]++;

@@ -190,9 +190,7 @@ std::int64_t Compactor::search(std::size_t r) {
   if (route.size() - 1 >= arrival && !faster) return 0;  // it moves on at every step, as fast as it can
   // The last instant at which another robot touches it standing at its
   // goal: it may arrive only after that, to stay there. Only robots whose
-  // reach takes in the goal can (64 discs of radius 0.6 in a 30 x 30
-  // square, seed 1: compaction 0.86 s when every robot near the route was
-  // scanned, 0.75 s now).
+  // reach takes in the goal can.
   const geo::Vec2 gc = model.boundingCenter(route.back());
   const double gr = model.boundingRadius();
   const geo::Aabb at_goal{{gc.x - gr, gc.y - gr}, {gc.x + gr, gc.y + gr}};
@@ -326,6 +324,15 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 
 }  // namespace
 
+// Retimes `paths` (one per robot, each ending at its goal, trailing waits
+// dropped) in place. Each pass takes the robots latest arrival first; a
+// pass that saves nothing ends it, as does `max_passes`. A robot's search
+// tries at most `states_per_position` (route position, step) pairs per
+// position of its route: a search that finds nothing tries every pair in
+// reach, and a lower cap loses much of the gain (docs/performance-log.md).
+// With a world, a robot's route also goes at full speed where it went
+// slower along a straight motion, the new steps checked against the world;
+// without one, only waits are left out.
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                           const CollisionWorld* world, const Deadline& deadline, int max_passes,
                           std::size_t states_per_position) {

@@ -38,6 +38,11 @@ bool CompositeChecker::outOfTime() const {
   return true;
 }
 
+// The clock is read every kWorkPerClockRead units (a state being the robots'
+// summed dim()), inside motions and states alike: one motion of thousands of
+// robots, or one state of arms of thousands of links, takes long, and OMPL's
+// planners and simplifier check thousands more after their own termination
+// condition. A read per motion would cost small problems some percent.
 bool CompositeChecker::outOfTimeAfter(std::size_t work) const {
   if (!deadline_) return false;
   if (expired_.load(std::memory_order_relaxed)) return true;
@@ -225,6 +230,9 @@ void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeSta
   }
 }
 
+// Tried at waypoints geometrically nearer the end (last, 3/4, 9/16, ... of
+// the way), the first valid motion kept: a few checks each. For a path
+// joined to a start and a goal it was not made for, where the detours are.
 std::size_t shortcutEnds(const CompositeChecker& checker, std::vector<CompositeState>& waypoints) {
   const std::size_t before = waypoints.size();
   auto erase = [&](std::size_t from, std::size_t to) {  // waypoints [from, to)
@@ -247,6 +255,9 @@ std::size_t shortcutEnds(const CompositeChecker& checker, std::vector<CompositeS
   return before - waypoints.size();
 }
 
+// Composite shortcutting moves all robots together, so one robot's detour
+// holds up the others; this lets each arrive when it can. Only the changed
+// robot's part of each motion is checked.
 void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
                     const Deadline& deadline) {
   const auto& robots = checker.robots();

@@ -53,6 +53,16 @@ ConflictDetector::ConflictDetector(std::vector<const RobotModel*> models, const 
   deadline_ = &deadline;
 }
 
+// Earliest conflict among `paths` (one per robot; nullptr = robot absent)
+// at instants from step `from` through step `to` (inclusive; clamped to
+// the longest path). When `focus` is given, only pairs with at least one
+// focused robot count. Instants go in chunks of kChunk: each robot is
+// bounded over a chunk at once (RobotModel::boundsWithin), and only the
+// robots whose chunk bounds meet another's that counts are placed at
+// each instant, where a sort-and-sweep over the bodies' bounds
+// (insertion sort: the order barely changes between instants) keeps
+// this near linear in the number of robots. Nothing either when
+// the deadline expired before the end: ask interrupted().
 std::optional<Conflict> ConflictDetector::first(const std::vector<const Path*>& paths, std::size_t from,
                                                 std::size_t to, const std::vector<char>* focus) {
   const std::size_t n = models_.size();

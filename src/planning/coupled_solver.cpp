@@ -15,6 +15,7 @@
 #include "earc/geometry/shapes.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/ompl_composite.hpp"
+#include "earc/planning/solver.hpp"
 #include "earc/util/deadline.hpp"
 #include "earc/util/random.hpp"
 
@@ -89,6 +90,13 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
   return sol;
 }
 
+// Makes a valid composite waypoint sequence shorter in steps, keeping it
+// valid: every mobile robot turns steadily from its start heading to its
+// goal heading along the way, where that stays valid (RRT-Connect's
+// waypoints carry random headings, and turning on the spot costs steps);
+// then the sequence is shortcut, time-stamped, and shortcut again state by
+// state, which removes waits and detours between waypoints. The ends are
+// kept. Stops early at the deadline.
 void polishComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, std::mt19937_64& rng,
                      const Deadline& deadline) {
   turnSteadily(checker, waypoints, deadline);
@@ -118,6 +126,10 @@ std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vec
   return runs;
 }
 
+// Time-stamped paths with each invalid run replanned in the composite space
+// (solveCoupled inside `region`, at most time_per_run_s each and within the
+// deadline) between the valid states around it, the rest kept as it was.
+// Without paths when a run could not be replanned; `why` says so.
 RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotModel*>& robots,
                      const std::vector<Path>& paths, const std::vector<StepRun>& runs,
                      const std::vector<ConfigBox>& region, double time_per_run_s, const Deadline& deadline,
@@ -149,6 +161,11 @@ RunRepair repairRuns(const CollisionWorld& world, const std::vector<const RobotM
   return {std::move(repaired), false, ""};
 }
 
+// A solution whose paths all have the same length, start at the starts and
+// end at the goals, respect the resolution, and are free of obstacles,
+// self-collision and contact between the query's robots at every step and
+// midpoint; std::nullopt when none was found within the time limit.
+// Deterministic for a given seed when the time limit is not what stops it.
 std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const CoupledQuery& query,
                                           const CoupledSettings& settings, std::uint64_t seed) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
@@ -198,6 +215,26 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
     if (settings.polish) polishComposite(checker, waypoints, rng, deadline);
   }
   return timeStampComposite(query.robots, waypoints);
+}
+
+SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
+  const Subproblem& sub = ctx.sub;
+  CoupledQuery q;
+  for (int r : sub.robots) q.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
+  q.starts = sub.starts;
+  q.goals = sub.goals;
+  q.region = sub.region;
+  CoupledSettings cs;
+  cs.time_limit_s = settings_.time_budget_s * ctx.budget_scale;
+  cs.within = ctx.deadline;
+  cs.polish = true;
+  if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
+  auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
+  if (!sol) return {std::nullopt, name(), -1};
+  const std::size_t len = std::max(sol->length(), sub.t_end - sub.t_start + 1);
+  for (auto& p : sol->paths)
+    while (p.size() < len) p.push(p.back());
+  return {std::move(sol), name(), -1};
 }
 
 }  // namespace earc

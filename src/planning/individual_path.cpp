@@ -24,8 +24,7 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
   // plans), and a robot that needs no roadmap does not build one. A
   // roadmap is then built when a solver first plans for the robot from
   // scratch: ARC at its first decoupled attempt, E-ARC only when the
-  // database does not answer. Building an arm's roadmap was about 3 ms
-  // of a 16-arm plan (a roadmap per arm with obstacles in reach).
+  // database does not answer.
   CompositeChecker checker(world, {&model}, deadline);
   if (checker.motionValid({spec.start}, {spec.goal})) return timeStamp(model, {spec.start, spec.goal});
   Roadmap& rm = roadmaps.forRobot(robot);

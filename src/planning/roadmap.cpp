@@ -84,6 +84,9 @@ void Roadmap::grow(int samples, const ConfigBox* within) {
   for (int v = first; v < size() && !poll_.expired(work); ++v) connect(v, near, scratch);
 }
 
+// Dropped vertices' edges are marked invalid without a check; a vertex that
+// lost neighbours is joined to its k nearest of the rest (from the kept
+// candidates where they suffice), as a roadmap sampled here would be.
 int Roadmap::dropInvalidVertices() {
   const auto work = static_cast<std::size_t>(dim_);
   int count = 0;
@@ -108,6 +111,9 @@ int Roadmap::dropInvalidVertices() {
   return count;
 }
 
+// Widened by four bounding radii for a mobile robot (whose box spans every
+// heading), to take in the way out of a pocket, and by a tenth of each
+// joint's range for an arm.
 ConfigBox Roadmap::boxAround(const std::vector<double>& configs) const {
   const auto d = static_cast<std::size_t>(dim_);
   ConfigBox box{lo_, hi_};
@@ -186,8 +192,7 @@ void Roadmap::connect(int v, std::vector<std::size_t>& near, std::vector<double>
     }
     // Already joined when v was among u's nearest. Every edge of v is in
     // its own list, a few dozen at most: scanning it is cheaper than a
-    // hash set of all edges (which took a fifth of the time of
-    // connecting the 1,500 vertices of an arm's roadmap).
+    // hash set of all edges.
     if (std::any_of(mine.begin(), mine.end(), [u](const Edge& ed) { return ed.to == u; })) continue;
     int steps = model_.stepsBetween(config(v), config(u));
     int id = static_cast<int>(edge_ends_.size());

@@ -113,10 +113,10 @@ std::unique_ptr<Roadmap> RoadmapSet::buildRoadmap(int robot, int slot, bool& cut
   }
   auto rm = std::make_unique<Roadmap>(world_, model, *f.snapshot, deadline_);
   // Where the arm has something in reach: the free space's vertices that
-  // its surroundings take are left out at once (one configuration each).
-  // Left in for the edge checks to find, they made eight times the edge
-  // checks and slower individual paths on 16 arms among obstacles; left
-  // out without joining their neighbours anew, plans came out 3-4% longer.
+  // its surroundings take are left out at once (one configuration each)
+  // and their neighbours joined anew: left for the edge checks to find,
+  // they cost many more edge checks, and left out without rejoining,
+  // longer plans (docs/performance-log.md).
   if (!anywhere_[static_cast<std::size_t>(slot)]) rm->dropInvalidVertices();
   cut_short = f.cut_short || rm->deadlineSeen();
   return rm;
@@ -163,13 +163,9 @@ void RoadmapSet::useCache(RoadmapCache& cache, const Scenario& scenario) {
 int RoadmapSet::initialSamples(int robot) const {
   if (samples_ > 0) return samples_;
   const RobotModel& m = *models_[static_cast<std::size_t>(robot)];
-  // An arm's joint space: 1,000 vertices. With 1,500 (up to 2c3754d) ARC
-  // solved the same scenarios (4 to 16 arms, with and without obstacles)
-  // and took 1.2 to 1.7 times as long: connecting the roadmap, mostly its
-  // k-nearest search, is much of a small plan's time. Median sums of
-  // costs stayed within 1%; with obstacles in reach (a roadmap per arm)
-  // makespans came out 3-4% longer on average at 16 arms, none longer
-  // without. 700 was faster still, with 3% longer makespans.
+  // An arm's joint space: 1,000 vertices, a balance between the time of
+  // connecting the roadmap (its k-nearest search, much of a small plan's
+  // time) and plan length (docs/performance-log.md).
   if (!m.isMobile()) return kArmRoadmapSamples;
   // About three vertices per square of the robot's size: dense enough for
   // local regions a few robot lengths wide to hold several vertices.

@@ -52,6 +52,11 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
+// The checks writeImage makes, for a command to make before its work:
+// InputError naming `option` for a name that ends in neither .svg nor .png
+// (any case; a device or FIFO gets SVG), std::runtime_error when a .png
+// needs rsvg-convert and it is not on PATH (naming the package
+// librsvg2-bin). True for PNG.
 bool requireImageOutput(const std::string& path, const std::string& option) {
   const bool png = requireOutputExtension({option, path}, {".svg", ".png"}) == ".png";
   if (png && !onPath(kConverter))

@@ -22,6 +22,10 @@ std::string number(double v) {
 
 }  // namespace
 
+// How far any point of the robot's body can move in one step of the
+// scenario's resolution (an upper bound: every joint or the heading
+// turning by its full resolution at once, and the reference point moving
+// by its full translation).
 double largestStepMotion(const RobotSpec& robot, const Resolution& resolution) {
   if (robot.kind == RobotKind::Mobile) {
     if (robot.shape == MobileShape::Disc) return resolution.translation;  // turning moves no point of a disc
@@ -86,6 +90,10 @@ std::string passThroughWarning(const Scenario& scenario) {
   return line + "; a finer resolution prevents this";
 }
 
+// The warning as a command prints it on stderr for the scenario read from
+// `scenario_file`: "PROGRAM: warning: FILE: resolution: ...", the file
+// name and the warning made printable (printableText, 4096 bytes at most),
+// without a line break; "" when passThroughWarning says nothing.
 std::string passThroughWarningLine(const Scenario& scenario, const std::string& scenario_file,
                                    std::string_view program) {
   const std::string warning = passThroughWarning(scenario);

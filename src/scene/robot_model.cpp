@@ -327,6 +327,11 @@ std::optional<RobotSpec> robotFromSignature(std::string_view signature) {
   return spec;
 }
 
+// A box holding the robot's bodies at every configuration q with lo[i]
+// <= q[i] <= hi[i] for each coordinate, for broad phases over many
+// instants at once; it may be larger than the tightest such box. By
+// default the bounding disc around every centre in the box (for a
+// mobile robot its positions, whatever the heading).
 geo::Aabb RobotModel::boundsWithin(const double* lo, const double* hi) const {
   const double r = boundingRadius() * (1.0 + 1e-9) + 1e-9;
   if (!center_is_position_) return geo::Aabb{fixed_center_, fixed_center_}.inflated(r);

@@ -39,12 +39,21 @@ std::size_t utf8Length(std::string_view text, std::size_t i) {
 
 }  // namespace
 
+// A number as another program must read it: the shortest text that reads
+// back as the same double ("10", "0.5", "1e-07", "1.0000001"). For
+// numbers on a child's command line and in file names, where
+// std::to_string's six decimals would pass 1e-07 as 0.000000 and
+// 1.0000001 as 1.000000.
 std::string exactNumber(double v) {
   char buf[32];  // the longest shortest form: "-2.2250738585072014e-308"
   const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
   return ec == std::errc() ? std::string(buf, end) : formatNumber("%.17g", v);
 }
 
+// `text` as printable, valid UTF-8 on one line: control characters
+// (line breaks, escapes) and bytes that are not UTF-8 become '?', and the
+// result is cut at `max_bytes` (ending in "...") on a character boundary.
+// For text from a file shown to people or put in JSON.
 std::string printableText(std::string_view text, std::size_t max_bytes) {
   // Whole characters, each printable or '?'.
   std::vector<std::string_view> chars;
@@ -72,6 +81,12 @@ std::string printableText(std::string_view text, std::size_t max_bytes) {
   return out;
 }
 
+// `text` as well-formed XML 1.0 character data, fit for an element's text
+// and a quoted attribute value alike: & < > " ' become entities, and what
+// XML 1.0 forbids even as a character reference (C0 controls other than
+// tab, line feed and carriage return; U+FFFE; U+FFFF) and bytes that are
+// not UTF-8 become U+FFFD. For names from a file written into SVG: one
+// such byte makes the whole picture unreadable.
 std::string xmlText(std::string_view text) {
   constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
   std::string out;

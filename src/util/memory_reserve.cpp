@@ -18,6 +18,17 @@ void onOutOfMemory() {
 }
 }  // namespace
 
+// Under an address-space limit (`ulimit -v`, or earc-bench's
+// --memory-limit-mb) a failed allocation throws std::bad_alloc, and the
+// unwinding that follows frees what was built. nlohmann::json's destructor
+// allocates while it frees a large document, so a scenario file too large
+// for the limit ended in std::terminate (and a core dump) instead of an
+// error line. armMemoryReserve() sets memory aside (address space only:
+// it is never touched, so it costs no resident memory) and installs a
+// new-handler that gives it back at the first failed allocation and then
+// throws: the unwinding has room to run, and the program says what
+// happened. Call it again after handling a bad_alloc to keep going
+// (earc-plan serve). Safe to call from any thread.
 void armMemoryReserve() {
   if (g_reserve.load() == nullptr) {
     // Under a tight limit, as much as there is room for.

@@ -68,6 +68,10 @@ void InstantChecker::checkJointLimits(int robot, const double* q, double t, std:
   }
 }
 
+// robots[i] (scenario indices, ascending) is at configuration q[i].
+// Appends, with time t: per robot one Workspace, one Obstacle per touched
+// obstacle and one SelfCollision violation; then one RobotRobot per
+// touching pair (robots ascending).
 void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const double* const> q, double t,
                                    std::vector<Violation>& out) const {
   thread_local Scratch s;

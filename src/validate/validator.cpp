@@ -202,6 +202,11 @@ const char* violationTypeName(Violation::Type t) {
   return "unknown";
 }
 
+// Violations are ordered as check_solution.py lists them: the problems found
+// in the solution's structure (not solved, scenario name, paths) and its
+// endpoints first, then everything else by instant, and at one instant
+// by kind (resolution, joint limits, workspace, obstacle, self-collision,
+// robot-robot), then by robot. Instants are checked on all cores.
 ValidationReport validateSolution(const Scenario& sc, const Solution& sol, const ValidatorSettings& settings) {
   ValidationReport rep;
   PathMap map = mapPaths(sc, sol);

@@ -11,6 +11,10 @@ namespace earc::view {
 
 using nlohmann::json;
 
+// Checks that a solution belongs to the scenario: the same scenario name
+// (when the solution names one) and, unless it has no paths at all (an
+// unsolved solution), one non-empty path per robot in the scenario's order
+// with the robot's dimension. Throws InputError naming `file`.
 void checkSolutionMatches(const Scenario& sc, const Solution& sol, const std::string& file) {
   if (!sol.scenario.empty() && sol.scenario != sc.name)
     throw InputError(file, "$.scenario",

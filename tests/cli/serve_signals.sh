@@ -12,8 +12,7 @@ needPython
 needBuilt earc-plan earc-db earc-scenario
 # A request that is still planning 1.5 s in: 96 boxes among obstacles in
 # the 20 x 20 square, seed 3, which E-ARC plans to its time limit (a dense
-# jam, see the README's Open work). 64 robots, seed 1, took 2 s and more
-# until the planner got faster: now about 1 s.
+# jam, see docs/open-work.md).
 "$BUILD/earc-scenario" generate --family mobile -n 96 --obstacles --seed 3 -o "$WORK/big.json" > /dev/null ||
   { echo "FAIL: generate"; exit 1; }
 

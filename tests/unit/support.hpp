@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -82,5 +83,16 @@ inline std::string readFile(const std::filesystem::path& p) {
   s << in.rdbuf();
   return s.str();
 }
+
+// A scratch directory removed with everything in it at the end of scope.
+struct TempDb {
+  std::filesystem::path dir;
+  TempDb() {
+    char tmpl[] = "/tmp/earc-test-XXXXXX";
+    dir = mkdtemp(tmpl);
+  }
+  ~TempDb() { std::filesystem::remove_all(dir); }
+  std::string file(const std::string& name = "exp.db") const { return (dir / name).string(); }
+};
 
 }  // namespace earc::test

@@ -53,7 +53,7 @@ void setupExport(CLI::App& app) {
     // lines in among its rows: they go to stderr then.
     std::ostream& summary = summaryStream({o->csv, o->databases_csv});
     if (!o->csv.empty()) {
-      // Written whole, as every output (README: a killed command leaves
+      // Written whole, as every output (docs/formats.md: a killed command leaves
       // no half file).
       std::ostringstream out;
       bench::writeCsv(trials, out);

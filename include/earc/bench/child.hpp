@@ -50,10 +50,9 @@ std::string lastLine(const std::string& path, std::size_t max_chars = 300);
 // The first non-empty line.
 std::string firstLine(const std::string& path, std::size_t max_chars = 300);
 
-// SIGINT and SIGTERM, while a guard lives, set interruptFlag() instead of
-// ending the process: a long run stops between children and kills the
-// running ones (pass &interruptFlag() as runChild's cancel). The guard
-// clears the flag when made; the previous handlers come back when it ends.
+// While alive, SIGINT and SIGTERM set interruptFlag() instead of ending the
+// process (pass &interruptFlag() as runChild's cancel); clears the flag when
+// made, restores the previous handlers when it ends.
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -69,11 +68,9 @@ std::atomic<bool>& interruptFlag();
 // "SIGSEGV", "SIGKILL", ... ("signal" for the rest).
 const char* signalName(int sig);
 
-// Why a child that was meant to write a result did not, in one line: ""
-// when it exited 0 or 1 (it reports through its output file), else
-// "killed at the wall-clock limit (N s)", "crashed: SIGSEGV (11)",
-// "exit N: <last line of its stderr>", "interrupted", or why it did not
-// start. `err_path` is the child's stderr file.
+// Why a child meant to write a result did not, in one line ("killed at the
+// wall-clock limit (N s)", "crashed: ...", "exit N: <last stderr line>",
+// "interrupted"); "" when it exited 0 or 1. `err_path`: its stderr file.
 std::string childFailure(const ChildOutcome& outcome, const ChildSpec& spec, const std::string& err_path);
 
 // The directory holding the running executable (for finding earc-plan next

@@ -20,10 +20,8 @@ namespace earc::bench {
 // default); nullopt for no values.
 std::optional<double> quantile(std::vector<double> values, double q);
 
-// A 95% bootstrap interval (percentile method) of a statistic of n paired
-// items: `statistic` gets the indices of one resample (n draws from 0..n-1
-// with replacement); 2,000 resamples from a generator seeded with `seed`,
-// so the same items and seed give the same interval. n must be positive.
+// A 95% bootstrap interval (percentile method, 2,000 resamples seeded with
+// `seed`) of a statistic of n > 0 paired items; `statistic` gets a resample's indices.
 std::pair<double, double> bootstrapInterval(std::size_t n,
                                             const std::function<double(const std::vector<std::size_t>&)>& statistic,
                                             std::uint64_t seed);
@@ -59,11 +57,8 @@ struct CellSummary {
 // alphabetically.
 std::vector<CellSummary> summarize(const std::vector<TrialRecord>& trials);
 
-// Method a against b on the scenarios both solved, pairs being the same
-// (suite, robots, trial, seed, time limit), with time_limit_s only those
-// under that limit: the median of the per-scenario ratios time(a) /
-// time(b), and the ratio of the two medians (what "E-ARC's median is at
-// most 0.6x ARC's" compares).
+// Method a against b on the scenarios both solved (within time_limit_s when
+// given): the median of per-scenario time ratios and the ratio of medians.
 struct PairedRatio {
   int pairs = 0;
   std::optional<double> median;
@@ -98,37 +93,22 @@ std::string benchNote(const std::vector<TrialRecord>& trials);
 // blank line; "(no trials)" when there are none.
 std::string trialsNotes(const std::vector<TrialRecord>& trials);
 
-// Markdown: per suite a table of success rate and median planning time
-// (IQR) per robot count and method (named with the planner arguments its
-// trials ran with, where they ran with any: "earc --db-k=5"), the E-ARC/ARC paired ratio, then the
-// databases, then trialsNotes. A suite run under several time limits has
-// a table per limit, headed "SUITE, time limit S s", and its ratios are
-// paired within one limit (markdownWideTable too).
+// Markdown: per suite (and time limit) a table of success rate and median
+// planning time per robot count and method, the E-ARC/ARC paired ratio, then
+// the databases, then trialsNotes.
 std::string markdownTable(const std::vector<TrialRecord>& trials, const std::vector<DatabaseRecord>& databases);
 
-// The same results laid out like the paper's figures: one table per suite,
-// a row per robot count, a column per method ("solved/trials median s";
-// "-" where the method was not run; headed as markdownTable names them), then E-ARC's time over ARC's on the
-// same scenarios (ratio of medians, median of ratios) and E-ARC's hit rate
-// (subproblems solved from the database, directly or repaired, over
-// conflicts); then trialsNotes.
+// The same laid out like the paper's figures: a table per suite, a row per
+// robot count, a column per method, then E-ARC over ARC and its hit rate.
 std::string markdownWideTable(const std::vector<TrialRecord>& trials);
 
-// One row per trial, RFC 4180 quoting, a header line first: the columns
-// of the trials table but its id, each version's added last (so that a
-// script that reads the first columns by position reads them still);
-// planner_args as plannerArgsText writes them, learn as 1 or 0, and ""
-// for what a trial does not record (NULL).
+// One CSV row per trial (RFC 4180), a header line first: the trials table's
+// columns but its id, each schema version's added last; NULL as "".
 void writeCsv(const std::vector<TrialRecord>& trials, std::ostream& out);
 void writeDatabasesCsv(const std::vector<DatabaseRecord>& databases, std::ostream& out);
 
-// One log per (suite, robots, time limit) experiment, planners = methods
-// (named as markdownTable names them),
-// into dir (created), named SUITE-ROBOTS.log (SUITE-ROBOTS-tlLIMIT.log
-// where a cell has several limits). A suite name with characters outside
-// [A-Za-z0-9._-] or a leading '.' is made safe (those become '_', plus a
-// hash of the name): no file is ever written outside dir. Returns the
-// files written.
+// One OMPL benchmark log per (suite, robots, time limit) into dir (created),
+// SUITE-ROBOTS[-tlLIMIT].log, never outside dir. Returns the files written.
 std::vector<std::string> writeOmplLogs(const std::vector<TrialRecord>& trials, const std::string& dir);
 // The files writeOmplLogs(trials, dir) would write, in its order.
 std::vector<std::string> omplLogFiles(const std::vector<TrialRecord>& trials, const std::string& dir);

@@ -1,98 +1,10 @@
-// The benchmark's results: an SQLite file (application_id "EBNC",
-// user_version 8, WAL) that trials are appended to as they finish, each in
-// its own BEGIN IMMEDIATE transaction, so an interrupted run loses at most
-// the trials that were running and resumes by skipping the finished ones.
-//
-// Schema (version 1):
-//   trials(id, suite, robots, method, trial, seed, time_limit_s,
-//          scenario_seed, planner_seed, success, planning_time_s,
-//          wall_time_s, makespan, sum_of_costs, conflicts, db_hits,
-//          peak_memory_kb, exit_status, term_signal, failure, finished_at)
-//     UNIQUE (suite, robots, method, trial, seed, time_limit_s): the key a
-//     resumed run skips on. Seeds are decimal TEXT (64-bit unsigned).
-//     success is 1 only for a solution that `earc-plan validate` accepted
-//     within the time limit; failure says why not (NULL on success).
-//     planning_time_s is the planner's own figure (stats.planning_time_s),
-//     NULL when the process died before reporting one.
-//   Version 2 adds trials.jobs: how many trials the run had at once
-//     (--jobs), NULL for trials recorded before it.
-//   Version 3 adds trials.planner_version: the earc_version the trial's
-//     solution reported (the build that planned it), NULL for trials
-//     recorded before it and for planners that do not say.
-//   Version 4 adds trials.bench_version: the earc-bench build that ran and
-//     timed the trial (its --version), which need not be the planner's
-//     (--plan-program); NULL for trials recorded before it.
-//   Version 5 adds trials.planner_args: the arguments the run added to the
-//     trial's `earc-plan plan` (--method-arg), as a JSON array of strings;
-//     NULL for none, as for every trial recorded before it. All trials of
-//     one method in a file have the same (see ResultsDb): the file is one
-//     experiment per method, so that table, export and plot, which group
-//     by method, never pool two settings in one cell.
-//   Version 6 adds trials.scenario_file: the path of a scenario file's
-//     trial (suite kFilesSuite) as earc-bench run was given it; NULL for
-//     a suite's trials, and for every trial recorded before it.
-//   Version 7 adds trials.lightning_problems,
-//     lightning_problems_per_robot and lightning_problem_time_limit_s:
-//     the run's options for growing the Lightning databases
-//     (--lightning-problems, else --lightning-problems-per-robot; and
-//     --lightning-problem-time-limit), on each lightning trial; NULL on
-//     other methods' trials and on every trial recorded before it. A run
-//     resumed with other ones is refused (runner.cpp), as is a lightning
-//     trial added beside others with other ones, so that no cell pools
-//     trials of differently grown databases.
-//   Version 8 adds trials.learn, earc_db and earc_db_state: on each earc
-//     and lightning trial whether its run let the databases learn
-//     (--learn, 1 or 0), and on each earc trial the E-ARC database it used
-//     (as the run was given it or made it) and where that database's
-//     history stood when the run began (the token of its last line, NULL
-//     for a database without one); NULL elsewhere and on every trial
-//     recorded before it. A run resumed with another --learn for one of
-//     its database methods is refused, as is a trial added beside others
-//     of its method with another; so is a run whose E-ARC database is not
-//     the one the file's earc trials of that kind of robot and --seed
-//     used, as they found it (runner.cpp).
-//   Version 9 adds trials.lower_bound (a crowd suite's trial: the sum of
-//     its robots' own shortest paths in steps, bench/crowds.hpp) and
-//     refine_first_time_s, refine_first_sum_of_costs,
-//     refine_final_sum_of_costs, refine_final_makespan: the solution's
-//     stats.refine (earc-plan --refine) when it has them; NULL otherwise
-//     and on every trial recorded before it.
-//   An older file is migrated when opened for writing, each version in one
-//   BEGIN IMMEDIATE transaction with its version bump, and read as it is
-//   otherwise.
-//   databases(id, method, suite, robots, path, construction_time_s,
-//             entries, size_bytes, problems, seed, recorded_at)
-//     robots = 0 for a database that serves every robot count (E-ARC's).
-//
-// Every row is read back through one check of every column against what
-// addTrial and addDatabase write (a run, lightning-db): a value no run
-// writes, by a hand edit or another program, refuses the file like a
-// missing column does, in one line naming the file, the table, the row's
-// id and the column:
-//   r.sqlite: trials row id 3, column robots: -3 is not a robot count from 2 to 1024
-// What a run writes: suite and method names earc-bench has (bench/suites.hpp,
-// resultSuiteNames: the suites and kFilesSuite;
-// databases: method earc or lightning, robots 0 or a count); robot counts
-// 2 to kMaxResultsRobots; trial numbers, counts (makespan, sum_of_costs,
-// conflicts, db_hits, peak_memory_kb, entries, size_bytes, problems) and
-// times (seconds, finite) of 0 or more; a positive time limit; success 0
-// or 1, with a failure exactly when 0 and a planning time of at most
-// kSolvedTimeLimitSlack times the limit when 1; exit status 0 to 255;
-// signals 1 to 127; jobs 1 or more; seeds as decimal TEXT of a 64-bit
-// unsigned number, as std::to_string writes it (no sign, no leading zero);
-// times of day as utcNow() writes them; failure, versions and path as TEXT
-// (path not empty); scenario_file NULL or a path (not empty) of a trial
-// of kFilesSuite; planner_args NULL or a JSON array of at least one
-// string that plannerArgsProblem (bench/options.hpp) accepts, the same
-// (or NULL) in every row of a method:
-//   r.sqlite: trials row id 7, column planner_args: '["--db-k=5"]' beside
-//   no planner arguments for method earc in row id 1: ...
-// and the Lightning settings NULL, or on a lightning trial a positive time
-// and one positive count (lightning_problems or
-// lightning_problems_per_robot), the same in every lightning trial that
-// has them; learn NULL, or 0 or 1 on an earc or lightning trial, the same
-// in every trial of a method that has it; earc_db NULL or a path (not
-// empty) on an earc trial, and earc_db_state NULL or an integer beside one.
+// The benchmark's results: an SQLite file (application_id "EBNC", WAL) that
+// trials are appended to as they finish, each in its own BEGIN IMMEDIATE
+// transaction, so an interrupted run loses at most the trials that were
+// running and resumes by skipping the finished ones. Its schema is
+// migrations/results/*.sql: an older file is migrated when opened for
+// writing, each version in one transaction with its version bump, and read
+// as it is otherwise. Every row is checked as it is read (results_db.cpp).
 #pragma once
 
 #include <cstdint>

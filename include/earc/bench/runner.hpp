@@ -19,13 +19,7 @@ namespace earc::bench {
 
 struct RunOptions {
   // Scenario files to run instead of the suites (suite kFilesSuite, one
-  // trial per file; suites, robots and trials are then not used). Their
-  // E-ARC databases default to WORK/earc-files-FAMILY-ROBOTS-...sqlite
-  // (ROBOTS a hash of what they are built for), built with `earc-db build
-  // --scenario` from the files (once per robot geometry, and for arms per
-  // layout); their Lightning databases are per world
-  // (files that differ only in starts and goals share one), grown from
-  // the file's robots at random starts and goals.
+  // trial per file); their databases are built from the files' robots.
   std::vector<std::string> scenario_files;
   std::vector<std::string> suites = {"mobile-obst", "arms"};
   std::vector<int> robots = {2, 4, 8};  // empty: every count of each suite
@@ -35,10 +29,8 @@ struct RunOptions {
   std::uint64_t seed = 1;
   std::string results = "bench-results.sqlite";
   std::string work_dir;                  // empty: <results>.work
-  // E-ARC databases (earc-plan --db); empty: one the run builds with
-  // `earc-db build --kind FAMILY` (timed) when missing, named by what its
-  // rows come of: <work_dir>/earc-FAMILY[-pCOUNT]-sSEED[-learn].sqlite
-  // (COUNT: earc_db_count, when set). One given is built when missing too.
+  // E-ARC databases (earc-plan --db), built when missing; empty: one the run
+  // builds, <work_dir>/earc-FAMILY[-pCOUNT]-sSEED[-learn].sqlite.
   std::string db_mobile, db_arms;
   // earc-db build --count for the databases the run builds itself (unset:
   // earc-db's default); refused beside db_mobile or db_arms, which are used
@@ -64,9 +56,7 @@ struct RunOptions {
   std::optional<double> wall_margin_s;   // unset: wallMargin(time_limit_s)
   std::string plan_program;              // empty: earc-plan next to this program
   // Arguments added to every `earc-plan plan` of a method (--method-arg
-  // METHOD=ARG), after earc-bench's own; recorded with each trial. A
-  // results file holds one set per method: a run whose set for one of its
-  // methods differs from that method's trials in the file is refused.
+  // METHOD=ARG), recorded with each trial; one set per method in a file.
   std::map<std::string, std::vector<std::string>> method_args;
   std::string bench_program;             // empty: this program
 };
@@ -75,31 +65,21 @@ struct RunOptions {
 // loading, the planner's own validation) before it is killed.
 double wallMargin(double time_limit_s);
 
-// `validator validate SCENARIO SOLUTION` (an earc-plan) in a child, its
-// output in LOG_STEM.validate.out and .err (removed when valid): nothing
-// when the solution is valid, else why in one line ("interrupted" when
-// interruptFlag() was raised).
+// Validates SOLUTION with `validator` (an earc-plan) in a child, logs at
+// LOG_STEM.validate.*: nothing when valid, else why in one line.
 std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
                                             const std::string& solution, const std::string& log_stem,
                                             std::size_t memory_limit_mb);
 
 struct ChildOutcome;
 
-// A plan child's solution file, read once childFailure has found nothing
-// wrong with the child (it exited 0 or 1). Nothing, with `doc` filled,
-// when it can be used; else why not, in one line: "exit N without a
-// readable solution: <last line of err_path>" (no file, not JSON, no
-// boolean "solved"), or "exit status N disagrees with the solution's
-// solved flag" (earc-plan exits 0 exactly when it solved).
+// A plan child's solution file, read once childFailure found nothing wrong:
+// nothing, with `doc` filled, when it can be used; else why not in one line.
 std::optional<std::string> readPlanSolution(const ChildOutcome& run, const std::string& solution,
                                             const std::string& err_path, nlohmann::json& doc);
 
-// Whether a plan child refused the command it was given rather than its
-// scenario: exit status 2 (earc-plan's bad input: an option it does not
-// know or a value it refuses, a database too new for it) with a failure
-// (childFailure's line) that does not name the scenario file. Every plan
-// given the same options would be refused alike, so compare stops at its
-// first plan and run at a trial of a method given --method-arg.
+// Whether a plan child refused its command rather than its scenario (exit 2
+// with a failure that does not name the scenario file).
 bool refusedItsCommand(const ChildOutcome& run, const std::string& failure, const std::string& scenario_file);
 
 // The build that wrote a solution (its stats' earc_version), "" when it
@@ -120,24 +100,9 @@ struct RunSummary {
   bool interrupted = false;
 };
 
-// Runs what is missing; progress on a terminal, `log` gets per-trial lines
-// (verbose) and the table of this run's cells at the end. Bad options
-// (a robot count no suite of the run has, a --plan-program that cannot
-// run, an E-ARC database that was given but cannot be read, or given
-// beside --earc-db-count, a
-// --method-arg for a method not run or that plannerArgsProblem refuses,
-// or that differs from the one the results file's trials of that method
-// ran with; Lightning settings or a --learn other than the file's trials
-// ran with, an E-ARC database other than the one its earc trials of the
-// run's seed found, or an --earc-db-count other than the one its
-// databases were built from)
-// throw InputError before anything is run or recorded: they are
-// not trial failures. So does, once the run has begun, a trial of a
-// method given --method-arg that the planner refused (refusedItsCommand):
-// the run stops as an interrupt stops it, that trial is not recorded, and
-// the error names the method, its arguments and what the planner said.
-// Single numbers (positive, finite) are the caller's to check: earc-bench
-// run checks them as it parses its options.
+// Runs the trials `options` asks for that the results file lacks; progress to
+// a terminal, per-trial lines and the run's table to `log`. Throws InputError
+// on bad options before anything is run, or when a planner refuses its command.
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log);
 
 }  // namespace earc::bench

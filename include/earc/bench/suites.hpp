@@ -62,10 +62,8 @@ struct TrialSeeds {
 };
 TrialSeeds trialSeeds(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
 
-// The scenario of a trial, named "<suite>-<robots>-t<trial>". Generation
-// that fails (too crowded) is retried with seeds derived from the first,
-// so the result is still a function of the arguments (for a crowd suite,
-// of robots alone: its file's first agents).
+// The scenario of a trial, "<suite>-<robots>-t<trial>": a function of the
+// arguments (a crowded draw is retried with derived seeds).
 Scenario trialScenario(const Suite& suite, int robots, int trial, std::uint64_t run_seed);
 
 // The scenario of problem `index` for growing a database of this suite's
@@ -99,16 +97,13 @@ struct ScenarioFile {
   int robots() const { return static_cast<int>(scenario.robots.size()); }
 };
 
-// What a scenario's problems share with others of their kind: its JSON
-// (scenarioToJson) without its name and without its robots' starts and
-// goals. Hashed, it is ScenarioFile::world; its robots, without their
-// names, say which E-ARC database build covers the file.
+// A scenario's JSON without its name and its robots' starts and goals: what
+// its problems share with others of their kind (ScenarioFile::world hashes it).
 nlohmann::json scenarioWorldJson(const Scenario& scenario);
 
-// Reads the files (InputError naming the file for one that is not a valid
-// scenario, has fewer than 2 or more than kMaxResultsRobots robots, or
-// mixes mobile robots and arms) and numbers them per robot count in the
-// order given.
+// Reads the scenario files, numbered per robot count in the order given.
+// Throws InputError naming a file that is invalid, has fewer than 2 or more
+// than kMaxResultsRobots robots, or mixes mobile robots and arms.
 std::vector<ScenarioFile> loadScenarioFiles(const std::vector<std::string>& paths);
 
 // Seeds of a file's trial: the scenario's is the file's hash (recorded, so

@@ -33,10 +33,9 @@ struct Registrar {
   }
 };
 
-// Builds the app for `program` from the registry, runs it, and maps
-// exceptions to exit codes: earc::InputError -> one line on stderr, exit 2;
-// any other std::exception -> one line, exit 1. Subcommand callbacks set
-// the exit code through the returned reference.
+// Runs `program`'s app from the registry: InputError is one line on stderr
+// and exit 2, another std::exception one line and exit 1; else the exit code
+// the callbacks set.
 int runProgram(const std::string& program, const std::string& description, int argc, char** argv);
 
 // Subcommand callbacks report their exit status here (default 0).

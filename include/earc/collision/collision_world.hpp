@@ -25,18 +25,13 @@ namespace earc {
 struct PlacedBodies;
 
 // Checks that poll a deadline read the clock once per this many units of
-// work, a unit being one coordinate of a robot placed (an arm's link, a
-// mobile robot's 3): every few hundred instants of a small robot, every
-// instant of an arm of thousands of links, where one instant's
-// self-collision check alone takes milliseconds.
+// work, a unit being one coordinate of a robot placed.
 inline constexpr std::size_t kWorkPerClockRead = 4096;
 
 class CollisionWorld {
  public:
-  // How obstacle candidates are found. Auto picks by obstacle count (a plain
-  // AABB loop for few obstacles, FCL's tree for many; the threshold and its
-  // measurement are in collision_world.cpp). Loop and Tree force one path,
-  // for benchmarks and tests; every mode gives the same answers.
+  // How obstacle candidates are found: Auto picks by obstacle count; Loop and
+  // Tree force one, for benchmarks and tests. Every mode gives the same answers.
   enum class BroadphaseMode { Auto, Loop, Tree };
 
   explicit CollisionWorld(const Scenario& scenario);
@@ -67,10 +62,8 @@ class CollisionWorld {
   // checks of the same configuration (complete only when it returns true).
   bool stateValid(const RobotModel& robot, const double* q, PlacedBodies& placed) const;
 
-  // A straight motion a -> b is valid when the configuration at every
-  // instant k / (2 n), k = 0..2n, n = robot.stepsBetween(a, b), is valid:
-  // exactly the instants (steps and midpoints) at which a time-stamped
-  // solution of that motion is validated. Thread-safe.
+  // Whether the straight motion a -> b is valid at every instant (steps and
+  // midpoints) at which a solution of it is validated. Thread-safe.
   bool motionValid(const RobotModel& robot, const double* a, const double* b) const;
   // The same, or nothing when `poll`'s deadline expires before the answer
   // is known (each instant counts the robot's dim() units of work).

@@ -43,10 +43,8 @@ struct CellRect {
   bool operator==(const CellRect&) const = default;
 };
 
-// Blocked cells as few rectangles as a greedy sweep finds: take the first
-// uncovered blocked cell in reading order, extend it right along the row,
-// then down while the whole run below is blocked and uncovered. The
-// rectangles are disjoint and their union is exactly the blocked cells.
+// Blocked cells as few disjoint rectangles, by a greedy sweep; their union
+// is exactly the blocked cells.
 std::vector<CellRect> mergeBlockedCells(const GridMap& map);
 
 // The box obstacle covering a rectangle of cells.
@@ -58,10 +56,9 @@ struct MovingAiSettings {
   std::uint64_t seed = 1;
 };
 
-// Workspace [0, W] x [0, H], the merged obstacles, and robots m0.. with
-// random starts and goals; each robot's start and goal lie in one connected
-// free component. Throws SettingError for a robot count out of [1, 1024]
-// and CrowdedError when the robots do not fit.
+// The map as a scenario: its merged obstacles and robots m0.. with start and
+// goal in one free component. Throws SettingError for a robot count out of
+// [1, 1024] and CrowdedError when the robots do not fit.
 Scenario generateMovingAi(const GridMap& map, const MovingAiSettings& settings);
 
 }  // namespace earc::gen

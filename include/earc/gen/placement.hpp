@@ -13,16 +13,12 @@
 
 namespace earc::gen {
 
-// Gap kept between any two bodies of a generated start or goal (robot and
-// robot, robot and obstacle, robot and workspace border). The contract only
-// forbids overlap, but a query that starts in contact is degenerate: every
-// planner would have to squeeze out of it along one direction.
+// Gap kept between any two bodies of a generated start or goal (robot,
+// obstacle, border): a query that starts in contact is degenerate.
 inline constexpr double kClearance = 0.1;
 
-// Grid cell of the free-space connectivity test. 1/5 puts cell centres on
-// the centre line of every unit grid cell (MovingAI maps), where a corridor
-// one cell wide is passable for bounding discs up to 0.4 in radius; a 20x20
-// workspace has 10,000 cells.
+// Grid cell of the free-space connectivity test: 1/5 puts cell centres on
+// the centre line of every unit grid cell (MovingAI maps).
 inline constexpr double kFreeSpaceCell = 0.2;
 
 // Generated coordinates are rounded to 1e-4 before they are checked, so the
@@ -32,11 +28,8 @@ double roundCoordinate(double v);
 // True when a disc lies inside the workspace and touches no obstacle.
 using DiscFree = std::function<bool(geo::Vec2 centre, double radius)>;
 
-// The free space of a disc robot, cut into 4-connected components on a
-// coarse grid. A cell is free when a disc of radius + cell/2 at its centre
-// is free, so a disc can move between the centres of adjacent free cells:
-// two points with the same component are connected for the disc (the test
-// is conservative; it never joins two separated regions).
+// The free space of a disc robot cut into 4-connected components on a coarse
+// grid; conservative: it never joins two separated regions.
 class FreeSpaceGrid {
  public:
   FreeSpaceGrid(const geo::Aabb& workspace, double cell, double radius, DiscFree free);
@@ -65,25 +58,17 @@ using RegionOf = std::function<int(const RobotModel& robot, const double* q)>;
 // body part keeps kClearance from the obstacles and the workspace border.
 bool clearOfWorld(const CollisionWorld& world, const RobotModel& robot, const double* q);
 
-// Draws every robot's start and goal from its sampling bounds, in robot
-// order, by rejection: clear of the world, kClearance from every earlier
-// robot's start (goal), and start and goal in the same region (region may
-// be empty: one region). Fills s.robots[i].start and .goal. Returns false
-// when a robot found no place within the attempt budget; the caller then
-// tries another obstacle layout.
+// Draws every robot's start and goal by rejection (clear of the world and of
+// earlier robots, start and goal in one `region`). Returns false when a robot
+// found no place within the attempt budget.
 bool placeStartsAndGoals(Scenario& s, const CollisionWorld& world, Random& rng, const RegionOf& region);
 
-// placeStartsAndGoals for mobile robots, each start and goal in one
-// component (FreeSpaceGrid, kFreeSpaceCell) of the free space of the
-// largest bounding disc among the robots; `free` tests a disc against the
-// scenario's workspace and obstacles.
+// placeStartsAndGoals for mobile robots, start and goal in one component of
+// the free space of the largest bounding disc; `free` tests a disc.
 bool placeMobileRobots(Scenario& s, const CollisionWorld& world, const DiscFree& free, Random& rng);
 
-// Problems of the same kind as `base`: its workspace, obstacles, robots
-// and resolution, every robot's start and goal drawn again (as
-// placeMobileRobots places them when every robot is mobile, else as
-// placeStartsAndGoals does). A function of (base, seed). Throws
-// CrowdedError when no placement is found in a few attempts.
+// `base` with every robot's start and goal drawn again, a function of
+// (base, seed). Throws CrowdedError when no placement is found.
 Scenario redrawStartsAndGoals(const Scenario& base, std::uint64_t seed);
 
 }  // namespace earc::gen

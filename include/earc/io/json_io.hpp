@@ -28,18 +28,12 @@ inline constexpr std::size_t kMaxTextFileBytes = std::size_t{256} << 20;
 // A whole file's bytes. Throws InputError naming the file when it cannot be
 // opened or read, is a directory, or holds more than kMaxTextFileBytes.
 std::string readTextFile(const std::string& path);
-// Write atomically (temporary file, fsync, rename): a crash leaves the old
-// file or the new one, never half of one. A symbolic link is written
-// through (its target replaced, the link kept); a device or FIFO (such as
-// /dev/stdout) is written to directly, never replaced by a file. Throws
-// InputError naming the file when it cannot be written.
+// Writes atomically (temporary file, fsync, rename), through a symbolic link,
+// directly to a device or FIFO. Throws InputError naming the file on failure.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
-// The same for output too large to hold in memory at once: write() it as
-// it comes; commit() names the file. Destroyed uncommitted (an error on the
-// way), it leaves the old file as it was and no temporary. A stream
-// (/dev/stdout, a FIFO or device) is written as it comes: what was written
-// before an error stays written.
+// As writeTextFileAtomic for output written as it comes; commit() names the
+// file, destruction uncommitted leaves the old file. Streams are written directly.
 class AtomicFile {
  public:
   explicit AtomicFile(const std::string& path);
@@ -63,12 +57,11 @@ void writeAll(int fd, std::string_view bytes, const std::string& path);
 // crash (best effort).
 void syncDirectoryOf(const std::string& path);
 
-// A command's file argument: what the user called it ("-o", "--trace",
-// "scenario") and the path given.
-// The files SQLite keeps beside a database (committed rows not yet in it,
-// lock state, a rollback in progress): part of the database.
+// The files SQLite keeps beside a database: part of the database.
 inline constexpr const char* kDatabaseCompanions[] = {"-wal", "-shm", "-journal"};
 
+// A command's file argument: what the user called it ("-o", "--trace",
+// "scenario") and the path given.
 struct NamedPath {
   std::string name;
   std::string path;
@@ -78,37 +71,25 @@ struct NamedPath {
 // Whether two paths name one file: by identity (links included) when both
 // exist, else by their absolute normal forms.
 bool sameFile(const std::string& a, const std::string& b);
-// Refuses (InputError naming the later path) when two of the paths are
-// one file, so that an output never overwrites an input or another
-// output. Empty paths are ignored. Existing files are compared by
-// identity (links included), others by their absolute normal form.
+// Refuses (InputError naming the later path) two paths that are one file, so
+// that an output never overwrites an input or another output; empty ignored.
 void requireDistinctFiles(const std::vector<NamedPath>& paths);
-// Refuses an output path that cannot be written: a directory, or one whose
-// directory is missing or takes no new file (not writable; /proc, even for
-// root). Cheap, it makes the writer's temporary file and drops it; call it
-// before long work.
+// Refuses (InputError) an output path that cannot be written: a directory,
+// or in a missing or unwritable directory. Cheap: call it before long work.
 void requireWritableOutput(const NamedPath& output);
 // A name's extension in lower case, with its dot ("R.SVG" -> ".svg").
 std::string lowerExtension(const std::string& path);
-// Refuses (InputError naming the output) a file name that does not end in
-// one of `extensions` (".svg", in any case): the name says what the file
-// holds, and SVG written to "r.txt" is mislabelled. The target of a
-// symbolic link may have it instead; a device or FIFO (-o /dev/stdout)
-// has no name to check. Returns the extension matched, "" for a device or
-// FIFO.
+// Refuses (InputError) an output file name (or link target) not ending in
+// one of `extensions`, in any case. Returns the one matched, "" for a device.
 std::string requireOutputExtension(const NamedPath& output, const std::vector<std::string>& extensions);
 // Where a command's summary line goes: stdout, unless one of its outputs is
 // the file stdout writes to (-o /dev/stdout, or -o x.json > x.json), whose
 // contents a summary line there would corrupt: then stderr.
 std::ostream& summaryStream(const std::vector<std::string>& outputs);
 
-// Warnings about an input that is read all the same: an unknown key (the
-// contract ignores it; a misspelt optional field would otherwise become
-// its default unseen), a heading that looks like degrees, an obstacle
-// outside the workspace. Every reader below that takes an InputWarnings*
-// appends its warnings there; given nullptr, it prints each on stderr as
-// one line (printInputWarnings). Either way only once the whole input has
-// been read: refused input gets its one error line and no warnings.
+// Warnings about input read all the same (unknown key, degrees-like heading,
+// obstacle outside the workspace); readers given nullptr print them, once the
+// whole input is read.
 using InputWarnings = std::vector<InputWarning>;
 // "PROGRAM: warning: FILE: PATH: REASON", made printable (control
 // characters as '?'), without a line break.

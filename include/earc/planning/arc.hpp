@@ -27,11 +27,9 @@ struct ResolvedSpan {
   std::size_t t1 = 0;
 };
 
-// The subproblem for a conflict among `robots` at expansion level `level`:
-// window initial_window * 2^level steps each side of the conflict, its end
-// moved forward until the robots' local goals are apart; per-robot region
-// around the local query with a margin that grows with the level; the whole
-// problem once the window covers every path and the level is the last.
+// The subproblem for a conflict among `robots` at expansion `level`: a window
+// of initial_window * 2^level steps each side, regions growing with the
+// level; the whole problem once the window covers every path at the last level.
 Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& robots, int level,
                             const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
                             const CollisionWorld& world, const PlannerSettings& settings);
@@ -41,26 +39,15 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
 // the local path is longer than the span it replaces).
 void splice(std::vector<Path>& paths, const Subproblem& sub, const LocalSolution& local);
 
-// Adds to `robots` the robots of every span that overlaps steps [t0, t1]
-// and shares a robot with the original `robots` (one hop, not transitive),
-// skipping a span that would make the group larger than max_robots.
+// Adds to `robots` those of every span overlapping steps [t0, t1] that shares
+// a robot with them (one hop), unless the group would pass max_robots.
 // Returns how many were added.
 int mergeOverlapping(std::vector<int>& robots, const std::vector<ResolvedSpan>& spans, std::size_t t0,
                      std::size_t t1, std::size_t max_robots);
 
-// How many robots a conflict's group may merge. Past the cap, an answer
-// that undoes a resolved robot's span is accepted, and two groups at the
-// cap can then undo each other for ever: in a crowd of 0.8-radius discs,
-// E-ARC solved the same two conflicts in turn 14,000 times in 20 s. The
-// same conflict found again means its resolution was undone: every
-// kRecurrencesPerRobot times it comes back, its group may take one more
-// robot, up to kMaxExtraRobots more, so that the robot whose span it keeps
-// undoing joins it. The same conflict: the same two robots meeting in the
-// same kCell x kCell cell of the plane, at any instant, since every
-// resolution shifts the later paths in time (64 discs of radius 0.6: of
-// 1,964 conflicts that repeated an earlier one within half a unit and 60
-// steps, 324 fell on its instant). Plans whose conflicts do not come back
-// this often are unchanged.
+// How many robots a conflict's group may merge: one more than the cap every
+// kRecurrencesPerRobot times the same two robots meet again in the same
+// kCell x kCell cell, up to kMaxExtraRobots more. Not thread-safe.
 class ConflictRecurrence {
  public:
   static constexpr int kRecurrencesPerRobot = 3;

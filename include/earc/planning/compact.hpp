@@ -32,16 +32,8 @@ struct CompactReport {
 };
 
 // Retimes `paths` (one per robot, each ending at its goal, trailing waits
-// dropped) in place. Each pass takes the robots latest arrival first; a
-// pass that saves nothing ends it, as does `max_passes`. A robot's search
-// tries at most `states_per_position` (route position, step) pairs per
-// position of its route: a search that finds nothing tries every pair in
-// reach, and on 64 discs among obstacles (mobile-disc-r0.6-w30-obst-64-s2)
-// 16 a position lost half the gain (makespan 3,091 against 1,556) while 64
-// kept all of it.
-// With a world, a robot's route also goes at full speed where it went
-// slower along a straight motion (see the .cpp), the new steps checked
-// against the world; without one, only waits are left out.
+// dropped) in place, leaving out waits (and, with a world, slow straight
+// motions) that no other robot needs, until a pass saves nothing.
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                           const CollisionWorld* world, const Deadline& deadline, int max_passes = 4,
                           std::size_t states_per_position = 64);

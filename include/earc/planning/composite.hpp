@@ -32,12 +32,9 @@ struct KnownValid {
   bool world = false;  // robotMotionValid only: robot r's own motion against the world
 };
 
-// Robots' bodies along their time-stamped paths (one resolution step per
-// step), placed once for many checks of another robot's motions against
-// them: retiming checks the same steps of the others again for every
-// attempt. Entry (w, t, k): robot w at instant k/2 of its step t -> t+1,
-// k = 0, 1 or 2, interpolated as robotMotionValid interpolates it. The
-// paths must outlive this; tell it when a robot's path changes.
+// Robots' bodies along their time-stamped paths, placed once for many checks
+// of another robot's motions against them. The paths must outlive this; tell
+// it when a robot's path changes. Not thread-safe.
 class BodiesAlongPaths {
  public:
   BodiesAlongPaths(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths)
@@ -59,18 +56,9 @@ class CompositeChecker {
       : world_(world), robots_(std::move(robots)) {
     for (const RobotModel* m : robots_) work_per_instant_ += static_cast<std::size_t>(m->dim());
   }
-  // Once `deadline` has expired, states and motions read as invalid (safe:
-  // nothing unchecked is ever called valid). The clock is read here, so
-  // that a checker made after its deadline calls everything invalid, and
-  // then every kWorkPerClockRead units of work done on the thread (a state
-  // being the robots' summed dim()), inside motions and states alike: one
-  // motion of thousands of robots, or one state of arms of thousands of
-  // links, takes long, and OMPL's planners and path simplifier check
-  // thousands more after their own termination condition (a round of
-  // simplification however late; repairs sampling near each state). The
-  // planner's own checks of its time limit come only between them. (A
-  // read per motion would cost the coupled planner on a few small robots
-  // some percent.) The deadline must outlive this.
+  // Once `deadline` (which must outlive this) has expired, states and motions
+  // read as invalid; the clock is read here and every kWorkPerClockRead
+  // units of work on the thread.
   CompositeChecker(const CollisionWorld& world, std::vector<const RobotModel*> robots, const Deadline& deadline)
       : CompositeChecker(world, std::move(robots)) {
     deadline_ = &deadline;
@@ -90,8 +78,7 @@ class CompositeChecker {
   // other robots' part is known valid, the same answer as motionValid.
   bool robotMotionValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
                         KnownValid known = {}) const;
-  // The same for step t -> t+1 of time-stamped paths, a = the paths at t
-  // and b at t + 1 (for every robot but r, the states of along's paths),
+  // The same for step t -> t+1 of time-stamped paths (a at t, b at t + 1),
   // the other robots' bodies taken from `along` when the step is one
   // resolution step.
   bool robotStepValid(std::size_t r, const std::vector<const double*>& a, const std::vector<const double*>& b,
@@ -121,35 +108,20 @@ class CompositeChecker {
   mutable std::atomic<bool> expired_{false};  // once seen; planners check from several threads
 };
 
-// Random shortcutting of a composite waypoint sequence: replace the part
-// between two waypoints by the straight motion when that motion is valid.
-// The waypoints must be valid states (those of a valid path): only the
-// motions between them are checked. Stops early at the deadline (the path
-// stays valid, only less short).
+// Random shortcutting of a composite waypoint sequence of valid states: a
+// part between two waypoints becomes the straight motion where that is valid.
+// Stops early at the deadline (the path stays valid, only less short).
 void shortcutComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, int iterations,
                        std::mt19937_64& rng, const Deadline& deadline = Deadline());
 
-// Shortcuts a waypoint sequence at its two ends: the first waypoint goes
-// by one straight motion to the furthest waypoint it reaches, and the
-// furthest waypoint from which the last is reached goes straight to it.
-// Tried at waypoints geometrically nearer the end, each a quarter nearer
-// (last, 3/4, 9/16, ... of the way), the first valid motion kept: a few
-// checks each. For a path joined to a start and a goal it was not made
-// for, where the detours are. The waypoints must be valid states; returns
-// the waypoints removed.
+// Shortcuts a sequence of valid waypoints at its two ends: the first goes
+// straight to the furthest waypoint it reaches, and into the last from the
+// furthest that reaches it. Returns the waypoints removed.
 std::size_t shortcutEnds(const CompositeChecker& checker, std::vector<CompositeState>& waypoints);
 
-// Shortens time-stamped paths one robot at a time: robot r goes straight
-// from its state at step i to its state at a later step j in the fewest
-// steps the resolution allows, and the rest of its path comes that many
-// steps earlier. A change is kept when every step and midpoint from i on
-// is valid with the other robots where they are at that step (a robot
-// whose path has ended waits at its last state). Composite shortcutting
-// moves all robots together, so one robot's detour holds up the others;
-// this lets each arrive when it can. Ends are kept; paths may come out of
-// different lengths (the caller holds them at their ends). Stops early at
-// the deadline. The paths must be valid on entry: only the changed robot's
-// part of each motion is checked.
+// Shortens valid time-stamped paths one robot at a time (a straight motion
+// between two of its states, the rest earlier), keeping ends and validity;
+// paths may come out of different lengths. Stops early at the deadline.
 void retimeShortcut(const CompositeChecker& checker, std::vector<Path>& paths, int iterations, std::mt19937_64& rng,
                     const Deadline& deadline = Deadline());
 

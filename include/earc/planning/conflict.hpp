@@ -24,32 +24,21 @@ struct Conflict {
 // of steps k/2 and k/2 + 1; past the end: the last state).
 void stateAtInstant(const RobotModel& model, const Path& path, std::size_t k, double* out);
 
-// A box holding the robot's bodies at every instant k0..k1 (inclusive, in
-// half steps, as stateAtInstant counts them) of its path:
-// RobotModel::boundsWithin over the range of its states there. q, lo and
-// hi are scratch.
+// A box holding the robot's bodies at every instant k0..k1 (inclusive, half
+// steps) of its path; q, lo and hi are scratch.
 geo::Aabb boundsOverInstants(const RobotModel& model, const Path& path, std::size_t k0, std::size_t k1,
                              std::vector<double>& q, std::vector<double>& lo, std::vector<double>& hi);
 
 class ConflictDetector {
  public:
   explicit ConflictDetector(std::vector<const RobotModel*> models);
-  // With a deadline (which must outlive this), first() gives up once it
-  // has expired, polled every kWorkPerClockRead units of work (an instant
-  // being the robots' summed dim()): one instant of arms of thousands of
-  // links takes milliseconds a pair.
+  // With a deadline (which must outlive this), first() gives up once it has
+  // expired, polled every kWorkPerClockRead units of work.
   ConflictDetector(std::vector<const RobotModel*> models, const Deadline& deadline);
 
-  // Earliest conflict among `paths` (one per robot; nullptr = robot absent)
-  // at instants from step `from` through step `to` (inclusive; clamped to
-  // the longest path). When `focus` is given, only pairs with at least one
-  // focused robot count. Instants go in chunks of kChunk: each robot is
-  // bounded over a chunk at once (RobotModel::boundsWithin), and only the
-  // robots whose chunk bounds meet another's that counts are placed at
-  // each instant, where a sort-and-sweep over the bodies' bounds
-  // (insertion sort: the order barely changes between instants) keeps
-  // this near linear in the number of robots. Nothing either when
-  // the deadline expired before the end: ask interrupted().
+  // Earliest conflict among `paths` (nullptr: robot absent) at instants of
+  // steps `from` through `to`, only pairs with a `focus` robot when given;
+  // nothing either when the deadline expired first (ask interrupted()).
   std::optional<Conflict> first(const std::vector<const Path*>& paths, std::size_t from = 0,
                                 std::size_t to = static_cast<std::size_t>(-1),
                                 const std::vector<char>* focus = nullptr);

@@ -37,11 +37,9 @@ struct CoupledQuery {
   std::vector<ConfigBox> region;  // sampling bounds per robot (empty: whole space)
 };
 
-// A solution whose paths all have the same length, start at the starts and
-// end at the goals, respect the resolution, and are free of obstacles,
-// self-collision and contact between the query's robots at every step and
-// midpoint; std::nullopt when none was found within the time limit.
-// Deterministic for a given seed when the time limit is not what stops it.
+// Valid paths of one length from the starts to the goals (every step and
+// midpoint), or nullopt when none is found within the time limit.
+// Deterministic for a seed unless the time limit stops it.
 std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const CoupledQuery& query,
                                           const CoupledSettings& settings, std::uint64_t seed);
 
@@ -52,26 +50,18 @@ LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
                                  const std::vector<std::vector<std::vector<double>>>& waypoints);
 
 // Makes a valid composite waypoint sequence shorter in steps, keeping it
-// valid: every mobile robot turns steadily from its start heading to its
-// goal heading along the way, where that stays valid (RRT-Connect's
-// waypoints carry random headings, and turning on the spot costs steps);
-// then the sequence is shortcut, time-stamped, and shortcut again state by
-// state, which removes waits and detours between waypoints. The ends are
-// kept. Stops early at the deadline.
+// valid and its ends (mobile robots turned steadily, shortcut, time-stamped,
+// shortcut again). Stops early at the deadline.
 void polishComposite(const CompositeChecker& checker, std::vector<CompositeState>& waypoints, std::mt19937_64& rng,
                      const Deadline& deadline);
 
-// Steps t of time-stamped paths whose motion t -> t+1 (either end or its
-// midpoint) is invalid, as maximal runs [first, last] of consecutive steps.
-// Past the checker's deadline every state and motion reads as invalid:
-// ask checker.outOfTime() before believing the runs.
+// Maximal runs [first, last] of steps whose motion t -> t+1 is invalid; past
+// the checker's deadline everything reads invalid: ask checker.outOfTime().
 using StepRun = std::pair<std::size_t, std::size_t>;
 std::vector<StepRun> invalidRuns(const CompositeChecker& checker, const std::vector<Path>& paths);
 
 // Time-stamped paths with each invalid run replanned in the composite space
-// (solveCoupled inside `region`, at most time_per_run_s each and within the
-// deadline) between the valid states around it, the rest kept as it was.
-// Without paths when a run could not be replanned; `why` says so.
+// between the valid states around it; without paths (and `why`) when one failed.
 struct RunRepair {
   std::optional<std::vector<Path>> paths;
   bool out_of_time = false;  // no time was left for a run (rather than its replanning failing)

@@ -20,15 +20,13 @@ class RoadmapCache;
 enum class Method { Arc, Earc, Prioritized, Coupled, Lightning, Lacam };
 const char* methodName(Method m);
 Method methodFromName(const std::string& name);  // throws std::invalid_argument
-// Why `method` cannot plan with work budgets (PlannerSettings::
-// work_budgets), for the option or request field that asked: Lightning
-// races two planners on two threads, whichever the budgets count.
+// The refusal of work budgets (PlannerSettings::work_budgets) for Lightning,
+// to follow the option or request field that asked for them.
 inline constexpr const char* kWorkBudgetsNotForLightning =
     "is not for method lightning (it races two planners on two threads; its plans follow the machine's timing)";
 
-// How far a running plan has got, for a progress line that another thread
-// draws (`earc-plan plan` on a terminal). ARC and E-ARC fill it in; the
-// other methods report only their time.
+// How far a running plan has got, written by the planner (ARC and E-ARC) and
+// read by another thread that draws a progress line. Thread-safe.
 struct PlanProgress {
   std::atomic<int> individual_paths{0};   // robots with an individual path so far
   std::atomic<int> conflicts{0};          // conflicts found; the last is being resolved
@@ -43,57 +41,46 @@ struct PlannerSettings {
   double time_limit_s = 60.0;
   std::uint64_t seed = 1;
   bool trace = false;                 // record a trace of conflicts and subproblems
-  // ARC's and E-ARC's solver attempts (and the database's repairs) count
-  // their budgets in work done, not seconds (Deadline::withWorkBudgets):
-  // the same seed then gives the same plan on any machine of the same
-  // build, busy or not, unless time_limit_s (wall clock) stops it.
+  // ARC's and E-ARC's solver attempts count their budgets in work done, not
+  // seconds (Deadline::withWorkBudgets): the same seed, the same plan on
+  // any machine of the same build, unless time_limit_s stops it.
   bool work_budgets = false;
   // Individual roadmaps.
   int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
   int roadmap_neighbors = 10;
-  // Roadmaps kept from earlier plans of this process (RoadmapCache):
-  // ARC, E-ARC and the prioritized baseline take a robot's roadmap from it
-  // where one was built for the same world, geometry and seed, and put
-  // those they build there. The same plan either way. Null: none kept.
+  // Roadmaps kept from earlier plans of this process, used and filled by ARC,
+  // E-ARC and the prioritized baseline (the same plan either way); null: none.
   RoadmapCache* roadmap_cache = nullptr;
   // ARC's subproblems.
   int initial_window = 8;             // steps before and after the conflict
   double region_margin = 1.0;         // plane units (mobile) around the local query
   double joint_margin = 0.6;          // radians (arms)
   int max_expansions = 12;
-  // Merging stops at this many robots: beyond it neither prioritized nor
-  // composite planning of a local subproblem succeeds in its budget, and
-  // resolving the conflict without the merge is the better bet. A conflict
-  // that keeps coming back is the exception (ConflictRecurrence, arc.hpp).
-  // At least 2, the robots of a conflict.
+  // Merging stops at this many robots (at least 2), except for a conflict
+  // that keeps coming back (ConflictRecurrence, arc.hpp).
   int max_merged_robots = 5;
   // E-ARC's database solver.
   int db_k = 10;                      // candidates retrieved per subproblem
   int db_max_invalid_segments = 3;    // repair at most this many segments
   double db_max_stretch = 0.0;        // refuse longer answers (DatabaseSolverSettings::max_stretch); 0: off
   bool db_learn = true;               // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
-  // Diagnostic: also run the decoupled solver on every subproblem put to
-  // the database and report what each solved (stats
-  // db_shadow_decoupled). Planning times then include those runs.
+  // Diagnostic: also run the decoupled solver on every subproblem put to the
+  // database and report what each solved (stats db_shadow_decoupled).
   bool db_shadow_decoupled = false;
-  // After planning, retime every robot along its own path to leave out
-  // the waits it does not need (compactPlan, compact.hpp); stats
-  // "compact". Not part of any method as published; off by default.
+  // After planning, leave out the waits each robot does not need
+  // (compactPlan, compact.hpp); stats "compact".
   bool compact = false;
-  // Anytime refinement (refinePlan, refine.hpp): seconds spent after the
-  // first valid plan improving it, within time_limit_s; 0: off. Stats
-  // "refine"; planning_time_s stays the time to the first valid plan.
+  // Seconds spent after the first valid plan improving it (refinePlan,
+  // refine.hpp), within time_limit_s; 0: off. Stats "refine".
   double refine_s = 0.0;
   // Crowds: ARC and E-ARC hand a jam to the configuration-based crowd
   // solver (lacam.hpp) when their local solvers fail on it; false: never.
   bool crowd_fallback = true;
-  // Lightning's whole-problem database file (OMPL's format): empty starts
-  // from an empty database and writes none; a missing file is created when
-  // db_learn is set.
+  // Lightning's database file (OMPL's format): empty starts from an empty
+  // database and writes none; a missing file is created when db_learn is set.
   std::string lightning_db;
-  // Memory guard: a scenario whose straight start-to-goal motions alone
-  // would take more time-stamped scalars than this (all robots together;
-  // 8 bytes each) is refused as too large before planning starts.
+  // A scenario whose straight start-to-goal motions alone would take more
+  // time-stamped scalars than this (8 bytes each) is refused as too large.
   std::int64_t max_path_scalars = std::int64_t{1} << 24;  // 128 MiB
   // Filled in as planning goes when set; read by whoever set it.
   PlanProgress* progress = nullptr;
@@ -109,8 +96,8 @@ struct PlanResult {
   nlohmann::json trace = nullptr;       // earc.trace.v1 when settings.trace
 };
 
-// The scenario, unless it has no robot: "solved: 0 robots" would hide a
-// scenario that lost its robots (InputError naming `source` and $.robots).
+// The scenario, unless it has no robot: then throws InputError naming
+// `source` and $.robots.
 Scenario requireRobots(Scenario scenario, const std::string& source);
 
 }  // namespace earc

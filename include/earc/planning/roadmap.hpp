@@ -30,18 +30,14 @@ class Roadmap {
     int id;     // index into the validity cache
   };
 
-  // `deadline` is the plan's: once it has expired, growing stops early and
-  // edges are no longer checked (see grow and edgeValid). It must not be a
-  // solver's shorter budget, which would leave the roadmap short for the
-  // rest of the plan.
+  // `deadline` is the plan's (not a solver's shorter budget): once it has
+  // expired, growing stops early and edges are no longer checked.
   Roadmap(const CollisionWorld& world, const RobotModel& model, int neighbors, std::uint64_t seed,
           const Deadline& deadline = Deadline());
 
-  // What a roadmap holds apart from the world and robot it was made for
-  // and its deadline. A roadmap made from it for a world and a robot of
-  // the same contents is the one it was taken from, random engine and
-  // edge checks included: what grows or searches it next goes as it would
-  // have (RoadmapCache keeps them between a service's requests).
+  // A roadmap's state apart from its world, robot and deadline: restored for
+  // a world and robot of the same contents, it is the roadmap it was taken
+  // from, random engine and edge checks included.
   struct Snapshot {
     int neighbors = 0;
     std::mt19937_64 rng;
@@ -58,21 +54,14 @@ class Roadmap {
   Roadmap(const CollisionWorld& world, const RobotModel& model, const Snapshot& snapshot,
           const Deadline& deadline = Deadline());
 
-  // Adds `samples` valid configurations (rejection-sampled within the
-  // sampling bounds, or within `within` where given) and connects each to
-  // its k nearest vertices. Edges are not checked here. Stops early,
-  // leaving fewer vertices or some unconnected, once the deadline has
-  // expired: on an arm of thousands of links this takes many seconds.
+  // Adds `samples` valid configurations (within `within` where given) and
+  // connects each to its k nearest vertices, edges unchecked. Stops early,
+  // leaving fewer vertices or some unconnected, once the deadline expired.
   void grow(int samples, const ConfigBox* within = nullptr);
 
-  // Drops the vertices not valid in this roadmap's world: their edges are
-  // marked invalid without a check, queries (QueryGraph) leave them out,
-  // and a vertex that lost neighbours is joined to its k nearest of the
-  // rest (from the kept candidates where they suffice), as a roadmap
-  // sampled in this world would be. For a roadmap copied from one built
-  // in another world (RoadmapSet's arms with something in reach). Stops,
-  // leaving the rest to the edge checks, once the deadline expires.
-  // Returns how many vertices it dropped.
+  // Drops the vertices not valid in this world (for a roadmap copied from
+  // another world) and rejoins those that lost neighbours; stops once the
+  // deadline expires. Returns how many vertices it dropped.
   int dropInvalidVertices();
   bool dropped(int v) const { return static_cast<std::size_t>(v) < dropped_.size() && dropped_[static_cast<std::size_t>(v)]; }
   bool droppedAny() const { return !dropped_.empty(); }
@@ -80,11 +69,9 @@ class Roadmap {
   // whose vertices are dropped join the rest without a search.
   void keepCandidates() { keep_candidates_ = true; }
 
-  // Where to grow the roadmap when a search found part of it cut off from
-  // the rest: the box around that part's configurations (`configs`, one
-  // after another), widened by four bounding radii for a mobile robot
-  // (whose box spans every heading) and by a tenth of each joint's range
-  // for an arm; the sampling bounds when `configs` is empty.
+  // The box to grow the roadmap in around a cut-off part's configurations
+  // (`configs`, one after another), widened a little; the sampling bounds
+  // when `configs` is empty.
   ConfigBox boxAround(const std::vector<double>& configs) const;
   // The share of the sampling bounds' volume that `box` covers.
   double share(const ConfigBox& box) const;
@@ -135,14 +122,9 @@ class Roadmap {
   DeadlinePoll poll_;  // one count of work for all of the roadmap's checks
 };
 
-// Roadmaps as they came out of building, kept across plans: a service
-// that plans one map again and again (earc-plan serve) builds each
-// robot's roadmap once. Looked up by a key that holds everything building
-// depends on (RoadmapSet::useCache), so a plan from a kept roadmap is the
-// plan a fresh build gives, work budgets included (`work`, the units the
-// build counted, are counted again on reuse). The least recently used
-// go first once the snapshots' bytes pass the capacity. Not thread-safe:
-// one plan at a time uses it.
+// Roadmaps as they came out of building, kept across plans by a key of all
+// building depends on, so a kept roadmap plans as a fresh one; least recently
+// used dropped past the capacity in bytes. Not thread-safe.
 class RoadmapCache {
  public:
   struct Entry {
@@ -168,13 +150,9 @@ class RoadmapCache {
   std::list<std::pair<std::string, std::shared_ptr<const Entry>>> entries_;
 };
 
-// A roadmap plus a few query vertices (a start, a goal), optionally
-// restricted to a configuration-space region, for one robot. The roadmap
-// may have been built for another robot for which the same
-// configurations are valid (RoadmapSet shares one between arms with
-// nothing in reach): where the robot's body is comes from `robot`.
-// Vertex ids below roadmap.size() are roadmap vertices; the query
-// vertices follow.
+// A roadmap (possibly another robot's with the same valid configurations)
+// plus query vertices, optionally restricted to a region, for one robot; ids
+// below roadmap.size() are roadmap vertices, query vertices follow.
 class QueryGraph {
  public:
   QueryGraph(Roadmap& roadmap, const RobotModel& robot, const ConfigBox* region = nullptr);
@@ -229,17 +207,13 @@ class QueryGraph {
   std::vector<std::int8_t> extra_edge_state_;
 };
 
-// Units of work (Deadline::withWorkBudgets) of one vertex taken from a
-// graph search's queue over a roadmap, its edges relaxed: about its time.
-// Counted by shortestPath and the space-time search's distances to the
-// goal, so that a budget of work covers them as a budget of seconds does.
+// Units of work (Deadline::withWorkBudgets) of one vertex taken from a graph
+// search's queue over a roadmap, its edges relaxed: about its time.
 inline constexpr std::size_t kWorkPerGraphPop = 4;
 
-// Shortest path in time steps from `from` to `to` (lazy: edges on a
-// candidate path are checked, invalid ones excluded, and the search
-// repeated). Vertex sequence, or nothing. When there is none and the
-// deadline has not passed, `reached` (if given) gets the vertices the
-// search could reach from `from`: its part of the graph.
+// Shortest path in time steps from `from` to `to` (lazy edge checks), or
+// nullopt; then, before the deadline, `reached` (if given) gets the vertices
+// reachable from `from`.
 std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to, const Deadline& deadline,
                                              std::vector<int>* reached = nullptr);
 

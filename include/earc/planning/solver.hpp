@@ -21,35 +21,28 @@
 
 namespace earc {
 
-// One roadmap per distinct robot body in the environment: mobile robots
-// with equal geometry signatures share one; an arm has its own (its base
-// fixes where its body can be). Built on first use. `deadline` is the
-// plan's (see Roadmap): past it, roadmaps come out short and their edges
-// unchecked, as nothing is planned on them any more.
+// One roadmap per distinct robot body (mobile robots of equal geometry share
+// one; an arm has its own), each built on first use; past `deadline` they
+// come out short and unchecked. Not thread-safe.
 class RoadmapSet {
  public:
   RoadmapSet(const CollisionWorld& world, std::vector<const RobotModel*> models, int samples, int neighbors,
              std::uint64_t seed, const Deadline& deadline = Deadline());
   Roadmap& forRobot(int robot);
-  // Grows the robot's roadmap within `box` (Roadmap::growWithin), counted
-  // in buildSeconds.
+  // Grows the robot's roadmap within `box` (Roadmap::growWithin); counted in buildSeconds().
   void growWithin(int robot, const ConfigBox& box);
   int initialSamples(int robot) const;
   std::size_t edgeChecks() const;
   // Vertices of all the roadmaps built, grown ones included.
   std::size_t vertices() const;
   // Roadmaps built so far (each when a robot first needed it), and the
-  // seconds spent building and growing them: a solver that asks for a
-  // roadmap first pays for it, and ARC counts that time apart from the
-  // solver's own.
+  // seconds spent building and growing them.
   std::size_t built() const;
   double buildSeconds() const { return build_seconds_; }
 
-  // Takes roadmaps from `cache` where it holds one built for the same
-  // world, robot geometry, samples, neighbours and seed, and puts there
-  // those it builds (unless the deadline cut building short). `scenario`
-  // is the one the world and models were made from. Call before any
-  // roadmap is asked for; the cache must outlive this set's builds.
+  // Takes roadmaps from `cache` built for the same world (from `scenario`),
+  // geometry, samples, neighbours and seed, and stores those it builds. Call
+  // before any roadmap is asked for; `cache` must outlive this set's builds.
   void useCache(RoadmapCache& cache, const Scenario& scenario);
   // Of built(), those taken from the cache.
   std::size_t reused() const { return reused_; }
@@ -103,15 +96,11 @@ struct SolverContext {
   const Subproblem& sub;
   Deadline deadline;
   std::uint64_t seed = 0;
-  // Multiplies the solvers' own time budgets: ARC raises it as a
-  // subproblem keeps failing, so that once the subproblem has grown to
-  // the whole problem the solvers get ever more of the remaining time
-  // instead of the same short tries.
+  // Multiplies the solvers' own time budgets; ARC raises it as a
+  // subproblem keeps failing.
   double budget_scale = 1.0;
-  // Plan as if the robots outside the subproblem were not there: they
-  // meet its answer as later conflicts, and are replanned then.
-  // nearbyRobots() then finds none, for the decoupled and the database
-  // solver alike (the coupled solver never sees them).
+  // Plan as if the robots outside the subproblem were not there
+  // (nearbyRobots() finds none); they meet the answer as later conflicts.
   bool ignore_others = false;
 };
 
@@ -128,11 +117,9 @@ class SubproblemSolver {
   virtual ~SubproblemSolver() = default;
   // Short name for statistics and traces.
   virtual const char* name() const = 0;
-  // A local solution of ctx.sub: one path per subproblem robot (in
-  // ctx.sub.robots order), all of one length, from the local starts to the
-  // local goals, valid against the world and among the subproblem's robots
-  // at every step and midpoint; an empty outcome when none is found within
-  // the solver's budget or ctx.deadline.
+  // A local solution of ctx.sub: one path per robot (ctx.sub.robots order),
+  // of equal length, local starts to goals, valid at every step and midpoint;
+  // an empty outcome when none is found within the budget or ctx.deadline.
   virtual SolverOutcome solve(SolverContext& ctx) = 0;
   // Told when the hierarchy accepted a solution, whichever solver found it.
   virtual void accepted(const SolverContext& /*ctx*/, const LocalSolution& /*sol*/, const SolverOutcome& /*by*/) {}
@@ -145,23 +132,15 @@ struct DecoupledSettings {
   double time_budget_s = 0.25;
   std::size_t max_expansions = 60000;  // space-time states expanded per robot
   // And at most this many per step of the search's horizon (0: no such
-  // cap), times the hierarchy's budget scale. Searches that succeed
-  // expand few states; one that fails has often exhausted every state
-  // reachable before the horizon, the costliest way a subproblem fails.
+  // cap), times the hierarchy's budget scale.
   std::size_t expansions_per_horizon_step = 32;
   // Each robot arrives within horizon_windows x the window's steps +
   // horizon_steps (past ARC's last level, that times the hierarchy's
-  // budget scale, up to the long horizon below). A local solution that
-  // arrives much later than the window it replaces holds its robots up
-  // there, and the conflicts that makes cost more than the coupled
-  // solver's answer; a search that finds no way also ends sooner. With
-  // the window plus 50 instead of the long horizon, ARC at 32 mobile
-  // robots with obstacles was paired 0.85 with makespans 6% shorter (see
-  // README, The methods).
+  // budget scale, up to the long horizon below).
   double horizon_windows = 1.0;
   std::size_t horizon_steps = 50;
-  // The long horizon: every subproblem's before d695120, and still the
-  // whole-problem prioritized baseline's, whose one window is the plan.
+  // The long horizon: the whole-problem prioritized baseline's, whose one
+  // window is the plan.
   static constexpr double kLongHorizonWindows = 4;
   static constexpr std::size_t kLongHorizonSteps = 100;
   int connect_neighbors = 10;
@@ -169,18 +148,12 @@ struct DecoupledSettings {
   bool avoid_others = true;             // treat robots outside the subproblem as moving obstacles
   // The space-time search's heuristic: each vertex's distance to the goal
   // over the roadmap (see spaceTimeSearch) instead of in a straight line.
-  // The whole-problem prioritized baseline on den520d, 32 robots: every
-  // plan ran 2 million expansions short in 20 s with the straight line,
-  // every one solved in about a second with this. ARC at 32 mobile robots
-  // with obstacles: paired time 0.93, makespans 5% shorter.
   bool graph_heuristic = true;
 };
 
 // Prioritized planning in space-time over the robots' roadmaps, waiting
-// allowed: each robot avoids the ones planned before it (and, with
-// avoid_others, the robots outside the subproblem along their current paths).
-// The robots are planned first in the order listed, then in the orders
-// nextPriorityOrder gives, up to max_orders.
+// allowed, in the order listed, then in nextPriorityOrder's orders up to
+// max_orders. Not thread-safe.
 class DecoupledSolver : public SubproblemSolver {
  public:
   explicit DecoupledSolver(DecoupledSettings s = {}) : settings_(s) {}
@@ -191,11 +164,9 @@ class DecoupledSolver : public SubproblemSolver {
   DecoupledSettings settings_;
 };
 
-// The priority order to try after `tried` (tried.back() failed at the
-// robot with index `failed`): tried.back() with that robot moved to the
-// front, so that the robot that found no way behind the others picks its
-// way first; if that was tried, one not yet tried, at random; none
-// (empty) once every order of the robots was tried.
+// The order to try after `tried` (whose last failed at robot index `failed`):
+// that order with the robot moved to the front; if tried, an untried one at
+// random; empty once every order was tried.
 std::vector<std::size_t> nextPriorityOrder(const std::vector<std::vector<std::size_t>>& tried, std::size_t failed,
                                            std::mt19937_64& rng);
 
@@ -204,7 +175,7 @@ struct CoupledSolverSettings {
 };
 
 // OMPL RRT-Connect in the composite space of the subproblem's robots,
-// restricted to the subproblem's region.
+// restricted to the subproblem's region. Not thread-safe.
 class CoupledSubproblemSolver : public SubproblemSolver {
  public:
   explicit CoupledSubproblemSolver(CoupledSolverSettings s = {}) : settings_(s) {}
@@ -215,21 +186,15 @@ class CoupledSubproblemSolver : public SubproblemSolver {
   CoupledSolverSettings settings_;
 };
 
-// Space-time A* for one robot over a query graph, avoiding moving
-// obstacles. The result starts at `start` at local time 0, reaches `goal`
-// and can then wait there without contact through step `hold_until`;
-// arrival no later than step `horizon`. Its heuristic is the straight-line
-// distance to the goal in steps, or with graph_heuristic the steps of the
-// shortest way there over the graph's edges not known to be invalid (a
-// Dijkstra search from the goal first): as admissible, and far better
-// informed on a maze-like map, where the straight line runs through walls.
 // How a search ended. NoWay: no arrival by the horizon among these
-// obstacles, so none among more of them either; Capped and OutOfTime: it
-// stopped at max_expansions or the deadline before it could tell.
+// obstacles (so none among more either); Capped, OutOfTime: it stopped at
+// max_expansions or the deadline before it could tell.
 enum class SearchEnd { Found, NoWay, Capped, OutOfTime };
 const char* searchEndName(SearchEnd end);
 
-// When `end` is given, the search says there how it ended.
+// Space-time A* for one robot from `start` at local time 0 to `goal` by step
+// `horizon`, avoiding `obstacles`, then free to wait there through
+// `hold_until`; nullopt when none is found (why in `end`, when given).
 std::optional<Path> spaceTimeSearch(QueryGraph& graph, int start, int goal,
                                     const std::vector<MovingObstacle>& obstacles, std::size_t horizon,
                                     std::size_t hold_until, const Deadline& deadline, std::size_t max_expansions,

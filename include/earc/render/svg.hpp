@@ -33,11 +33,9 @@ struct SvgOptions {
 // Scenario only: options.steps are ignored (there are no paths).
 std::string scenarioSvg(const Scenario& scenario, const SvgOptions& options = {});
 
-// Paths as polylines in one colour per robot (mobile robots: the reference
-// point; arms: the end of the last link), starts and goals, and the robots
-// at options.steps (a robot past its last state stays there), each step's
-// panel drawing the part of a path travelled solid and the part to go
-// dashed and faded.
+// Paths as polylines in one colour per robot, starts and goals, and the
+// robots at options.steps, a panel each: the part of a path travelled solid,
+// the part to go dashed and faded.
 std::string solutionSvg(const Scenario& scenario, const Solution& solution, const SvgOptions& options = {});
 
 // The width in pixels of a picture of `panels` panels (1 without steps)
@@ -61,11 +59,9 @@ PictureSize svgSizePx(const std::string& svg);
 // kept polyline.
 std::vector<geo::Vec2> decimatePolyline(const std::vector<geo::Vec2>& points, double tolerance);
 
-// The checks writeImage makes, for a command to make before its work:
-// InputError naming `option` for a name that ends in neither .svg nor .png
-// (any case; a device or FIFO gets SVG), std::runtime_error when a .png
-// needs rsvg-convert and it is not on PATH (naming the package
-// librsvg2-bin). True for PNG.
+// writeImage's checks, for a command to make before its work: InputError
+// naming `option` for a name ending in neither .svg nor .png, runtime_error
+// when a .png needs rsvg-convert and it is missing. True for PNG.
 bool requireImageOutput(const std::string& path, const std::string& option);
 
 // Writes the SVG to path, or for a path ending in ".png" converts it with

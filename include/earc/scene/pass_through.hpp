@@ -15,10 +15,8 @@
 
 namespace earc {
 
-// How far any point of the robot's body can move in one step of the
-// scenario's resolution (an upper bound: every joint or the heading
-// turning by its full resolution at once, and the reference point moving
-// by its full translation).
+// An upper bound on how far any point of the robot's body moves in one step
+// of the resolution.
 double largestStepMotion(const RobotSpec& robot, const Resolution& resolution);
 
 // The robot's thinnest extent: a disc's diameter, a box's shorter side, a
@@ -31,10 +29,8 @@ double thinnestExtent(const Obstacle& obstacle);
 // obstacles are as thin for some robot), or "" when none can.
 std::string passThroughWarning(const Scenario& scenario);
 
-// The warning as a command prints it on stderr for the scenario read from
-// `scenario_file`: "PROGRAM: warning: FILE: resolution: ...", the file
-// name and the warning made printable (printableText, 4096 bytes at most),
-// without a line break; "" when passThroughWarning says nothing.
+// The warning as a command prints it ("PROGRAM: warning: FILE: resolution:
+// ...", printable, one line); "" when passThroughWarning says nothing.
 std::string passThroughWarningLine(const Scenario& scenario, const std::string& scenario_file,
                                    std::string_view program);
 

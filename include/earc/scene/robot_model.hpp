@@ -14,13 +14,8 @@
 
 namespace earc {
 
-// Thrown by stepsBetween when no int counts the steps between two
-// configurations: a coordinate that is not a number, or a distance beyond
-// INT_MAX steps (a damaged stored path, or one far outside the workspace
-// at a fine resolution); and by exp::fitResolution for a stored path too
-// long to split. An invalid_argument, as it always was, for the callers
-// that report it as bad input; a type of its own for the database solver,
-// which passes over the stored candidate it came from.
+// Thrown by stepsBetween (and exp::fitResolution) when no int counts the
+// steps between two configurations (not a number, or beyond INT_MAX steps).
 class NoStepCountError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
@@ -33,10 +28,8 @@ class RobotModel {
   // Configuration dimension (3 for a mobile robot, one per link for an arm).
   virtual int dim() const = 0;
 
-  // Time distance in steps: the least (fractional) number of time steps in
-  // which the robot can move straight from a to b without breaking the
-  // scenario's resolution. A metric; 0 iff a and b are the same
-  // configuration (headings modulo 2 pi).
+  // Time distance in steps: the least (fractional) number of steps to move
+  // straight from a to b within the resolution. A metric; 0 iff the same configuration.
   virtual double distance(const double* a, const double* b) const = 0;
 
   // Whole number of steps a straight motion from a to b takes: ceil of
@@ -52,11 +45,8 @@ class RobotModel {
   // one body for a mobile robot, one capsule per link for an arm.
   virtual void bodies(const double* q, std::vector<geo::Body>& out) const = 0;
 
-  // A box holding the robot's bodies at every configuration q with lo[i]
-  // <= q[i] <= hi[i] for each coordinate, for broad phases over many
-  // instants at once; it may be larger than the tightest such box. By
-  // default the bounding disc around every centre in the box (for a
-  // mobile robot its positions, whatever the heading).
+  // A box, perhaps not the tightest, holding the robot's bodies at every
+  // configuration within [lo, hi]; by default the bounding disc around every centre.
   virtual geo::Aabb boundsWithin(const double* lo, const double* hi) const;
 
   // True when two non-adjacent links of an arm touch (never for mobile robots).
@@ -68,12 +58,9 @@ class RobotModel {
   // True when q respects the joint limits (always for mobile robots).
   virtual bool withinLimits(const double* q) const = 0;
 
-  // Radius of a disc around boundingCenter(q) that contains the whole body
-  // at any configuration. The centre moves along a straight line, evenly,
-  // as interpolate moves q (a mobile robot's position; an arm's fixed
-  // base), which lets broad phases tabulate it without interpolating.
-  // Not virtual: broad phases ask for them in their innermost loops, and a
-  // call each was a tenth of a 32-robot plan's profile.
+  // Radius of a disc around boundingCenter(q) holding the whole body at any
+  // configuration (the centre moves linearly as interpolate moves q). Not
+  // virtual: broad phases call it in their innermost loops.
   double boundingRadius() const { return bounding_radius_; }
   geo::Vec2 boundingCenter(const double* q) const { return center_is_position_ ? geo::Vec2{q[0], q[1]} : fixed_center_; }
 

@@ -1,7 +1,7 @@
 // The planner service behind `earc-plan serve`: one long-running process
 // that keeps an experience store open (its k-d indexes warm) and answers
 // planning requests, one JSON object per line in, one per line out
-// (protocol earc.service.v1, documented in the README, "Planner service").
+// (protocol earc.service.v1, documented in docs/service.md).
 //
 // Requests (unknown keys are refused, so a misspelt option never passes
 // silently):

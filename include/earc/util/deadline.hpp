@@ -11,30 +11,21 @@
 
 namespace earc {
 
-// A process-wide stop request: once set, every Deadline reads as expired
-// (remaining() 0), so a planner in flight winds down as if its time limit
-// had passed. Set from a signal handler by `earc-plan serve` (a lock-free
-// atomic store is async-signal-safe); cleared before the next request.
+// A process-wide stop request: once set, every Deadline reads as expired.
+// Set from signal handlers (async-signal-safe); cleared before the next request.
 inline std::atomic<bool> g_stop_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free);
 inline void requestStop() noexcept { g_stop_requested.store(true, std::memory_order_relaxed); }
 inline void clearStopRequest() noexcept { g_stop_requested.store(false, std::memory_order_relaxed); }
 inline bool stopRequested() noexcept { return g_stop_requested.load(std::memory_order_relaxed); }
 
-// Work done on this thread, in the collision checks' units (bodies placed,
-// or a composite state's summed dims): the clock that solver attempts'
-// budgets run on when they count work instead of seconds (see
-// Deadline::withWorkBudgets). Advanced by DeadlinePoll, the composite
-// checker, the coupled search's distances and the space-time search
-// (countWork); each thread has its own, and budgets are relative to it.
+// Work done on this thread in the collision checks' units: the clock of
+// budgets that count work (Deadline::withWorkBudgets). Per thread.
 inline thread_local std::uint64_t t_work_done = 0;
 inline void countWork(std::size_t units) noexcept { t_work_done += units; }
 
-// How many units of work a second of budget stands for when budgets count
-// work: about what one core of the machine the defaults were tuned on (a
-// 2-core VM, 2026) did per second in ARC's and E-ARC's solvers, mobile
-// robots and arms alike, so that a budget lasts about as long on an idle
-// machine of that speed either way.
+// Units of work a second of budget stands for when budgets count work:
+// about what one core of the machine the defaults were tuned on did.
 inline constexpr double kWorkPerBudgetSecond = 2.0e7;
 
 class Deadline {
@@ -58,11 +49,8 @@ class Deadline {
     if (end_ == Clock::time_point::max()) return left;
     return std::min(left, std::chrono::duration<double>(end_ - Clock::now()).count());
   }
-  // This deadline, whose capped() budgets count work done on the calling
-  // thread (kWorkPerBudgetSecond units a second) instead of seconds when
-  // `on`: the same seed then makes the same plan on a slower or busier
-  // machine, where a budget of seconds would end a search sooner. The
-  // deadline's own end stays what it was (a wall-clock time limit).
+  // This deadline, its capped() budgets counting work done on the calling
+  // thread instead of seconds when `on`; its own end stays wall-clock time.
   Deadline withWorkBudgets(bool on) const {
     Deadline d = *this;
     d.work_budgets_ = on;
@@ -91,11 +79,9 @@ class Deadline {
   bool work_budgets_ = false;
 };
 
-// A deadline read where the work is: at the first call, then once per
-// `work_per_read` units of work (bodies placed, say), so that a loop of
-// cheap steps pays next to nothing for it while one of costly steps (an
-// arm of thousands of links) notices the deadline within a step or two.
-// Once expired it stays so.
+// A deadline read at the first call, then once per `work_per_read` units of
+// work, so cheap loops pay little and costly ones notice within a step or
+// two. Once expired it stays so. Not thread-safe.
 class DeadlinePoll {
  public:
   DeadlinePoll(const Deadline& deadline, std::size_t work_per_read)

@@ -26,11 +26,8 @@ inline std::string formatNumber(const char* printf_format, double v) {
   return buf;
 }
 
-// A number as another program must read it: the shortest text that reads
-// back as the same double ("10", "0.5", "1e-07", "1.0000001"). For
-// numbers on a child's command line and in file names, where
-// std::to_string's six decimals would pass 1e-07 as 0.000000 and
-// 1.0000001 as 1.000000.
+// The shortest text that reads back as the same double ("10", "0.5",
+// "1e-07", "1.0000001"): for numbers another program must read.
 std::string exactNumber(double v);
 
 // Whether `text` is one or more decimal digits and nothing else: no sign,
@@ -58,18 +55,12 @@ inline std::string utcTimeText(std::int64_t unix_seconds) {
   return buf;
 }
 
-// `text` as printable, valid UTF-8 on one line: control characters
-// (line breaks, escapes) and bytes that are not UTF-8 become '?', and the
-// result is cut at `max_bytes` (ending in "...") on a character boundary.
-// For text from a file shown to people or put in JSON.
+// `text` as printable, valid UTF-8 on one line (control characters and
+// bad bytes as '?'), cut at `max_bytes` (ending in "...").
 std::string printableText(std::string_view text, std::size_t max_bytes);
 
-// `text` as well-formed XML 1.0 character data, fit for an element's text
-// and a quoted attribute value alike: & < > " ' become entities, and what
-// XML 1.0 forbids even as a character reference (C0 controls other than
-// tab, line feed and carriage return; U+FFFE; U+FFFF) and bytes that are
-// not UTF-8 become U+FFFD. For names from a file written into SVG: one
-// such byte makes the whole picture unreadable.
+// `text` as well-formed XML 1.0 character data and attribute value: & < > " '
+// as entities, what XML 1.0 forbids and bad bytes as U+FFFD.
 std::string xmlText(std::string_view text);
 
 }  // namespace earc

@@ -40,19 +40,15 @@ struct ValidatorSettings {
   std::size_t max_listed = 20;  // violations kept in the report
 };
 
-// Violations are ordered as check_solution.py lists them: the problems found
-// in the solution's structure (not solved, scenario name, paths) and its
-// endpoints first, then everything else by instant, and at one instant
-// by kind (resolution, joint limits, workspace, obstacle, self-collision,
-// robot-robot), then by robot. Instants are checked on all cores.
+// Checks a solution against the contract; violations ordered as
+// check_solution.py lists them (structure and endpoints, then by instant,
+// kind and robot). Instants are checked on all cores.
 ValidationReport validateSolution(const Scenario& scenario, const Solution& solution,
                                   const ValidatorSettings& settings = {});
 
-// The contract's per-instant rules for robots placed at one configuration
-// each: inside the workspace, clear of obstacles, no self-collision, no two
-// robots touching (all with the contract's 1e-6 slack), and joint limits.
-// Used for every instant of a solution and for a scenario's starts and goals.
-// Thread-safe.
+// The contract's per-instant rules (workspace, obstacles, self-collision,
+// robot-robot contact, joint limits, with 1e-6 slack) for robots placed at
+// one configuration each. Thread-safe.
 class InstantChecker {
  public:
   explicit InstantChecker(const Scenario& scenario);
@@ -60,10 +56,9 @@ class InstantChecker {
   InstantChecker(const InstantChecker&) = delete;
   InstantChecker& operator=(const InstantChecker&) = delete;
 
-  // robots[i] (scenario indices, ascending) is at configuration q[i].
-  // Appends, with time t: per robot one Workspace, one Obstacle per touched
-  // obstacle and one SelfCollision violation; then one RobotRobot per
-  // touching pair (robots ascending).
+  // robots[i] (scenario indices, ascending) at q[i]: appends, with time t,
+  // each robot's Workspace, Obstacle and SelfCollision violations, then one
+  // RobotRobot per touching pair.
   void checkGeometry(std::span<const int> robots, std::span<const double* const> q, double t,
                      std::vector<Violation>& out) const;
   // Appends one JointLimit violation per joint of an arm outside its limits.

@@ -21,24 +21,19 @@ inline constexpr const char* kTraceFormat = "earc.trace.v1";
 // picture cannot show finer, and 128 robots x 5,000 steps stay a few MB.
 inline constexpr double kStateQuantum = 1e-4;
 
-// Checks that a solution belongs to the scenario: the same scenario name
-// (when the solution names one) and, unless it has no paths at all (an
-// unsolved solution), one non-empty path per robot in the scenario's order
-// with the robot's dimension. Throws InputError naming `file`.
+// Checks that a solution belongs to the scenario (its name, one path per
+// robot of the right dimension unless it has none). Throws InputError naming `file`.
 void checkSolutionMatches(const Scenario& scenario, const Solution& solution, const std::string& file);
 
-// Reads an earc.trace.v1 document (see tools/earc-plan/view.cpp) and returns
-// {"conflicts": [...], "subproblems": [...]} holding only the fields the
-// page shows, numbers rounded. Robot indices must exist in the scenario and
-// every subproblem must name a conflict of the trace; events of unknown
-// types are skipped. Throws InputError naming `file` and the JSON path.
+// Reads an earc.trace.v1 document into the fields the page shows, numbers
+// rounded; unknown events skipped. Throws InputError naming `file` and the
+// JSON path for a robot or conflict the trace does not have.
 nlohmann::json traceFromJson(const nlohmann::json& doc, const Scenario& scenario, const std::string& file);
 nlohmann::json loadTrace(const std::string& path, const Scenario& scenario);
 
-// Everything the page draws, as one JSON value: the scenario (contract
-// form), the solution's paths as quantized, delta-coded integers (see
-// encodePath) and stats, and the trace (null without one). Call
-// checkSolutionMatches first.
+// Everything the page draws as one JSON value: the scenario, the paths
+// quantized and delta-coded (encodePath), stats and trace (null without
+// one). Call checkSolutionMatches first.
 nlohmann::json viewerData(const Scenario& scenario, const Solution& solution, const nlohmann::json& trace);
 
 // A path as integers in units of kStateQuantum: the first state as is, then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README pictures in this folder from a build directory:
+# Regenerates the docs/ pictures in this folder from a build directory:
 #   tools/viewer/examples/make_examples.sh [BUILD_DIR]   (default: build)
 # viewer-mobile-32.png: the viewer on a 32-robot mobile plan with obstacles
 #   and its trace, at step 255 with conflict 19 selected (headless Chromium);
