@@ -14,6 +14,8 @@
 #include "earc/experience/keys.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/path_blob.hpp"
+#include "earc/experience/pg_connection.hpp"
+#include "earc/experience/pg_schema.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/scene/robot_model.hpp"
@@ -102,6 +104,10 @@ struct ResetOnExit {
 ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
     : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
   std::lock_guard lock(mutex_);
+  if (isPostgresLocation(path)) {
+    pgOpenLocked();
+    return;
+  }
   // Whether this open creates the file (SQLite creates it, empty, when it
   // opens it, before the first write can fail).
   std::error_code ec;
@@ -355,10 +361,12 @@ std::int64_t ExperienceStore::session() {
 void ExperienceStore::refresh() {
   std::lock_guard lock(mutex_);
   requireOpen();
+  if (pg_) return pgRefreshLocked(true);
   refreshLocked();
 }
 
 void ExperienceStore::refreshLocked() {
+  if (pg_) return pgRefreshLocked(false);
   std::int64_t dv = 0;
   {
     ResetOnExit guard{*data_version_};
@@ -381,25 +389,28 @@ void ExperienceStore::loadTailLocked() {
   Statement s = conn_->prepare(std::string("SELECT id, kind, robot_count, signature, base_class, key FROM experiences") +
                                (version_ >= 3 ? " INDEXED BY experiences_keys" : "") + " WHERE id > ?1 ORDER BY id");
   s.bind(1, max_loaded_);
-  while (s.step()) {
-    const std::int64_t id = s.int64At(0);
-    max_loaded_ = id;
-    try {
-      auto kind = kindFromName(s.textAt(1));
-      if (!kind) throw CorruptRowError(id, "unknown kind \"" + s.textAt(1) + "\"");
-      ExperienceClass cls{*kind, static_cast<int>(s.int64At(2)), s.textAt(3), s.textAt(4)};
-      std::vector<double> key = decodeKey(s.blobAt(5), id);
-      if (!plausibleKeyDimension(cls, key.size()))
-        throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
-      const ClassIndex* existing = index_.find(cls);
-      if (existing && existing->dim() != key.size())
-        throw CorruptRowError(id, "key dimension differs from the class's other rows");
-      index_.add(cls, id, key);
-    } catch (const CorruptRowError& e) {
-      warnSkipped(id, e.reason());
-    }
-  }
+  while (s.step()) indexKeyRowLocked(s.int64At(0), s.textAt(1), s.int64At(2), s.textAt(3), s.textAt(4), s.blobAt(5));
   index_.settle();
+}
+
+void ExperienceStore::indexKeyRowLocked(std::int64_t id, const std::string& kind_name, std::int64_t robot_count,
+                                        std::string signature, std::string base_class,
+                                        std::span<const unsigned char> key_blob) {
+  max_loaded_ = std::max(max_loaded_, id);
+  try {
+    auto kind = kindFromName(kind_name);
+    if (!kind) throw CorruptRowError(id, "unknown kind \"" + kind_name + "\"");
+    ExperienceClass cls{*kind, static_cast<int>(robot_count), std::move(signature), std::move(base_class)};
+    std::vector<double> key = decodeKey(key_blob, id);
+    if (!plausibleKeyDimension(cls, key.size()))
+      throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
+    const ClassIndex* existing = index_.find(cls);
+    if (existing && existing->dim() != key.size())
+      throw CorruptRowError(id, "key dimension differs from the class's other rows");
+    index_.add(cls, id, key);
+  } catch (const CorruptRowError& e) {
+    warnSkipped(id, e.reason());
+  }
 }
 
 void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
@@ -413,6 +424,7 @@ void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
 }
 
 std::optional<Experience> ExperienceStore::fetchLocked(std::int64_t id) {
+  if (pg_) return pgFetchLocked(id);
   ResetOnExit guard{*fetch_};
   fetch_->bind(1, id);
   if (!fetch_->step()) return std::nullopt;
@@ -423,6 +435,7 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
                                             std::size_t skip) {
   std::lock_guard lock(mutex_);
   requireOpen();
+  if (pg_) return pgNearestLocked(cls, key, k, skip);
   return conn_->read([&] {
     refreshLocked();
     std::vector<Match> out;
@@ -485,22 +498,9 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertAll(const std::v
 std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std::vector<Experience>& batch,
                                                                        double eps, SessionStamp stamp) {
   requireWritable();
+  if (pg_) return pgInsertLocked(batch, eps, stamp);
   awaitCheckLocked();
-  std::vector<Experience> rows = batch;
-  const std::int64_t now = nowUnixSeconds();
-  for (Experience& e : rows) {
-    if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
-    if (e.created_at == 0) e.created_at = now;
-    if (stamp == SessionStamp::ThisSession) e.created_session = session_;
-  }
-  auto within = [eps](const ClassIndex* index, const Experience& e) {
-    if (!index) return false;
-    if (index->dim() != e.key.size())
-      throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
-                                  " differs from the class's " + std::to_string(index->dim()));
-    auto n = index->nearest(e.key, 1);
-    return !n.empty() && n.front().distance <= eps;
-  };
+  const std::vector<Experience> rows = prepareRowsLocked(batch, stamp);
   auto ids = conn_->write([&] {
     // Inside the write lock: every committed row is loaded, and nobody can
     // insert until we commit, so the duplicate check sees everything.
@@ -511,7 +511,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     result.reserve(rows.size());
     std::int64_t stored = 0;
     for (const Experience& e : rows) {
-      if (eps >= 0 && (within(index_.find(e.cls), e) || within(batch_index.find(e.cls), e))) {
+      if (nearDuplicate(batch_index, e, eps)) {
         result.push_back(std::nullopt);
         continue;
       }
@@ -538,6 +538,38 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     history_.record(*conn_, version_, stored, 0);
     return result;
   });
+  indexInsertedLocked(rows, ids);
+  afterWriteLocked();
+  return ids;
+}
+
+std::vector<Experience> ExperienceStore::prepareRowsLocked(const std::vector<Experience>& batch,
+                                                           SessionStamp stamp) const {
+  std::vector<Experience> rows = batch;
+  const std::int64_t now = nowUnixSeconds();
+  for (Experience& e : rows) {
+    if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
+    if (e.created_at == 0) e.created_at = now;
+    if (stamp == SessionStamp::ThisSession) e.created_session = session_;
+  }
+  return rows;
+}
+
+bool ExperienceStore::nearDuplicate(const KeyIndex& batch_index, const Experience& e, double eps) const {
+  if (eps < 0) return false;
+  for (const ClassIndex* index : {index_.find(e.cls), batch_index.find(e.cls)}) {
+    if (!index) continue;
+    if (index->dim() != e.key.size())
+      throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
+                                  " differs from the class's " + std::to_string(index->dim()));
+    auto n = index->nearest(e.key, 1);
+    if (!n.empty() && n.front().distance <= eps) return true;
+  }
+  return false;
+}
+
+void ExperienceStore::indexInsertedLocked(const std::vector<Experience>& rows,
+                                          const std::vector<std::optional<std::int64_t>>& ids) {
   // Committed: now the rows may enter the in-memory index.
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (ids[i]) {
@@ -545,8 +577,6 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       max_loaded_ = std::max(max_loaded_, *ids[i]);
     }
   index_.settle();
-  afterWriteLocked();
-  return ids;
 }
 
 void ExperienceStore::recordUse(std::int64_t id, bool success) {
@@ -567,6 +597,7 @@ void ExperienceStore::flush() {
 
 void ExperienceStore::flushLocked() {
   if (pending_uses_.empty()) return;
+  if (pg_) return pgFlushLocked();
   awaitCheckLocked();
   conn_->write([&] {
     // Saturating at kMaxUseCount: past it SQLite's sum would turn into a
@@ -596,6 +627,15 @@ void ExperienceStore::afterWriteLocked() {
 
 void ExperienceStore::close() {
   std::lock_guard lock(mutex_);
+  if (pg_) {
+    // The connection goes however this ends: closed, or an error thrown.
+    struct DropPg {
+      std::unique_ptr<PgConnection>& pg;
+      ~DropPg() { pg.reset(); }
+    } drop{pg_};
+    if (!options_.read_only) flushLocked();
+    return;
+  }
   if (!conn_) return;
   // The connection goes however this ends: closed, or an error thrown.
   struct DropOnExit {
@@ -640,11 +680,19 @@ const ClassIndex* ExperienceStore::classIndex(const ExperienceClass& cls) const 
 
 Connection& ExperienceStore::connection() {
   requireOpen();
+  if (pg_) throw std::logic_error("ExperienceStore::connection: " + maskedLocation(path_) + " is a PostgreSQL store");
   return *conn_;
 }
 
+HistoryTail ExperienceStore::readHistoryLines(int limit) {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  if (pg_) return pgReadHistory(*pg_, limit);
+  return readHistory(*conn_, version_, limit);
+}
+
 void ExperienceStore::requireOpen() const {
-  if (!conn_) throw std::logic_error("ExperienceStore: used after close()");
+  if (!conn_ && !pg_) throw std::logic_error("ExperienceStore: used after close()");
 }
 
 void ExperienceStore::requireWritable() const {
