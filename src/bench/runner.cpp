@@ -187,7 +187,7 @@ EarcDbFacts earcDbFacts(const RunOptions& o, const std::vector<ScenarioFile>& fi
     exp::ExperienceStore store(path, so);
     EarcDbFacts f;
     f.entries = static_cast<std::int64_t>(store.size());
-    f.history = exp::readHistory(store.connection(), store.schemaVersion(), std::numeric_limits<int>::max()).lines;
+    f.history = store.readHistoryLines(std::numeric_limits<int>::max()).lines;  // either engine
     return f;
   } catch (const std::exception& e) {
     throw InputError(path, option, "not a usable E-ARC database: " + reasonAbout(e, path) +
