@@ -35,6 +35,8 @@ case $cmd in
     dir=$(cd "$dir" && pwd)
     chmod 755 "$dir"
     [ ${#as[@]} -eq 0 ] || chown "$user" "$dir"
+    run test -w "$dir" ||
+      { echo "$0: $dir: ${user:-this user} cannot write there (a private parent directory?); choose one under /tmp" >&2; exit 2; }
     run "$bin/initdb" -D "$dir/data" -U earc --auth=trust --no-sync -E UTF8 --locale=C > "$dir/initdb.log" 2>&1 ||
       { echo "$0: initdb failed: $(tail -n 3 "$dir/initdb.log")" >&2; exit 1; }
     for attempt in 1 2 3; do

@@ -142,6 +142,13 @@ PgParams& PgParams::addIds(std::span<const std::int64_t> ids) {
   return push(s + "}", kOidInt8Array, 0);
 }
 
+PgParams& PgParams::append(const PgParams& more) {
+  values_.insert(values_.end(), more.values_.begin(), more.values_.end());
+  types_.insert(types_.end(), more.types_.begin(), more.types_.end());
+  formats_.insert(formats_.end(), more.formats_.begin(), more.formats_.end());
+  return *this;
+}
+
 // --- PgConnection ---
 
 PgConnection::PgConnection(std::string location, PgSettings settings)

@@ -47,10 +47,17 @@ Experience readPgExperience(const PgResult& r, int row) {
   return e;
 }
 
-std::string pgInsertExperienceSql() {
-  return "INSERT INTO earc.experiences (kind, robot_count, signature, base_class, key, paths, cost, source, "
-         "created_at, solve_time_s, retrieved_count, succeeded_count, created_session, made_by) "
-         "VALUES ($1, $2::bigint, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14) RETURNING id";
+std::string pgInsertExperiencesSql(std::size_t rows) {
+  std::string sql =
+      "INSERT INTO earc.experiences (kind, robot_count, signature, base_class, key, paths, cost, source, "
+      "created_at, solve_time_s, retrieved_count, succeeded_count, created_session, made_by) VALUES ";
+  int param = 1;
+  for (std::size_t r = 0; r < rows; ++r) {
+    sql += r ? ", (" : "(";
+    for (int c = 0; c < kPgInsertColumns; ++c) sql += (c ? ", $" : "$") + std::to_string(param++);
+    sql += ")";
+  }
+  return sql + " RETURNING id";
 }
 
 PgParams pgExperienceParams(const Experience& e) {

@@ -9,6 +9,7 @@
 // already seen. LISTEN/NOTIFY would save the polls but needs a connection
 // kept listening and still a scan after a lost connection; the poll is
 // one indexed range query that returns nothing when nothing changed.
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -23,6 +24,9 @@ namespace {
 // How long retrievals skip a server that could not be reached through
 // every reconnection attempt, before trying again.
 constexpr std::chrono::seconds kPgRetryUnreachableAfter{5};
+
+// Rows per INSERT statement (14 parameters each; a statement takes 65,535).
+constexpr std::size_t kPgInsertRows = 256;
 
 constexpr const char* kTailSql =
     "SELECT d.value, e.id, e.kind, e.robot_count, e.signature, e.base_class, e.key "
@@ -135,19 +139,33 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::pgInsertLocked(const s
         pg_->exec("SELECT pg_advisory_xact_lock(" + std::to_string(kPgWriteLock) + ")");
         pgRefreshLocked(true);
         KeyIndex batch_index;  // rows of this transaction, for the in-batch check
-        for (const Experience& e : rows) {
-          if (nearDuplicate(batch_index, e, eps)) {
-            ids.push_back(std::nullopt);
-            continue;
-          }
-          const std::int64_t id = pg_->query(pgInsertExperienceSql(), pgExperienceParams(e)).int64At(0, 0);
+        ids.assign(rows.size(), std::nullopt);
+        // Rows to store, sent kPgInsertRows to a statement. Their ids come
+        // from the sequence in VALUES order under the lock: ascending.
+        std::vector<std::size_t> pending;
+        auto send = [&] {
+          if (pending.empty()) return;
+          PgParams params;
+          for (std::size_t i : pending) params.append(pgExperienceParams(rows[i]));
+          PgResult r = pg_->query(pgInsertExperiencesSql(pending.size()), params);
+          std::vector<std::int64_t> got;
+          for (int j = 0; j < r.rows(); ++j) got.push_back(r.int64At(j, 0));
+          std::sort(got.begin(), got.end());
+          for (std::size_t j = 0; j < pending.size(); ++j) ids[pending[j]] = got.at(j);
+          stored += static_cast<std::int64_t>(pending.size());
+          pending.clear();
+        };
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+          const Experience& e = rows[i];
+          if (nearDuplicate(batch_index, e, eps)) continue;
           if (eps >= 0) {
-            batch_index.add(e.cls, id, e.key);
-            if (ids.size() % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
+            batch_index.add(e.cls, static_cast<std::int64_t>(i), e.key);  // an id of this batch only
+            if (i % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
           }
-          ids.push_back(id);
-          ++stored;
+          pending.push_back(i);
+          if (pending.size() == kPgInsertRows) send();
         }
+        send();
         // As store.cpp's: a restored export's sessions.
         if (stamp == SessionStamp::AsGiven)
           pg_->exec(

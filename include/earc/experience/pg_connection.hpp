@@ -76,6 +76,8 @@ class PgParams {
   PgParams& addBytes(std::span<const unsigned char> bytes);
   // An int8[] (sent as text: '{1,2,3}').
   PgParams& addIds(std::span<const std::int64_t> ids);
+  // Every parameter of `more`, after these.
+  PgParams& append(const PgParams& more);
 
   std::size_t size() const { return values_.size(); }
   const std::vector<std::string>& values() const { return values_; }

@@ -41,8 +41,10 @@ std::string pgSelectExperiencesSql();
 // Row `row` of such a result, checked as readExperience checks. Throws
 // CorruptRowError.
 Experience readPgExperience(const PgResult& r, int row);
-// "INSERT ... RETURNING id" and its parameters (every column but id).
-std::string pgInsertExperienceSql();
+// "INSERT ... VALUES (...), ... RETURNING id" for `rows` rows, and one
+// row's parameters (every column but id), appended in row order.
+inline constexpr int kPgInsertColumns = 14;
+std::string pgInsertExperiencesSql(std::size_t rows);
 PgParams pgExperienceParams(const Experience& e);
 
 // Every row in `order` (an ORDER BY clause), in one snapshot (a read-only

@@ -237,6 +237,9 @@ class ExperienceStore {
   // check_error_. A check starved of CPU (its idle class gets none beside
   // busy processes) is stopped and run on the calling thread instead.
   void finishCheckLocked();
+  // Stops a background check whose verdict is no longer wanted (a failed
+  // open) and lets its thread go.
+  void dropCheckLocked();
   // finishCheckLocked, then throws the check's error.
   void joinCheckLocked();
   // joinCheckLocked, then counts the session when that was left for after
