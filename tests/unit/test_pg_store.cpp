@@ -218,6 +218,32 @@ TEST_CASE("PostgreSQL: inserted rows are retrieved unchanged, near duplicates re
   CHECK(store.get(*more).has_value());
 }
 
+TEST_CASE("PostgreSQL: a dropped connection is made again for the next insert and retrieval" * doctest::skip()) {
+  const std::string uri = freshDatabase();
+  std::mt19937_64 rng(13);
+  ExperienceStore store(uri);
+  const Experience first = pgSample(rng);
+  REQUIRE(store.insert(first, -1).has_value());
+  // Every other connection to the database dropped by the server.
+  auto dropOthers = [&] {
+    PgConnection admin(uri);
+    return admin
+        .query("SELECT count(pg_terminate_backend(pid))::bigint FROM pg_stat_activity "
+               "WHERE datname = current_database() AND pid <> pg_backend_pid()")
+        .int64At(0, 0);
+  };
+  CHECK(dropOthers() == 1);
+  const Experience second = pgSample(rng);
+  const auto id = store.insert(second, -1);
+  REQUIRE(id.has_value());
+  CHECK(dropOthers() == 1);
+  store.refresh();
+  const std::vector<Match> found = store.nearest(second.cls, second.key, 1);
+  REQUIRE(found.size() == 1);
+  CHECK(found[0].experience.id == *id);
+  CHECK(pgRows(uri) == 2);  // each once
+}
+
 TEST_CASE("PostgreSQL: export, import into SQLite and back round-trip exactly" * doctest::skip()) {
   ScratchDirectory dir("pg");
   const std::string uri = freshDatabase();
