@@ -660,7 +660,7 @@ class Runner {
       if (interruptFlag().load()) return;
       const std::string path = earcDb(family);
       std::optional<double> construction;
-      if (!fs::exists(path)) {
+      if (!exp::isPostgresLocation(path) && !fs::exists(path)) {
         construction = buildEarcDb(family, path);
         if (!construction) continue;
       }
@@ -672,7 +672,9 @@ class Runner {
       d.robots = 0;
       d.path = path;
       d.construction_time_s = construction;
-      d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(exp::databaseFile(path) + "-wal"));
+      d.size_bytes = exp::isPostgresLocation(path)
+                         ? 0
+                         : fileSize(path) + std::max<std::int64_t>(0, fileSize(exp::databaseFile(path) + "-wal"));
       if (construction) {
         d.seed = o_.seed;
         if (o_.earc_db_count) d.problems = *o_.earc_db_count;
