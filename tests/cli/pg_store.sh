@@ -5,7 +5,7 @@
 # refusals, retrieval, round trips, concurrent and killed writers), then
 # earc-db and earc-plan with --db postgresql://...: build, inspect,
 # verify, export into a file and back exactly, curate both ways, a plan
-# learning into the store, and one-line errors for a server that is not
+# learning into the store, a service reading it, and one-line errors for a server that is not
 # there and a password in the URI (never printed).
 set -u
 BUILD=$1
@@ -56,6 +56,14 @@ after=$(pgValue "$db" "SELECT count(*) FROM earc.experiences")
 for id in $(jq -r '.stats.db_learned_ids[]?' "$WORK/s.sol.json" 2> /dev/null); do
   [ "$(pgValue "$db" "SELECT count(*) FROM earc.experiences WHERE id = $id")" = 1 ] || fail "learned row $id is not there"
 done
+
+# A service keeping the store open answers from it.
+echo '{"id": 1, "op": "stats"}' | "$BUILD/earc-plan" serve --db "$db" > "$WORK/serve.out" 2> "$WORK/serve.err" ||
+  fail "serve --db $db: exit $?: $(cat "$WORK/serve.err")"
+"$PY" -c 'import json, sys
+a = json.loads(open(sys.argv[1]).readline())
+assert a["ok"] and a["stats"]["db_entries"] >= int(sys.argv[2]), a' "$WORK/serve.out" "$after" ||
+  fail "serve --db $db: $(cat "$WORK/serve.out")"
 
 # Refusals: one line, exit 2, naming the store; a password never printed.
 refusedInOneLine "postgresql://earc@127.0.0.1:1/earc: cannot connect" \
