@@ -5,8 +5,8 @@
 # refusals, retrieval, round trips, concurrent and killed writers), then
 # earc-db and earc-plan with --db postgresql://...: build, inspect,
 # verify, export into a file and back exactly, curate both ways, a plan
-# learning into the store, a service reading it, and one-line errors for a server that is not
-# there and a password in the URI (never printed).
+# learning into the store, a service reading it, and one-line errors for
+# a server that is not there and a password in the URI (never printed).
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
