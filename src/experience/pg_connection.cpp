@@ -80,19 +80,28 @@ int PgResult::rows() const { return PQntuples(result_.get()); }
 
 bool PgResult::isNull(int row, int col) const { return PQgetisnull(result_.get(), row, col) != 0; }
 
+// The value at (row, col), which must be `bytes` long: a missing row, a
+// NULL or a value of another width is an error, never a read past it.
+static const char* pgFixedValue(const pg_result* r, int row, int col, int bytes) {
+  if (row >= PQntuples(r) || col >= PQnfields(r) || PQgetisnull(r, row, col) || PQgetlength(r, row, col) != bytes)
+    throw StoreError("result row " + std::to_string(row) + ", column " + std::to_string(col) +
+                     ": missing, NULL or not " + std::to_string(bytes) + " bytes");
+  return PQgetvalue(r, row, col);
+}
+
 std::int64_t PgResult::int64At(int row, int col) const {
-  const char* p = PQgetvalue(result_.get(), row, col);
-  switch (PQftype(result_.get(), col)) {
-    case kOidInt2: return static_cast<std::int16_t>(readBigEndian(p, 2));
-    case kOidInt4: return static_cast<std::int32_t>(readBigEndian(p, 4));
-    case kOidInt8: return static_cast<std::int64_t>(readBigEndian(p, 8));
+  const pg_result* r = result_.get();
+  switch (PQftype(r, col)) {
+    case kOidInt2: return static_cast<std::int16_t>(readBigEndian(pgFixedValue(r, row, col, 2), 2));
+    case kOidInt4: return static_cast<std::int32_t>(readBigEndian(pgFixedValue(r, row, col, 4), 4));
+    case kOidInt8: return static_cast<std::int64_t>(readBigEndian(pgFixedValue(r, row, col, 8), 8));
     default: throw StoreError("column " + std::to_string(col) + " is not an integer");
   }
 }
 
 double PgResult::doubleAt(int row, int col) const {
   if (PQftype(result_.get(), col) != kOidFloat8) throw StoreError("column " + std::to_string(col) + " is not float8");
-  const std::uint64_t bits = readBigEndian(PQgetvalue(result_.get(), row, col), 8);
+  const std::uint64_t bits = readBigEndian(pgFixedValue(result_.get(), row, col, 8), 8);
   double v;
   std::memcpy(&v, &bits, sizeof v);
   return v;
