@@ -5,19 +5,20 @@
 #   tools/setup.sh --tests    also what the tests use (python3-pytest for the
 #                             Python module's, chromium and jq for the viewer tests,
 #                             clang for the fuzz targets, strace for the
-#                             socket test, faketime for --deterministic's)
+#                             socket test, faketime for --deterministic's,
+#                             postgresql for the PostgreSQL store's tests)
 set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libsqlite3-dev sqlite3 libnanoflann-dev libeigen3-dev libfcl-dev libompl-dev
+  libsqlite3-dev sqlite3 libpq-dev libnanoflann-dev libeigen3-dev libfcl-dev libompl-dev
   libboost-serialization-dev libboost-filesystem-dev
   libcli11-dev doctest-dev nlohmann-json3-dev
   python3 python3-numpy python3-matplotlib librsvg2-bin
   pybind11-dev python3-pybind11 python3-dev
 )
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(chromium jq clang libclang-rt-14-dev strace faketime python3-pytest)
+  packages+=(chromium jq clang libclang-rt-14-dev strace faketime python3-pytest postgresql)
 fi
 
 missing=()

@@ -68,7 +68,8 @@ ExistingEarcDbs validateOptions(const RunOptions& o, const std::vector<ScenarioF
   ExistingEarcDbs existing;
   if (runs_earc)
     for (const std::string& family : families)
-      if (fs::exists(earcDbPath(o, files, family))) existing[family] = earcDbFacts(o, files, family);
+      if (const std::string db = earcDbPath(o, files, family); exp::isPostgresLocation(db) || fs::exists(db))
+        existing[family] = earcDbFacts(o, files, family);  // a store on a server is there: used as it is
   return existing;
 }
 

@@ -99,7 +99,7 @@ EarcDbFacts earcDbFacts(const RunOptions& o, const std::vector<ScenarioFile>& fi
     exp::ExperienceStore store(path, so);
     EarcDbFacts f;
     f.entries = static_cast<std::int64_t>(store.size());
-    f.history = exp::readHistory(store.connection(), store.schemaVersion(), std::numeric_limits<int>::max()).lines;
+    f.history = store.readHistoryLines(std::numeric_limits<int>::max()).lines;  // either engine
     return f;
   } catch (const std::exception& e) {
     throw InputError(path, option, "not a usable E-ARC database: " + reasonAbout(e, path) +
@@ -200,7 +200,7 @@ void Runner::prepareDatabases(const std::vector<Cell>& cells) {
     if (interruptFlag().load()) return;
     const std::string path = earcDb(family);
     std::optional<double> construction;
-    if (!fs::exists(path)) {
+    if (!exp::isPostgresLocation(path) && !fs::exists(path)) {
       construction = buildEarcDb(family, path);
       if (!construction) continue;
     }
@@ -212,7 +212,9 @@ void Runner::prepareDatabases(const std::vector<Cell>& cells) {
     d.robots = 0;
     d.path = path;
     d.construction_time_s = construction;
-    d.size_bytes = fileSize(path) + std::max<std::int64_t>(0, fileSize(exp::databaseFile(path) + "-wal"));
+    d.size_bytes = exp::isPostgresLocation(path)
+                       ? 0
+                       : fileSize(path) + std::max<std::int64_t>(0, fileSize(exp::databaseFile(path) + "-wal"));
     if (construction) {
       d.seed = o_.seed;
       if (o_.earc_db_count) d.problems = *o_.earc_db_count;

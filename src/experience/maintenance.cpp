@@ -18,6 +18,7 @@
 
 #include "earc/experience/key_index.hpp"
 #include "earc/experience/path_blob.hpp"
+#include "earc/experience/pg_connection.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/experience/store.hpp"
@@ -51,38 +52,16 @@ std::int64_t count(Connection& db, const std::string& sql) {
   return n;
 }
 
-// Near-duplicate removal inside one class: rows ordered best first, each
-// kept unless a kept row lies within eps. Returns the ids to delete. Needs
-// the current schema (usage counters).
+// The ids to delete of rows in the current schema, read best first.
 std::vector<std::int64_t> nearDuplicates(Connection& db, int version, double eps) {
-  struct Row {
-    std::int64_t id, succeeded, retrieved;
-    ExperienceClass cls;
-    std::vector<double> key;
-  };
-  std::vector<Row> rows;
+  std::vector<DedupeRow> rows;
   Statement s = db.prepare(selectExperiencesSql(version) +
                            " ORDER BY succeeded_count DESC, retrieved_count DESC, id ASC");
   while (s.step()) {
     Experience e = readExperience(s);
-    rows.push_back({e.id, e.succeeded, e.retrieved, e.cls, std::move(e.key)});
+    rows.push_back({e.id, e.cls, std::move(e.key)});
   }
-  KeyIndex kept;
-  std::size_t added = 0;
-  std::vector<std::int64_t> drop;
-  for (const Row& r : rows) {
-    const ClassIndex* index = kept.find(r.cls);
-    if (index) {
-      auto n = index->nearest(r.key, 1);
-      if (!n.empty() && n.front().distance <= eps) {
-        drop.push_back(r.id);
-        continue;
-      }
-    }
-    kept.add(r.cls, r.id, r.key);
-    if (++added % ClassIndex::kBulkSettleEvery == 0) kept.settle();
-  }
-  return drop;
+  return nearDuplicateIds(rows, eps);
 }
 
 // Reads every row in id order, in one read transaction: each readable one
@@ -161,7 +140,34 @@ std::int64_t rewriteOlderBlobs(Connection& db) {
 
 }  // namespace
 
+std::optional<std::string> KeyDimensionCheck::add(const Experience& e) {
+  auto [it, fresh] = first_.try_emplace(e.cls, e.key.size(), e.id);
+  if (fresh || it->second.first == e.key.size()) return std::nullopt;
+  return "row " + std::to_string(e.id) + ": key dimension " + std::to_string(e.key.size()) + " differs from row " +
+         std::to_string(it->second.second) + " of the same class";
+}
+
+std::vector<std::int64_t> nearDuplicateIds(const std::vector<DedupeRow>& rows, double eps) {
+  KeyIndex kept;
+  std::size_t added = 0;
+  std::vector<std::int64_t> drop;
+  for (const DedupeRow& r : rows) {
+    const ClassIndex* index = kept.find(r.cls);
+    if (index) {
+      auto n = index->nearest(r.key, 1);
+      if (!n.empty() && n.front().distance <= eps) {
+        drop.push_back(r.id);
+        continue;
+      }
+    }
+    kept.add(r.cls, r.id, r.key);
+    if (++added % ClassIndex::kBulkSettleEvery == 0) kept.settle();
+  }
+  return drop;
+}
+
 InspectReport inspectDatabase(const std::string& path, int sample_entries, int history_lines) {
+  if (isPostgresLocation(path)) return pgInspectDatabase(path, sample_entries, history_lines);
   ExperienceStore store(path, wholeFileStoreOptions(true));
   Connection& db = store.connection();
   InspectReport r;
@@ -265,6 +271,7 @@ nlohmann::json inspectJson(const InspectReport& r) {
 }
 
 VerifyReport verifyDatabase(const std::string& path) {
+  if (isPostgresLocation(path)) return pgVerifyDatabase(path);
   VerifyReport r;
   requireDatabaseFile(path);
   std::unique_ptr<Connection> db;
@@ -287,16 +294,13 @@ VerifyReport verifyDatabase(const std::string& path) {
   } catch (const StoreError& e) {
     r.problems.push_back(e.what());
   }
-  std::map<ExperienceClass, std::pair<std::size_t, std::int64_t>> key_dims;  // class -> (dim, first row)
+  KeyDimensionCheck key_dims;
   try {
     scanRows(
         *db, r.schema_version,
         [&](const Experience& e) {
           ++r.rows;
-          auto [it, fresh] = key_dims.try_emplace(e.cls, e.key.size(), e.id);
-          if (!fresh && it->second.first != e.key.size())
-            r.problems.push_back("row " + std::to_string(e.id) + ": key dimension " + std::to_string(e.key.size()) +
-                                 " differs from row " + std::to_string(it->second.second) + " of the same class");
+          if (auto problem = key_dims.add(e)) r.problems.push_back(*problem);
         },
         [&](const CorruptRowError& e) {
           ++r.rows;
@@ -471,10 +475,12 @@ void removeStaleTemporaries(const std::string& out) {
 }  // namespace
 
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
+  if (isPostgresLocation(path)) return pgCurateDatabase(path, settings);
   // Every input before anything is written; curating in place writes, so a
   // 0-byte file becomes a database there, as it would with build.
   requireDatabaseFile(path, settings.output.empty());
-  for (const std::string& in : settings.merge) requireDatabaseFile(in);
+  for (const std::string& in : settings.merge)
+    if (!isPostgresLocation(in)) requireDatabaseFile(in);
   if (settings.output.empty()) return curateFile(path, settings);
   // The copy is curated under a temporary name and appears under its own
   // name only when complete: a crash or an error part way never leaves a

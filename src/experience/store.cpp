@@ -14,52 +14,16 @@
 #include "earc/experience/keys.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/path_blob.hpp"
+#include "earc/experience/pg_connection.hpp"
+#include "earc/experience/pg_schema.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/scene/robot_model.hpp"
 
 namespace earc::exp {
 
-struct ExperienceStore::BackgroundCheck {
-  std::thread thread;
-  std::mutex mutex;  // the fields below
-  std::condition_variable ended;
-  bool done = false;
-  bool passed = false;
-  bool stopped = false;    // asked to stop: its verdict is not wanted
-  sqlite3* db = nullptr;   // its connection while open, for sqlite3_interrupt
-  std::exception_ptr error;
-};
 
 namespace {
-
-// Asks `check` to stop: interrupts its quick_check, if running; it ends
-// without a verdict.
-void stopCheck(ExperienceStore::BackgroundCheck& check) {
-  std::lock_guard l(check.mutex);
-  check.stopped = true;
-  if (check.db) sqlite3_interrupt(check.db);
-}
-
-// Waits for `check` to end, at most `wait`; whether it has.
-bool awaitEnd(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
-  std::unique_lock l(check.mutex);
-  return check.ended.wait_for(l, wait, [&] { return check.done; });
-}
-
-// Stops `check`, whose verdict is no longer wanted, and lets its thread
-// go: given an ordinary priority where that is allowed (root), so that a
-// starved idle-class thread gets the time to notice, and joined if it
-// ends within `wait`, else detached, holding its own state.
-void abandonCheck(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
-  stopCheck(check);
-  sched_param normal{};
-  pthread_setschedparam(check.thread.native_handle(), SCHED_OTHER, &normal);
-  if (awaitEnd(check, wait))
-    check.thread.join();
-  else
-    check.thread.detach();
-}
 
 // Whether fewer threads are runnable on the machine (procs_running in
 // /proc/stat, this one included) than this process may use cores: a core
@@ -102,6 +66,10 @@ struct ResetOnExit {
 ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
     : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
   std::lock_guard lock(mutex_);
+  if (isPostgresLocation(path)) {
+    pgOpenLocked();
+    return;
+  }
   // Whether this open creates the file (SQLite creates it, empty, when it
   // opens it, before the first write can fail).
   std::error_code ec;
@@ -111,10 +79,7 @@ ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& op
   try {
     openLocked();
   } catch (...) {
-    if (check_) {  // no destructor will
-      abandonCheck(*check_, std::chrono::milliseconds(10));
-      check_.reset();
-    }
+    dropCheckLocked();  // no destructor will
     if (creating) discardCreatedLocked(real);
     throw;
   }
@@ -206,129 +171,6 @@ std::int64_t ExperienceStore::metaLocked(const char* name) {
   return v;
 }
 
-namespace {
-
-// The CPU time a thread has used (ns), or -1 where it cannot be read.
-double threadCpuNs(std::thread& t) {
-  clockid_t clock;
-  timespec ts{};
-  if (pthread_getcpuclockid(t.native_handle(), &clock) != 0 || clock_gettime(clock, &ts) != 0) return -1;
-  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
-}
-
-void runQuickCheck(const std::string& path, const ConnectionSettings& settings,
-                   ExperienceStore::BackgroundCheck* publish_to) {
-  // A connection of its own: the store's serves the planner meanwhile.
-  Connection c(path, OpenMode::ReadOnly, settings);
-  if (publish_to) {
-    std::lock_guard l(publish_to->mutex);
-    if (publish_to->stopped) return;
-    publish_to->db = c.handle();
-  }
-  struct Unpublish {
-    ExperienceStore::BackgroundCheck* check;
-    ~Unpublish() {
-      if (!check) return;
-      std::lock_guard l(check->mutex);
-      check->db = nullptr;
-    }
-  } unpublish{publish_to};
-  c.retryWhileBusy([&] { c.requireQuickCheck(); });
-}
-
-}  // namespace
-
-ExperienceStore::CheckRun ExperienceStore::checkRun() const {
-  std::lock_guard lock(mutex_);
-  return check_run_;
-}
-
-bool ExperienceStore::checkRunning() const {
-  if (!check_) return false;
-  std::lock_guard l(check_->mutex);
-  return !check_->done;
-}
-
-ConnectionSettings ExperienceStore::checkSettings() const {
-  ConnectionSettings settings = options_.connection;
-  settings.own_application_id = kApplicationId;  // query_only, as openLocked's
-  return settings;
-}
-
-void ExperienceStore::startCheckLocked() {
-  check_ = std::make_shared<BackgroundCheck>();
-  check_->thread = std::thread([check = check_, path = path_, settings = checkSettings()] {
-    // Spare cores only: under full load (earc-bench --jobs 2 on two cores)
-    // a normal thread took time from the plans, its own and the others';
-    // E-ARC's plans of 2 and 4 robots on the MovingAI random field took
-    // 1.3x ARC's time instead of 1.0x. An idle-class thread runs when a
-    // core would otherwise idle. On a machine kept busy by other processes
-    // it gets no time at all, not even while awaitCheck() waits for it:
-    // finishCheckLocked then runs the check itself (see there).
-    // Best effort: where the policy is refused, the check runs anyway.
-    sched_param idle{};
-    pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
-    std::exception_ptr error;
-    bool passed = false;
-    try {
-      runQuickCheck(path, settings, check.get());
-      passed = true;
-    } catch (...) {
-      error = std::current_exception();
-    }
-    {
-      std::lock_guard l(check->mutex);
-      // Stopped (interrupted, or never begun): finishCheckLocked checks anew.
-      check->passed = passed && !check->stopped;
-      if (!check->stopped) check->error = error;
-      check->done = true;
-    }
-    check->ended.notify_all();
-  });
-}
-
-void ExperienceStore::finishCheckLocked() {
-  if (check_) {
-    std::shared_ptr<BackgroundCheck> check = std::move(check_);
-    // Waits while the check gets CPU time. One that got almost none over
-    // a wait is starved by other processes (its idle class comes after
-    // every busy one): on 2 cores beside 4 busy loops a plan of 0.03 s
-    // waited 8 to 25 s for it. It is stopped, and the check runs here at
-    // this thread's priority (abandonCheck). A stopped check has no
-    // verdict, passed or failed.
-    constexpr auto kWait = std::chrono::milliseconds(10);
-    bool ended = false, starved = false;
-    while (!ended && !starved) {
-      const double before = threadCpuNs(check->thread);
-      ended = awaitEnd(*check, kWait);
-      const double after = threadCpuNs(check->thread);
-      starved = !ended && before >= 0 && after >= 0 && after - before < 0.2 * 1e6 * static_cast<double>(kWait.count());
-    }
-    bool passed = false;
-    if (starved) {
-      abandonCheck(*check, kWait);
-      check_run_ = CheckRun::TakenOver;
-    } else {
-      check->thread.join();
-      passed = check->passed;
-      check_error_ = check->error;
-    }
-    if (!passed && !check_error_) try {
-        runQuickCheck(path_, checkSettings(), nullptr);
-      } catch (...) {
-        check_error_ = std::current_exception();
-      }
-  }
-}
-
-void ExperienceStore::joinCheckLocked() {
-  finishCheckLocked();
-  if (check_error_) {
-    check_error_reported_ = true;
-    std::rethrow_exception(check_error_);
-  }
-}
-
 void ExperienceStore::awaitCheckLocked() {
   joinCheckLocked();
   if (session_pending_) {
@@ -355,10 +197,12 @@ std::int64_t ExperienceStore::session() {
 void ExperienceStore::refresh() {
   std::lock_guard lock(mutex_);
   requireOpen();
+  if (pg_) return pgRefreshLocked(true);
   refreshLocked();
 }
 
 void ExperienceStore::refreshLocked() {
+  if (pg_) return pgRefreshLocked(false);
   std::int64_t dv = 0;
   {
     ResetOnExit guard{*data_version_};
@@ -381,25 +225,28 @@ void ExperienceStore::loadTailLocked() {
   Statement s = conn_->prepare(std::string("SELECT id, kind, robot_count, signature, base_class, key FROM experiences") +
                                (version_ >= 3 ? " INDEXED BY experiences_keys" : "") + " WHERE id > ?1 ORDER BY id");
   s.bind(1, max_loaded_);
-  while (s.step()) {
-    const std::int64_t id = s.int64At(0);
-    max_loaded_ = id;
-    try {
-      auto kind = kindFromName(s.textAt(1));
-      if (!kind) throw CorruptRowError(id, "unknown kind \"" + s.textAt(1) + "\"");
-      ExperienceClass cls{*kind, static_cast<int>(s.int64At(2)), s.textAt(3), s.textAt(4)};
-      std::vector<double> key = decodeKey(s.blobAt(5), id);
-      if (!plausibleKeyDimension(cls, key.size()))
-        throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
-      const ClassIndex* existing = index_.find(cls);
-      if (existing && existing->dim() != key.size())
-        throw CorruptRowError(id, "key dimension differs from the class's other rows");
-      index_.add(cls, id, key);
-    } catch (const CorruptRowError& e) {
-      warnSkipped(id, e.reason());
-    }
-  }
+  while (s.step()) indexKeyRowLocked(s.int64At(0), s.textAt(1), s.int64At(2), s.textAt(3), s.textAt(4), s.blobAt(5));
   index_.settle();
+}
+
+void ExperienceStore::indexKeyRowLocked(std::int64_t id, const std::string& kind_name, std::int64_t robot_count,
+                                        std::string signature, std::string base_class,
+                                        std::span<const unsigned char> key_blob) {
+  max_loaded_ = std::max(max_loaded_, id);
+  try {
+    auto kind = kindFromName(kind_name);
+    if (!kind) throw CorruptRowError(id, "unknown kind \"" + kind_name + "\"");
+    ExperienceClass cls{*kind, static_cast<int>(robot_count), std::move(signature), std::move(base_class)};
+    std::vector<double> key = decodeKey(key_blob, id);
+    if (!plausibleKeyDimension(cls, key.size()))
+      throw CorruptRowError(id, "key dimension " + std::to_string(key.size()) + " does not fit the class");
+    const ClassIndex* existing = index_.find(cls);
+    if (existing && existing->dim() != key.size())
+      throw CorruptRowError(id, "key dimension differs from the class's other rows");
+    index_.add(cls, id, key);
+  } catch (const CorruptRowError& e) {
+    warnSkipped(id, e.reason());
+  }
 }
 
 void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
@@ -413,6 +260,7 @@ void ExperienceStore::warnSkipped(std::int64_t id, const std::string& why) {
 }
 
 std::optional<Experience> ExperienceStore::fetchLocked(std::int64_t id) {
+  if (pg_) return pgFetchLocked(id);
   ResetOnExit guard{*fetch_};
   fetch_->bind(1, id);
   if (!fetch_->step()) return std::nullopt;
@@ -423,6 +271,7 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
                                             std::size_t skip) {
   std::lock_guard lock(mutex_);
   requireOpen();
+  if (pg_) return pgNearestLocked(cls, key, k, skip);
   return conn_->read([&] {
     refreshLocked();
     std::vector<Match> out;
@@ -485,22 +334,9 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertAll(const std::v
 std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std::vector<Experience>& batch,
                                                                        double eps, SessionStamp stamp) {
   requireWritable();
+  if (pg_) return pgInsertLocked(batch, eps, stamp);
   awaitCheckLocked();
-  std::vector<Experience> rows = batch;
-  const std::int64_t now = nowUnixSeconds();
-  for (Experience& e : rows) {
-    if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
-    if (e.created_at == 0) e.created_at = now;
-    if (stamp == SessionStamp::ThisSession) e.created_session = session_;
-  }
-  auto within = [eps](const ClassIndex* index, const Experience& e) {
-    if (!index) return false;
-    if (index->dim() != e.key.size())
-      throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
-                                  " differs from the class's " + std::to_string(index->dim()));
-    auto n = index->nearest(e.key, 1);
-    return !n.empty() && n.front().distance <= eps;
-  };
+  const std::vector<Experience> rows = prepareRowsLocked(batch, stamp);
   auto ids = conn_->write([&] {
     // Inside the write lock: every committed row is loaded, and nobody can
     // insert until we commit, so the duplicate check sees everything.
@@ -511,7 +347,7 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     result.reserve(rows.size());
     std::int64_t stored = 0;
     for (const Experience& e : rows) {
-      if (eps >= 0 && (within(index_.find(e.cls), e) || within(batch_index.find(e.cls), e))) {
+      if (nearDuplicate(batch_index, e, eps)) {
         result.push_back(std::nullopt);
         continue;
       }
@@ -538,6 +374,38 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
     history_.record(*conn_, version_, stored, 0);
     return result;
   });
+  indexInsertedLocked(rows, ids);
+  afterWriteLocked();
+  return ids;
+}
+
+std::vector<Experience> ExperienceStore::prepareRowsLocked(const std::vector<Experience>& batch,
+                                                           SessionStamp stamp) const {
+  std::vector<Experience> rows = batch;
+  const std::int64_t now = nowUnixSeconds();
+  for (Experience& e : rows) {
+    if (auto problem = findProblem(e)) throw std::invalid_argument("ExperienceStore::insert: " + *problem);
+    if (e.created_at == 0) e.created_at = now;
+    if (stamp == SessionStamp::ThisSession) e.created_session = session_;
+  }
+  return rows;
+}
+
+bool ExperienceStore::nearDuplicate(const KeyIndex& batch_index, const Experience& e, double eps) const {
+  if (eps < 0) return false;
+  for (const ClassIndex* index : {index_.find(e.cls), batch_index.find(e.cls)}) {
+    if (!index) continue;
+    if (index->dim() != e.key.size())
+      throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
+                                  " differs from the class's " + std::to_string(index->dim()));
+    auto n = index->nearest(e.key, 1);
+    if (!n.empty() && n.front().distance <= eps) return true;
+  }
+  return false;
+}
+
+void ExperienceStore::indexInsertedLocked(const std::vector<Experience>& rows,
+                                          const std::vector<std::optional<std::int64_t>>& ids) {
   // Committed: now the rows may enter the in-memory index.
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (ids[i]) {
@@ -545,8 +413,6 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::insertLocked(const std
       max_loaded_ = std::max(max_loaded_, *ids[i]);
     }
   index_.settle();
-  afterWriteLocked();
-  return ids;
 }
 
 void ExperienceStore::recordUse(std::int64_t id, bool success) {
@@ -567,6 +433,7 @@ void ExperienceStore::flush() {
 
 void ExperienceStore::flushLocked() {
   if (pending_uses_.empty()) return;
+  if (pg_) return pgFlushLocked();
   awaitCheckLocked();
   conn_->write([&] {
     // Saturating at kMaxUseCount: past it SQLite's sum would turn into a
@@ -596,6 +463,15 @@ void ExperienceStore::afterWriteLocked() {
 
 void ExperienceStore::close() {
   std::lock_guard lock(mutex_);
+  if (pg_) {
+    // The connection goes however this ends: closed, or an error thrown.
+    struct DropPg {
+      std::unique_ptr<PgConnection>& pg;
+      ~DropPg() { pg.reset(); }
+    } drop{pg_};
+    if (!options_.read_only) flushLocked();
+    return;
+  }
   if (!conn_) return;
   // The connection goes however this ends: closed, or an error thrown.
   struct DropOnExit {
@@ -640,11 +516,19 @@ const ClassIndex* ExperienceStore::classIndex(const ExperienceClass& cls) const 
 
 Connection& ExperienceStore::connection() {
   requireOpen();
+  if (pg_) throw std::logic_error("ExperienceStore::connection: " + maskedLocation(path_) + " is a PostgreSQL store");
   return *conn_;
 }
 
+HistoryTail ExperienceStore::readHistoryLines(int limit) {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  if (pg_) return pgReadHistory(*pg_, limit);
+  return readHistory(*conn_, version_, limit);
+}
+
 void ExperienceStore::requireOpen() const {
-  if (!conn_) throw std::logic_error("ExperienceStore: used after close()");
+  if (!conn_ && !pg_) throw std::logic_error("ExperienceStore: used after close()");
 }
 
 void ExperienceStore::requireWritable() const {

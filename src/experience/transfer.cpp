@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "earc/experience/pg_schema.hpp"
 #include "earc/experience/rows.hpp"
 #include "earc/experience/schema.hpp"
 #include "earc/io/input_error.hpp"
@@ -246,12 +247,35 @@ Experience experienceFromJson(const json& row, const std::string& file, const st
 
 std::size_t exportJsonl(const std::string& db_path, const std::string& out_path, Progress* progress) {
   ExperienceStore store(db_path, wholeFileStoreOptions(true));
-  Connection& db = store.connection();
   // Streamed to the file a megabyte at a time: 50,000 rows are about
   // 700 MB of text, too much to build in memory first.
   AtomicFile file(out_path);
   std::string chunk;
   constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+  if (store.isPostgres()) {
+    // Its rows have every column of kExperienceRowsSchemaVersion.
+    std::size_t written = 0;
+    pgForEachExperience(
+        store.pgConnection(), "ORDER BY id",
+        [&](std::int64_t rows) {
+          if (progress) progress->addToTotal(static_cast<std::size_t>(rows));
+          chunk += json{{"format", kExportFormat}, {"schema_version", kExperienceRowsSchemaVersion}, {"rows", rows}}
+                       .dump() + "\n";
+        },
+        [&](Experience&& e) {
+          chunk += experienceToJson(e).dump() + "\n";
+          ++written;
+          if (progress) progress->tick();
+          if (chunk.size() >= kChunkBytes) {
+            file.write(chunk);
+            chunk.clear();
+          }
+        });
+    file.write(chunk);
+    file.commit();
+    return written;
+  }
+  Connection& db = store.connection();
   // One read transaction: the header's count and the rows are one snapshot.
   db.exec("BEGIN");
   Statement count = db.prepare("SELECT count(*) FROM experiences");
@@ -279,6 +303,23 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
 }
 
 std::vector<Experience> readImportSource(const std::string& path, Progress* progress) {
+  if (isPostgresLocation(path)) {
+    // A store earc wrote: its rows were checked on the way in, and are
+    // checked again as they are read.
+    ExperienceStore store(path, wholeFileStoreOptions(true));
+    std::vector<Experience> rows;
+    pgForEachExperience(
+        store.pgConnection(), "ORDER BY id",
+        [&](std::int64_t n) {
+          rows.reserve(static_cast<std::size_t>(n));
+          if (progress) progress->addToTotal(static_cast<std::size_t>(n));
+        },
+        [&](Experience&& e) {
+          rows.push_back(std::move(e));
+          if (progress) progress->tick();
+        });
+    return rows;
+  }
   requireDatabaseFile(path);
   return startsLikeSqlite(path) ? readSqlite(path, progress) : readJsonl(path, progress);
 }

@@ -494,7 +494,7 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
         learned_ids.push_back(*id);
       }
     store_.flush();
-  } catch (const exp::NoSpaceError& e) {
+  } catch (const exp::WriteLostError& e) {
     stats["db_learn_error"] = oneLine(e.what());
   }
   stats["db_queries"] = queries_;

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "earc/experience/pg_connection.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
 
@@ -39,7 +40,8 @@ std::shared_ptr<exp::ExperienceStore> openStore(const std::string& db, const exp
     return openStore(db, fallback, nullptr);
   } catch (const std::exception& e) {
     // Foreign, newer or damaged files: one line naming the file, nothing written.
-    throw InputError(db, "database", exp::withoutFile(e.what(), db));
+    const std::string named = exp::isPostgresLocation(db) ? exp::maskedLocation(db) : db;
+    throw InputError(named, "database", exp::withoutFile(e.what(), named));
   }
 }
 

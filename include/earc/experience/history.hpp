@@ -42,6 +42,12 @@ class HistoryWriter {
   void record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
               bool even_if_unchanged = false) const;
 
+  // This open's random token, operation and detail (the PostgreSQL store
+  // writes the same line through its own connection).
+  std::int64_t token() const { return token_; }
+  const std::string& operation() const { return operation_; }
+  const std::string& detail() const { return detail_; }
+
  private:
   std::int64_t token_;
   std::string operation_;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 
 #include "earc/experience/experience.hpp"
 #include "earc/experience/history.hpp"
+#include "earc/experience/pg_connection.hpp"
 #include "earc/experience/sqlite.hpp"
 #include "earc/io/input_error.hpp"
 
@@ -130,9 +132,38 @@ auto withInputErrors(const std::string& path, F&& f) -> decltype(f()) {
   } catch (const BusyError&) {
     throw;
   } catch (const StoreError& e) {
-    throw InputError(path, "", withoutFile(e.what(), path));
+    const std::string named = isPostgresLocation(path) ? maskedLocation(path) : path;  // never a password
+    throw InputError(named, "", withoutFile(e.what(), named));
   }
 }
+
+// verify's check that the rows of a class share one key dimension: add()
+// returns the problem of a row whose dimension differs from the first row
+// of its class seen. Not thread-safe.
+class KeyDimensionCheck {
+ public:
+  std::optional<std::string> add(const Experience& e);
+
+ private:
+  std::map<ExperienceClass, std::pair<std::size_t, std::int64_t>> first_;  // class -> (dim, row)
+};
+
+// One row as the near-duplicate pass reads it.
+struct DedupeRow {
+  std::int64_t id;
+  ExperienceClass cls;
+  std::vector<double> key;
+};
+// Of rows read best first, the ids to delete: each is kept unless a kept
+// row of its class lies within eps (either engine's curate --dedupe).
+std::vector<std::int64_t> nearDuplicateIds(const std::vector<DedupeRow>& rows, double eps);
+
+// The PostgreSQL store's inspect, verify and curate (pg_maintenance.cpp;
+// the functions above call them for a postgresql:// location). Curate
+// refuses -o, --vacuum and --compact there (InputError).
+InspectReport pgInspectDatabase(const std::string& location, int sample_entries, int history_lines);
+VerifyReport pgVerifyDatabase(const std::string& location);
+CurateReport pgCurateDatabase(const std::string& location, const CurateSettings& settings);
 
 // Removes a database file and its -wal, -shm and -journal, if there.
 void removeDatabaseFiles(const std::string& path);

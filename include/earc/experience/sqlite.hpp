@@ -65,13 +65,21 @@ class BusyError : public StoreError {
   using StoreError::StoreError;
 };
 
+// A write that could not be made for want of a resource (disk room, the
+// server's connection): it was rolled back, and the store holds what it
+// held. A plan made meanwhile is kept; what it learned is reported lost.
+class WriteLostError : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
 // The disk (or the file's page limit) has no room for a write: SQLite
 // rolled the transaction back, and the file holds what it held. what() is
 // "FILE: cannot write: the disk is full" (kDiskFull), without the
 // statement that met it.
-class NoSpaceError : public StoreError {
+class NoSpaceError : public WriteLostError {
  public:
-  using StoreError::StoreError;
+  using WriteLostError::WriteLostError;
 };
 
 // A stored row failed validation; what() names the row id.

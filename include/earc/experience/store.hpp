@@ -37,6 +37,13 @@
 
 namespace earc::exp {
 
+class PgConnection;
+
+// How often a PostgreSQL store asks the server for rows other planners
+// committed (the highest id seen, polled) before a retrieval; inserts
+// always ask, inside their transaction.
+inline constexpr std::chrono::milliseconds kPgPollInterval{50};
+
 struct StoreOptions {
   // No migration and no writes (inspect, verify, export). Older schema
   // versions are readable; newer ones are refused.
@@ -101,9 +108,15 @@ inline constexpr std::size_t kMaxPendingUses = 256;
 inline constexpr int kCheckpointEveryWrites = 100;
 inline constexpr std::chrono::seconds kCheckpointInterval{30};
 
+// One store, two engines: `path` is an SQLite file, or a PostgreSQL
+// database given as a libpq URI (postgresql://USER@HOST:PORT/DBNAME;
+// isPostgresLocation), which the same methods read and write with the same
+// promises (docs/experience-postgresql.md). The k-d trees are the same.
 class ExperienceStore {
  public:
   // Opens (creating when missing, unless read_only) and loads the index.
+  // A PostgreSQL location: connects (a one-line StoreError naming it when
+  // the server cannot be reached), checks identity, migrates, loads.
   // Throws ForeignDatabaseError, SchemaVersionError, StoreError; read_only,
   // InputError for a file that is missing or no database yet
   // (requireDatabaseFile). A file this open created is removed again when
@@ -182,8 +195,13 @@ class ExperienceStore {
   const ClassIndex* classIndex(const ExperienceClass& cls) const;
 
   // The underlying connection, for maintenance commands (earc-db). Not for
-  // the planner: bypasses the index and the mutex.
+  // the planner: bypasses the index and the mutex. SQLite only
+  // (std::logic_error for a PostgreSQL store); pgConnection() the other.
   Connection& connection();
+  bool isPostgres() const { return pg_ != nullptr; }
+  PgConnection& pgConnection();
+  // The last `limit` lines of the store's history, either engine.
+  HistoryTail readHistoryLines(int limit);
 
   // This open's line in the file's history (history.hpp): "learn" in the
   // planning session unless a command describes itself (build, import,
@@ -219,12 +237,30 @@ class ExperienceStore {
   // check_error_. A check starved of CPU (its idle class gets none beside
   // busy processes) is stopped and run on the calling thread instead.
   void finishCheckLocked();
+  // Stops a background check whose verdict is no longer wanted (a failed
+  // open) and lets its thread go.
+  void dropCheckLocked();
   // finishCheckLocked, then throws the check's error.
   void joinCheckLocked();
   // joinCheckLocked, then counts the session when that was left for after
   // the check. Every write calls it first.
   void awaitCheckLocked();
   bool checkRunning() const;
+  // Shared by both engines (store.cpp).
+  void indexKeyRowLocked(std::int64_t id, const std::string& kind, std::int64_t robot_count, std::string signature,
+                         std::string base_class, std::span<const unsigned char> key_blob);
+  std::vector<Experience> prepareRowsLocked(const std::vector<Experience>& batch, SessionStamp stamp) const;
+  bool nearDuplicate(const KeyIndex& batch_index, const Experience& e, double eps) const;
+  void indexInsertedLocked(const std::vector<Experience>& rows, const std::vector<std::optional<std::int64_t>>& ids);
+  // The PostgreSQL engine (store_pg.cpp).
+  void pgOpenLocked();
+  void pgRefreshLocked(bool force);
+  std::vector<Match> pgNearestLocked(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
+                                     std::size_t skip);
+  std::optional<Experience> pgFetchLocked(std::int64_t id);
+  std::vector<std::optional<std::int64_t>> pgInsertLocked(const std::vector<Experience>& batch, double eps,
+                                                          SessionStamp stamp);
+  void pgFlushLocked();
 
   std::string path_;
   StoreOptions options_;
@@ -251,6 +287,12 @@ class ExperienceStore {
   CheckRun check_run_ = CheckRun::InOpen;
   HistoryWriter history_;
   bool history_described_ = false;     // else "learn", "planning session N"
+  // The PostgreSQL engine's connection (null for an SQLite file), when it
+  // last polled, and until when a retrieval skips a server that went away.
+  std::unique_ptr<PgConnection> pg_;
+  std::chrono::steady_clock::time_point pg_polled_{};
+  std::chrono::steady_clock::time_point pg_down_until_{};
+  std::int64_t pg_rows_added_ = 0;     // on this open's history line
 };
 
 // A database that holds experiences, none of them for these robots'
