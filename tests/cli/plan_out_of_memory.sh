@@ -32,6 +32,9 @@ for kb in 40000 60000 80000 100000 130000 160000 200000 250000; do
   (ulimit -v $kb; exec "$BUILD/earc-plan" plan "$WORK/big.json" -o "$WORK/out.json" -q --time-limit 5) \
     > "$WORK/out" 2> "$WORK/err"
   rc=$?
+  # Too small for the dynamic loader to map the shared libraries (libpq's
+  # among them): earc-plan never ran, so there is nothing of ours to check.
+  if [ $rc -eq 127 ] && grep -q "error while loading shared libraries" "$WORK/err"; then continue; fi
   [ $rc -le 2 ] || fail "ulimit -v $kb: exit $rc: $(head -c 300 "$WORK/err")"
   grep -q "terminate" "$WORK/err" && fail "ulimit -v $kb: $(head -c 300 "$WORK/err")"
   # (Read whole, the scenario's boxes outside the workspace are warned of.)
