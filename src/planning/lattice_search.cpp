@@ -63,8 +63,8 @@ bool Occupancy::blocked(int i, int u, int v, std::size_t t) const {
   return false;
 }
 
-std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const Deadline& deadline, std::size_t slack,
-                                             std::size_t max_expansions) {
+std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
+                                             std::size_t max_expansions, double weight) {
   struct Node {
     int v;
     int t;
@@ -77,7 +77,12 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
   const auto nv = static_cast<std::size_t>(rm_.vertexCount());
   const int goal = rm_.goal(i);
-  const std::size_t limit = occ.horizon() + static_cast<std::size_t>(rm_.distanceToGoal(i, rm_.start(i))) + slack;
+  // Beyond the horizon everyone stands still: a way much longer than the
+  // horizon and the robot's own distance waits for nothing.
+  const long long own = rm_.distanceToGoal(i, rm_.start(i));
+  max_cost = std::min<long long>(max_cost, static_cast<long long>(occ.horizon()) + own + 16);
+  if (max_cost < own) return std::nullopt;
+  const auto limit = static_cast<std::size_t>(max_cost);
   if (closed_.size() < (limit + 2) * nv) closed_.resize((limit + 2) * nv, 0);
   if (++stamp_ == 0) {
     std::fill(closed_.begin(), closed_.end(), 0);
@@ -92,6 +97,7 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
       break;
     }
   auto h = [&](int v, long long t) { return std::max<long long>(rm_.distanceToGoal(i, v), free_after + 1 - t); };
+  if (h(rm_.start(i), 0) > max_cost) return std::nullopt;
   nodes.push_back({rm_.start(i), 0, -1});
   open.emplace(h(rm_.start(i), 0), 0, 0);
   std::size_t expanded = 0;
@@ -114,10 +120,13 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
     if (static_cast<std::size_t>(n.t) + 1 > limit) continue;
     auto consider = [&](int v) {
       if (!rm_.usableBy(i, v) || rm_.distanceToGoal(i, v) >= CrowdRoadmap::kUnreachable) return;
+      if (n.t + 1 + h(v, n.t + 1) > max_cost) return;
       if (closed_[static_cast<std::size_t>(n.t + 1) * nv + static_cast<std::size_t>(v)] == stamp_) return;
       if (occ.blocked(i, n.v, v, static_cast<std::size_t>(n.t))) return;
       nodes.push_back({v, n.t + 1, k});
-      open.emplace(n.t + 1 + h(v, n.t + 1), -(n.t + 1), static_cast<int>(nodes.size()) - 1);
+      const long long hv = h(v, n.t + 1);
+      open.emplace(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv))), -(n.t + 1),
+                   static_cast<int>(nodes.size()) - 1);
     };
     consider(n.v);
     for (int v : rm_.neighbours(n.v)) consider(v);

@@ -29,6 +29,10 @@ class Occupancy {
   void remove(int i);
   // Rows kept; the last one holds for ever after.
   std::size_t horizon() const { return occ_.size(); }
+  // The robot standing on v at step t; -1 for none.
+  int at(int v, std::size_t t) const {
+    return occ_[std::min(t, occ_.size() - 1)][static_cast<std::size_t>(v)];
+  }
   // Whether robot i's step u -> v from step t meets anyone in.
   bool blocked(int i, int u, int v, std::size_t t) const;
 
@@ -41,15 +45,15 @@ class Occupancy {
   std::vector<std::vector<int>> nearby_;  // [t][v]: robots on near(v)
 };
 
-// Space-time A* for robot i (not in occ) from its start to its goal,
-// arriving to stay for good; nothing when there is no way within `slack`
-// steps beyond the horizon and the robot's own distance, after
-// max_expansions, or past the deadline. Reuses its buffers; not thread-safe.
+// Space-time A* for robot i (not in occ) from its start to its goal, its
+// heuristic times `weight` (1: shortest), arriving for good by step max_cost;
+// nothing when there is none, after max_expansions or past the deadline.
+// Reuses its buffers; not thread-safe.
 class StepSearch {
  public:
   explicit StepSearch(const CrowdRoadmap& rm) : rm_(rm) {}
-  std::optional<VertexPath> search(const Occupancy& occ, int i, const Deadline& deadline, std::size_t slack,
-                                   std::size_t max_expansions);
+  std::optional<VertexPath> search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
+                                   std::size_t max_expansions, double weight = 1.0);
   long long expansions() const { return expansions_; }
 
  private:

@@ -349,6 +349,12 @@ TEST_CASE("One robot's search through the others' steps waits until its goal sta
     CHECK_FALSE(rm.conflict(1, {lattice::vertexAt(*p, t), lattice::vertexAt(*p, t + 1)}, 0,
                             {lattice::vertexAt(paths[0], t), lattice::vertexAt(paths[0], t + 1)}));
   CHECK(search.expansions() > 0);
+  // No way by step 2; the greedier search finds the same way by step 3.
+  CHECK_FALSE(search.search(occ, 1, Deadline(), 2, 100000).has_value());
+  const auto greedy = search.search(occ, 1, Deadline(), 3, 100000, 1.5);
+  REQUIRE(greedy.has_value());
+  CHECK(greedy->size() - 1 == 3);
+  CHECK(greedy->back() == rm.goal(1));
 }
 
 TEST_CASE("Spread-out ways lead each robot to its goal and avoid a meeting that the shortest ways make") {
