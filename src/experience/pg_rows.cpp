@@ -15,9 +15,16 @@ enum PgColumn {
 
 }  // namespace
 
-std::string pgSelectExperiencesSql() {
-  return "SELECT id, kind, robot_count, signature, base_class, key, paths, cost, source, created_at, solve_time_s, "
-         "retrieved_count, succeeded_count, created_session, made_by FROM earc.experiences";
+constexpr const char* kPgColumnList =
+    "id, kind, robot_count, signature, base_class, key, paths, cost, source, created_at, solve_time_s, "
+    "retrieved_count, succeeded_count, created_session, made_by";
+
+std::string pgSelectExperiencesSql() { return std::string("SELECT ") + kPgColumnList + " FROM earc.experiences"; }
+
+std::string pgSelectTailWithDeletionsSql() {
+  return std::string("SELECT ") + kPgColumnList +
+         ", d.value FROM (SELECT value FROM earc.store_meta WHERE name = 'deletions') d "
+         "LEFT JOIN earc.experiences e ON e.id > $1 ORDER BY e.id";
 }
 
 Experience readPgExperience(const PgResult& r, int row) {

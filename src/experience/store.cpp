@@ -64,7 +64,10 @@ struct ResetOnExit {
 }  // namespace
 
 ExperienceStore::ExperienceStore(const std::string& path, const StoreOptions& options)
-    : path_(path), options_(options), last_checkpoint_(std::chrono::steady_clock::now()) {
+    : path_(path),
+      options_(options),
+      row_cache_(options.row_cache_bytes),
+      last_checkpoint_(std::chrono::steady_clock::now()) {
   std::lock_guard lock(mutex_);
   if (isPostgresLocation(path)) {
     pgOpenLocked();
@@ -213,11 +216,16 @@ void ExperienceStore::refreshLocked() {
   const std::int64_t deletions = metaLocked("deletions");
   if (deletions != loaded_deletions_) {
     // Rows were deleted somewhere: the index may point at them; reload all.
-    index_.clear();
-    max_loaded_ = 0;
+    forgetRowsLocked();
     loaded_deletions_ = deletions;
   }
   loadTailLocked();
+}
+
+void ExperienceStore::forgetRowsLocked() {
+  index_.clear();
+  row_cache_.clear();
+  max_loaded_ = 0;
 }
 
 void ExperienceStore::loadTailLocked() {
@@ -277,24 +285,25 @@ std::vector<Match> ExperienceStore::nearest(const ExperienceClass& cls, std::spa
     std::vector<Match> out;
     const ClassIndex* index = index_.find(cls);
     if (!index || index->dim() != key.size()) return out;
-    const std::vector<Neighbor> near = index->nearest(key, k);
-    for (std::size_t i = skip; i < near.size(); ++i) {
-      const Neighbor& n = near[i];
-      try {
-        if (auto e = fetchLocked(n.id)) out.push_back({std::move(*e), n.distance});
-      } catch (const CorruptRowError& e) {
-        warnSkipped(n.id, e.reason());
-      } catch (const DamagedDatabaseError& e) {
-        // A check still running in the background has the verdict on the
-        // whole file: a damaged file ends planning with its error.
-        // (Only the verdict: this is a read transaction, no place to write.)
-        joinCheckLocked();
-        // The file was damaged after it was opened (quick_check passed then):
-        // this row cannot be read; planning goes on without it.
-        warnSkipped(n.id, e.what());
+    return matchesLocked(index->nearest(key, k), skip, [&](const std::vector<std::int64_t>& ids) {
+      std::vector<std::shared_ptr<const Experience>> rows;
+      for (const std::int64_t id : ids) {
+        try {
+          if (auto e = fetchLocked(id)) rows.push_back(std::make_shared<const Experience>(std::move(*e)));
+        } catch (const CorruptRowError& e) {
+          warnSkipped(id, e.reason());
+        } catch (const DamagedDatabaseError& e) {
+          // A check still running in the background has the verdict on the
+          // whole file: a damaged file ends planning with its error.
+          // (Only the verdict: this is a read transaction, no place to write.)
+          joinCheckLocked();
+          // The file was damaged after it was opened (quick_check passed
+          // then): this row cannot be read; planning goes on without it.
+          warnSkipped(id, e.what());
+        }
       }
-    }
-    return out;
+      return rows;
+    });
   });
 }
 

@@ -11,7 +11,6 @@
 // one indexed range query that returns nothing when nothing changed.
 #include <algorithm>
 #include <cstdio>
-#include <map>
 
 #include "earc/experience/pg_connection.hpp"
 #include "earc/experience/pg_schema.hpp"
@@ -35,6 +34,16 @@ constexpr const char* kTailSql =
 
 }  // namespace
 
+// Whether a store is small enough to hold in the row cache: its table's
+// size on the server (with indexes and dead rows: more than the rows hold)
+// within half the bound.
+static bool pgStoreFitsRowCache(PgConnection& pg, std::size_t bound) {
+  if (bound == 0) return false;
+  const std::int64_t bytes =
+      pg.retryLost([&] { return pg.query("SELECT pg_total_relation_size('earc.experiences')"); }).int64At(0, 0);
+  return bytes >= 0 && static_cast<std::size_t>(bytes) <= bound / 2;
+}
+
 void ExperienceStore::pgOpenLocked() {
   pg_ = std::make_unique<PgConnection>(path_);
   version_ = pgCheckIdentity(*pg_);
@@ -52,6 +61,9 @@ void ExperienceStore::pgOpenLocked() {
   } else {
     session_ = pg_->query("SELECT value FROM earc.store_meta WHERE name = 'sessions'").int64At(0, 0);
   }
+  // A small store comes whole with its keys, and retrievals never wait for
+  // the server; a large one fetches the k rows a retrieval misses.
+  pg_preload_ = version_ > 0 && pgStoreFitsRowCache(*pg_, options_.row_cache_bytes);
   pgRefreshLocked(true);
 }
 
@@ -59,24 +71,44 @@ void ExperienceStore::pgRefreshLocked(bool force) {
   const auto now = std::chrono::steady_clock::now();
   if (!force && (now - pg_polled_ < kPgPollInterval || now < pg_down_until_)) return;
   for (;;) {
-    PgResult r = pg_->retryLost([&] { return pg_->query(kTailSql, PgParams().add(max_loaded_)); });
+    const bool whole = pg_preload_;
+    PgResult r = pg_->retryLost(
+        [&] { return pg_->query(whole ? pgSelectTailWithDeletionsSql() : kTailSql, PgParams().add(max_loaded_)); });
     pg_polled_ = now;
-    const std::int64_t deletions = r.int64At(0, 0);
+    const int id_col = whole ? 0 : 1;  // then kind, robot_count, signature, base_class, key
+    const std::int64_t deletions = r.int64At(0, whole ? kPgRowColumns : 0);
     if (deletions != loaded_deletions_ && (max_loaded_ > 0 || index_.size() > 0)) {
       // Rows were deleted somewhere: the index may point at them; reload all.
-      index_.clear();
-      max_loaded_ = 0;
+      forgetRowsLocked();
       loaded_deletions_ = deletions;
       continue;
     }
     loaded_deletions_ = deletions;
-    for (int i = 0; i < r.rows(); ++i)
-      if (!r.isNull(i, 1))
-        indexKeyRowLocked(r.int64At(i, 1), r.textAt(i, 2), r.int64At(i, 3), r.textAt(i, 4), r.textAt(i, 5),
-                          r.bytesAt(i, 6));
+    for (int i = 0; i < r.rows(); ++i) {
+      if (r.isNull(i, id_col)) continue;
+      const int c = id_col;
+      indexKeyRowLocked(r.int64At(i, c), r.textAt(i, c + 1), r.int64At(i, c + 2), r.textAt(i, c + 3),
+                        r.textAt(i, c + 4), r.bytesAt(i, c + 5));
+      if (whole && pg_preload_) pgPreloadRowLocked(r, i);
+    }
     index_.settle();
     return;
   }
+}
+
+void ExperienceStore::pgPreloadRowLocked(const PgResult& r, int row) {
+  std::shared_ptr<const Experience> e;
+  try {
+    e = std::make_shared<const Experience>(readPgExperience(r, row));
+  } catch (const CorruptRowError&) {
+    return;  // the index skipped it too, or a retrieval reports it
+  }
+  // The store outgrew the cache: retrievals fetch what they miss from now on.
+  if (row_cache_.bytes() + cachedRowBytes(*e) > row_cache_.maxBytes()) {
+    pg_preload_ = false;
+    return;
+  }
+  row_cache_.put(std::move(e));
 }
 
 std::vector<Match> ExperienceStore::pgNearestLocked(const ExperienceClass& cls, std::span<const double> key,
@@ -86,24 +118,8 @@ std::vector<Match> ExperienceStore::pgNearestLocked(const ExperienceClass& cls, 
     pgRefreshLocked(false);
     const ClassIndex* index = index_.find(cls);
     if (!index || index->dim() != key.size()) return out;
-    const std::vector<Neighbor> near = index->nearest(key, k);
-    if (near.size() <= skip) return out;
-    std::vector<std::int64_t> ids;
-    for (std::size_t i = skip; i < near.size(); ++i) ids.push_back(near[i].id);
-    // The k rows in one round trip.
-    PgResult r = pg_->retryLost(
-        [&] { return pg_->query(pgSelectExperiencesSql() + " WHERE id = ANY($1)", PgParams().addIds(ids)); });
-    std::map<std::int64_t, int> at;
-    for (int i = 0; i < r.rows(); ++i) at[r.int64At(i, 0)] = i;
-    for (std::size_t i = skip; i < near.size(); ++i) {
-      auto it = at.find(near[i].id);
-      if (it == at.end()) continue;  // deleted since the index was loaded
-      try {
-        out.push_back({readPgExperience(r, it->second), near[i].distance});
-      } catch (const CorruptRowError& e) {
-        warnSkipped(near[i].id, e.reason());
-      }
-    }
+    out = matchesLocked(index->nearest(key, k), skip,
+                        [&](const std::vector<std::int64_t>& ids) { return pgReadRowsLocked(ids); });
   } catch (const PgConnectionLostError& e) {
     // The server went away through every reconnection: planning goes on
     // without experience and tries the server again a while later.
@@ -112,6 +128,22 @@ std::vector<Match> ExperienceStore::pgNearestLocked(const ExperienceClass& cls, 
     out.clear();
   }
   return out;
+}
+
+std::vector<std::shared_ptr<const Experience>> ExperienceStore::pgReadRowsLocked(const std::vector<std::int64_t>& ids) {
+  // The rows the cache lacks in one round trip; one deleted since the
+  // index was loaded is not there.
+  PgResult r = pg_->retryLost(
+      [&] { return pg_->query(pgSelectExperiencesSql() + " WHERE id = ANY($1)", PgParams().addIds(ids)); });
+  std::vector<std::shared_ptr<const Experience>> rows;
+  for (int i = 0; i < r.rows(); ++i) {
+    try {
+      rows.push_back(std::make_shared<const Experience>(readPgExperience(r, i)));
+    } catch (const CorruptRowError& e) {
+      warnSkipped(r.int64At(i, 0), e.reason());
+    }
+  }
+  return rows;
 }
 
 std::optional<Experience> ExperienceStore::pgFetchLocked(std::int64_t id) {
@@ -176,6 +208,16 @@ std::vector<std::optional<std::int64_t>> ExperienceStore::pgInsertLocked(const s
       committed);
   pg_rows_added_ += stored;
   indexInsertedLocked(rows, ids);
+  if (pg_preload_)
+    for (std::size_t i = 0; i < rows.size() && pg_preload_; ++i)
+      if (ids[i]) {
+        auto e = std::make_shared<Experience>(rows[i]);
+        e->id = *ids[i];
+        if (row_cache_.bytes() + cachedRowBytes(*e) > row_cache_.maxBytes())
+          pg_preload_ = false;
+        else
+          row_cache_.put(std::move(e));
+      }
   return ids;
 }
 

@@ -150,7 +150,9 @@ SolverOutcome DatabaseSolver::query(SolverContext& ctx) {
     ++tally_.unusable;
     ++unusable_;
   };
+  Stopwatch retrieval;
   auto candidates = exp::retrieveCandidates(store_, robots, sub.starts, sub.goals, settings_.k, 0, &unusable);
+  retrieval_s_ += retrieval.seconds();
   ++queries_;
   for (std::int64_t id : unusable) passOver(id);
   if (candidates.empty() && unusable.empty()) {
@@ -508,6 +510,12 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   stats["db_learn_candidates"] = pending_.size();
   stats["db_learn_unstorable"] = unstorable_;
   stats["db_learn_time_s"] = sw.seconds();
+  // Rows of the store's cache while this plan ran (a service's concurrent
+  // plans share one store and count each other's).
+  const exp::ExperienceStore::RetrievalStats now = store_.retrievalStats();
+  stats["db_retrieval_time_s"] = retrieval_s_;
+  stats["db_row_cache_hits"] = now.cache_hits - retrieval_at_start_.cache_hits;
+  stats["db_row_cache_misses"] = now.cache_misses - retrieval_at_start_.cache_misses;
   if (settings_.shadow_decoupled) {
     const Shadow& s = shadow_;
     stats["db_shadow_decoupled"] = {{"queries", s.queries},

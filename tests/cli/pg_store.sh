@@ -16,7 +16,7 @@ needBuilt earc-db earc-plan earc-scenario tests/earc-unit-tests
 
 EARC_TEST_PG_URI=$PG_URI "$BUILD/tests/earc-unit-tests" -tc='PostgreSQL:*' --no-skip > "$WORK/out" 2>&1 ||
   fail "the store's unit tests against the server failed"
-grep -q "test cases: *9 | *9 passed" "$WORK/out" || fail "not all 9 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
+grep -q "test cases: *11 | *11 passed" "$WORK/out" || fail "not all 11 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
 
 db=$(pgNewDatabase cli)
 "$BUILD/earc-db" build --db "$db" --kind mobile --count 60 --seed 1 -q > "$WORK/out" 2> "$WORK/err" || fail "build into $db"
@@ -57,13 +57,23 @@ for id in $(jq -r '.stats.db_learned_ids[]?' "$WORK/s.sol.json" 2> /dev/null); d
   [ "$(pgValue "$db" "SELECT count(*) FROM earc.experiences WHERE id = $id")" = 1 ] || fail "learned row $id is not there"
 done
 
-# A service keeping the store open answers from it.
-echo '{"id": 1, "op": "stats"}' | "$BUILD/earc-plan" serve --db "$db" > "$WORK/serve.out" 2> "$WORK/serve.err" ||
+# A service keeping the store open answers from it, and plans learning
+# into it: every id it reports learned is there.
+{ echo '{"id": 1, "op": "stats"}'
+  echo "{\"id\": 2, \"scenario_file\": \"$WORK/s.json\", \"method\": \"earc\", \"seed\": 5, \"learn\": true}"
+} | "$BUILD/earc-plan" serve --db "$db" > "$WORK/serve.out" 2> "$WORK/serve.err" ||
   fail "serve --db $db: exit $?: $(cat "$WORK/serve.err")"
 "$PY" -c 'import json, sys
-a = json.loads(open(sys.argv[1]).readline())
-assert a["ok"] and a["stats"]["db_entries"] >= int(sys.argv[2]), a' "$WORK/serve.out" "$after" ||
+lines = open(sys.argv[1]).read().splitlines()
+a, b = json.loads(lines[0]), json.loads(lines[1])
+assert a["ok"] and a["stats"]["db_entries"] >= int(sys.argv[2]), a
+assert b["ok"] and b["id"] == 2, b
+print(" ".join(str(i) for i in b["stats"].get("db_learned_ids", [])))' "$WORK/serve.out" "$after" > "$WORK/serve.ids" ||
   fail "serve --db $db: $(cat "$WORK/serve.out")"
+for id in $(cat "$WORK/serve.ids"); do
+  [ "$(pgValue "$db" "SELECT count(*) FROM earc.experiences WHERE id = $id")" = 1 ] ||
+    fail "row $id the service reported learned is not there"
+done
 
 # Refusals: one line, exit 2, naming the store; a password never printed.
 refusedInOneLine "postgresql://earc@127.0.0.1:1/earc: cannot connect" \

@@ -15,6 +15,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/pg_connection.hpp"
@@ -23,6 +24,7 @@
 #include "earc/experience/scratch.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/experience/transfer.hpp"
+#include "row_cache_checks.hpp"
 #include "support.hpp"
 
 using earc::test::discTraits;
@@ -334,4 +336,44 @@ TEST_CASE("PostgreSQL: a writer killed mid-transaction leaves whole batches only
   ExperienceStore after(uri);  // and the store opens and takes rows
   std::mt19937_64 rng(5);
   CHECK(after.insert(pgSample(rng), -1).has_value());
+}
+
+TEST_CASE("PostgreSQL: the row cache follows rows committed and deleted by others, within its bound" *
+          doctest::skip()) {
+  test::checkRowCacheFollowsStore(freshDatabase());
+}
+
+TEST_CASE("PostgreSQL: a store that fits the row cache is read whole at open and kept so" * doctest::skip()) {
+  const std::string uri = freshDatabase();
+  std::mt19937_64 rng(31);
+  std::vector<Experience> rows;
+  for (int i = 0; i < 20; ++i) rows.push_back(pgSample(rng));
+  ExperienceStore writer(uri);
+  writer.insertAll(rows, -1.0);
+  ExperienceStore reader(uri);
+  CHECK(reader.rowCacheSize().first == 20);
+  for (const Experience& e : rows) {
+    const std::vector<Match> got = reader.nearest(e.cls, e.key, 1);
+    REQUIRE(got.size() == 1);
+    CHECK(got[0].experience.paths == e.paths);
+  }
+  // A row another connection commits, and one the reader learns: cached too.
+  const Experience later = pgSample(rng);
+  const std::int64_t later_id = *writer.insert(later, -1.0);
+  std::this_thread::sleep_for(kPgPollInterval + std::chrono::milliseconds(20));
+  const Experience own = pgSample(rng);
+  const std::int64_t own_id = *reader.insert(own, -1.0);
+  CHECK(reader.nearest(later.cls, later.key, 1).at(0).experience.id == later_id);
+  CHECK(reader.nearest(own.cls, own.key, 1).at(0).experience.id == own_id);
+  CHECK(reader.nearest(own.cls, own.key, 1).at(0).experience.paths == own.paths);
+  CHECK(reader.retrievalStats().cache_misses == 0);
+  CHECK(reader.rowCacheSize().first == 22);
+
+  // A bound the table does not fit in half of: rows are fetched when missed.
+  StoreOptions small;
+  small.row_cache_bytes = 16 * 1024;
+  ExperienceStore fetching(uri, small);
+  CHECK(fetching.rowCacheSize().first == 0);
+  CHECK(fetching.nearest(own.cls, own.key, 1).at(0).experience.id == own_id);
+  CHECK(fetching.retrievalStats().cache_misses == 1);
 }

@@ -1,9 +1,11 @@
-// earc-db bench-retrieval [--entries N] [--queries Q] [--k K] [--seed S]:
-// k-closest retrieval time per class on synthetic entries (straight-line
-// paths between the builder's kind of queries) in a temporary database.
-// For each class: median and p90 of ExperienceStore::nearest (k-d tree
-// search, reading and decoding k rows), the k-d tree search alone, and a
-// linear scan of all keys for comparison.
+// earc-db bench-retrieval [--entries N] [--queries Q] [--k K] [--seed S]
+// [--row-cache-mb M] [--db URI]: k-closest retrieval time per class on
+// synthetic entries (straight-line paths between the builder's kind of
+// queries) in a temporary database. For each class: median and p90 of
+// ExperienceStore::nearest (k-d tree search, reading and decoding k rows,
+// or taking them from the row cache) over uniformly random queries, the
+// share of rows the row cache had, the median of the same queries asked
+// again, the k-d tree search alone, and a linear scan of all keys.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -28,6 +30,7 @@ struct BenchRetrievalOptions {
   int k = 10;
   std::uint64_t seed = 1;
   std::string db;  // an empty store to fill instead of a temporary file (postgresql://...)
+  int row_cache_mb = static_cast<int>(earc::exp::kDefaultRowCacheBytes >> 20);
 };
 
 // Rows per insert transaction while filling the database.
@@ -120,14 +123,16 @@ void runBenchRetrieval(const BenchRetrievalOptions& opt, std::ostream& out) {
     }
   }
   const double fill_s = std::chrono::duration<double>(Clock::now() - t_fill).count();
-  earc::exp::ExperienceStore store(path);  // a fresh open: index built from the file
+  earc::exp::StoreOptions measured;
+  measured.row_cache_bytes = static_cast<std::size_t>(opt.row_cache_mb) << 20;
+  earc::exp::ExperienceStore store(path, measured);  // a fresh open: index built from the file
   char line[256];
   const double load_s = microseconds([&] { earc::exp::ExperienceStore again(path); }) * 1e-6;
   std::snprintf(line, sizeof line, "filled %d entries x %zu classes in %.1f s; a fresh open loads the index in %.2f s; k = %d, %d queries\n\n",
                 opt.entries, classes.size(), fill_s, load_s, opt.k, opt.queries);
   out << line;
-  std::snprintf(line, sizeof line, "%-22s %8s %5s %10s %9s %9s %10s %9s\n", "class", "entries", "dims", "median us",
-                "p90 us", "cpu us", "search us", "brute us");
+  std::snprintf(line, sizeof line, "%-22s %8s %5s %10s %9s %9s %6s %9s %10s %9s\n", "class", "entries", "dims",
+                "median us", "p90 us", "cpu us", "hit %", "again us", "search us", "brute us");
   out << line;
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const auto* index = store.classIndex(ids[c]);
@@ -142,18 +147,24 @@ void runBenchRetrieval(const BenchRetrievalOptions& opt, std::ostream& out) {
     // One loop per method: the linear scans would otherwise flush the CPU
     // caches between two store queries and charge that to the store.
     const auto k = static_cast<std::size_t>(opt.k);
-    std::vector<double> full, cpu, search, brute;
+    std::vector<double> full, cpu, again, search, brute;
     std::size_t returned = 0;
+    const auto before = store.retrievalStats();
     for (const auto& key : keys) {
       const double cpu0 = threadCpuMicroseconds();
       full.push_back(microseconds([&] { returned += store.nearest(ids[c], key, k).size(); }));
       cpu.push_back(threadCpuMicroseconds() - cpu0);
     }
+    const auto after = store.retrievalStats();
+    const double looked = static_cast<double>(after.cache_hits + after.cache_misses - before.cache_hits - before.cache_misses);
+    const double hit_pct = looked > 0 ? 100.0 * static_cast<double>(after.cache_hits - before.cache_hits) / looked : 0.0;
+    for (const auto& key : keys) again.push_back(microseconds([&] { store.nearest(ids[c], key, k); }));
     for (const auto& key : keys) search.push_back(microseconds([&] { returned += index->nearest(key, k).size(); }));
     for (const auto& key : keys) brute.push_back(microseconds([&] { returned += index->bruteForce(key, k).size(); }));
-    std::snprintf(line, sizeof line, "%-22s %8zu %5zu %10.1f %9.1f %9.1f %10.1f %9.1f\n", classes[c].name.c_str(),
-                  index->size(), index->dim(), percentile(full, 0.5), percentile(full, 0.9), percentile(cpu, 0.5),
-                  percentile(search, 0.5), percentile(brute, 0.5));
+    std::snprintf(line, sizeof line, "%-22s %8zu %5zu %10.1f %9.1f %9.1f %6.1f %9.1f %10.1f %9.1f\n",
+                  classes[c].name.c_str(), index->size(), index->dim(), percentile(full, 0.5), percentile(full, 0.9),
+                  percentile(cpu, 0.5), hit_pct, percentile(again, 0.5), percentile(search, 0.5),
+                  percentile(brute, 0.5));
     out << line;
     if (returned != 3 * static_cast<std::size_t>(opt.queries) * std::min<std::size_t>(static_cast<std::size_t>(opt.k), index->size()))
       out << "  (some queries returned fewer than k entries)\n";
@@ -177,8 +188,9 @@ void runBenchRetrieval(const BenchRetrievalOptions& opt, std::ostream& out) {
                   percentile(visible, 0.5), percentile(visible, 1.0));
     out << line;
   }
-  out << "\nmedian/p90: wall time of ExperienceStore::nearest (search + read + decode k rows); cpu: its median\n"
-         "thread CPU time; search: k-d tree + tail only (median); brute: linear scan of every key (median).\n"
+  out << "\nmedian/p90: wall time of ExperienceStore::nearest (search + read + decode k rows, or take them from\n"
+         "the row cache); cpu: its median thread CPU time; hit: rows the row cache had; again: the same queries\n"
+         "asked again (median); search: k-d tree + tail only (median); brute: linear scan of every key (median).\n"
          "load average " << loadAverage() << " on " << std::thread::hardware_concurrency() << " cores.\n";
 }
 
@@ -189,6 +201,8 @@ void setupBenchRetrieval(CLI::App& app) {
   sub->add_option("--queries", opt->queries, "Queries per class")->check(earc::cli::wholeNumberIn(1, 1000000));
   sub->add_option("--k", opt->k, "Experiences retrieved per query")->check(earc::cli::wholeNumberIn(1, 1000));
   sub->add_option("--seed", opt->seed, "Random seed")->check(earc::cli::kWholeNumber);
+  sub->add_option("--row-cache-mb", opt->row_cache_mb, "Bound of the store's cache of retrieved rows in MiB (0: off)")
+      ->check(earc::cli::wholeNumberIn(0, 65536));
   sub->add_option("--db", opt->db, "An empty store to fill (e.g. postgresql://USER@HOST:PORT/DBNAME) instead of a temporary file");
   sub->callback([opt] { runBenchRetrieval(*opt, std::cout); });
 }

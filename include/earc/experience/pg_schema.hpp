@@ -38,6 +38,11 @@ int pgMigrate(PgConnection& db, int target = -1);
 // "SELECT <all columns> FROM earc.experiences" (the order readPgExperience
 // reads); append WHERE / ORDER BY.
 std::string pgSelectExperiencesSql();
+// The rows with an id above $1 in that column order, then the store's
+// deletions count as column kPgRowColumns; one row of NULLs and the count
+// when there are none.
+inline constexpr int kPgRowColumns = 15;
+std::string pgSelectTailWithDeletionsSql();
 // Row `row` of such a result, checked as readExperience checks. Throws
 // CorruptRowError.
 Experience readPgExperience(const PgResult& r, int row);

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,16 +34,21 @@
 #include "earc/experience/experience.hpp"
 #include "earc/experience/history.hpp"
 #include "earc/experience/key_index.hpp"
+#include "earc/experience/row_cache.hpp"
 #include "earc/experience/sqlite.hpp"
 
 namespace earc::exp {
 
 class PgConnection;
+class PgResult;
 
 // How often a PostgreSQL store asks the server for rows other planners
 // committed (the highest id seen, polled) before a retrieval; inserts
 // always ask, inside their transaction.
 inline constexpr std::chrono::milliseconds kPgPollInterval{50};
+
+// The default bound of a store's cache of retrieved rows (RowCache).
+inline constexpr std::size_t kDefaultRowCacheBytes = std::size_t{64} << 20;
 
 struct StoreOptions {
   // No migration and no writes (inspect, verify, export). Older schema
@@ -81,6 +87,9 @@ struct StoreOptions {
   // database cannot be created (a full disk), which then plans as E-ARC
   // with no experience. Nothing it learns is kept.
   bool in_memory = false;
+  // Rows nearest() read are kept decoded, up to this many bytes (RowCache),
+  // and served from memory when retrieved again; 0 turns the cache off.
+  std::size_t row_cache_bytes = kDefaultRowCacheBytes;
   ConnectionSettings connection;
 };
 
@@ -155,12 +164,26 @@ class ExperienceStore {
   // and checked. Rows that fail decoding are skipped and reported once on
   // stderr (earc-db verify names them all). The first `skip` of the k
   // nearest are left out, unread: a caller that wants more after trying
-  // the k nearest asks for the next ones without reading those again.
+  // the k nearest asks for the next ones without reading those again. Rows
+  // read before come from the row cache, usage counters as they were then.
   std::vector<Match> nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
                              std::size_t skip = 0);
   // The same search without reading rows: ids and distances only.
   std::vector<Neighbor> nearestIds(const ExperienceClass& cls, std::span<const double> key, std::size_t k);
+  // The row as stored now (never from the row cache), or nothing.
   std::optional<Experience> get(std::int64_t id);
+
+  // What nearest() did since the open: calls, rows it returned, and rows it
+  // found in the row cache or had to read. Thread-safe.
+  struct RetrievalStats {
+    std::uint64_t retrievals = 0;
+    std::uint64_t rows = 0;
+    std::uint64_t cache_hits = 0;
+    std::uint64_t cache_misses = 0;
+  };
+  RetrievalStats retrievalStats() const;
+  // The row cache's size now: rows and their bytes. Thread-safe.
+  std::pair<std::size_t, std::size_t> rowCacheSize() const;
 
   // Stores e unless an entry of its class lies within near_duplicate_eps in
   // key space (distance <= eps; eps < 0 disables the check), checked inside
@@ -224,6 +247,13 @@ class ExperienceStore {
   void loadTailLocked();
   std::int64_t metaLocked(const char* name);
   std::optional<Experience> fetchLocked(std::int64_t id);
+  // near[skip..] as matches, nearest first: rows from the row cache, the
+  // others read by `read` (given their ids; a row it does not return is
+  // left out) and cached.
+  using RowReader = std::function<std::vector<std::shared_ptr<const Experience>>(const std::vector<std::int64_t>&)>;
+  std::vector<Match> matchesLocked(const std::vector<Neighbor>& near, std::size_t skip, const RowReader& read);
+  // After a deletion anywhere: the index and the row cache start afresh.
+  void forgetRowsLocked();
   std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps,
                                                         SessionStamp stamp = SessionStamp::ThisSession);
   void flushLocked();
@@ -258,6 +288,10 @@ class ExperienceStore {
   std::vector<Match> pgNearestLocked(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
                                      std::size_t skip);
   std::optional<Experience> pgFetchLocked(std::int64_t id);
+  std::vector<std::shared_ptr<const Experience>> pgReadRowsLocked(const std::vector<std::int64_t>& ids);
+  // Row `row` of a tail read whole (pgSelectTailWithDeletionsSql) into the
+  // row cache; preloading stops when the cache is full.
+  void pgPreloadRowLocked(const PgResult& r, int row);
   std::vector<std::optional<std::int64_t>> pgInsertLocked(const std::vector<Experience>& batch, double eps,
                                                           SessionStamp stamp);
   void pgFlushLocked();
@@ -271,6 +305,9 @@ class ExperienceStore {
   std::unique_ptr<Statement> fetch_;
   std::unique_ptr<Statement> data_version_;
   KeyIndex index_;
+  RowCache row_cache_;
+  std::uint64_t retrievals_ = 0;
+  std::uint64_t rows_returned_ = 0;
   std::int64_t max_loaded_ = 0;
   std::int64_t loaded_data_version_ = -1;
   std::int64_t loaded_deletions_ = -1;
@@ -293,6 +330,7 @@ class ExperienceStore {
   std::chrono::steady_clock::time_point pg_polled_{};
   std::chrono::steady_clock::time_point pg_down_until_{};
   std::int64_t pg_rows_added_ = 0;     // on this open's history line
+  bool pg_preload_ = false;            // every row read into the row cache
 };
 
 // A database that holds experiences, none of them for these robots'

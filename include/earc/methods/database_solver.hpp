@@ -59,7 +59,8 @@ std::string withoutNumbers(std::string_view text);
 
 class DatabaseSolver : public SubproblemSolver {
  public:
-  DatabaseSolver(exp::ExperienceStore& store, DatabaseSolverSettings s) : store_(store), settings_(s) {}
+  DatabaseSolver(exp::ExperienceStore& store, DatabaseSolverSettings s)
+      : store_(store), settings_(s), retrieval_at_start_(store.retrievalStats()) {}
   const char* name() const override { return "database"; }
   SolverOutcome solve(SolverContext& ctx) override;
   void accepted(const SolverContext& ctx, const LocalSolution& sol, const SolverOutcome& by) override;
@@ -96,6 +97,8 @@ class DatabaseSolver : public SubproblemSolver {
   int repairs_ = 0;
   int crowded_ = 0;  // valid candidates refused for running into other robots
   int too_long_ = 0;  // answers refused for max_stretch
+  double retrieval_s_ = 0.0;  // wall time in retrieveCandidates
+  exp::ExperienceStore::RetrievalStats retrieval_at_start_;
   int unusable_ = 0;  // candidates passed over: no step count joins or follows them (NoStepCountError)
   // Subproblems solved from scratch that no class can hold (3 or more arms,
   // 5 or more robots, arms of unequal joints or too many): never learned.
