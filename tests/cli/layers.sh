@@ -7,8 +7,7 @@ set -u
 BUILD=$1
 SRC=$2
 . "$(dirname "$0")/common.bash"
-CXX=${CXX:-c++}
-command -v "$CXX" > /dev/null || { echo "skipped: no $CXX"; exit 77; }
+needCompiler
 ls "$BUILD"/layers/*.roots > /dev/null 2>&1 || fail "no layer roots in $BUILD/layers (configure first)"
 
 # upward ROOTS_FILE FILE...: "FILE: HEADER" for each earc/ header a FILE
