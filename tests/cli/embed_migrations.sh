@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # tools/embed_migrations.cmake, which compiles the migrations/ files into
 # the programs: each file's text reaches the program byte for byte, however
 # awkward (semicolons, backslashes, quotes, no final newline), with the

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # The layers (CMakeLists.txt): every public header compiles with only the
 # include roots of its own layer and the layers below it, so that no header
 # reaches up a layer (the sources are held to it by the build itself). And
