@@ -2,8 +2,8 @@
 --
 -- This file documents the schema; the program never runs it. Databases are
 -- created and upgraded only by the numbered migrations in ../migrations/,
--- embedded in the binary (src/experience/migrations.cpp), each applied in
--- its own BEGIN IMMEDIATE ... COMMIT together with its user_version bump.
+-- embedded in the binary by the build (tools/embed_migrations.cmake), each
+-- applied in its own BEGIN IMMEDIATE ... COMMIT with its user_version bump.
 -- A unit test (test_store_schema.cpp) checks that this file produces exactly
 -- the tables, columns, indexes and triggers the migrations produce.
 --

@@ -26,6 +26,13 @@ echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # the sanitizers (labels python and package).
 bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+# The unit tests (one per source file there, tests/CMakeLists.txt) and the
+# command-line tests that run C++ (label unsanitized: those that do not).
+# The stress, crash and damaged-file loops run the same code paths as in
+# the Release half, in fewer rounds: the sanitizers need a path run, and
+# the Release half keeps the rounds that look for rare interleavings.
 (cd "$src/build-asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-   ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench|package|python")
+   EARC_STRESS_SECONDS=${EARC_STRESS_SECONDS:-15} EARC_CRASH_KILLS=${EARC_CRASH_KILLS:-20} \
+   EARC_HOSTILE_FLIPS=${EARC_HOSTILE_FLIPS:-5} \
+   ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench|package|python|unsanitized")

@@ -11,6 +11,8 @@ fail() { echo "FAIL: $*"; exit 1; }
 failShowsOutput() { fail() { echo "FAIL: $*"; tail -n 20 "$WORK/out" "$WORK/err" 2>/dev/null; exit 1; }; }
 # Skipped (77) without /usr/bin/python3.
 needPython() { [ -x "$PY" ] || { echo "skipped: no $PY"; exit 77; }; }
+# Sets CXX (default c++); skipped (77) without that compiler.
+needCompiler() { CXX=${CXX:-c++}; command -v "$CXX" > /dev/null || { echo "skipped: no $CXX"; exit 77; }; }
 # True when $PY has matplotlib and numpy (the plot scripts' needs).
 hasMatplotlib() { "$PY" -c "import matplotlib, numpy" 2> /dev/null; }
 # Skipped (77) without /usr/bin/python3 with matplotlib.

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # Every relative link in README.md and docs/*.md points at a file or
 # folder of the tree, and a link's #anchor (in the same or another
 # Markdown file) names one of that file's headings, as GitHub spells them.

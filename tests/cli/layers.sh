@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # The layers (CMakeLists.txt): every public header compiles with only the
 # include roots of its own layer and the layers below it, so that no header
 # reaches up a layer (the sources are held to it by the build itself). And
@@ -7,8 +8,7 @@ set -u
 BUILD=$1
 SRC=$2
 . "$(dirname "$0")/common.bash"
-CXX=${CXX:-c++}
-command -v "$CXX" > /dev/null || { echo "skipped: no $CXX"; exit 77; }
+needCompiler
 ls "$BUILD"/layers/*.roots > /dev/null 2>&1 || fail "no layer roots in $BUILD/layers (configure first)"
 
 # upward ROOTS_FILE FILE...: "FILE: HEADER" for each earc/ header a FILE

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # tools/plots/plot_results.py's time figure gives each method its own
 # marker and moves each method's points a little aside, so that methods
 # of equal times both show: E-ARC's points once lay exactly under ARC's,

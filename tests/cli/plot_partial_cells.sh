@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # tools/plots/plot_results.py's time figure draws the median over the
 # solved trials only, so it marks what that leaves out: a cell where some
 # trials failed is hollow and labelled "k/n", one where all failed is an x

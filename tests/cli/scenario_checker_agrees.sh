@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # The independent checker (../shared/tools/check_solution.py) accepts every
 # generated scenario and every committed dataset as a valid scenario: with
 # an unsolved dummy solution it must say "invalid solution" (1), never

@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # tools/plots/trace_breakdown.py: sums attempts per subproblem size and
 # solver, and its what-if bounds subtract exactly the attempts they name
 # (hand-made traces with known times); it reads what earc-plan --trace

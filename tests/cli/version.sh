@@ -1,4 +1,5 @@
 #!/bin/bash
+# label: unsanitized
 # --version: every program prints one line, its name and the same build
 # version, and exits 0; built from a git checkout, the version names the
 # checkout's commit (".dirty" allowed: tracked files may differ from it).

@@ -1,5 +1,5 @@
 // The results database's migrations: migrations/results/*.sql, embedded in
-// the binary (a unit test checks them against the files).
+// the binary by the build from the files (tools/embed_migrations.cmake).
 #pragma once
 
 #include <span>

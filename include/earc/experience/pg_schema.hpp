@@ -1,6 +1,6 @@
 // The PostgreSQL experience store's schema: its numbered migrations
-// (migrations/postgresql/NNNN_*.sql, embedded here; a unit test keeps the
-// two equal), its identity check, and reading and writing whole rows and
+// (migrations/postgresql/NNNN_*.sql, embedded by the build from the files),
+// its identity check, and reading and writing whole rows and
 // history lines. Everything lives in the database's schema "earc".
 #pragma once
 

@@ -1,8 +1,8 @@
 // The experience database's identity and schema versions.
 //
 // The schema is documented in schema/schema.sql; it is created and upgraded
-// only by the numbered migrations in migrations/NNNN_*.sql, whose text is
-// embedded here (a unit test keeps the two equal).
+// only by the numbered migrations in migrations/NNNN_*.sql, whose text the
+// build embeds from the files (tools/embed_migrations.cmake).
 #pragma once
 
 #include <cstdint>
