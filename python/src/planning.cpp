@@ -180,7 +180,7 @@ void bindPlanning(py::module_& m) {
       .def_property_readonly("paths", [](const PyPlan& p) { return pathArrays(p.result.solution); },
                              "Per robot, (times, configurations): steps 0..n-1 and an n x dim float array")
       .def_property_readonly("robots", [](const PyPlan& p) { return p.result.solution.robot_names; })
-      .def_property_readonly("stats", [](const PyPlan& p) { return toPython(p.result.stats); })
+      .def_property_readonly("stats", [](const PyPlan& p) { return toPython(p.result.stats.toJson()); })
       .def_property_readonly("failures",
                              [](const PyPlan& p) {
                                std::vector<std::string> out;

@@ -210,8 +210,10 @@ json Service::handle(const json& request) {
 json Service::plan(const json& request) {
   InputWarnings read_warnings;
   Scenario scenario = scenarioFrom(request, read_warnings);
-  PlannerSettings s = settingsFrom(request, settings_);
-  s.roadmap_cache = roadmaps_.get();
+  const PlannerSettings s = settingsFrom(request, settings_);
+  PlanContext context;
+  context.roadmap_cache = roadmaps_.get();
+  context.stop = &stop_;
   if (s.method == Method::Earc && !store_)
     throw badField("method", "method earc needs the service to have an experience database");
   // Rows other processes committed since the last request.
@@ -230,18 +232,18 @@ json Service::plan(const json& request) {
       warnings.push_back(w);
   ++counters_.plans;
   Stopwatch clock;
-  PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr);
-  const bool interrupted = stopRequested();
-  json st = r.stats;
+  PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr, context);
+  const bool interrupted = stopSet(&stop_);
+  if (r.stats.db) counters_.learned += r.stats.db->db_learned;
+  if (s.method == Method::Earc) {
+    counters_.db += databaseAnswers(r.stats);
+    if (r.stats.db) counters_.db_refused_too_long += r.stats.db->db_refused_too_long;
+  }
+  json st = r.stats.toJson();
   st["request_s"] = clock.seconds();
   if (store_) {
     st["db_entries_before"] = entries_before;
     st["db_entries"] = store_->size();
-  }
-  counters_.learned += st.value("db_learned", 0);
-  if (s.method == Method::Earc) {
-    counters_.db += databaseAnswers(st);
-    counters_.db_refused_too_long += st.value("db_refused_too_long", 0);
   }
   json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
   if (!warnings.empty()) out["warnings"] = std::move(warnings);
