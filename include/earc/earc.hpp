@@ -4,6 +4,7 @@
 //   earc::Scenario s = earc::loadScenario("scenario.json");  // throws InputError
 //   earc::PlannerSettings settings;                           // method, seed, limits
 //   earc::PlanResult r = earc::plan(s, settings);             // validated when solved
+//   if (r.stats.arc) r.stats.arc->conflicts;                  // typed statistics (PlanStats)
 //   earc::ValidationReport v = earc::validateSolution(s, r.solution);
 //   earc::exp::ExperienceStore store("experience.sqlite");    // for Method::Earc
 #pragma once
@@ -15,6 +16,7 @@
 #include "earc/methods/builder.hpp"
 #include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
+#include "earc/planning/roadmap.hpp"
 #include "earc/scene/scenario.hpp"
 #include "earc/scene/solution.hpp"
 #include "earc/util/version.hpp"

@@ -3,7 +3,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -87,28 +89,54 @@ PlannerSettings settingsFor(const MethodOptions& o) {
   return s;
 }
 
+// The plan of `checked`, on this thread (the GIL released by the caller).
+PlanResult planUnlocked(const Scenario& checked, const PlannerSettings& s, const MethodOptions& o,
+                        const PlanContext& context) {
+  if (s.method != Method::Earc) return plan(checked, s, nullptr, context);
+  exp::StoreOptions options;
+  if (!o.learn) {
+    options.read_only = true;
+    options.new_session = false;
+  }
+  auto store = exp::withInputErrors(o.db, [&] { return std::make_unique<exp::ExperienceStore>(o.db, options); });
+  PlanResult r = exp::withInputErrors(o.db, [&] { return plan(checked, s, store.get(), context); });
+  exp::withInputErrors(o.db, [&] { store->close(); });
+  return r;
+}
+
+// How often a plan's caller looks for a signal (Ctrl-C) while it waits.
+constexpr auto kSignalPoll = std::chrono::milliseconds(50);
+
+// Plans on a worker thread while this one, without the GIL, checks for
+// signals: a KeyboardInterrupt (or a handler's exception) stops the plan
+// and is raised once the worker has returned.
 PyPlan planPy(const Scenario& scenario, const MethodOptions& o) {
   const PlannerSettings s = settingsFor(o);
   const Scenario checked = requireRobots(scenario, "scenario");
-  std::unique_ptr<exp::ExperienceStore> store;
+  StopFlag stop{false};
+  PlanContext context;
+  context.stop = &stop;
   PyPlan out;
+  bool interrupted = false;
   {
     py::gil_scoped_release unlocked;
-    if (s.method == Method::Earc) {
-      exp::StoreOptions options;
-      if (!o.learn) {
-        options.read_only = true;
-        options.new_session = false;
+    std::future<PlanResult> planned =
+        std::async(std::launch::async, [&] { return planUnlocked(checked, s, o, context); });
+    while (planned.wait_for(kSignalPoll) != std::future_status::ready) {
+      py::gil_scoped_acquire locked;
+      if (PyErr_CheckSignals() != 0) {
+        interrupted = true;
+        break;
       }
-      store = exp::withInputErrors(o.db, [&] { return std::make_unique<exp::ExperienceStore>(o.db, options); });
     }
-    if (store) {
-      out.result = exp::withInputErrors(o.db, [&] { return plan(checked, s, store.get()); });
-      exp::withInputErrors(o.db, [&] { store->close(); });
+    if (interrupted) {
+      stop.store(true);
+      planned.wait();  // its outcome, error or not, gives way to the signal's
     } else {
-      out.result = plan(checked, s, nullptr);
+      out.result = planned.get();
     }
   }
+  if (interrupted) throw py::error_already_set();
   return out;
 }
 
@@ -180,7 +208,7 @@ void bindPlanning(py::module_& m) {
       .def_property_readonly("paths", [](const PyPlan& p) { return pathArrays(p.result.solution); },
                              "Per robot, (times, configurations): steps 0..n-1 and an n x dim float array")
       .def_property_readonly("robots", [](const PyPlan& p) { return p.result.solution.robot_names; })
-      .def_property_readonly("stats", [](const PyPlan& p) { return toPython(p.result.stats); })
+      .def_property_readonly("stats", [](const PyPlan& p) { return toPython(p.result.stats.toJson()); })
       .def_property_readonly("failures",
                              [](const PyPlan& p) {
                                std::vector<std::string> out;
@@ -227,7 +255,8 @@ void bindPlanning(py::module_& m) {
       py::arg("compact") = false, py::arg("trace") = false, py::arg("shadow_decoupled") = false,
       py::arg("db_k") = py::none(), py::arg("db_repair_max") = py::none(), py::arg("db_max_stretch") = py::none(),
       "Plans the scenario as `earc-plan plan` does with the same options (--no-learn is learn=False, --no-crowd "
-      "crowd=False); the same seed gives the same paths. The GIL is released while planning.");
+      "crowd=False); the same seed gives the same paths. The GIL is released while planning; Ctrl-C (SIGINT) "
+      "stops the plan and raises KeyboardInterrupt.");
 
   m.def("validate", &validatePy, py::arg("scenario"), py::arg("solution"),
         "Validates a PlanResult, a solution dict or a solution file against the scenario: valid, violations, "

@@ -263,7 +263,7 @@ std::size_t LightningDatabase::entries() const { return impl_->db->getExperience
 std::size_t LightningDatabase::states() const { return impl_->db->getStatesCount(); }
 
 PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettings& settings,
-                                   const LightningSettings& lightning) {
+                                   const LightningSettings& lightning, const PlanContext& context) {
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario.name;
@@ -275,7 +275,7 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   // Motions checked past the limit read as invalid: OMPL's path simplifier
   // runs one round however late (PathSimplifier::simplify, atLeastOnce),
   // and on arms of thousands of links that round took tens of seconds.
-  const Deadline deadline(settings.time_limit_s - clock.seconds());
+  const Deadline deadline = Deadline(settings.time_limit_s - clock.seconds()).stoppedBy(context.stop);
   CompositeChecker checker(world, robots.raw, deadline);
   const CompositeState start = starts(scenario), goal = goals(scenario);
   OmplComposite composite(checker, compositeBounds(world, robots.raw, {}, {start, goal}));
@@ -286,11 +286,12 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
 
   const std::size_t entries_before = impl_->db->getExperiencesCount();
   const auto known = lightning.learn ? std::set<const ob::PlannerData*>{} : impl_->db->snapshot();
-  auto& st = result.stats;
-  st["lightning_db_entries"] = entries_before;
+  PlanStats& st = result.stats;
+  LightningStats& lst = st.lightning.emplace();
+  lst.lightning_db_entries = static_cast<std::int64_t>(entries_before);
   if (!checker.stateValid(start) || !checker.stateValid(goal)) {
     result.failures.insert(checker.outOfTime() ? FailureCause::TimeLimit : FailureCause::InvalidInput);
-    st["planning_time_s"] = clock.seconds();
+    st.planning_time_s = clock.seconds();
     return result;
   }
 
@@ -307,19 +308,18 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
   lightning_setup.setup();
 
   const double remaining = settings.time_limit_s - clock.seconds();
-  // The time limit, or sooner when the process is asked to stop (a signal
-  // to `earc-plan serve`: see requestStop in earc/util/deadline.hpp).
+  // The time limit, or sooner on the context's stop request.
   ob::PlannerStatus status =
       remaining > 0 ? lightning_setup.solve(ob::plannerOrTerminationCondition(
                           ob::timedPlannerTerminationCondition(remaining),
-                          ob::PlannerTerminationCondition([] { return stopRequested(); })))
+                          ob::PlannerTerminationCondition([stop = context.stop] { return stopSet(stop); })))
                     : ob::PlannerStatus(ob::PlannerStatus::TIMEOUT);
   const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION && lightning_setup.haveExactSolutionPath();
   if (exact) {
     const std::string winner = lightning_setup.getSolutionPlannerName();
     const bool from_recall = winner == lightning_setup.getLightningRetrieveRepairPlanner().getName();
-    st["lightning_source"] = from_recall ? "recall" : "scratch";
-    st["db_hits"] = from_recall ? 1 : 0;
+    lst.lightning_source = from_recall ? "recall" : "scratch";
+    st.db_hits = from_recall ? 1 : 0;
     const og::PathGeometric& path = lightning_setup.getSolutionPath();
     std::vector<CompositeState> waypoints(path.getStateCount());
     for (std::size_t i = 0; i < waypoints.size(); ++i) composite.toComposite(path.getState(i), waypoints[i]);
@@ -345,7 +345,7 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
     if (!runs.empty()) {
       RunRepair fix = repairRuns(world, robots.raw, paths, runs, {}, deadline.remaining(), deadline,
                                  splitSeed(settings.seed, kRepairPathStream));
-      st["lightning_repaired_runs"] = runs.size();
+      lst.lightning_repaired_runs = static_cast<std::int64_t>(runs.size());
       if (fix.paths && invalidRuns(checker, *fix.paths).empty())
         paths = std::move(*fix.paths);
       else
@@ -360,34 +360,35 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
       result.failures.insert(FailureCause::TimeLimit);
     } else {
       result.failures.insert(FailureCause::InvalidResult);
-      st["invalid_result"] = nlohmann::json::array({refused});
+      st.invalid_result = std::vector<std::string>{refused};
     }
   } else {
     result.failures.insert(FailureCause::TimeLimit);
   }
-  st["planning_time_s"] = clock.seconds();
+  st.planning_time_s = clock.seconds();
   // Lightning adds what it found to the database itself; without learning
   // take it out again.
   if (!lightning.learn) impl_->db->keepOnly(known);
-  st["lightning_db_added"] = impl_->db->getExperiencesCount() - entries_before;
+  lst.lightning_db_added =
+      static_cast<std::int64_t>(impl_->db->getExperiencesCount()) - static_cast<std::int64_t>(entries_before);
   return result;
 }
 
 // plan()'s Lightning: the database file of the settings, if any.
-PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings) {
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context) {
   LightningSettings ls;
   ls.db_path = settings.lightning_db;
   ls.learn = settings.db_learn;
-  return planLightning(scenario, settings, ls);
+  return planLightning(scenario, settings, ls, context);
 }
 
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
-                         const LightningSettings& lightning) {
+                         const LightningSettings& lightning, const PlanContext& context) {
   LightningDatabase db(scenario);
   const bool file = !lightning.db_path.empty();
   if (file && std::filesystem::exists(lightning.db_path)) db.load(lightning.db_path);
   const std::size_t before = db.entries();
-  PlanResult result = db.plan(scenario, settings, lightning);
+  PlanResult result = db.plan(scenario, settings, lightning, context);
   if (file && lightning.learn && lightning.save && db.entries() != before) db.save(lightning.db_path);
   return result;
 }

@@ -21,6 +21,7 @@
 #include "earc/experience/maintenance.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/planning/plan_stats.hpp"
 #include "earc/render/svg.hpp"
 #include "earc/util/format.hpp"
 #include "earc/util/progress.hpp"
@@ -352,14 +353,13 @@ class Comparer {
                 << " (solution " << solution << ")\n";
       return p;
     }
-    const auto stats = doc.value("stats", nlohmann::json::object());
-    auto number = [&](const char* key) -> std::optional<double> {
-      if (stats.contains(key) && stats[key].is_number()) return stats[key].get<double>();
-      return std::nullopt;
+    const PlanStats stats = PlanStats::fromJson(doc.value("stats", nlohmann::json::object()));
+    const auto number = [](const std::optional<std::int64_t>& n) -> std::optional<double> {
+      return n ? std::optional<double>(static_cast<double>(*n)) : std::nullopt;
     };
-    p.time_s = number("planning_time_s");
-    p.makespan = number("makespan");
-    p.sum_of_costs = number("sum_of_costs");
+    p.time_s = stats.planning_time_s;
+    p.makespan = number(stats.makespan);
+    p.sum_of_costs = number(stats.sum_of_costs);
     if (!p.time_s) {
       p.failure = "no planning_time_s in the solution's stats";
       return p;

@@ -3,6 +3,8 @@
 
 #include "runner_impl.hpp"
 
+#include "earc/planning/plan_stats.hpp"
+
 namespace earc::bench {
 
 namespace runner {
@@ -48,38 +50,26 @@ bool Runner::readStats(const nlohmann::json& doc, TrialRecord& t) {
   const nlohmann::json st = doc.value("stats", nlohmann::json::object());
   // Another program's output (--plan-program): a figure the results
   // reader would refuse (negative, fractional, not finite) is left out
-  // rather than stored, where it would make the whole file unreadable.
-  auto num = [&](const char* key) -> std::optional<std::int64_t> {
-    const auto v = st.find(key);
-    // JSON's whole numbers of 0 and more are read as unsigned.
-    if (v != st.end() && v->is_number_unsigned() &&
-        v->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-      return v->get<std::int64_t>();
-    return std::nullopt;
-  };
-  if (st.contains("planning_time_s") && st["planning_time_s"].is_number() &&
-      std::isfinite(st["planning_time_s"].get<double>()) && st["planning_time_s"].get<double>() >= 0)
-    t.planning_time_s = st["planning_time_s"].get<double>();
-  t.makespan = num("makespan");
-  t.sum_of_costs = num("sum_of_costs");
-  t.conflicts = num("conflicts");
+  // rather than stored, where it would make the whole file unreadable;
+  // PlanStats::fromJson leaves out what is not a count already.
+  const PlanStats ps = PlanStats::fromJson(st);
+  if (ps.planning_time_s && std::isfinite(*ps.planning_time_s) && *ps.planning_time_s >= 0)
+    t.planning_time_s = ps.planning_time_s;
+  t.makespan = ps.makespan;
+  t.sum_of_costs = ps.sum_of_costs;
+  if (ps.arc) t.conflicts = ps.arc->conflicts;
   readRefineStats(st, t);
   t.planner_version = plannerVersion(doc);
   // E-ARC's database answers, retrieved as they are or repaired, as its
   // summary line and db_hit_rate count them (its db_hits stat counts the
   // former only); Lightning's: 1 when it recalled the whole problem.
-  if (database_method)
-    t.db_hits = st.contains("subproblems_by_solver") ? std::optional<std::int64_t>(databaseAnswers(st).answered())
-                                                      : num("db_hits");
-  if (t.db_hits && *t.db_hits < 0) t.db_hits.reset();
+  if (database_method) t.db_hits = ps.arc ? std::optional<std::int64_t>(databaseAnswers(ps).answered()) : ps.db_hits;
   if (!solved && st.contains("failure")) {
     const std::string why = failureReasons(st);
     t.failure = "not solved: " + (why.empty() ? std::string("no reason given") : why);
     // What was wrong with a result the planner refused (the validator's
     // violations, or Lightning's own motion check).
-    if (st.contains("invalid_result") && st["invalid_result"].is_array() && !st["invalid_result"].empty() &&
-        st["invalid_result"][0].is_string())
-      t.failure += " (" + st["invalid_result"][0].get<std::string>() + ")";
+    if (ps.invalid_result && !ps.invalid_result->empty()) t.failure += " (" + ps.invalid_result->front() + ")";
   }
   return solved;
 }

@@ -225,7 +225,10 @@ BuildSettings withDefaults(BuildSettings s) {
 namespace {
 
 // Calls fn(i, j, traits of i, traits of j) for each pair of arms i < j whose
-// reach discs overlap by kMinReachOverlap or more.
+// reach discs overlap by kMinReachOverlap or more. Less overlap is no real
+// conflict worth storing: two arms of reach 2.55 at 5 units (the generated
+// layout's diagonal neighbours) touch only fully stretched towards each
+// other, and 1 in 10,000 query draws conflicts.
 template <typename Fn>
 void forEachReachingArmPair(const std::vector<RobotSpec>& arms, const Resolution& resolution, Fn fn) {
   std::vector<std::shared_ptr<const RobotModel>> models;
@@ -282,6 +285,8 @@ std::string unequalArmPairsNote(const std::vector<RobotSpec>& arms, const std::v
          std::to_string(arms[ib].dim()) + "); an arm database holds pairs of arms with equal joint counts only";
 }
 
+// The store holds pairs of arms with equal joint counts only
+// (hasExperienceClass: a key and a path blob of one dimension for both).
 std::string noArmPairClassReason(const std::vector<RobotSpec>& arms) {
   std::map<int, int> per_count;  // joint count -> arms with it
   std::string counts;

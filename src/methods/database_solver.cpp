@@ -479,12 +479,11 @@ void DatabaseSolver::accepted(const SolverContext& ctx, const LocalSolution& sol
   pending_.push_back(std::move(p));
 }
 
-void DatabaseSolver::finish(nlohmann::json& stats) {
+void DatabaseSolver::finish(PlanStats& stats) {
   Stopwatch sw;
-  int learned = 0;
+  DatabaseStats& db = stats.db.emplace();
   // The ids of the rows inserted (each committed when learn returns), so
   // that a caller such as `earc-plan serve` can report what it stored.
-  nlohmann::json learned_ids = nlohmann::json::array();
   // The plan is made: a disk with no room for what it learned costs the
   // lesson, not the plan. Each row commits on its own, so those before the
   // failure stay, and SQLite rolled the failed one back. Anything else (a
@@ -492,44 +491,43 @@ void DatabaseSolver::finish(nlohmann::json& stats) {
   try {
     for (const auto& p : pending_)
       if (auto id = exp::learn(store_, p.robots, p.paths, p.seconds, exp::Source::Planner)) {
-        ++learned;
-        learned_ids.push_back(*id);
+        ++db.db_learned;
+        db.db_learned_ids.push_back(*id);
       }
     store_.flush();
   } catch (const exp::WriteLostError& e) {
-    stats["db_learn_error"] = oneLine(e.what());
+    stats.db_learn_error = oneLine(e.what());
   }
-  stats["db_queries"] = queries_;
-  stats["db_hits"] = hits_;
-  stats["db_repairs"] = repairs_;
-  stats["db_refused_crowded"] = crowded_;
-  stats["db_refused_too_long"] = too_long_;
-  stats["db_skipped_unusable"] = unusable_;
-  stats["db_learned"] = learned;
-  stats["db_learned_ids"] = std::move(learned_ids);
-  stats["db_learn_candidates"] = pending_.size();
-  stats["db_learn_unstorable"] = unstorable_;
-  stats["db_learn_time_s"] = sw.seconds();
+  db.db_queries = queries_;
+  stats.db_hits = hits_;
+  db.db_repairs = repairs_;
+  db.db_refused_crowded = crowded_;
+  db.db_refused_too_long = too_long_;
+  db.db_skipped_unusable = unusable_;
+  db.db_learn_candidates = static_cast<std::int64_t>(pending_.size());
+  db.db_learn_unstorable = unstorable_;
+  db.db_learn_time_s = sw.seconds();
   // Rows of the store's cache while this plan ran (a service's concurrent
   // plans share one store and count each other's).
   const exp::ExperienceStore::RetrievalStats now = store_.retrievalStats();
-  stats["db_retrieval_time_s"] = retrieval_s_;
-  stats["db_row_cache_hits"] = now.cache_hits - retrieval_at_start_.cache_hits;
-  stats["db_row_cache_misses"] = now.cache_misses - retrieval_at_start_.cache_misses;
+  db.db_retrieval_time_s = retrieval_s_;
+  db.db_row_cache_hits = static_cast<std::int64_t>(now.cache_hits - retrieval_at_start_.cache_hits);
+  db.db_row_cache_misses = static_cast<std::int64_t>(now.cache_misses - retrieval_at_start_.cache_misses);
   if (settings_.shadow_decoupled) {
     const Shadow& s = shadow_;
-    stats["db_shadow_decoupled"] = {{"queries", s.queries},
-                                    {"database_solved", s.database},
-                                    {"decoupled_solved", s.decoupled},
-                                    {"both_solved", s.both},
-                                    {"decoupled_seconds_where_both", s.decoupled_s_both},
-                                    {"database_extra_steps_where_both", s.extra_steps_both},
-                                    {"database_failed_where_decoupled_failed", s.database_failed_where_decoupled_failed}};
+    db.db_shadow_decoupled = nlohmann::json{{"queries", s.queries},
+                                            {"database_solved", s.database},
+                                            {"decoupled_solved", s.decoupled},
+                                            {"both_solved", s.both},
+                                            {"decoupled_seconds_where_both", s.decoupled_s_both},
+                                            {"database_extra_steps_where_both", s.extra_steps_both},
+                                            {"database_failed_where_decoupled_failed", s.database_failed_where_decoupled_failed}};
   }
   pending_.clear();
 }
 
-PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store) {
+PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store,
+                    const PlanContext& context) {
   // The caller's mistake, not the input's: the programs refuse a missing
   // database file before planning, naming their own option.
   if (store == nullptr) throw std::invalid_argument("method earc needs an experience store (none was given)");
@@ -542,22 +540,17 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
   for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));
-  PlanResult r = runArc(scenario, settings, std::move(hierarchy));
+  PlanResult r = runArc(scenario, settings, context, std::move(hierarchy));
   // The hit rate: subproblems solved from the database (as retrieved or
   // repaired) over all subproblems solved.
-  const DatabaseAnswers a = databaseAnswers(r.stats);
-  r.stats["db_hit_rate"] = a.hitRate();
+  if (r.stats.db) r.stats.db->db_hit_rate = databaseAnswers(r.stats).hitRate();
   return r;
 }
 
-DatabaseAnswers databaseAnswers(const nlohmann::json& stats) {
+DatabaseAnswers databaseAnswers(const PlanStats& stats) {
   DatabaseAnswers a;
-  // Read from another program's output too (earc-bench): what is not a
-  // count counts nothing.
-  const auto found = stats.find("subproblems_by_solver");
-  if (found == stats.end() || !found->is_object()) return a;
-  for (const auto& [name, count] : found->items()) {
-    const std::int64_t n = count.is_number_integer() ? std::max<std::int64_t>(0, count.get<std::int64_t>()) : 0;
+  if (!stats.arc) return a;
+  for (const auto& [name, n] : stats.arc->subproblems_by_solver) {
     a.solved += n;
     if (name == "database") a.retrieved = n;
     if (name == "repair") a.repaired = n;

@@ -39,100 +39,97 @@ bool refuseTooLarge(const Scenario& scenario, const PlannerSettings& settings, P
   const double need = straightPathScalars(scenario);
   if (need <= static_cast<double>(settings.max_path_scalars)) return false;
   result.failures.insert(FailureCause::TooLarge);
-  result.stats["too_large"] = {
-      {"straight_path_scalars", need},
-      {"limit", settings.max_path_scalars},
-      {"detail", "the robots' straight start-to-goal paths alone hold " +
-                     std::to_string(static_cast<long long>(std::min(need, 9e18))) +
-                     " scalars at this resolution (limit " + std::to_string(settings.max_path_scalars) +
-                     "): coarsen the resolution or split the problem"}};
-  result.stats["planning_time_s"] = 0.0;
+  result.stats.too_large = TooLargeStats{
+      need, settings.max_path_scalars,
+      "the robots' straight start-to-goal paths alone hold " +
+          std::to_string(static_cast<long long>(std::min(need, 9e18))) + " scalars at this resolution (limit " +
+          std::to_string(settings.max_path_scalars) + "): coarsen the resolution or split the problem"};
+  result.stats.planning_time_s = 0.0;
   return true;
 }
 
 // compactPlan on a solved result; its time counts in the planning time.
-void compactResult(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result) {
+void compactResult(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
+                   PlanResult& result) {
   Stopwatch clock;
   std::vector<Path>& paths = result.solution.paths;
   const RobotModels models(scenario);
   const std::size_t makespan = result.solution.makespan(), sum_of_costs = result.solution.sumOfCosts();
-  double spent = 0.0;
-  if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
-    spent = result.stats["planning_time_s"].get<double>();
-  const Deadline deadline = Deadline(std::max(0.0, settings.time_limit_s - spent)).withWorkBudgets(settings.work_budgets);
+  const double spent = result.stats.planning_time_s.value_or(0.0);
+  const Deadline deadline = Deadline(std::max(0.0, settings.time_limit_s - spent))
+                               .withWorkBudgets(settings.work_budgets)
+                               .stoppedBy(context.stop);
   const CollisionWorld world(scenario);
   const CompactReport rep = compactPlan(models.raw, paths, &world, deadline);
   const double s = clock.seconds();
-  result.stats["compact"] = {{"s", s},
-                             {"passes", rep.passes},
-                             {"robots_retimed", rep.robots_retimed},
-                             {"steps_saved", rep.steps_saved},
-                             {"states", rep.states},
-                             {"interrupted", rep.interrupted},
-                             {"makespan_before", makespan},
-                             {"sum_of_costs_before", sum_of_costs}};
-  result.stats["planning_time_s"] = spent + s;
+  CompactStats& c = result.stats.compact.emplace();
+  c.s = s;
+  c.passes = rep.passes;
+  c.robots_retimed = rep.robots_retimed;
+  c.steps_saved = rep.steps_saved;
+  c.states = static_cast<std::int64_t>(rep.states);
+  c.interrupted = rep.interrupted;
+  c.makespan_before = static_cast<std::int64_t>(makespan);
+  c.sum_of_costs_before = static_cast<std::int64_t>(sum_of_costs);
+  result.stats.planning_time_s = spent + s;
 }
 
 // refinePlan on a validated result (PlannerSettings::refine_s), within
 // the plan's time limit; the refined plan is validated again and kept only
 // if it passes. planning_time_s stays the time to the first valid plan;
 // "refine" says what refinement did and when (times on the same clock).
-void refineResult(const Scenario& scenario, const PlannerSettings& settings, PlanResult& result,
-                  ValidationReport& report, const ValidatorSettings& vs) {
+void refineResult(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
+                  PlanResult& result, ValidationReport& report, const ValidatorSettings& vs) {
   Stopwatch clock;
-  double first_s = 0.0;
-  if (result.stats.contains("planning_time_s") && result.stats["planning_time_s"].is_number())
-    first_s = result.stats["planning_time_s"].get<double>();
+  const double first_s = result.stats.planning_time_s.value_or(0.0);
   const std::vector<Path> first = result.solution.paths;
   const RobotModels models(scenario);
   const CollisionWorld world(scenario);
   const Deadline deadline =
-      Deadline(std::max(0.0, settings.time_limit_s - first_s)).withWorkBudgets(settings.work_budgets);
+      Deadline(std::max(0.0, settings.time_limit_s - first_s)).withWorkBudgets(settings.work_budgets).stoppedBy(context.stop);
   // The crowd solver spent part of the budget shortening its plan on its
   // roadmap: that part and the plan before it enter the record.
+  const std::optional<LacamStats>& lacam = result.stats.lacam;
   double lattice_s = 0.0;
-  const nlohmann::json* lacam = result.stats.contains("lacam") ? &result.stats["lacam"] : nullptr;
-  if (lacam && lacam->contains("lattice_refine")) lattice_s = (*lacam)["lattice_refine"].value("s", 0.0);
+  if (lacam && lacam->lattice_refine) lattice_s = lacam->lattice_refine->value("s", 0.0);
   RefineSettings rs;
   rs.seconds = std::max(0.0, settings.refine_s - lattice_s);
   rs.seed = splitSeed(settings.seed, 0x7ef1e);
   rs.roadmap_samples = settings.roadmap_samples;
   rs.roadmap_neighbors = settings.roadmap_neighbors;
   rs.roadmap_seed = splitSeed(settings.seed, 1);  // the methods' roadmaps, as a cache keeps them
-  rs.roadmap_cache = settings.roadmap_cache;
+  rs.roadmap_cache = context.roadmap_cache;
   const double start = first_s + lattice_s + clock.seconds();
   const RefineReport rep = refinePlan(scenario, world, models.raw, result.solution.paths, rs, deadline);
-  nlohmann::json history = nlohmann::json::array();
-  std::size_t first_soc = rep.first_sum_of_costs, first_makespan = rep.first_makespan;
-  if (lattice_s > 0 && lacam->contains("first_sum_of_costs")) {
-    first_soc = (*lacam)["first_sum_of_costs"].get<std::size_t>();
-    first_makespan = (*lacam)["first_makespan"].get<std::size_t>();
-    history.push_back({first_s, first_soc, first_makespan});
-    if (first_soc != rep.first_sum_of_costs || first_makespan != rep.first_makespan)
-      history.push_back({first_s + lattice_s, rep.first_sum_of_costs, rep.first_makespan});
+  const auto count = [](std::size_t n) { return static_cast<std::int64_t>(n); };
+  RefineStats j;
+  j.first_sum_of_costs = count(rep.first_sum_of_costs);
+  j.first_makespan = count(rep.first_makespan);
+  if (lattice_s > 0 && lacam->first_sum_of_costs && lacam->first_makespan) {
+    j.first_sum_of_costs = *lacam->first_sum_of_costs;
+    j.first_makespan = *lacam->first_makespan;
+    j.history.push_back({first_s, j.first_sum_of_costs, j.first_makespan});
+    if (j.first_sum_of_costs != count(rep.first_sum_of_costs) || j.first_makespan != count(rep.first_makespan))
+      j.history.push_back({first_s + lattice_s, count(rep.first_sum_of_costs), count(rep.first_makespan)});
   } else {
-    history.push_back({first_s, rep.first_sum_of_costs, rep.first_makespan});
+    j.history.push_back({first_s, count(rep.first_sum_of_costs), count(rep.first_makespan)});
   }
   for (const auto& h : rep.history)
-    history.push_back({start + h[0], static_cast<std::size_t>(h[1]), static_cast<std::size_t>(h[2])});
-  const double last_s = history.back()[0].get<double>();
-  nlohmann::json j = {{"first_sum_of_costs", first_soc},
-                      {"first_makespan", first_makespan},
-                      {"first_s", first_s},
-                      {"final_sum_of_costs", rep.final_sum_of_costs},
-                      {"final_makespan", rep.final_makespan},
-                      {"final_s", rep.history.empty() ? last_s : start + rep.final_s},
-                      {"budget_s", settings.refine_s},
-                      {"lower_bound", rep.lower_bound},
-                      {"retimed_steps", rep.retimed_steps},
-                      {"iterations", rep.iterations},
-                      {"shortcut_tries", rep.shortcut_tries},
-                      {"shortcut_improvements", rep.shortcut_improvements},
-                      {"lns_tries", rep.lns_tries},
-                      {"lns_improvements", rep.lns_improvements},
-                      {"lns_failed", rep.lns_failed},
-                      {"history", history}};
+    j.history.push_back({start + h[0], static_cast<std::int64_t>(h[1]), static_cast<std::int64_t>(h[2])});
+  const double last_s = j.history.back().s;
+  j.first_s = first_s;
+  j.final_sum_of_costs = count(rep.final_sum_of_costs);
+  j.final_makespan = count(rep.final_makespan);
+  j.final_s = rep.history.empty() ? last_s : start + rep.final_s;
+  j.budget_s = settings.refine_s;
+  j.lower_bound = count(rep.lower_bound);
+  j.retimed_steps = count(rep.retimed_steps);
+  j.iterations = count(rep.iterations);
+  j.shortcut_tries = count(rep.shortcut_tries);
+  j.shortcut_improvements = count(rep.shortcut_improvements);
+  j.lns_tries = count(rep.lns_tries);
+  j.lns_improvements = count(rep.lns_improvements);
+  j.lns_failed = count(rep.lns_failed);
   if (!rep.history.empty()) {
     ValidationReport again = validateSolution(scenario, result.solution, vs);
     if (again.valid) {
@@ -140,38 +137,39 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, Pla
     } else {
       // Refinement checks every change it keeps; should the refined plan
       // not validate all the same, the first plan stands, and says so.
-      j["rejected"] = again.violations.empty() ? "invalid" : again.violations.front().detail;
-      j["final_sum_of_costs"] = rep.first_sum_of_costs;
-      j["final_makespan"] = rep.first_makespan;
-      j["final_s"] = last_s;
+      j.rejected = again.violations.empty() ? "invalid" : again.violations.front().detail;
+      j.final_sum_of_costs = count(rep.first_sum_of_costs);
+      j.final_makespan = count(rep.first_makespan);
+      j.final_s = last_s;
       result.solution.paths = first;
     }
   }
-  j["seconds_spent"] = lattice_s + clock.seconds();
-  if (lattice_s > 0) j["lattice_s"] = lattice_s;
-  result.stats["refine"] = std::move(j);
+  j.seconds_spent = lattice_s + clock.seconds();
+  if (lattice_s > 0) j.lattice_s = lattice_s;
+  result.stats.refine = std::move(j);
 }
 
 }  // namespace
 
-PlanResult plan(const Scenario& scenario, const PlannerSettings& given, exp::ExperienceStore* store) {
+PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store,
+                const PlanContext& given) {
   PlanResult result;
   // Refinement replans on the methods' roadmaps: kept from planning when
   // no cache outlives the plan (the same plan either way, RoadmapCache).
-  PlannerSettings settings = given;
+  PlanContext context = given;
   std::unique_ptr<RoadmapCache> roadmaps_for_refining;
-  if (settings.refine_s > 0 && !settings.roadmap_cache) {
+  if (settings.refine_s > 0 && !context.roadmap_cache) {
     roadmaps_for_refining = std::make_unique<RoadmapCache>(std::size_t{256} << 20);
-    settings.roadmap_cache = roadmaps_for_refining.get();
+    context.roadmap_cache = roadmaps_for_refining.get();
   }
   if (!refuseTooLarge(scenario, settings, result)) {
     switch (settings.method) {
-      case Method::Arc: result = runArc(scenario, settings, arcHierarchy()); break;
-      case Method::Earc: result = planEarc(scenario, settings, store); break;
-      case Method::Prioritized: result = planPrioritized(scenario, settings); break;
-      case Method::Coupled: result = planCoupled(scenario, settings); break;
-      case Method::Lightning: result = planLightning(scenario, settings); break;
-      case Method::Lacam: result = planLacam(scenario, settings); break;
+      case Method::Arc: result = runArc(scenario, settings, context, arcHierarchy()); break;
+      case Method::Earc: result = planEarc(scenario, settings, store, context); break;
+      case Method::Prioritized: result = planPrioritized(scenario, settings, context); break;
+      case Method::Coupled: result = planCoupled(scenario, settings, context); break;
+      case Method::Lightning: result = planLightning(scenario, settings, context); break;
+      case Method::Lacam: result = planLacam(scenario, settings, context); break;
     }
   }
   result.solution.method = methodName(settings.method);
@@ -191,37 +189,35 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& given, exp::Exp
     std::vector<Path> uncompacted;
     if (settings.compact) {
       uncompacted = result.solution.paths;
-      compactResult(scenario, settings, result);
+      compactResult(scenario, settings, context, result);
     }
     ValidationReport report = validateSolution(scenario, result.solution, vs);
     if (!report.valid && settings.compact) {
       // Compaction keeps a valid plan valid; should it not have, the plan
       // as planned is checked and reported instead, and the stats say so.
-      result.stats["compact"]["rejected"] = report.violations.empty() ? "invalid" : report.violations.front().detail;
+      result.stats.compact->rejected = report.violations.empty() ? "invalid" : report.violations.front().detail;
       result.solution.paths = std::move(uncompacted);
       report = validateSolution(scenario, result.solution, vs);
     }
-    if (report.valid && settings.refine_s > 0) refineResult(scenario, settings, result, report, vs);
+    if (report.valid && settings.refine_s > 0) refineResult(scenario, settings, context, result, report, vs);
     if (!report.valid) {
       result.solution.solved = false;
       result.failures.insert(FailureCause::InvalidResult);
-      nlohmann::json v = nlohmann::json::array();
+      auto& v = result.stats.invalid_result.emplace();
       for (const auto& x : report.violations) v.push_back(x.detail);
-      result.stats["invalid_result"] = v;
     } else {
-      result.stats["makespan"] = report.makespan;
-      result.stats["sum_of_costs"] = report.sum_of_costs;
+      result.stats.makespan = static_cast<std::int64_t>(report.makespan);
+      result.stats.sum_of_costs = static_cast<std::int64_t>(report.sum_of_costs);
     }
   }
   if (!result.solution.solved) {
-    nlohmann::json why = nlohmann::json::array();
+    auto& why = result.stats.failure.emplace();
     for (FailureCause c : result.failures) why.push_back(failureCauseName(c));
-    result.stats["failure"] = why;
   }
-  result.stats["method"] = methodName(settings.method);
-  result.stats["seed"] = settings.seed;
-  result.stats["earc_version"] = version();
-  result.solution.stats = result.stats;
+  result.stats.method = methodName(settings.method);
+  result.stats.seed = settings.seed;
+  result.stats.earc_version = version();
+  result.solution.stats = result.stats.toJson();
   return result;
 }
 

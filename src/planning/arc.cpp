@@ -178,11 +178,11 @@ nlohmann::json boxJson(const geo::Aabb& b) { return {{b.lo.x, b.lo.y}, {b.hi.x, 
 
 class ArcRun {
  public:
-  ArcRun(const Scenario& scenario, const PlannerSettings& settings,
+  ArcRun(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
          std::vector<std::unique_ptr<SubproblemSolver>> hierarchy)
-      : scenario_(scenario), settings_(settings), hierarchy_(std::move(hierarchy)), world_(scenario),
-        owned_models_(makeRobotModels(scenario)),
-        deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets)) {
+      : scenario_(scenario), settings_(settings), context_(context), hierarchy_(std::move(hierarchy)),
+        world_(scenario), owned_models_(makeRobotModels(scenario)),
+        deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets).stoppedBy(context.stop)) {
     for (const auto& m : owned_models_) models_.push_back(m.get());
   }
 
@@ -196,11 +196,12 @@ class ArcRun {
     if (settings_.trace) events_.push_back(std::move(ev));
   }
   void report(std::atomic<int> PlanProgress::*field, int value) {
-    if (settings_.progress) (settings_.progress->*field).store(value, std::memory_order_relaxed);
+    if (context_.progress) (context_.progress->*field).store(value, std::memory_order_relaxed);
   }
 
   const Scenario& scenario_;
   const PlannerSettings& settings_;
+  const PlanContext& context_;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy_;
   CollisionWorld world_;
   std::vector<std::shared_ptr<const RobotModel>> owned_models_;
@@ -216,8 +217,8 @@ class ArcRun {
   int expansions_ = 0;
   int merged_ = 0;
   int subproblem_id_ = 0;
-  std::map<std::string, int> by_solver_;
-  std::map<std::string, int> by_size_;
+  std::map<std::string, std::int64_t> by_solver_;
+  std::map<std::string, std::int64_t> by_size_;
   std::map<std::string, double> solver_time_;
   std::set<FailureCause> failures_;
   std::size_t last_t_start_ = 0;
@@ -230,7 +231,7 @@ class ArcRun {
   int conflicts_at_handover_ = 0;
   int capped_since_handover_ = 0;
   std::size_t jam_conflicts_since_handover_ = 0;
-  nlohmann::json handovers_ = nlohmann::json::array();
+  std::vector<CrowdHandover> handovers_;
   double crowd_s_ = 0.0;
   Stopwatch plan_clock_;
 };
@@ -275,7 +276,7 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   nlohmann::json ev = {{"type", "jam"}, {"conflict", conflicts_ - 1}, {"robots", group.size()},
                        {"solved", out.paths.has_value()}, {"time_s", sw.seconds()}};
   if (!out.why.empty()) ev["detail"] = out.why;
-  handovers_.push_back({{"robots", group.size()}, {"solved", out.paths.has_value()}, {"s", sw.seconds()}});
+  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), sw.seconds()});
   traceEvent(ev);
   if (!out.paths) {
     if (deadline_.expired()) return false;
@@ -443,13 +444,13 @@ PlanResult ArcRun::run() {
   result.solution.scenario = scenario_.name;
   roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap_samples, settings_.roadmap_neighbors,
                                            splitSeed(settings_.seed, 1), deadline_);
-  if (settings_.roadmap_cache) roadmaps_->useCache(*settings_.roadmap_cache, scenario_);
+  if (context_.roadmap_cache) roadmaps_->useCache(*context_.roadmap_cache, scenario_);
   for (std::size_t r = 0; r < models_.size(); ++r) {
     auto p = individualPath(world_, *roadmaps_, *models_[r], static_cast<int>(r), deadline_,
                             splitSeed(settings_.seed, 100 + r));
     if (!p) {
       failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
-      result.stats["unsolved_robot"] = scenario_.robots[r].name;
+      result.stats.unsolved_robot = scenario_.robots[r].name;
       break;
     }
     paths_.push_back(std::move(*p));
@@ -479,7 +480,7 @@ PlanResult ArcRun::run() {
       ++conflicts_;
       report(&PlanProgress::conflicts, conflicts_);
       report(&PlanProgress::conflict_step, static_cast<int>(c->t));
-      if (settings_.progress) {
+      if (context_.progress) {
         std::size_t steps = 0;
         for (const Path& p : paths_) steps = std::max(steps, p.size());
         report(&PlanProgress::steps, static_cast<int>(steps));
@@ -501,35 +502,35 @@ PlanResult ArcRun::run() {
   result.solution.solved = solved;
   if (solved) result.solution.paths = std::move(paths_);
   result.failures = failures_;
-  auto& st = result.stats;
-  st["planning_time_s"] = clock.seconds();
-  st["individual_paths_s"] = individual_s;
-  st["conflicts"] = conflicts_;
-  st["subproblems"] = subproblem_id_;
-  st["subproblems_by_solver"] = by_solver_;
-  st["subproblems_by_robots"] = by_size_;
-  st["solver_time_s"] = solver_time_;
-  st["window_expansions"] = expansions_;
-  st["solver_budgets"] = settings_.work_budgets ? "work" : "seconds";
-  st["robots_merged"] = merged_;
-  st["merge_cap_raised"] = cap_raised_;
-  st["crowd_handovers"] = handovers_;
-  st["crowd_s"] = crowd_s_;
-  st["roadmap_edge_checks"] = roadmaps_->edgeChecks();
-  st["roadmaps_built"] = roadmaps_->built();
-  if (settings_.roadmap_cache) st["roadmaps_reused"] = roadmaps_->reused();
-  st["roadmap_vertices"] = roadmaps_->vertices();
-  st["roadmap_build_s"] = roadmaps_->buildSeconds();
-  for (auto& solver : hierarchy_) solver->finish(st);
+  result.stats.planning_time_s = clock.seconds();
+  ArcStats& st = result.stats.arc.emplace();
+  st.individual_paths_s = individual_s;
+  st.conflicts = conflicts_;
+  st.subproblems = subproblem_id_;
+  st.subproblems_by_solver = by_solver_;
+  st.subproblems_by_robots = by_size_;
+  st.solver_time_s = solver_time_;
+  st.window_expansions = expansions_;
+  st.solver_budgets = settings_.work_budgets ? "work" : "seconds";
+  st.robots_merged = merged_;
+  st.merge_cap_raised = cap_raised_;
+  st.crowd_handovers = handovers_;
+  st.crowd_s = crowd_s_;
+  st.roadmap_edge_checks = static_cast<std::int64_t>(roadmaps_->edgeChecks());
+  st.roadmaps_built = static_cast<std::int64_t>(roadmaps_->built());
+  if (context_.roadmap_cache) result.stats.roadmaps_reused = static_cast<std::int64_t>(roadmaps_->reused());
+  st.roadmap_vertices = static_cast<std::int64_t>(roadmaps_->vertices());
+  st.roadmap_build_s = roadmaps_->buildSeconds();
+  for (auto& solver : hierarchy_) solver->finish(result.stats);
   if (settings_.trace) result.trace = {{"format", "earc.trace.v1"}, {"events", events_}};
   return result;
 }
 
 }  // namespace
 
-PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings,
+PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
                   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy) {
-  ArcRun run(scenario, settings, std::move(hierarchy));
+  ArcRun run(scenario, settings, context, std::move(hierarchy));
   return run.run();
 }
 

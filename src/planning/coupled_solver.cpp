@@ -196,8 +196,7 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
   auto planner = std::make_shared<og::RRTConnect>(si);
   planner->setProblemDefinition(pdef);
   planner->setup();
-  // The time limit, or sooner when the process is asked to stop (a signal
-  // to `earc-plan serve`; Deadline::expired sees requestStop too).
+  // The time limit, or sooner on a stop request (Deadline::stoppedBy).
   const ob::PlannerTerminationCondition ptc([&deadline] { return deadline.expired(); });
   ob::PlannerStatus status = planner->solve(ptc);
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;

@@ -8,6 +8,9 @@
 
 namespace earc {
 
+// Each configuration step is per_step time steps of straight motion; headings
+// turn from start to goal heading while a robot is on lattice vertices or
+// edges, pausing everyone where a robot needs more time to turn.
 std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& rm, std::vector<std::vector<int>> configs,
                                             int per_step, const std::vector<std::vector<double>>& starts,
                                             const std::vector<std::vector<double>>& goals) {
@@ -82,23 +85,23 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
   Stopwatch clock;
   const CrowdRoadmap rm(world, models, robots, starts, goals);
   const double roadmap_s = clock.seconds();
-  out.stats["roadmap_vertices"] = rm.vertexCount();
-  out.stats["lattice_spacing"] = rm.spacing();
-  out.stats["grid_lattice"] = rm.gridAligned();
-  out.stats["bounding_radius"] = rm.radius();
-  out.stats["roadmap_s"] = roadmap_s;
+  out.stats.roadmap_vertices = rm.vertexCount();
+  out.stats.lattice_spacing = rm.spacing();
+  out.stats.grid_lattice = rm.gridAligned();
+  out.stats.bounding_radius = rm.radius();
+  out.stats.roadmap_s = roadmap_s;
   const LacamResult r = solveLacam(rm, deadline, seed);
-  out.stats["search_s"] = clock.seconds() - roadmap_s;
-  out.stats["configurations"] = r.nodes;
-  out.stats["expansions"] = r.expansions;
-  out.stats["spread_meetings"] = r.spread_meetings;
+  out.stats.search_s = clock.seconds() - roadmap_s;
+  out.stats.configurations = static_cast<std::int64_t>(r.nodes);
+  out.stats.expansions = static_cast<std::int64_t>(r.expansions);
+  out.stats.spread_meetings = r.spread_meetings;
   if (!r.solved) {
     out.why = r.why;
     out.timed_out = r.timed_out;
     return out;
   }
-  out.stats["roadmap_steps"] = r.configs.size() - 1;
-  out.stats["first_solution_s"] = clock.seconds();
+  out.stats.roadmap_steps = static_cast<std::int64_t>(r.configs.size()) - 1;
+  out.stats.first_solution_s = clock.seconds();
   std::vector<std::vector<int>> configs = r.configs;
   if (lattice_refine_s > 0) {
     // The first plan's costs, for refinement's record of cost over time.
@@ -109,15 +112,16 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
         soc += p.size() - 1;
         makespan = std::max(makespan, p.size() - 1);
       }
-      out.stats["first_sum_of_costs"] = soc;
-      out.stats["first_makespan"] = makespan;
+      out.stats.first_sum_of_costs = static_cast<std::int64_t>(soc);
+      out.stats.first_makespan = static_cast<std::int64_t>(makespan);
     }
     Stopwatch lns;
-    out.stats["lattice_refine"] = refineOnLattice(rm, configs, deadline.capped(lattice_refine_s), seed);
-    out.stats["lattice_refine"]["s"] = lns.seconds();
+    nlohmann::json& lattice = out.stats.lattice_refine.emplace(
+        refineOnLattice(rm, configs, deadline.capped(lattice_refine_s), seed));
+    lattice["s"] = lns.seconds();
   }
   const int per_step = rm.stepsPerEdge();
-  out.stats["steps_per_roadmap_step"] = per_step;
+  out.stats.steps_per_roadmap_step = per_step;
   out.paths = crowdPaths(rm, std::move(configs), per_step, starts, goals);
   if (!out.paths) out.why = "a robot has to turn but never stands on a lattice vertex";
   return out;

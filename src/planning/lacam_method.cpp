@@ -10,11 +10,11 @@ namespace {
 constexpr double kLatticeRefineShare = 0.8;
 }  // namespace
 
-PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) {
+PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context) {
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario.name;
-  const Deadline deadline(settings.time_limit_s);
+  const Deadline deadline = Deadline(settings.time_limit_s).stoppedBy(context.stop);
   const CollisionWorld world(scenario);
   const RobotModels robots(scenario);
   std::vector<int> group;
@@ -22,8 +22,8 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) 
   for (std::size_t r = 0; r < scenario.robots.size(); ++r) {
     if (scenario.robots[r].kind != RobotKind::Mobile) {
       result.failures.insert(FailureCause::InvalidInput);
-      result.stats["detail"] = "robot " + scenario.robots[r].name + " is an arm: lacam plans mobile robots only";
-      result.stats["planning_time_s"] = clock.seconds();
+      result.stats.detail = "robot " + scenario.robots[r].name + " is an arm: lacam plans mobile robots only";
+      result.stats.planning_time_s = clock.seconds();
       return result;
     }
     group.push_back(static_cast<int>(r));
@@ -36,17 +36,17 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings) 
   const double setup_s = clock.seconds();
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed,
                                kLatticeRefineShare * settings.refine_s);
-  result.stats["lacam"] = out.stats;
+  result.stats.lacam = out.stats;
   if (out.paths) {
     result.solution.solved = true;
     result.solution.paths = std::move(*out.paths);
   } else {
     result.failures.insert(out.timed_out ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
-    result.stats["detail"] = out.why;
+    result.stats.detail = out.why;
   }
   // With a lattice refinement, the first plan was found before it.
-  result.stats["planning_time_s"] =
-      out.stats.contains("lattice_refine") ? setup_s + out.stats["first_solution_s"].get<double>() : clock.seconds();
+  result.stats.planning_time_s =
+      out.stats.lattice_refine ? setup_s + out.stats.first_solution_s.value_or(0.0) : clock.seconds();
   return result;
 }
 

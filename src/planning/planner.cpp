@@ -55,17 +55,17 @@ std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy() {
   return h;
 }
 
-PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings) {
+PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context) {
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario.name;
   CollisionWorld world(scenario);
   const RobotModels robots(scenario);
   const std::vector<const RobotModel*>& models = robots.raw;
-  Deadline deadline(settings.time_limit_s);
+  const Deadline deadline = Deadline(settings.time_limit_s).stoppedBy(context.stop);
   RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
                       splitSeed(settings.seed, 1), deadline);
-  if (settings.roadmap_cache) roadmaps.useCache(*settings.roadmap_cache, scenario);
+  if (context.roadmap_cache) roadmaps.useCache(*context.roadmap_cache, scenario);
   // The whole problem as one subproblem: every robot, its real start and
   // goal, the whole space; individual path lengths set the horizon.
   Subproblem sub;
@@ -74,7 +74,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
     auto p = individualPath(world, roadmaps, *models[r], static_cast<int>(r), deadline, splitSeed(settings.seed, 100 + r));
     if (!p) {
       result.failures.insert(deadline.expired() ? FailureCause::TimeLimit : FailureCause::NoIndividualPath);
-      result.stats["planning_time_s"] = clock.seconds();
+      result.stats.planning_time_s = clock.seconds();
       return result;
     }
     longest = std::max(longest, p->size());
@@ -109,12 +109,12 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   } else {
     result.failures.insert(deadline.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
   }
-  if (settings.roadmap_cache) result.stats["roadmaps_reused"] = roadmaps.reused();
-  result.stats["planning_time_s"] = clock.seconds();
+  if (context.roadmap_cache) result.stats.roadmaps_reused = static_cast<std::int64_t>(roadmaps.reused());
+  result.stats.planning_time_s = clock.seconds();
   return result;
 }
 
-PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings) {
+PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context) {
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario.name;
@@ -128,6 +128,7 @@ PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings
   }
   CoupledSettings cs;
   cs.time_limit_s = settings.time_limit_s - clock.seconds();  // the world's setup counts
+  cs.within = Deadline().stoppedBy(context.stop);
   auto sol = cs.time_limit_s > 0 ? solveCoupled(world, q, cs, settings.seed) : std::nullopt;
   if (sol) {
     result.solution.solved = true;
@@ -135,7 +136,7 @@ PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings
   } else {
     result.failures.insert(FailureCause::TimeLimit);
   }
-  result.stats["planning_time_s"] = clock.seconds();
+  result.stats.planning_time_s = clock.seconds();
   return result;
 }
 

@@ -11,6 +11,7 @@
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/methods/database_solver.hpp"
+#include "earc/methods/options.hpp"
 #include "earc/methods/plan.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/scene/pass_through.hpp"
@@ -39,75 +40,65 @@ InputError badField(const std::string& name, const std::string& reason) {
   return InputError("request", "$." + name, reason);
 }
 
+// The request's options, typed here (the protocol's messages), then checked
+// as every front end checks them (plannerSettingsFor).
 PlannerSettings settingsFrom(const json& request, const ServiceSettings& defaults) {
-  PlannerSettings s;
-  const json& method = field(request, "method");
-  if (method.is_null()) {
-    s.method = methodFromName(defaults.method);
-  } else {
+  MethodOptions o;
+  o.method = defaults.method;
+  if (const json& method = field(request, "method"); !method.is_null()) {
     if (!method.is_string()) throw badField("method", "must be a string");
-    try {
-      s.method = methodFromName(method.get<std::string>());
-    } catch (const std::invalid_argument& e) {
-      throw badField("method", e.what());
-    }
+    o.method = method.get<std::string>();
   }
-  s.time_limit_s = defaults.time_limit_s;
+  o.time_limit = defaults.time_limit_s;
   if (const json& t = field(request, "time_limit"); !t.is_null()) {
     if (!t.is_number() || !std::isfinite(t.get<double>()) || !(t.get<double>() > 0))
       throw badField("time_limit", "must be a positive number of seconds");
-    s.time_limit_s = t.get<double>();
+    o.time_limit = t.get<double>();
   }
-  s.seed = defaults.seed;
+  o.seed = defaults.seed;
   if (const json& k = field(request, "seed"); !k.is_null()) {
     if (!k.is_number_unsigned()) throw badField("seed", "must be a whole number >= 0");
-    s.seed = k.get<std::uint64_t>();
+    o.seed = k.get<std::uint64_t>();
   }
   if (const json& l = field(request, "learn"); !l.is_null()) {
     if (!l.is_boolean()) throw badField("learn", "must be true or false");
-    s.db_learn = l.get<bool>();
+    o.learn = l.get<bool>();
   }
-  s.work_budgets = defaults.deterministic && s.method != Method::Lightning;
+  // The service's default leaves Lightning alone; a request's is refused for it.
+  o.deterministic = defaults.deterministic && o.method != methodName(Method::Lightning);
   if (const json& d = field(request, "deterministic"); !d.is_null()) {
     if (!d.is_boolean()) throw badField("deterministic", "must be true or false");
-    if (d.get<bool>() && s.method == Method::Lightning)
-      throw badField("deterministic", kWorkBudgetsNotForLightning);
-    s.work_budgets = d.get<bool>();
+    o.deterministic = d.get<bool>();
   }
   if (const json& c = field(request, "compact"); !c.is_null()) {
     if (!c.is_boolean()) throw badField("compact", "must be true or false");
-    s.compact = c.get<bool>();
+    o.compact = c.get<bool>();
   }
   if (const json& r = field(request, "refine"); !r.is_null()) {
     if (!r.is_number() || !std::isfinite(r.get<double>()) || r.get<double>() < 0)
       throw badField("refine", "must be a number of seconds >= 0 (0: off)");
-    s.refine_s = r.get<double>();
+    o.refine = r.get<double>();
   }
   if (const json& w = field(request, "window"); !w.is_null()) {
     if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
-    s.initial_window = static_cast<int>(w.get<std::uint64_t>());
+    o.window = static_cast<int>(w.get<std::uint64_t>());
   }
   // E-ARC's retrieval settings, as earc-plan plan's --db-k, --db-repair-max
-  // and --db-max-stretch.
-  auto earcOnly = [&](const char* name) {
-    if (s.method != Method::Earc) throw badField(name, "is for method earc");
-  };
-  for (auto [name, target, least] : {std::tuple{"db_k", &s.db_k, 1}, std::tuple{"db_repair_max", &s.db_max_invalid_segments, 0}})
+  // and --db-max-stretch (for another method refused by plannerSettingsFor).
+  for (auto [name, target, least] : {std::tuple{"db_k", &o.db_k, 1}, std::tuple{"db_repair_max", &o.db_repair_max, 0}})
     if (const json& v = field(request, name); !v.is_null()) {
-      earcOnly(name);
       if (!v.is_number_unsigned() || v.get<std::uint64_t>() < static_cast<std::uint64_t>(least) ||
           v.get<std::uint64_t>() > 1000)
         throw badField(name, "must be a whole number from " + std::to_string(least) + " to 1000");
       *target = static_cast<int>(v.get<std::uint64_t>());
     }
   if (const json& f = field(request, "db_max_stretch"); !f.is_null()) {
-    earcOnly("db_max_stretch");
     if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0)
       throw badField("db_max_stretch", "must be a number >= 0 (0: any length)");
-    s.db_max_stretch = f.get<double>();
+    o.db_max_stretch = f.get<double>();
   }
-  return s;
+  return plannerSettingsFor(o, OptionStyle::Request);
 }
 
 // Warnings about the scenario (unknown keys and the like) go to `warnings`.
@@ -210,8 +201,10 @@ json Service::handle(const json& request) {
 json Service::plan(const json& request) {
   InputWarnings read_warnings;
   Scenario scenario = scenarioFrom(request, read_warnings);
-  PlannerSettings s = settingsFrom(request, settings_);
-  s.roadmap_cache = roadmaps_.get();
+  const PlannerSettings s = settingsFrom(request, settings_);
+  PlanContext context;
+  context.roadmap_cache = roadmaps_.get();
+  context.stop = &stop_;
   if (s.method == Method::Earc && !store_)
     throw badField("method", "method earc needs the service to have an experience database");
   // Rows other processes committed since the last request.
@@ -230,18 +223,18 @@ json Service::plan(const json& request) {
       warnings.push_back(w);
   ++counters_.plans;
   Stopwatch clock;
-  PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr);
-  const bool interrupted = stopRequested();
-  json st = r.stats;
+  PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr, context);
+  const bool interrupted = stopSet(&stop_);
+  if (r.stats.db) counters_.learned += r.stats.db->db_learned;
+  if (s.method == Method::Earc) {
+    counters_.db += databaseAnswers(r.stats);
+    if (r.stats.db) counters_.db_refused_too_long += r.stats.db->db_refused_too_long;
+  }
+  json st = r.stats.toJson();
   st["request_s"] = clock.seconds();
   if (store_) {
     st["db_entries_before"] = entries_before;
     st["db_entries"] = store_->size();
-  }
-  counters_.learned += st.value("db_learned", 0);
-  if (s.method == Method::Earc) {
-    counters_.db += databaseAnswers(st);
-    counters_.db_refused_too_long += st.value("db_refused_too_long", 0);
   }
   json out = {{"ok", true}, {"solved", r.solution.solved}, {"interrupted", interrupted}};
   if (!warnings.empty()) out["warnings"] = std::move(warnings);

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     std::cout << "plan_one " << earc::version() << ": " << (result.solution.solved ? "solved" : "not solved")
               << ", valid " << (report.valid ? "yes" : "no") << ", robots " << result.solution.paths.size()
               << ", makespan " << report.makespan << ", sum of costs " << report.sum_of_costs
-              << ", method " << result.stats.value("method", std::string()) << "\n";
+              << ", method " << result.stats.method.value_or("") << "\n";
     return result.solution.solved && report.valid ? 0 : 1;
   } catch (const earc::InputError& e) {
     std::cerr << "plan_one: " << e.what() << "\n";

@@ -89,7 +89,7 @@ TEST_CASE("ARC plans four discs crossing in the open, and the solution validates
   PlanResult r = plan(s, settings);
   REQUIRE(r.solution.solved);
   CHECK(r.failures.empty());
-  CHECK(r.stats["conflicts"].get<int>() >= 1);
+  CHECK(r.stats.arc->conflicts >= 1);
   ValidationReport v = validateSolution(s, r.solution);
   CHECK(v.valid);
 }
@@ -105,8 +105,8 @@ TEST_CASE("A roadmap built when a solver first asks for it is counted apart from
   PlanResult r = plan(s, settings);
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(s, r.solution).valid);
-  CHECK(r.stats["roadmaps_built"].get<int>() == 1);
-  const double building = r.stats["roadmap_build_s"].get<double>();
+  CHECK(r.stats.arc->roadmaps_built == 1);
+  const double building = r.stats.arc->roadmap_build_s;
   CHECK(building > 0);
   // The attempt that built it says so, and its time_s leaves it out.
   double in_attempts = 0;
@@ -115,8 +115,8 @@ TEST_CASE("A roadmap built when a solver first asks for it is counted apart from
       for (const auto& a : e["attempts"]) in_attempts += a.value("roadmap_build_s", 0.0);
   CHECK(in_attempts == doctest::Approx(building));
   double solver_time = 0;
-  for (const auto& [name, secs] : r.stats["solver_time_s"].items()) solver_time += secs.get<double>();
-  CHECK(solver_time + building <= r.stats["planning_time_s"].get<double>());
+  for (const auto& [name, secs] : r.stats.arc->solver_time_s) solver_time += secs;
+  CHECK(solver_time + building <= *r.stats.planning_time_s);
 }
 
 TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the deadline, then says both why") {
@@ -135,10 +135,10 @@ TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the 
   CHECK_FALSE(r.solution.solved);
   CHECK(r.failures.count(FailureCause::TimeLimit) == 1);
   CHECK(r.failures.count(FailureCause::SubproblemUnsolved) == 1);
-  CHECK(r.stats["planning_time_s"].get<double>() >= 4.9);
-  CHECK(r.stats["subproblems"].get<int>() > settings.max_expansions + 1);  // retried beyond the last level
+  CHECK(*r.stats.planning_time_s >= 4.9);
+  CHECK(r.stats.arc->subproblems > settings.max_expansions + 1);  // retried beyond the last level
   // Every window after the first was an expansion, though none solved.
-  CHECK(r.stats["window_expansions"].get<int>() == r.stats["subproblems"].get<int>() - 1);
+  CHECK(r.stats.arc->window_expansions == r.stats.arc->subproblems - 1);
 }
 
 TEST_CASE("A solver answering with the wrong number of paths is a named error, not a corrupted plan") {
@@ -157,7 +157,7 @@ TEST_CASE("A solver answering with the wrong number of paths is a named error, n
   settings.time_limit_s = 10;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<OnePath>());
-  CHECK_THROWS_WITH_AS(runArc(s, settings, std::move(hierarchy)),
+  CHECK_THROWS_WITH_AS(runArc(s, settings, {}, std::move(hierarchy)),
                        doctest::Contains("solver 'one-path' answered a subproblem of 2 robots with 1 paths"),
                        std::logic_error);
 }
@@ -186,7 +186,7 @@ TEST_CASE("ARC's retries beyond the last level ignore the robots outside the gro
   std::vector<std::pair<bool, bool>> seen;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<Recorder>(&seen));
-  PlanResult r = runArc(s, settings, std::move(hierarchy));
+  PlanResult r = runArc(s, settings, {}, std::move(hierarchy));
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(s, r.solution).valid);
   // Levels 0 to 2 (the last a whole problem) without ignoring, the first
@@ -240,10 +240,10 @@ TEST_CASE("Groups at the merge cap that undo each other grow until the plan is s
   settings.trace = true;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<Blinkered>());
-  PlanResult r = runArc(s, settings, std::move(hierarchy));
+  PlanResult r = runArc(s, settings, {}, std::move(hierarchy));
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(s, r.solution).valid);
-  CHECK(r.stats["merge_cap_raised"].get<int>() > 0);
+  CHECK(r.stats.arc->merge_cap_raised > 0);
   // A group past the cap only where the trace says its cap was raised.
   std::size_t largest = 0;
   for (const auto& ev : r.trace["events"]) {
@@ -307,7 +307,7 @@ TEST_CASE("A solution's paths end where each robot last moves, so sum of costs i
     // the near robot creeps until the end; the others plan each robot alone.
     if (m == Method::Coupled) continue;
     CHECK(r.solution.paths[0].size() < r.solution.paths[1].size());
-    CHECK(r.stats["sum_of_costs"].get<std::size_t>() < 2 * r.stats["makespan"].get<std::size_t>());
+    CHECK(*r.stats.sum_of_costs < 2 * *r.stats.makespan);
   }
 }
 

@@ -178,13 +178,12 @@ TEST_CASE("Compacted ARC plans keep every route, arrive no later and validate, o
     const PlanResult compacted = plan(s, settings);
     REQUIRE(compacted.solution.solved);  // plan() validates it
     const auto& st = compacted.stats;
-    REQUIRE(st.contains("compact"));
-    CHECK_FALSE(st["compact"].contains("rejected"));
-    CHECK(st["compact"]["sum_of_costs_before"] == plain.stats["sum_of_costs"]);
-    CHECK(st["compact"]["makespan_before"] == plain.stats["makespan"]);
-    CHECK(st["sum_of_costs"].get<long>() ==
-          plain.stats["sum_of_costs"].get<long>() - st["compact"]["steps_saved"].get<long>());
-    CHECK(st["makespan"] <= plain.stats["makespan"]);
+    REQUIRE(st.compact);
+    CHECK_FALSE(st.compact->rejected);
+    CHECK(st.compact->sum_of_costs_before == plain.stats.sum_of_costs);
+    CHECK(st.compact->makespan_before == plain.stats.makespan);
+    CHECK(*st.sum_of_costs == *plain.stats.sum_of_costs - st.compact->steps_saved);
+    CHECK(*st.makespan <= *plain.stats.makespan);
     const bool mobile = s.robots.front().kind == RobotKind::Mobile;
     for (std::size_t r = 0; r < s.robots.size(); ++r) {
       const Path& before = plain.solution.paths[r];

@@ -186,7 +186,7 @@ TEST_CASE("LaCAM turns four robots round a walled 2x2 block, where every robot's
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(sc, r.solution).valid);
   // One rotation of the block: a single roadmap step.
-  CHECK(r.stats["lacam"]["roadmap_steps"] == 1);
+  CHECK(r.stats.lacam->roadmap_steps == 1);
 }
 
 TEST_CASE("LaCAM plans box robots off the lattice in a free-form world, and the same seed gives the same plan") {
@@ -206,7 +206,7 @@ TEST_CASE("LaCAM plans box robots off the lattice in a free-form world, and the 
   const PlanResult a = plan(sc, lacamSettings(5));
   REQUIRE(a.solution.solved);
   CHECK(validateSolution(sc, a.solution).valid);
-  CHECK(a.stats["lacam"]["grid_lattice"] == false);
+  CHECK(a.stats.lacam->grid_lattice == false);
   const PlanResult b = plan(sc, lacamSettings(5));
   REQUIRE(b.solution.solved);
   CHECK(a.solution.paths == b.solution.paths);
@@ -218,7 +218,7 @@ TEST_CASE("LaCAM says why when a robot's goal is walled off, and refuses arms") 
   const PlanResult r = plan(sc, lacamSettings());
   CHECK_FALSE(r.solution.solved);
   CHECK(r.failures.count(FailureCause::NoIndividualPath) == 1);
-  CHECK(r.stats["detail"].get<std::string>().find("robot m0") != std::string::npos);
+  CHECK(r.stats.detail->find("robot m0") != std::string::npos);
 
   Scenario arms;
   arms.name = "arms";
@@ -247,13 +247,13 @@ TEST_CASE("ARC hands a jam on a crowded grid to the crowd solver and solves it; 
   const PlanResult r = plan(sc, s);
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(sc, r.solution).valid);
-  CHECK(r.stats["crowd_handovers"].size() >= 1);
+  CHECK(r.stats.arc->crowd_handovers.size() >= 1);
   // (How much longer ARC takes alone is for a benchmark, not a test.)
   s.crowd_fallback = false;
   s.time_limit_s = 1;
   const PlanResult alone = plan(sc, s);
-  CHECK(alone.stats["crowd_handovers"].empty());
-  CHECK(alone.stats["crowd_s"] == 0.0);
+  CHECK(alone.stats.arc->crowd_handovers.empty());
+  CHECK(alone.stats.arc->crowd_s == 0.0);
 }
 
 }  // namespace earc

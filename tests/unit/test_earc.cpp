@@ -82,7 +82,7 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
     PlanResult first = plan(s, traced, &store);
     REQUIRE(first.solution.solved);
     CHECK(validateSolution(s, first.solution).valid);
-    CHECK(first.stats["db_hits"].get<int>() == 0);  // the store was empty
+    CHECK(*first.stats.db_hits == 0);  // the store was empty
     // ... and the trace says so for the database's attempts.
     int explained = 0;
     for (const auto& ev : first.trace["events"])
@@ -94,7 +94,7 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
             ++explained;
           }
     CHECK(explained >= 1);
-    learned = first.stats["db_learned"].get<int>();
+    learned = first.stats.db->db_learned;
     CHECK(learned >= 1);
     CHECK(store.size() == static_cast<std::size_t>(learned));
   }
@@ -102,8 +102,8 @@ TEST_CASE("E-ARC learns the subproblems it solved from scratch and solves them f
   PlanResult second = plan(s, earcSettings(1), &store);
   REQUIRE(second.solution.solved);
   CHECK(validateSolution(s, second.solution).valid);
-  CHECK(second.stats["db_hits"].get<int>() + second.stats["db_repairs"].get<int>() >= 1);
-  CHECK(second.stats["db_hit_rate"].get<double>() > 0.0);
+  CHECK(*second.stats.db_hits + second.stats.db->db_repairs >= 1);
+  CHECK(*second.stats.db->db_hit_rate > 0.0);
 }
 
 TEST_CASE("A database that cannot take what E-ARC learned costs the lesson, not the plan") {
@@ -125,9 +125,9 @@ TEST_CASE("A database that cannot take what E-ARC learned costs the lesson, not 
     PlanResult r = plan(s, earcSettings(1), &store);
     REQUIRE(r.solution.solved);
     CHECK(validateSolution(s, r.solution).valid);
-    CHECK(r.stats["db_learn_candidates"].get<int>() >= 1);
-    CHECK(r.stats["db_learned"].get<int>() == 0);
-    CHECK(r.stats.value("db_learn_error", std::string()).find("full") != std::string::npos);
+    CHECK(r.stats.db->db_learn_candidates >= 1);
+    CHECK(r.stats.db->db_learned == 0);
+    CHECK(r.stats.db_learn_error.value_or("").find("full") != std::string::npos);
   }
   exp::ExperienceStore store(tmp.file());
   CHECK(store.size() == before);
@@ -150,13 +150,13 @@ TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the dat
   settings.db_shadow_decoupled = true;
   PlanResult r = plan(crossing(5.0, 4.0, 12), settings, &store);
   REQUIRE(r.solution.solved);
-  REQUIRE(r.stats.contains("db_shadow_decoupled"));
-  const auto& sh = r.stats["db_shadow_decoupled"];
+  REQUIRE(r.stats.db->db_shadow_decoupled);
+  const auto& sh = *r.stats.db->db_shadow_decoupled;
   const int queries = sh["queries"], database = sh["database_solved"], decoupled = sh["decoupled_solved"],
             both = sh["both_solved"];
-  CHECK(queries == r.stats["db_queries"].get<int>());
+  CHECK(queries == r.stats.db->db_queries);
   CHECK(queries >= 1);
-  CHECK(database == r.stats["db_hits"].get<int>() + r.stats["db_repairs"].get<int>());
+  CHECK(database == *r.stats.db_hits + r.stats.db->db_repairs);
   CHECK(both <= std::min(database, decoupled));
   CHECK(sh["decoupled_seconds_where_both"].size() == static_cast<std::size_t>(both));
   CHECK(sh["database_extra_steps_where_both"].size() == static_cast<std::size_t>(both));
@@ -168,7 +168,7 @@ TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the dat
   CHECK(neither == queries - database - decoupled + both);
   // Without the flag there is no such entry.
   settings.db_shadow_decoupled = false;
-  CHECK_FALSE(plan(crossing(5.0, 4.0, 12), settings, &store).stats.contains("db_shadow_decoupled"));
+  CHECK_FALSE(plan(crossing(5.0, 4.0, 12), settings, &store).stats.db->db_shadow_decoupled.has_value());
 }
 
 TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict happens") {
@@ -189,7 +189,7 @@ TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict hap
     PlanResult second = plan(moved, settings, &store);
     REQUIRE(second.solution.solved);
     CHECK(validateSolution(moved, second.solution).valid);
-    CHECK(second.stats["db_hits"].get<int>() + second.stats["db_repairs"].get<int>() >= 1);
+    CHECK(*second.stats.db_hits + second.stats.db->db_repairs >= 1);
   }
 }
 
@@ -383,10 +383,10 @@ TEST_CASE("A stored candidate no step count follows is passed over, and the quer
   CompositeChecker checker(world, models.raw);
   const auto& p = out.solution->paths;
   for (std::size_t t = 0; t + 1 < p[0].size(); ++t) REQUIRE(checker.motionValid(stateAt(p, t), stateAt(p, t + 1)));
-  nlohmann::json stats;
+  PlanStats stats;
   solver.finish(stats);
-  CHECK(stats["db_skipped_unusable"].get<int>() == 1);
-  CHECK(stats["db_hits"].get<int>() == 1);
+  CHECK(stats.db->db_skipped_unusable == 1);
+  CHECK(stats.db_hits == 1);
   // Its use counted as a failure, as an invalid candidate's is.
   auto row = store.get(*far_id);
   REQUIRE(row.has_value());
@@ -449,10 +449,10 @@ TEST_CASE("The database solver refuses a stored solution that runs into a robot 
   // With c parked out of the way the same entry is used.
   REQUIRE(used.solution.has_value());
   CHECK(used.how == "database");
-  nlohmann::json stats;
+  PlanStats stats;
   solver.finish(stats);
-  CHECK(stats["db_refused_crowded"].get<int>() == 1);
-  CHECK(stats["db_hits"].get<int>() == 1);
+  CHECK(stats.db->db_refused_crowded == 1);
+  CHECK(stats.db_hits == 1);
 
   // Told to ignore the robots outside (ARC's retries beyond its last
   // level), the solver uses the entry and leaves c to a later conflict.

@@ -59,9 +59,9 @@ TEST_CASE("Lightning solves a two-robot mobile scenario with a solution the vali
   REQUIRE(r.solution.solved);
   CHECK(r.failures.empty());
   CHECK(validateSolution(s, r.solution).valid);
-  CHECK(r.stats.value("lightning_source", "") == "scratch");  // the database was empty
-  CHECK(r.stats.contains("makespan"));
-  CHECK(r.stats.value("planning_time_s", 1e9) <= 20.0);
+  CHECK(r.stats.lightning->lightning_source == "scratch");  // the database was empty
+  CHECK(r.stats.makespan.has_value());
+  CHECK(r.stats.planning_time_s.value_or(1e9) <= 20.0);
 }
 
 TEST_CASE("plan() dispatches to Lightning and validates its solution") {
@@ -69,7 +69,7 @@ TEST_CASE("plan() dispatches to Lightning and validates its solution") {
   PlanResult r = plan(s, settings(2));
   REQUIRE(r.solution.solved);
   CHECK(r.solution.method == "lightning");
-  CHECK(r.stats.value("lightning_db_entries", -1) == 0);  // no database file: an empty one
+  CHECK(r.stats.lightning->lightning_db_entries == 0);  // no database file: an empty one
 }
 
 TEST_CASE("Lightning plans two facing arms") {
@@ -88,7 +88,7 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
     PlanResult r = db.plan(s, settings(1), LightningSettings{});
     REQUIRE(r.solution.solved);
     CHECK(db.entries() == 1);
-    CHECK(r.stats.value("lightning_db_added", 0) == 1);
+    CHECK(r.stats.lightning->lightning_db_added == 1);
     db.save(file.path);
   }
   LightningDatabase again(s);
@@ -104,7 +104,7 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
   st.db_learn = false;
   PlanResult r = plan(s, st);
   REQUIRE(r.solution.solved);
-  CHECK(r.stats.value("lightning_db_entries", 0) == 1);
+  CHECK(r.stats.lightning->lightning_db_entries == 1);
   CHECK(std::filesystem::file_size(file.path) == size);
 }
 
@@ -116,7 +116,7 @@ TEST_CASE("planning without learning leaves a Lightning database as it was") {
   PlanResult r = db.plan(s, settings(1), ls);
   REQUIRE(r.solution.solved);
   CHECK(db.entries() == 0);
-  CHECK(r.stats.value("lightning_db_added", 1) == 0);
+  CHECK(r.stats.lightning->lightning_db_added == 0);
 }
 
 TEST_CASE("a Lightning database of another state space is refused with a message naming the file") {

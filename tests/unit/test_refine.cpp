@@ -198,22 +198,22 @@ TEST_CASE("Refinement through plan(): the stats say what it did and the plan ret
   settings.refine_s = 0.3;
   const PlanResult r = plan(s, settings);
   REQUIRE(r.solution.solved);
-  REQUIRE(r.stats.contains("refine"));
-  const auto& st = r.stats["refine"];
-  CHECK_FALSE(st.contains("rejected"));
-  CHECK(st["final_sum_of_costs"] == r.stats["sum_of_costs"]);
-  CHECK(st["final_makespan"] == r.stats["makespan"]);
-  CHECK(st["final_sum_of_costs"].get<long>() <= st["first_sum_of_costs"].get<long>());
-  CHECK(st["first_s"] == r.stats["planning_time_s"]);
-  CHECK(st["final_s"].get<double>() >= st["first_s"].get<double>());
-  CHECK(st["history"].size() >= 1);
-  CHECK(st["history"][0][1] == st["first_sum_of_costs"]);
-  CHECK(st["history"].back()[1] == st["final_sum_of_costs"]);
-  CHECK(st["seconds_spent"].get<double>() >= 0);
+  REQUIRE(r.stats.refine);
+  const RefineStats& st = *r.stats.refine;
+  CHECK_FALSE(st.rejected);
+  CHECK(st.final_sum_of_costs == r.stats.sum_of_costs);
+  CHECK(st.final_makespan == r.stats.makespan);
+  CHECK(st.final_sum_of_costs <= st.first_sum_of_costs);
+  CHECK(st.first_s == r.stats.planning_time_s);
+  CHECK(st.final_s >= st.first_s);
+  REQUIRE(st.history.size() >= 1);
+  CHECK(st.history[0].sum_of_costs == st.first_sum_of_costs);
+  CHECK(st.history.back().sum_of_costs == st.final_sum_of_costs);
+  CHECK(st.seconds_spent >= 0);
   CHECK(refineValid(s, r.solution.paths));
   // Off by default: no stats, the plan as planned.
   settings.refine_s = 0;
-  CHECK_FALSE(plan(s, settings).stats.contains("refine"));
+  CHECK_FALSE(plan(s, settings).stats.refine);
 }
 
 TEST_CASE("serve protocol: \"refine\" refines a request's plan, and a bad value is refused in one line") {

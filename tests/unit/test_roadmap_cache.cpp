@@ -36,14 +36,15 @@ Scenario cacheArmScenario(int obstacles, std::uint64_t seed) {
 }
 
 // Plans `s` with `settings` and the cache; the plan must be solved.
-PlanResult planKept(const Scenario& s, PlannerSettings settings, RoadmapCache* cache) {
-  settings.roadmap_cache = cache;
-  PlanResult r = plan(s, settings);
+PlanResult planKept(const Scenario& s, const PlannerSettings& settings, RoadmapCache* cache) {
+  PlanContext context;
+  context.roadmap_cache = cache;
+  PlanResult r = plan(s, settings, nullptr, context);
   REQUIRE(r.solution.solved);
   return r;
 }
 
-std::size_t reusedOf(const PlanResult& r) { return r.stats["roadmaps_reused"].get<std::size_t>(); }
+std::size_t reusedOf(const PlanResult& r) { return static_cast<std::size_t>(r.stats.roadmaps_reused.value_or(-1)); }
 
 }  // namespace
 
@@ -105,8 +106,8 @@ TEST_CASE("Plans from roadmaps kept from earlier plans are the plans without the
         CHECK(reusedOf(second) > 0);
         CHECK(cache.hits() == reusedOf(second));
         if (method == Method::Arc) {
-          CHECK(reusedOf(second) == second.stats["roadmaps_built"].get<std::size_t>());
-          CHECK(cache.size() == first.stats["roadmaps_built"].get<std::size_t>());
+          CHECK(reusedOf(second) == static_cast<std::size_t>(second.stats.arc->roadmaps_built));
+          CHECK(cache.size() == static_cast<std::size_t>(first.stats.arc->roadmaps_built));
         }
         CHECK(first.solution.paths == fresh.solution.paths);
         CHECK(second.solution.paths == fresh.solution.paths);
@@ -122,7 +123,7 @@ TEST_CASE("A kept roadmap serves only plans whose building would have made it") 
   RoadmapCache cache(std::size_t{1} << 28);
   const Scenario s = cacheMobileScenario();
   const PlanResult first = planKept(s, settings, &cache);
-  const auto built = first.stats["roadmaps_built"].get<std::size_t>();
+  const auto built = static_cast<std::size_t>(first.stats.arc->roadmaps_built);
   REQUIRE(built > 0);
   // Other starts and goals: the same roadmap.
   Scenario moved = s;
@@ -146,7 +147,7 @@ TEST_CASE("A kept roadmap serves only plans whose building would have made it") 
   Scenario shifted = arms;
   for (RobotSpec& r : shifted.robots) r.base_position.x += 0.25;
   const PlanResult arms_shifted = planKept(shifted, settings, &cache);
-  CHECK(reusedOf(arms_shifted) == arms_shifted.stats["roadmaps_built"].get<std::size_t>());
+  CHECK(reusedOf(arms_shifted) == static_cast<std::size_t>(arms_shifted.stats.arc->roadmaps_built));
   CHECK(reusedOf(arms_shifted) > 0);
 }
 

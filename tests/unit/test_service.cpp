@@ -241,10 +241,10 @@ TEST_CASE("serve protocol: a stop request cuts the planning request in flight sh
   exp::ScratchDirectory dir("service-stop");
   auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
   service::Service svc(store, {});
-  requestStop();
+  svc.requestStop();
   Stopwatch clock;
   json r = reply(svc, json{{"id", 1}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limit", 30}}.dump());
-  clearStopRequest();
+  svc.clearStop();
   CHECK(clock.seconds() < 5.0);
   CHECK(r["ok"] == true);
   CHECK(r["interrupted"] == true);

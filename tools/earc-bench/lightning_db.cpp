@@ -88,7 +88,7 @@ void runLightningDb(const LightningDbOptions& o) {
     ps.seed = splitSeed(o.seed, static_cast<std::uint64_t>(i));
     PlanResult r = db.plan(s, ps, ls);
     if (r.solution.solved) ++solved;
-    if (r.stats.value("lightning_source", "") == "recall") ++recalled;
+    if (r.stats.lightning && r.stats.lightning->lightning_source == "recall") ++recalled;
     progress.setStatus(std::to_string(db.entries()) + " entries");
     progress.tick();
   }

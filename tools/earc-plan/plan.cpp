@@ -53,14 +53,15 @@ struct PlanOptions {
 // The plan, once the store's background quick_check has passed: its error
 // is thrown instead, also when planning met the damage first (the check's
 // verdict names it best).
-PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store) {
+PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store,
+                              const PlanContext& context) {
   try {
-    PlanResult planned = plan(scenario, s, &store);
+    PlanResult planned = plan(scenario, s, &store, context);
     try {
       store.awaitCheck();  // also counts the session, a write
     } catch (const exp::NoSpaceError& e) {
       // The plan stands (see runPlan).
-      if (!planned.stats.contains("db_learn_error")) planned.stats["db_learn_error"] = oneLine(e.what());
+      if (!planned.stats.db_learn_error) planned.stats.db_learn_error = oneLine(e.what());
     }
     return planned;
   } catch (const exp::DamagedDatabaseError&) {
@@ -144,39 +145,36 @@ class ProgressLine {
 };
 
 // What --compact changed, after the plan's makespan and sum of costs.
-std::string compactSummary(const nlohmann::json& st) {
-  if (!st.contains("compact")) return "";
-  const auto& c = st["compact"];
-  if (c.contains("rejected")) return " (compacting made it invalid, so it is as planned: " + c.value("rejected", std::string()) + ")";
-  return " (before --compact: " + std::to_string(c.value("makespan_before", 0)) + " and " +
-         std::to_string(c.value("sum_of_costs_before", 0)) + ")";
+std::string compactSummary(const PlanStats& st) {
+  if (!st.compact) return "";
+  const CompactStats& c = *st.compact;
+  if (c.rejected) return " (compacting made it invalid, so it is as planned: " + *c.rejected + ")";
+  return " (before --compact: " + std::to_string(c.makespan_before) + " and " + std::to_string(c.sum_of_costs_before) +
+         ")";
 }
 
 // What --refine did, after the plan's makespan and sum of costs.
-std::string refineSummary(const nlohmann::json& st) {
-  if (!st.contains("refine")) return "";
-  const auto& r = st["refine"];
-  if (r.contains("rejected"))
-    return " (the refined plan failed validation, so it is the first plan: " + r.value("rejected", std::string()) + ")";
-  return " (first plan: " + std::to_string(r.value("first_makespan", 0)) + " and " +
-         std::to_string(r.value("first_sum_of_costs", 0)) + "; refined for " +
-         formatNumber("%.2f", r.value("seconds_spent", 0.0)) + " s)";
+std::string refineSummary(const PlanStats& st) {
+  if (!st.refine) return "";
+  const RefineStats& r = *st.refine;
+  if (r.rejected) return " (the refined plan failed validation, so it is the first plan: " + *r.rejected + ")";
+  return " (first plan: " + std::to_string(r.first_makespan) + " and " + std::to_string(r.first_sum_of_costs) +
+         "; refined for " + formatNumber("%.2f", r.seconds_spent) + " s)";
 }
 
 // What the experience database did in an E-ARC plan, for the summary
 // line: "; database answered 6 of 8 solved subproblems (1 by repair), learned 2":
 // of the subproblems solved, as db_hit_rate counts them.
-std::string databaseSummary(const nlohmann::json& st) {
-  if (!st.contains("db_queries")) return "";
+std::string databaseSummary(const PlanStats& st) {
+  if (!st.db) return "";
+  const DatabaseStats& db = *st.db;
   const DatabaseAnswers a = databaseAnswers(st);
   std::string line = "; database answered " + std::to_string(a.answered()) + " of " + std::to_string(a.solved) +
                      " solved subproblems (" + std::to_string(a.repaired) + " by repair), learned " +
-                     std::to_string(st.value("db_learned", 0));
+                     std::to_string(db.db_learned);
   // Why subproblems solved from scratch were not learned, when some were.
-  const int unstorable = st.value("db_learn_unstorable", 0);
-  const int near_duplicates = st.contains("db_learn_error")
-                                  ? 0
-                                  : st.value("db_learn_candidates", 0) - st.value("db_learned", 0);
+  const std::int64_t unstorable = db.db_learn_unstorable;
+  const std::int64_t near_duplicates = st.db_learn_error ? 0 : db.db_learn_candidates - db.db_learned;
   std::vector<std::string> why;
   if (near_duplicates > 0)
     why.push_back(std::to_string(near_duplicates) + " near-duplicate" + (near_duplicates == 1 ? "" : "s"));
@@ -235,18 +233,22 @@ int runPlan(const PlanOptions& o) {
     if (const std::string w = exp::noClassFitsWarning(*store, scenario, o.db); !w.empty())
       std::cerr << "earc-plan: warning: " << printableText(w, 4096) << "\n";
   PlanProgress progress;
-  s.progress = &progress;
+  PlanContext context;
+  context.progress = &progress;
   ProgressLine line(!o.quiet, o.method, o.time_limit, static_cast<int>(scenario.robots.size()), progress);
-  PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store); })
-                       : plan(scenario, s, nullptr);
+  PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store, context); })
+                       : plan(scenario, s, nullptr, context);
   line.stop();
-  if (!full_disk.empty()) r.stats["db_learn_error"] = r.solution.stats["db_learn_error"] = full_disk;
+  if (!full_disk.empty()) {
+    r.stats.db_learn_error = full_disk;
+    r.solution.stats["db_learn_error"] = full_disk;
+  }
   saveSolution(o.output, r.solution);
   // What could not be written to the database (a full disk) is said once,
   // after the plan is saved. Closing here, not in the destructor, keeps it
   // to one line; another error at close (the file found damaged) is a
   // warning, as the destructor's was.
-  std::string learn_error = r.stats.value("db_learn_error", std::string());
+  std::string learn_error = r.stats.db_learn_error.value_or("");
   std::string close_error;
   if (store) {
     try {
@@ -263,14 +265,14 @@ int runPlan(const PlanOptions& o) {
     std::ostream& out = summaryStream({o.output, o.trace});
     if (r.solution.solved)
       out << "solved: " << scenario.robots.size() << " robots, method " << o.method << ", "
-          << st.value("planning_time_s", 0.0) << " s, conflicts " << st.value("conflicts", 0) << ", makespan "
-          << st.value("makespan", 0) << ", sum of costs " << st.value("sum_of_costs", 0) << compactSummary(st)
+          << st.planning_time_s.value_or(0.0) << " s, conflicts " << (st.arc ? st.arc->conflicts : 0)
+          << ", makespan " << st.makespan.value_or(0) << ", sum of costs " << st.sum_of_costs.value_or(0)
+          << compactSummary(st)
           << refineSummary(st) << databaseSummary(st)
           << "\n";
     else
-      out << "not solved (" << earc::failureReasons(st) << ") after "
-          << st.value("planning_time_s", 0.0) << " s"
-          << (st.contains("too_large") ? ": " + st["too_large"].value("detail", std::string()) : "") << "\n";
+      out << "not solved (" << earc::failureReasons(r.solution.stats) << ") after "
+          << st.planning_time_s.value_or(0.0) << " s" << (st.too_large ? ": " + st.too_large->detail : "") << "\n";
     out << "solution: " << o.output << "\n";
   }
   if (!full_disk.empty())

@@ -17,6 +17,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -50,10 +51,13 @@ struct ServeOptions {
 // never missed.
 volatile std::sig_atomic_t g_signal = 0;
 int g_wake_fd = -1;
+// The service being run, whose plans a stop signal stops; null before and after.
+std::atomic<service::Service*> g_service{nullptr};
+static_assert(std::atomic<service::Service*>::is_always_lock_free);
 
 extern "C" void onStopSignal(int signo) {
   g_signal = signo;
-  requestStop();  // every planner Deadline now reads as expired
+  if (service::Service* s = g_service.load()) s->requestStop();  // its plan's deadlines now read as expired
   const int saved = errno;
   if (g_wake_fd >= 0) {
     const char byte = 1;
@@ -364,6 +368,15 @@ int runServe(const ServeOptions& o) {
     throw;
   }
   service::Service service(store, settings);
+  // Stop signals reach the service's plans while it runs; one that came
+  // before it existed stops it at once.
+  struct ActiveService {
+    explicit ActiveService(service::Service& s) {
+      g_service.store(&s);
+      if (g_signal) s.requestStop();
+    }
+    ~ActiveService() { g_service.store(nullptr); }
+  } active(service);
   std::cerr << "earc-plan serve: "
             << (store ? o.db + " (" + std::to_string(store->size()) + " experiences)"
                       : std::string("no experience database (method earc refused)"))

@@ -59,7 +59,8 @@ class LightningDatabase {
   // Plans `scenario` (same kinds and count of robots as the prototype) with
   // Lightning over this database, adding the solution when settings say so
   // and Lightning's policy agrees. The solution is not validated here.
-  PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, const LightningSettings& lightning);
+  PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, const LightningSettings& lightning,
+                  const PlanContext& context = {});
 
  private:
   struct Impl;
@@ -70,9 +71,9 @@ class LightningDatabase {
 // and learn and save are set). Not validated here: plan() (method
 // lightning, settings.lightning_db) validates, and is what callers want.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
-                         const LightningSettings& lightning);
+                         const LightningSettings& lightning, const PlanContext& context = {});
 
 // plan()'s Lightning: the database file settings.lightning_db, if any.
-PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings);
+PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context = {});
 
 }  // namespace earc

@@ -40,10 +40,9 @@ struct BuildSettings {
   // Mobile: shares of problems with 2, 3 and 4 robots (ARC: conflicts of
   // few robots are the most frequent).
   std::vector<double> mobile_mix{0.5, 0.3, 0.2};
-  // Mobile footprints, distinct. Each robot of a problem draws one of
-  // them, in proportion to mobile_shares (empty: equal shares), so that a
-  // fleet of several footprints gets the mixed groups its conflicts make.
-  // Default: the generators' box robot.
+  // Mobile footprints, distinct (default: the generators' box robot); each
+  // robot of a problem draws one in proportion to mobile_shares (empty:
+  // equal), so a mixed fleet gets the mixed groups its conflicts make.
   std::vector<RobotSpec> mobile_robots;
   std::vector<double> mobile_shares;  // robots of each footprint, say
   // Manipulators: the arm layout whose pair classes are built (default:
@@ -76,10 +75,8 @@ struct BuildReport {
   std::map<std::string, int> inserted_per_class;  // ExperienceClass::label()
 };
 
-// Pairs whose reach discs overlap less cannot meet in any real conflict
-// worth storing: two arms of reach 2.55 at 5 units (the generated layout's
-// diagonal neighbours) touch only fully stretched towards each other, and
-// 1 in 10,000 query draws conflicts.
+// Arm pairs whose reach discs overlap less are left out: they meet in no
+// conflict worth storing (forEachReachingArmPair in builder.cpp says why).
 inline constexpr double kMinReachOverlap = 0.25;
 
 // The relative base transform classes of an arm layout: one representative
@@ -95,11 +92,9 @@ std::vector<std::pair<int, int>> unequalArmPairs(const std::vector<RobotSpec>& a
 // and naming the first with its joint counts; "" when pairs is empty.
 std::string unequalArmPairsNote(const std::vector<RobotSpec>& arms, const std::vector<std::pair<int, int>>& pairs);
 
-// Why armPairClasses found no class in a layout, in one line that names
-// each arm with its joint count: the store holds pairs of arms with equal
-// joint counts only (hasExperienceClass: a key and a path blob of one
-// dimension for both), so with no two such arms there is nothing to build
-// for, whatever their reach; else none of the equal pairs can reach.
+// Why armPairClasses found no class in a layout, in one line naming each
+// arm with its joint count (no two arms of equal joints, or none of those
+// pairs can reach). Thread-safe.
 std::string noArmPairClassReason(const std::vector<RobotSpec>& arms);
 
 // Builds into the store; progress (optional) ticks once per problem.

@@ -35,10 +35,9 @@ struct DatabaseSolverSettings {
   bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
 };
 
-// What the database answered in an E-ARC plan, from the plan's stats
-// (subproblems_by_solver): the subproblems solved in all, and those solved
-// by a retrieved answer or a repaired one. db_hit_rate, earc-plan's
-// summary line and earc-plan serve's session counts all count this way.
+// What the database answered in an E-ARC plan (its subproblems_by_solver):
+// subproblems solved in all, and by a retrieved or repaired answer. The
+// one count of db_hit_rate, earc-plan's summary and serve's counters.
 struct DatabaseAnswers {
   std::int64_t solved = 0, retrieved = 0, repaired = 0;
   std::int64_t answered() const { return retrieved + repaired; }
@@ -51,7 +50,7 @@ struct DatabaseAnswers {
     return *this;
   }
 };
-DatabaseAnswers databaseAnswers(const nlohmann::json& stats);
+DatabaseAnswers databaseAnswers(const PlanStats& stats);
 
 // A failure reason with each number (3, 16, 1.05) replaced by N, so that
 // reasons of different queries add up: "answer N steps, more than N x N".
@@ -64,7 +63,7 @@ class DatabaseSolver : public SubproblemSolver {
   const char* name() const override { return "database"; }
   SolverOutcome solve(SolverContext& ctx) override;
   void accepted(const SolverContext& ctx, const LocalSolution& sol, const SolverOutcome& by) override;
-  void finish(nlohmann::json& stats) override;
+  void finish(PlanStats& stats) override;
 
   // The paper's database holds 2-, 3- and 4-robot subproblems.
   static constexpr std::size_t kMaxRobots = 4;
@@ -121,6 +120,7 @@ class DatabaseSolver : public SubproblemSolver {
 
 // E-ARC: ARC with the database solver over `store` first in its hierarchy.
 // Throws std::invalid_argument when store is null.
-PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store);
+PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store,
+                    const PlanContext& context = {});
 
 }  // namespace earc

@@ -1,5 +1,6 @@
 // A plan's options as a user gives them (`earc-plan plan`, Python's
-// earc.plan), checked and turned into PlannerSettings.
+// earc.plan, a request to `earc-plan serve`), checked and turned into
+// PlannerSettings: the one place every front end builds them.
 #pragma once
 
 #include <cstdint>
@@ -27,14 +28,14 @@ struct MethodOptions {
   std::optional<double> db_max_stretch;
 };
 
-// How an option is named in errors: `earc-plan`'s "--db-k" (Cli) or
-// Python's "db_k" (Python).
-enum class OptionStyle { Cli, Python };
+// How an option is named in errors: `earc-plan`'s "--db-k" (Cli),
+// Python's "db_k" (Python) or a service request's "$.db_k" (Request).
+enum class OptionStyle { Cli, Python, Request };
 std::string optionName(const char* key, OptionStyle style);
 
-// The settings for o, after the checks every front end shares (an option
-// of another method, --deterministic for Lightning, earc without a
-// database); InputError naming the option. Touches no file.
+// The settings for o, after the checks every front end shares (a method
+// name, an option of another method, --deterministic for Lightning).
+// Throws InputError naming the option (source "request" for Request).
 PlannerSettings plannerSettingsFor(const MethodOptions& o, OptionStyle style);
 
 }  // namespace earc

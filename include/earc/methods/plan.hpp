@@ -6,9 +6,9 @@
 namespace earc {
 
 // Plans with settings.method; the store is used (and learned into) only by
-// Method::Earc (nullptr otherwise). Solved only if validateSolution passed,
-// else FailureCause::InvalidResult. Thread-safe for distinct settings.
-PlanResult plan(const Scenario& scenario, const PlannerSettings& settings,
-                exp::ExperienceStore* store = nullptr);
+// Method::Earc. Solved only if validateSolution passed. Thread-safe for
+// distinct stores and contexts (a context's stop flag may be shared).
+PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store = nullptr,
+                const PlanContext& context = {});
 
 }  // namespace earc

@@ -66,7 +66,7 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
                                    int robot, const Deadline& deadline, std::uint64_t seed);
 
 // Runs ARC with the given hierarchy (tried in order for every subproblem).
-PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings,
+PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
                   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy);
 
 }  // namespace earc

@@ -11,6 +11,7 @@
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/crowd_roadmap.hpp"
+#include "earc/planning/plan_stats.hpp"
 #include "earc/scene/path.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/util/deadline.hpp"
@@ -19,7 +20,7 @@ namespace earc {
 
 struct CrowdOutcome {
   std::optional<std::vector<Path>> paths;  // one per group robot, from start to goal
-  nlohmann::json stats = nlohmann::json::object();
+  LacamStats stats;
   std::string why;      // why not solved
   bool timed_out = false;
 };
@@ -32,10 +33,9 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
                        double lattice_refine_s = 0.0);
 
-// Time-stamped paths of LaCAM's configurations: each step is `per_step`
-// time steps of straight motion; headings turn from start to goal heading
-// while a robot is on lattice vertices or edges (pausing everyone where a
-// robot needs more time to turn). Nothing when a robot cannot turn anywhere.
+// Time-stamped paths of LaCAM's configurations, `per_step` time steps per
+// configuration step, headings turned on the lattice (crowd.cpp says how).
+// Nothing when a robot cannot turn anywhere. Thread-safe.
 std::optional<std::vector<Path>> crowdPaths(const CrowdRoadmap& roadmap, std::vector<std::vector<int>> configs,
                                             int per_step, const std::vector<std::vector<double>>& starts,
                                             const std::vector<std::vector<double>>& goals);

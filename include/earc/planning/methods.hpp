@@ -14,10 +14,11 @@ namespace earc {
 std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy();
 
 // Whole-problem prioritized planning in space-time over the roadmaps.
-PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings);
+PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings,
+                           const PlanContext& context = {});
 // Whole-problem RRT-Connect in the composite space of all robots.
-PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings);
+PlanResult planCoupled(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context = {});
 // The crowd solver (LaCAM over a lattice roadmap, lacam.hpp) on the whole problem.
-PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings);
+PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context = {});
 
 }  // namespace earc

@@ -65,10 +65,9 @@ class OmplComposite {
   friend class CompositeSampler;
 };
 
-// While alive, state samplers allocated by this thread (OMPL planners
-// allocate theirs at the start of solve()) are seeded from `stream`. OMPL
-// runs Lightning's planners in threads of its own, so the stream has to be
-// set by the planner itself on the thread that samples.
+// While alive, state samplers allocated by this thread (in OMPL's solve())
+// are seeded from `stream`; set it on the thread that samples (Lightning's
+// planners run on OMPL's own threads). Per thread.
 class SeededPlanningStream {
  public:
   explicit SeededPlanningStream(std::uint64_t stream);

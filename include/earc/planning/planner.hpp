@@ -9,8 +9,10 @@
 #include <set>
 #include <string>
 
+#include "earc/planning/plan_stats.hpp"
 #include "earc/scene/scenario.hpp"
 #include "earc/scene/solution.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc {
 
@@ -48,9 +50,6 @@ struct PlannerSettings {
   // Individual roadmaps.
   int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
   int roadmap_neighbors = 10;
-  // Roadmaps kept from earlier plans of this process, used and filled by ARC,
-  // E-ARC and the prioritized baseline (the same plan either way); null: none.
-  RoadmapCache* roadmap_cache = nullptr;
   // ARC's subproblems.
   int initial_window = 8;             // steps before and after the conflict
   double region_margin = 1.0;         // plane units (mobile) around the local query
@@ -82,8 +81,18 @@ struct PlannerSettings {
   // A scenario whose straight start-to-goal motions alone would take more
   // time-stamped scalars than this (8 bytes each) is refused as too large.
   std::int64_t max_path_scalars = std::int64_t{1} << 24;  // 128 MiB
-  // Filled in as planning goes when set; read by whoever set it.
-  PlanProgress* progress = nullptr;
+};
+
+// What a plan runs with besides its settings, owned by the caller and kept
+// alive through the plan; every member may be null. Not part of the result.
+struct PlanContext {
+  // Roadmaps kept from earlier plans, used and filled by ARC, E-ARC,
+  // prioritized and refinement (the same plan either way). Not thread-safe.
+  RoadmapCache* roadmap_cache = nullptr;
+  PlanProgress* progress = nullptr;  // filled in as planning goes (ARC, E-ARC)
+  // Once set (from any thread or a signal handler), planning stops soon
+  // and the plan ends unsolved with FailureCause::TimeLimit.
+  const StopFlag* stop = nullptr;
 };
 
 enum class FailureCause { TimeLimit, InvalidInput, NoIndividualPath, SubproblemUnsolved, InvalidResult, TooLarge };
@@ -92,7 +101,7 @@ const char* failureCauseName(FailureCause c);
 struct PlanResult {
   Solution solution;                    // solved only when it validated
   std::set<FailureCause> failures;      // empty when solved
-  nlohmann::json stats = nlohmann::json::object();
+  PlanStats stats;
   nlohmann::json trace = nullptr;       // earc.trace.v1 when settings.trace
 };
 

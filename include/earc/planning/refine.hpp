@@ -54,10 +54,9 @@ struct RefineReport {
   std::vector<std::array<double, 3>> history;
 };
 
-// Refines `paths` (one per robot of `scenario`, a valid plan, trailing
-// waits dropped) in place until settings.seconds, max_iterations or the
-// deadline (or a stop request) ends it; the paths are then the best found.
-// `models` and `world` are the scenario's. Not thread-safe on one plan.
+// Refines `paths` (a valid plan of `scenario`, trailing waits dropped) in
+// place until settings.seconds, max_iterations or the deadline ends it,
+// leaving the best found. Not thread-safe on one plan.
 RefineReport refinePlan(const Scenario& scenario, const CollisionWorld& world,
                         const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                         const RefineSettings& settings, const Deadline& deadline = Deadline());

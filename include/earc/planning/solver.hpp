@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"
+#include "earc/planning/plan_stats.hpp"
 #include "earc/planning/roadmap.hpp"
 #include "earc/planning/subproblem.hpp"
 #include "earc/scene/scenario.hpp"
@@ -125,7 +126,7 @@ class SubproblemSolver {
   virtual void accepted(const SolverContext& /*ctx*/, const LocalSolution& /*sol*/, const SolverOutcome& /*by*/) {}
   // Told once when planning ends (the robot models are still alive): a
   // place to write what was learned and add the solver's own statistics.
-  virtual void finish(nlohmann::json& /*stats*/) {}
+  virtual void finish(PlanStats& /*stats*/) {}
 };
 
 struct DecoupledSettings {

@@ -49,7 +49,7 @@ struct ServiceSettings {
   double time_limit_s = 60.0;
   std::uint64_t seed = 1;
   bool deterministic = false;   // work budgets (PlannerSettings::work_budgets)
-  // Roadmaps kept between requests (PlannerSettings::roadmap_cache), at
+  // Roadmaps kept between requests (PlanContext::roadmap_cache), at
   // most this many MiB; 0 keeps none.
   std::size_t roadmap_cache_mib = 256;
 };
@@ -85,6 +85,10 @@ class Service {
   std::string tooLongResponse();
 
   const ServiceCounters& counters() const { return counters_; }
+  // Stops the plan in flight and every later one (answered "interrupted")
+  // until clearStop(). Both thread-safe and async-signal-safe.
+  void requestStop() noexcept { stop_.store(true, std::memory_order_relaxed); }
+  void clearStop() noexcept { stop_.store(false, std::memory_order_relaxed); }
   // Writes pending usage counters, checkpoints and closes the store.
   // Throws when the store cannot be closed cleanly.
   void close();
@@ -99,12 +103,12 @@ class Service {
   std::unique_ptr<RoadmapCache> roadmaps_;  // null: none kept
   ServiceCounters counters_;
   std::chrono::steady_clock::time_point started_;
+  StopFlag stop_{false};
 };
 
-// Splits a byte stream into lines: '\n' ends a line, a trailing '\r' is
-// dropped, blank lines are skipped. A line longer than the limit is
-// reported once (too_long) and skipped up to its newline, never buffered
-// whole.
+// Splits a byte stream into lines ('\n', a trailing '\r' dropped, blank
+// lines skipped); a line over the limit is reported once (too_long) and
+// skipped, never buffered whole. Not thread-safe.
 class LineSplitter {
  public:
   explicit LineSplitter(std::size_t max_line = kMaxRequestBytes) : max_(max_line) {}

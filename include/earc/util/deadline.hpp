@@ -11,13 +11,12 @@
 
 namespace earc {
 
-// A process-wide stop request: once set, every Deadline reads as expired.
-// Set from signal handlers (async-signal-safe); cleared before the next request.
-inline std::atomic<bool> g_stop_requested{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-inline void requestStop() noexcept { g_stop_requested.store(true, std::memory_order_relaxed); }
-inline void clearStopRequest() noexcept { g_stop_requested.store(false, std::memory_order_relaxed); }
-inline bool stopRequested() noexcept { return g_stop_requested.load(std::memory_order_relaxed); }
+// A stop request that deadlines watch (Deadline::stoppedBy): once set,
+// they read as expired. Setting it is async-signal-safe and thread-safe.
+using StopFlag = std::atomic<bool>;
+static_assert(StopFlag::is_always_lock_free);
+// Whether `flag` is given and set. Thread-safe.
+inline bool stopSet(const StopFlag* flag) noexcept { return flag && flag->load(std::memory_order_relaxed); }
 
 // Work done on this thread in the collision checks' units: the clock of
 // budgets that count work (Deadline::withWorkBudgets). Per thread.
@@ -37,12 +36,18 @@ class Deadline {
                                      : Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                           std::chrono::duration<double>(seconds_from_now))) {}
   bool expired() const {
-    return stopRequested() || workSpent() || (end_ != Clock::time_point::max() && Clock::now() >= end_);
+    return stopSet(stop_) || workSpent() || (end_ != Clock::time_point::max() && Clock::now() >= end_);
+  }
+  // This deadline, also expired once *stop is set (null: no stop request).
+  Deadline stoppedBy(const StopFlag* stop) const {
+    Deadline d = *this;
+    d.stop_ = stop;
+    return d;
   }
   // Whether a work budget (see capped) has been used up: no clock read.
   bool workSpent() const noexcept { return t_work_done >= work_end_; }
   double remaining() const {
-    if (stopRequested()) return 0.0;
+    if (stopSet(stop_)) return 0.0;
     double left = std::numeric_limits<double>::infinity();
     if (work_end_ != kNoWorkEnd)
       left = work_end_ > t_work_done ? static_cast<double>(work_end_ - t_work_done) / kWorkPerBudgetSecond : 0.0;
@@ -69,6 +74,7 @@ class Deadline {
     }
     Deadline d(seconds);
     d.work_end_ = work_end_;
+    d.stop_ = stop_;
     return d.end_ < end_ ? d : *this;
   }
 
@@ -77,6 +83,7 @@ class Deadline {
   Clock::time_point end_;
   std::uint64_t work_end_ = kNoWorkEnd;
   bool work_budgets_ = false;
+  const StopFlag* stop_ = nullptr;
 };
 
 // A deadline read at the first call, then once per `work_per_read` units of
