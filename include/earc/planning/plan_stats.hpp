@@ -39,8 +39,9 @@ struct DatabaseStats {
   std::int64_t db_skipped_unusable = 0, db_learned = 0, db_learn_candidates = 0, db_learn_unstorable = 0;
   std::vector<std::int64_t> db_learned_ids;
   double db_learn_time_s = 0.0;
-  double db_retrieval_time_s = 0.0;                  // in the store's nearest-row queries
-  std::int64_t db_row_cache_hits = 0, db_row_cache_misses = 0;  // the store's, while the plan ran
+  // Time in the store's nearest-row queries, the store's row cache while the plan ran.
+  std::optional<double> db_retrieval_time_s;
+  std::optional<std::int64_t> db_row_cache_hits, db_row_cache_misses;
   std::optional<double> db_hit_rate;                 // retrieved or repaired over solved
   std::optional<nlohmann::json> db_shadow_decoupled;  // with PlannerSettings::db_shadow_decoupled
 };
