@@ -79,7 +79,7 @@ void compactResult(const Scenario& scenario, const PlannerSettings& settings, co
 // if it passes. planning_time_s stays the time to the first valid plan;
 // "refine" says what refinement did and when (times on the same clock).
 void refineResult(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
-                  PlanResult& result, ValidationReport& report, const ValidatorSettings& vs) {
+                  PlanResult& result, ValidationReport& report, const ValidatorSettings& vs, double validation_s) {
   Stopwatch clock;
   const double first_s = result.stats.planning_time_s.value_or(0.0);
   const std::vector<Path> first = result.solution.paths;
@@ -93,7 +93,9 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   double lattice_s = 0.0;
   if (lacam && lacam->lattice_refine) lattice_s = lacam->lattice_refine->value("s", 0.0);
   RefineSettings rs;
-  rs.seconds = std::max(0.0, settings.refine_s - lattice_s);
+  // The refined plan is validated again within the budget: about as long
+  // as the first plan's validation took (seconds on a crowd of hundreds).
+  rs.seconds = std::max(0.0, settings.refine_s - lattice_s - validation_s);
   rs.seed = splitSeed(settings.seed, 0x7ef1e);
   rs.roadmap_samples = settings.roadmap_samples;
   rs.roadmap_neighbors = settings.roadmap_neighbors;
@@ -191,7 +193,9 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
       uncompacted = result.solution.paths;
       compactResult(scenario, settings, context, result);
     }
+    Stopwatch validation;
     ValidationReport report = validateSolution(scenario, result.solution, vs);
+    const double validation_s = validation.seconds();
     if (!report.valid && settings.compact) {
       // Compaction keeps a valid plan valid; should it not have, the plan
       // as planned is checked and reported instead, and the stats say so.
@@ -199,7 +203,8 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
       result.solution.paths = std::move(uncompacted);
       report = validateSolution(scenario, result.solution, vs);
     }
-    if (report.valid && settings.refine_s > 0) refineResult(scenario, settings, context, result, report, vs);
+    if (report.valid && settings.refine_s > 0)
+      refineResult(scenario, settings, context, result, report, vs, validation_s);
     if (!report.valid) {
       result.solution.solved = false;
       result.failures.insert(FailureCause::InvalidResult);
