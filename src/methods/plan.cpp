@@ -95,7 +95,8 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   RefineSettings rs;
   // The refined plan is validated again within the budget: about as long
   // as the first plan's validation took (seconds on a crowd of hundreds).
-  rs.seconds = std::max(0.0, settings.refine_s - lattice_s - validation_s);
+  // Not with work budgets, whose refined plan may not depend on the clock.
+  rs.seconds = std::max(0.0, settings.refine_s - lattice_s - (settings.work_budgets ? 0.0 : validation_s));
   rs.seed = splitSeed(settings.seed, 0x7ef1e);
   rs.roadmap_samples = settings.roadmap_samples;
   rs.roadmap_neighbors = settings.roadmap_neighbors;
