@@ -64,6 +64,7 @@ class LatticeLns {
       if (rounds++ >= max_rounds || deadline.expired()) break;
       if (delay(i) > 0) replan({i}, deadline, kWeights.back());
     }
+    last_ = std::chrono::steady_clock::now();  // the first step's gain is per its own time
   }
 
   // One drawn neighbourhood, replanned; updates the draw's weight.
@@ -116,9 +117,9 @@ class LatticeLns {
     return g.members;
   }
 
-  // A delayed robot (one of the most delayed, in turn), then the robots
-  // met by random walks from points of its path along steps that could
-  // still make it shorter.
+  // The most delayed of eight robots drawn (not the last one chosen), then
+  // the robots met by random walks from points of its path along steps
+  // that could still make it shorter.
   void inTheWay(Group& g) {
     int r = -1;
     long long worst = 0;
