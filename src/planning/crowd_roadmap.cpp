@@ -299,10 +299,6 @@ void CrowdRoadmap::buildDistances() {
   }
 }
 
-int CrowdRoadmap::distanceToGoal(int i, int v) const {
-  return dist_[static_cast<std::size_t>(i)][static_cast<std::size_t>(v)];
-}
-
 double CrowdRoadmap::headingAt(int v) const { return heading_[static_cast<std::size_t>(v)]; }
 
 // Two lattice robots' steps conflict or not by their cells' offsets
@@ -324,25 +320,24 @@ void CrowdRoadmap::buildLatticeConflicts() {
               static_cast<std::size_t>(((a * side + (dr + table_reach_)) * side + (dc + table_reach_)) * 5 + b);
           lattice_conflicts_[k] = closestApproachSquared(a0, a1, b0, b1) < touch * touch ? 1 : 0;
         }
+  threats_.assign(5, {});
+  for (int a = 0; a < 5; ++a)
+    for (int dr = -table_reach_; dr <= table_reach_; ++dr)
+      for (int dc = -table_reach_; dc <= table_reach_; ++dc) {
+        unsigned mask = 0;
+        for (int b = 0; b < 5; ++b)
+          if (lattice_conflicts_[static_cast<std::size_t>(((a * side + (dr + table_reach_)) * side + (dc + table_reach_)) * 5 + b)])
+            mask |= 1u << b;
+        if (mask) threats_[static_cast<std::size_t>(a)].push_back({dc, dr, mask});
+      }
+  all_on_lattice_ = std::all_of(cell_c_.begin(), cell_c_.end(), [](int c) { return c >= 0; });
 }
 
 int CrowdRoadmap::latticeConflict(CrowdMove mi, CrowdMove mj) const {
-  auto cell = [&](int v, int& c, int& r) {
-    c = cell_c_[static_cast<std::size_t>(v)];
-    r = cell_r_[static_cast<std::size_t>(v)];
-    return c >= 0;
-  };
-  int c0, r0, c1, r1, c2, r2, c3, r3;
-  if (!cell(mi.from, c0, r0) || !cell(mi.to, c1, r1) || !cell(mj.from, c2, r2) || !cell(mj.to, c3, r3)) return -1;
-  auto stepIndex = [](int dc, int dr) {
-    if (dc == 0 && dr == 0) return 0;
-    if (dr == 0 && (dc == 1 || dc == -1)) return dc == 1 ? 1 : 2;
-    if (dc == 0 && (dr == 1 || dr == -1)) return dr == 1 ? 3 : 4;
-    return -1;
-  };
-  const int a = stepIndex(c1 - c0, r1 - r0), b = stepIndex(c3 - c2, r3 - r2);
-  const int dc = c2 - c0, dr = r2 - r0;
+  const int a = latticeStep(mi.from, mi.to), b = latticeStep(mj.from, mj.to);
   if (a < 0 || b < 0) return -1;
+  const int dc = cell_c_[static_cast<std::size_t>(mj.from)] - cell_c_[static_cast<std::size_t>(mi.from)];
+  const int dr = cell_r_[static_cast<std::size_t>(mj.from)] - cell_r_[static_cast<std::size_t>(mi.from)];
   if (std::abs(dc) > table_reach_ || std::abs(dr) > table_reach_) return 0;
   const int side = 2 * table_reach_ + 1;
   return lattice_conflicts_[static_cast<std::size_t>(

@@ -1,12 +1,23 @@
 #include "lattice_search.hpp"
 
 #include <algorithm>
-#include <queue>
-#include <tuple>
 
 namespace earc::lattice {
 
-Occupancy::Occupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths) : rm_(rm), paths_(paths) {
+Occupancy::Occupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths)
+    : rm_(rm), paths_(paths), nv_(static_cast<std::size_t>(rm.vertexCount())) {
+  if (rm.allOnLattice()) {
+    // The conflict table's threats resolved to vertices once, so that a
+    // check reads a short list instead of the roadmap's geometry.
+    first_.reserve(5 * nv_ + 1);
+    for (int v = 0; v < rm.vertexCount(); ++v)
+      for (int a = 0; a < 5; ++a) {
+        first_.push_back(static_cast<std::uint32_t>(threats_.size()));
+        for (const CrowdRoadmap::LatticeThreat& th : rm.latticeThreats(a))
+          if (const int w = rm.latticeOffset(v, th.dc, th.dr); w >= 0) threats_.push_back({w, th.mask});
+      }
+    first_.push_back(static_cast<std::uint32_t>(threats_.size()));
+  }
   std::size_t h = 1;
   for (const auto& p : paths) h = std::max(h, p.size());
   grow(h);
@@ -14,49 +25,82 @@ Occupancy::Occupancy(const CrowdRoadmap& rm, std::vector<VertexPath>& paths) : r
 }
 
 void Occupancy::grow(std::size_t h) {
-  const auto nv = static_cast<std::size_t>(rm_.vertexCount());
-  if (occ_.empty()) {
-    occ_.assign(1, std::vector<int>(nv, -1));
-    nearby_.assign(1, std::vector<int>(nv, 0));
+  if (rows_ == 0) {
+    occ_.assign(nv_, -1);
+    nearby_.assign(nv_, 0);
+    step_.assign(nv_, 0);
+    rows_ = 1;
   }
-  while (occ_.size() < h) {
-    occ_.push_back(occ_.back());
-    nearby_.push_back(nearby_.back());
+  if (h <= rows_) return;
+  occ_.resize(h * nv_);
+  nearby_.resize(h * nv_);
+  step_.resize(h * nv_);
+  for (std::size_t t = rows_; t < h; ++t) {
+    std::copy_n(occ_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
+                occ_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
+    std::copy_n(nearby_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
+                nearby_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
+    std::copy_n(step_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
+                step_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
   }
+  rows_ = h;
 }
 
 void Occupancy::count(int v, std::size_t t, int delta) {
-  std::vector<int>& row = nearby_[t];
-  for (int w : rm_.near(v)) row[static_cast<std::size_t>(w)] += delta;
+  int* row = nearby_.data() + t * nv_;
+  for (int w : rm_.near(v)) row[w] += delta;
 }
 
 void Occupancy::put(int i) {
   const VertexPath& p = paths_[static_cast<std::size_t>(i)];
   grow(p.size());
-  for (std::size_t t = 0; t < occ_.size(); ++t) {
+  for (std::size_t t = 0; t < rows_; ++t) {
     const int v = vertexAt(p, t);
-    occ_[t][static_cast<std::size_t>(v)] = i;
+    occ_[t * nv_ + static_cast<std::size_t>(v)] = i;
+    step_[t * nv_ + static_cast<std::size_t>(v)] = static_cast<signed char>(rm_.latticeStep(v, vertexAt(p, t + 1)));
     count(v, t, +1);
   }
 }
 
 void Occupancy::remove(int i) {
   const VertexPath& p = paths_[static_cast<std::size_t>(i)];
-  for (std::size_t t = 0; t < occ_.size(); ++t) {
+  for (std::size_t t = 0; t < rows_; ++t) {
     const int v = vertexAt(p, t);
-    int& o = occ_[t][static_cast<std::size_t>(v)];
+    int& o = occ_[t * nv_ + static_cast<std::size_t>(v)];
     if (o != i) continue;
     o = -1;
     count(v, t, -1);
   }
 }
 
+bool Occupancy::blockedOnLattice(int i, int u, int v, int a, std::size_t t) const {
+  const std::size_t row = std::min(t, rows_ - 1) * nv_;
+  const int* now = occ_.data() + row;
+  const signed char* steps = step_.data() + row;
+  const std::size_t k = 5 * static_cast<std::size_t>(u) + static_cast<std::size_t>(a);
+  for (std::uint32_t x = first_[k]; x < first_[k + 1]; ++x) {
+    const Threat& th = threats_[x];
+    const int j = now[th.w];
+    if (j < 0 || j == i) continue;
+    if (const int b = steps[th.w]; b >= 0) {
+      if (th.mask >> b & 1u) return true;
+    } else if (rm_.conflict(i, {u, v}, j, {th.w, vertexAt(paths_[static_cast<std::size_t>(j)], t + 1)})) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool Occupancy::blocked(int i, int u, int v, std::size_t t) const {
-  const std::size_t row = std::min(t, occ_.size() - 1);
-  if (nearby_[row][static_cast<std::size_t>(u)] == 0) return false;
-  const std::vector<int>& now = occ_[row];
+  const std::size_t row = std::min(t, rows_ - 1);
+  if (nearby_[row * nv_ + static_cast<std::size_t>(u)] == 0) return false;
+  // On a lattice alone, the conflict table's few threatening cells decide
+  // (the same answer as rm_.conflict on every robot near u, for less).
+  if (!first_.empty())
+    if (const int a = rm_.latticeStep(u, v); a >= 0) return blockedOnLattice(i, u, v, a, t);
+  const int* now = occ_.data() + row * nv_;
   for (int w : rm_.near(u)) {
-    const int j = now[static_cast<std::size_t>(w)];
+    const int j = now[w];
     if (j < 0 || j == i) continue;
     if (rm_.conflict(i, {u, v}, j, {w, vertexAt(paths_[static_cast<std::size_t>(j)], t + 1)})) return true;
   }
@@ -65,16 +109,30 @@ bool Occupancy::blocked(int i, int u, int v, std::size_t t) const {
 
 std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
                                              std::size_t max_expansions, double weight) {
-  struct Node {
-    int v;
-    int t;
-    int parent;
+  // Open nodes in buckets by f, last in first out within one: among equally
+  // good nodes the deeper one, so that a search among equally good ways
+  // follows one of them to the goal.
+  nodes_.clear();
+  std::size_t lowest = 0, open_count = 0;
+  auto push = [&](std::size_t f, int node) {
+    if (f >= buckets_.size()) buckets_.resize(f + 1);
+    buckets_[f].push_back(node);
+    lowest = std::min(lowest, f);
+    ++open_count;
   };
-  std::vector<Node> nodes;
-  // (f, -t, node), smallest first: ties go to the deeper node, so that a
-  // search among equally good ways follows one of them to the goal.
-  using Entry = std::tuple<long long, long long, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  auto pop = [&]() {
+    while (buckets_[lowest].empty()) ++lowest;
+    const int k = buckets_[lowest].back();
+    buckets_[lowest].pop_back();
+    --open_count;
+    return k;
+  };
+  struct Emptied {  // every bucket empty again, whichever way the search ends
+    std::vector<std::vector<int>>& b;
+    ~Emptied() {
+      for (auto& x : b) x.clear();
+    }
+  } emptied{buckets_};
   const auto nv = static_cast<std::size_t>(rm_.vertexCount());
   const int goal = rm_.goal(i);
   // Beyond the horizon everyone stands still: a way much longer than the
@@ -98,13 +156,13 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
     }
   auto h = [&](int v, long long t) { return std::max<long long>(rm_.distanceToGoal(i, v), free_after + 1 - t); };
   if (h(rm_.start(i), 0) > max_cost) return std::nullopt;
-  nodes.push_back({rm_.start(i), 0, -1});
-  open.emplace(h(rm_.start(i), 0), 0, 0);
+  nodes_.push_back({rm_.start(i), 0, -1});
+  lowest = static_cast<std::size_t>(h(rm_.start(i), 0));
+  push(lowest, 0);
   std::size_t expanded = 0;
-  while (!open.empty()) {
-    const int k = std::get<2>(open.top());
-    open.pop();
-    const Node n = nodes[static_cast<std::size_t>(k)];
+  while (open_count > 0) {
+    const int k = pop();
+    const Node n = nodes_[static_cast<std::size_t>(k)];
     const std::size_t key = static_cast<std::size_t>(n.t) * nv + static_cast<std::size_t>(n.v);
     if (closed_[key] == stamp_) continue;
     closed_[key] = stamp_;
@@ -112,8 +170,8 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
     ++expansions_;
     if (n.v == goal && n.t > free_after) {
       VertexPath p;
-      for (int x = k; x >= 0; x = nodes[static_cast<std::size_t>(x)].parent)
-        p.push_back(nodes[static_cast<std::size_t>(x)].v);
+      for (int x = k; x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
+        p.push_back(nodes_[static_cast<std::size_t>(x)].v);
       std::reverse(p.begin(), p.end());
       return p;
     }
@@ -123,10 +181,10 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
       if (n.t + 1 + h(v, n.t + 1) > max_cost) return;
       if (closed_[static_cast<std::size_t>(n.t + 1) * nv + static_cast<std::size_t>(v)] == stamp_) return;
       if (occ.blocked(i, n.v, v, static_cast<std::size_t>(n.t))) return;
-      nodes.push_back({v, n.t + 1, k});
+      nodes_.push_back({v, n.t + 1, k});
       const long long hv = h(v, n.t + 1);
-      open.emplace(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv))), -(n.t + 1),
-                   static_cast<int>(nodes.size()) - 1);
+      push(static_cast<std::size_t>(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv)))),
+           static_cast<int>(nodes_.size()) - 1);
     };
     consider(n.v);
     for (int v : rm_.neighbours(n.v)) consider(v);

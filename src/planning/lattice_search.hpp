@@ -28,21 +28,32 @@ class Occupancy {
   void put(int i);
   void remove(int i);
   // Rows kept; the last one holds for ever after.
-  std::size_t horizon() const { return occ_.size(); }
+  std::size_t horizon() const { return rows_; }
   // The robot standing on v at step t; -1 for none.
-  int at(int v, std::size_t t) const {
-    return occ_[std::min(t, occ_.size() - 1)][static_cast<std::size_t>(v)];
-  }
+  int at(int v, std::size_t t) const { return occ_[std::min(t, rows_ - 1) * nv_ + static_cast<std::size_t>(v)]; }
   // Whether robot i's step u -> v from step t meets anyone in.
   bool blocked(int i, int u, int v, std::size_t t) const;
 
  private:
+  // A cell from which some lattice step conflicts with a step from a
+  // vertex: the vertex there and the conflicting step types (bit b).
+  struct Threat {
+    int w;
+    unsigned mask;
+  };
   void grow(std::size_t h);
   void count(int v, std::size_t t, int delta);
+  bool blockedOnLattice(int i, int u, int v, int a, std::size_t t) const;
   const CrowdRoadmap& rm_;
   std::vector<VertexPath>& paths_;
-  std::vector<std::vector<int>> occ_;     // [t][v]: robot or -1
-  std::vector<std::vector<int>> nearby_;  // [t][v]: robots on near(v)
+  std::size_t nv_ = 0, rows_ = 0;
+  std::vector<int> occ_;     // [t * nv + v]: robot or -1
+  std::vector<int> nearby_;  // [t * nv + v]: robots on near(v)
+  std::vector<signed char> step_;  // [t * nv + v]: the lattice step type of the robot there; -1 off it
+  // With every vertex on the lattice: per vertex and step type (5 v + a),
+  // threats_[first_[5 v + a] .. first_[5 v + a + 1]).
+  std::vector<std::uint32_t> first_;
+  std::vector<Threat> threats_;
 };
 
 // Space-time A* for robot i (not in occ) from its start to its goal, its
@@ -59,6 +70,13 @@ class StepSearch {
  private:
   const CrowdRoadmap& rm_;
   std::vector<std::uint32_t> closed_;  // per (step, vertex): the search that closed it
+  struct Node {
+    int v;
+    int t;
+    int parent;
+  };
+  std::vector<Node> nodes_;
+  std::vector<std::vector<int>> buckets_;  // open nodes by f
   std::uint32_t stamp_ = 0;
   long long expansions_ = 0;
 };

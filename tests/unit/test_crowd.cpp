@@ -357,6 +357,92 @@ TEST_CASE("One robot's search through the others' steps waits until its goal sta
   CHECK(greedy->back() == rm.goal(1));
 }
 
+namespace {
+
+// Random walks of the robots over rm's vertices for `steps` steps, no two
+// on one vertex at one step (the occupancy keeps one robot per vertex).
+std::vector<lattice::VertexPath> randomWalks(const CrowdRoadmap& rm, int steps, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const int n = rm.robotCount();
+  std::vector<lattice::VertexPath> paths(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) paths[static_cast<std::size_t>(i)] = {rm.start(i)};
+  for (int t = 0; t < steps; ++t)
+    for (int i = 0; i < n; ++i) {
+      std::vector<int> next;
+      rm.placesFrom(i, paths[static_cast<std::size_t>(i)].back(), next);
+      std::shuffle(next.begin(), next.end(), rng);
+      for (int v : next) {
+        bool taken = false;
+        for (int j = 0; j < i; ++j) taken = taken || paths[static_cast<std::size_t>(j)].back() == v;
+        for (int j = i + 1; j < n; ++j) taken = taken || paths[static_cast<std::size_t>(j)].back() == v;
+        if (!taken) {
+          paths[static_cast<std::size_t>(i)].push_back(v);
+          break;
+        }
+      }
+      if (static_cast<int>(paths[static_cast<std::size_t>(i)].size()) < t + 2)
+        paths[static_cast<std::size_t>(i)].push_back(paths[static_cast<std::size_t>(i)].back());
+    }
+  return paths;
+}
+
+}  // namespace
+
+TEST_CASE("The occupancy's step check agrees with the roadmap's conflict test against every robot") {
+  const std::vector<std::string> rows = {"......", ".#....", "......", "...#..", "......", "......"};
+  struct Case {
+    const char* name;
+    RobotSpec shape;
+    double offset;  // of the first robot's start from its cell centre: off the lattice when not 0
+  };
+  for (const Case& c : {Case{"discs of 0.3", RobotSpec::mobileDisc("", 0.3), 0.0},
+                        Case{"discs of 0.45", RobotSpec::mobileDisc("", 0.45), 0.0},
+                        Case{"discs of 0.3, one start off the lattice", RobotSpec::mobileDisc("", 0.3), 0.25}}) {
+    CAPTURE(c.name);
+    const Scenario sc = gridScenario(
+        rows,
+        {{{0.5 + c.offset, 0.5}, {5.5, 5.5}}, {{2.5, 0.5}, {0.5, 5.5}}, {{4.5, 1.5}, {1.5, 3.5}},
+         {{0.5, 3.5}, {5.5, 0.5}}, {{3.5, 5.5}, {2.5, 2.5}}, {{5.5, 3.5}, {3.5, 0.5}}},
+        c.shape);
+    const CollisionWorld world(sc);
+    const RobotModels models(sc);
+    std::vector<int> group;
+    std::vector<std::vector<double>> starts, goals;
+    for (std::size_t r = 0; r < sc.robots.size(); ++r) {
+      group.push_back(static_cast<int>(r));
+      starts.push_back(sc.robots[r].start);
+      goals.push_back(sc.robots[r].goal);
+    }
+    const CrowdRoadmap rm(world, models.raw, group, starts, goals);
+    CHECK(rm.allOnLattice() == (c.offset == 0.0));
+    int blocked = 0, checks = 0;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      std::vector<lattice::VertexPath> paths = randomWalks(rm, 12, seed);
+      const lattice::Occupancy occ(rm, paths);
+      for (int i = 0; i < rm.robotCount(); ++i)
+        for (int u = 0; u < rm.vertexCount(); ++u) {
+          std::vector<int> next;
+          rm.placesFrom(i, u, next);
+          for (int v : next)
+            for (std::size_t t = 0; t < 14; ++t) {
+              bool truth = false;
+              for (int j = 0; j < rm.robotCount(); ++j)
+                if (j != i)
+                  truth = truth || rm.conflict(i, {u, v}, j,
+                                               {lattice::vertexAt(paths[static_cast<std::size_t>(j)], t),
+                                                lattice::vertexAt(paths[static_cast<std::size_t>(j)], t + 1)});
+              const bool seen = occ.blocked(i, u, v, t);
+              CHECK(seen == truth);
+              blocked += truth;
+              ++checks;
+            }
+        }
+    }
+    // The walks meet often enough for the check to mean something.
+    CHECK(blocked > checks / 20);
+  }
+}
+
 TEST_CASE("Spread-out ways lead each robot to its goal and avoid a meeting that the shortest ways make") {
   // Two robots cross the middle of an open 5 x 5 grid: their only
   // shortest ways meet on the centre at step 2.

@@ -48,7 +48,7 @@ class CrowdRoadmap {
   int goal(int i) const { return goal_[static_cast<std::size_t>(i)]; }
   // Steps from v to robot i's goal over the vertices robot i may use;
   // kUnreachable where there is no way.
-  int distanceToGoal(int i, int v) const;
+  int distanceToGoal(int i, int v) const { return dist_[static_cast<std::size_t>(i)][static_cast<std::size_t>(v)]; }
   static constexpr int kUnreachable = 1 << 29;
   // Whether robot i may stand on v (lattice vertices and its own).
   bool usableBy(int i, int v) const { return owner(v) < 0 || owner(v) == i; }
@@ -60,6 +60,30 @@ class CrowdRoadmap {
   // bounding discs, and real footprints at the validated instants where a
   // robot is on or beside its own start or goal (heading known). Thread-safe.
   bool conflict(int i, CrowdMove mi, int j, CrowdMove mj) const;
+
+  // Where robot steps between lattice vertices meet a step of type a (0
+  // stays, 1-4 the axis moves) from the origin: each cell offset with the
+  // mask of the step types there that conflict (bit b). Thread-safe.
+  struct LatticeThreat {
+    int dc, dr;
+    unsigned mask;
+  };
+  const std::vector<LatticeThreat>& latticeThreats(int a) const { return threats_[static_cast<std::size_t>(a)]; }
+  // The type of the step u -> v between lattice vertices; -1 otherwise.
+  int latticeStep(int u, int v) const {
+    const int c0 = cell_c_[static_cast<std::size_t>(u)], c1 = cell_c_[static_cast<std::size_t>(v)];
+    if (c0 < 0 || c1 < 0) return -1;
+    const int dc = c1 - c0, dr = cell_r_[static_cast<std::size_t>(v)] - cell_r_[static_cast<std::size_t>(u)];
+    if (dr == 0 && dc >= -1 && dc <= 1) return dc == 0 ? 0 : (dc == 1 ? 1 : 2);
+    if (dc == 0 && (dr == 1 || dr == -1)) return dr == 1 ? 3 : 4;
+    return -1;
+  }
+  // The lattice vertex dc columns and dr rows from lattice vertex v; -1 for none.
+  int latticeOffset(int v, int dc, int dr) const {
+    return latticeAt(cell_c_[static_cast<std::size_t>(v)] + dc, cell_r_[static_cast<std::size_t>(v)] + dr);
+  }
+  // Whether every vertex is on the lattice (no robot has an own vertex off it).
+  bool allOnLattice() const { return all_on_lattice_; }
 
   double radius() const { return radius_; }    // the bounding disc R
   double spacing() const { return spacing_; }  // lattice spacing
@@ -101,6 +125,8 @@ class CrowdRoadmap {
   std::vector<int> cell_c_, cell_r_;  // per vertex: its lattice column and row; -1 off it
   int table_reach_ = 0;               // the conflict table's offsets between the robots, in cells
   std::vector<signed char> lattice_conflicts_;
+  std::vector<std::vector<LatticeThreat>> threats_;
+  bool all_on_lattice_ = false;
   std::vector<geo::Vec2> pos_;
   std::vector<int> owner_;
   std::vector<std::vector<int>> adj_;
