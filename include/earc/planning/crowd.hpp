@@ -27,11 +27,12 @@ struct CrowdOutcome {
 
 // Plans robots[i] (indices into models, all mobile) from starts[i] to
 // goals[i] together, ignoring every other robot, then shortens the plan on
-// the roadmap for up to lattice_refine_s seconds. Throws std::invalid_argument for an arm.
+// the roadmap for most of refine_s seconds. Throws
+// std::invalid_argument for an arm.
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
-                       double lattice_refine_s = 0.0);
+                       double refine_s = 0.0);
 
 // Time-stamped paths of LaCAM's configurations, `per_step` time steps per
 // configuration step, headings turned on the lattice (crowd.cpp says how).
