@@ -186,7 +186,11 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
     // Solvers pad every path of a subproblem to its common length (the
     // prioritized baseline: to the whole makespan), which made its sum of
     // costs n x makespan: a robot waiting at its goal is not counted.
-    for (Path& p : result.solution.paths) p.dropTrailingWaits();
+    const RobotModels settled(scenario);
+    for (std::size_t r = 0; r < result.solution.paths.size() && r < settled.raw.size(); ++r) {
+      settleAtGoal(*settled.raw[r], result.solution.paths[r]);
+      result.solution.paths[r].dropTrailingWaits();
+    }
     ValidatorSettings vs;
     vs.max_listed = 3;
     std::vector<Path> uncompacted;

@@ -3,6 +3,7 @@
 // Kinematics follow shared/tools/check_solution.py operation by operation.
 #include "earc/scene/robot_model.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <climits>
 #include <cstdio>
@@ -370,6 +371,19 @@ void armJointPositions(const RobotSpec& arm, const double* q, std::vector<geo::V
   out.clear();
   out.push_back(arm.base_position);
   walkArm(arm, q, [&](std::size_t, geo::Vec2, geo::Vec2 to) { out.push_back(to); });
+}
+
+// A solver's interpolation or OMPL's wrapped headings leave a robot waiting
+// at its goal on a state that differs from the exact goal by rounding or by
+// 2 pi, and the exact goal only at the very end: without this its cost ran
+// to the makespan.
+void settleAtGoal(const RobotModel& model, Path& path) {
+  constexpr double kSame = 1e-6;  // in steps of the robot's resolution
+  if (path.size() < 2) return;
+  const std::size_t last = path.size() - 1;
+  std::size_t k = last;
+  while (k > 0 && model.distance(path.at(k - 1), path.at(last)) < kSame) --k;
+  for (std::size_t t = k; t < last; ++t) std::copy_n(path.at(last), path.dim(), path.mutableAt(t));
 }
 
 }  // namespace earc

@@ -2,6 +2,7 @@
 // limits, signatures and sampling bounds.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -310,4 +311,36 @@ TEST_CASE("every body part stays inside the bounding disc") {
       for (const geo::Body& p : parts) CHECK(farthestFrom(p, m->boundingCenter(q.data())) <= m->boundingRadius() + 1e-12);
     }
   }
+}
+
+TEST_CASE("settleAtGoal ends a path where the robot arrived, waits on a 2 pi turn or rounding noise included") {
+  auto m = makeRobotModel(discSpec(0.3), kRes);
+  constexpr double kTwoPi = 6.283185307179586;
+  Path p(3);
+  for (const std::array<double, 3>& q : std::vector<std::array<double, 3>>{
+           {0.0, 0.0, 0.5}, {0.05, 0.0, 0.5}, {0.1, 0.0, 0.5 + kTwoPi}, {0.1, 0.0, 0.5 + kTwoPi}, {0.1 + 1e-13, 0.0, 0.5}, {0.1, 0.0, 0.5}})
+    p.push(q.data());
+  settleAtGoal(*m, p);
+  p.dropTrailingWaits();
+  REQUIRE(p.size() == 3);
+  CHECK(p.at(2)[0] == 0.1);
+  CHECK(p.at(2)[2] == 0.5);
+  CHECK(p.at(1)[0] == 0.05);
+  // A last step that moves is kept: the robot arrives with it.
+  Path moving(3);
+  for (const std::array<double, 3>& q :
+       std::vector<std::array<double, 3>>{{0.0, 0.0, 0.0}, {0.05, 0.0, 0.0}, {0.05, 0.0, 0.0}, {0.1, 0.0, 0.0}})
+    moving.push(q.data());
+  settleAtGoal(*m, moving);
+  moving.dropTrailingWaits();
+  CHECK(moving.size() == 4);
+  // Arms: joint noise far below a step settles; a real move does not.
+  auto arm = makeRobotModel(armSpec({1, 1}, 0.05), kRes);
+  Path a(2);
+  for (const std::array<double, 2>& q :
+       std::vector<std::array<double, 2>>{{0.0, 0.0}, {0.3, 0.2}, {0.3 + 1e-12, 0.2}, {0.3, 0.2}})
+    a.push(q.data());
+  settleAtGoal(*arm, a);
+  a.dropTrailingWaits();
+  CHECK(a.size() == 2);
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "earc/geometry/shapes.hpp"
+#include "earc/scene/path.hpp"
 #include "earc/scene/scenario.hpp"
 
 namespace earc {
@@ -103,6 +104,11 @@ struct RobotModels {
   std::vector<const RobotModel*> raw;
   explicit RobotModels(const Scenario& scenario);
 };
+
+// Sets the states at the end of `path` that equal its last one up to
+// rounding or a turn of 2 pi (by model.distance) to exactly the last one,
+// so that dropping trailing waits ends the path where it arrived. Thread-safe.
+void settleAtGoal(const RobotModel& model, Path& path);
 
 // Forward kinematics of a planar arm: joint positions (n+1 points, the base
 // first) for configuration q.
