@@ -233,6 +233,10 @@ class ArcRun {
   std::size_t jam_conflicts_since_handover_ = 0;
   std::vector<CrowdHandover> handovers_;
   double crowd_s_ = 0.0;
+  // A jam planned with every robot in it, with --refine: the crowd
+  // solver's run, whose lattice refinement is not part of the first plan.
+  std::optional<LacamStats> whole_crowd_;
+  double lattice_s_ = 0.0;
   Stopwatch plan_clock_;
 };
 
@@ -270,13 +274,24 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // on a lattice that does not suit these robots (a dense few box robots)
   // must not take ARC's time.
   const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, plan_clock_.seconds()));
+  // A jam of every robot is the whole plan: with --refine it is shortened
+  // on the crowd solver's roadmap, as --method lacam does, and that time
+  // is refinement's (plan.cpp's refineResult reads stats.lacam).
+  const bool whole = group.size() == paths_.size();
+  const double refine_s = whole ? settings_.refine_s : 0.0;
   CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
-                               splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())));
-  crowd_s_ += sw.seconds();
+                               splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())),
+                               refine_s, &deadline_);
+  const double lattice_s = out.stats.lattice_refine ? out.stats.lattice_refine->value("s", 0.0) : 0.0;
+  if (out.paths && lattice_s > 0) {
+    whole_crowd_ = out.stats;
+    lattice_s_ += lattice_s;
+  }
+  crowd_s_ += sw.seconds() - lattice_s;
   nlohmann::json ev = {{"type", "jam"}, {"conflict", conflicts_ - 1}, {"robots", group.size()},
-                       {"solved", out.paths.has_value()}, {"time_s", sw.seconds()}};
+                       {"solved", out.paths.has_value()}, {"time_s", sw.seconds() - lattice_s}};
   if (!out.why.empty()) ev["detail"] = out.why;
-  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), sw.seconds()});
+  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), sw.seconds() - lattice_s});
   traceEvent(ev);
   if (!out.paths) {
     if (deadline_.expired()) return false;
@@ -502,7 +517,8 @@ PlanResult ArcRun::run() {
   result.solution.solved = solved;
   if (solved) result.solution.paths = std::move(paths_);
   result.failures = failures_;
-  result.stats.planning_time_s = clock.seconds();
+  result.stats.planning_time_s = clock.seconds() - lattice_s_;
+  if (solved && whole_crowd_) result.stats.lacam = whole_crowd_;
   ArcStats& st = result.stats.arc.emplace();
   st.individual_paths_s = individual_s;
   st.conflicts = conflicts_;

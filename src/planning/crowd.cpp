@@ -86,7 +86,7 @@ static double latticeRefineShare(bool grid_lattice) { return grid_lattice ? 0.95
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
-                       double refine_s) {
+                       double refine_s, const Deadline* refine_deadline) {
   CrowdOutcome out;
   Stopwatch clock;
   const CrowdRoadmap rm(world, models, robots, starts, goals);
@@ -124,7 +124,7 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     }
     Stopwatch lns;
     nlohmann::json& lattice = out.stats.lattice_refine.emplace(
-        refineOnLattice(rm, configs, deadline.capped(lattice_refine_s), seed));
+        refineOnLattice(rm, configs, (refine_deadline ? *refine_deadline : deadline).capped(lattice_refine_s), seed));
     lattice["s"] = lns.seconds();
   }
   const int per_step = rm.stepsPerEdge();

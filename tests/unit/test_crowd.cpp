@@ -256,6 +256,38 @@ TEST_CASE("ARC hands a jam on a crowded grid to the crowd solver and solves it; 
   CHECK(alone.stats.arc->crowd_s == 0.0);
 }
 
+TEST_CASE("ARC with --refine shortens a jam of every robot on the crowd solver's lattice, off the first plan's clock") {
+  std::vector<std::string> rows(7, ".......");
+  rows[3] = "...#...";
+  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
+  for (int r = 0; r < 7; ++r)
+    for (int c = 0; c < 7; ++c)
+      if (r != 3) moves.push_back({{c + 0.5, r + 0.5}, {6 - c + 0.5, 6 - r + 0.5}});
+  const Scenario sc = gridScenario(rows, moves, RobotSpec::mobileDisc("", 0.3));
+  PlannerSettings s;
+  s.method = Method::Arc;
+  s.time_limit_s = 30;
+  s.refine_s = 1.0;
+  const PlanResult r = plan(sc, s);
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(sc, r.solution).valid);
+  REQUIRE(!r.stats.arc->crowd_handovers.empty());
+  REQUIRE(r.stats.arc->crowd_handovers.back().robots == static_cast<std::int64_t>(moves.size()));
+  REQUIRE(r.stats.lacam.has_value());
+  REQUIRE(r.stats.lacam->lattice_refine.has_value());
+  const auto& lattice = *r.stats.lacam->lattice_refine;
+  CHECK(lattice.at("sum_of_costs_after").get<long long>() <= lattice.at("sum_of_costs_before").get<long long>());
+  REQUIRE(r.stats.refine.has_value());
+  CHECK(r.stats.refine->final_sum_of_costs <= r.stats.refine->first_sum_of_costs);
+  CHECK(r.stats.refine->first_sum_of_costs == *r.stats.lacam->first_sum_of_costs);
+  // The first plan's time leaves the lattice refinement out; the record
+  // starts at the first plan and counts the lattice run as refinement.
+  CHECK(r.stats.refine->history.front().s == *r.stats.planning_time_s);
+  REQUIRE(r.stats.refine->lattice_s.has_value());
+  CHECK(*r.stats.refine->lattice_s == lattice.at("s").get<double>());
+  CHECK(r.stats.refine->seconds_spent >= *r.stats.refine->lattice_s);
+}
+
 }  // namespace earc
 
 namespace earc {

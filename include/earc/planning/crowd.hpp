@@ -26,13 +26,13 @@ struct CrowdOutcome {
 };
 
 // Plans robots[i] (indices into models, all mobile) from starts[i] to
-// goals[i] together, ignoring every other robot, then shortens the plan on
-// the roadmap for most of refine_s seconds. Throws
-// std::invalid_argument for an arm.
+// goals[i] together, ignoring every other robot, within `deadline`; then
+// shortens the plan on the roadmap for most of refine_s seconds, within
+// refine_deadline if given. Throws std::invalid_argument for an arm.
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
-                       double refine_s = 0.0);
+                       double refine_s = 0.0, const Deadline* refine_deadline = nullptr);
 
 // Time-stamped paths of LaCAM's configurations, `per_step` time steps per
 // configuration step, headings turned on the lattice (crowd.cpp says how).
