@@ -277,11 +277,13 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // A jam of every robot is the whole plan: with --refine it is shortened
   // on the crowd solver's roadmap, as --method lacam does, and that time
   // is refinement's (plan.cpp's refineResult reads stats.lacam).
-  const bool whole = group.size() == paths_.size();
-  const double refine_s = whole ? settings_.refine_s : 0.0;
+  CrowdOptions options;
+  options.polish = true;
+  if (group.size() == paths_.size()) options.refine_s = settings_.refine_s;
+  options.refine_deadline = &deadline_;
   CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
                                splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())),
-                               refine_s, &deadline_);
+                               options);
   const double lattice_s = out.stats.lattice_refine ? out.stats.lattice_refine->value("s", 0.0) : 0.0;
   if (out.paths && lattice_s > 0) {
     whole_crowd_ = out.stats;

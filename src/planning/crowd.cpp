@@ -5,6 +5,7 @@
 
 #include "earc/planning/lacam.hpp"
 #include "earc/planning/lattice_lns.hpp"
+#include "earc/util/random.hpp"
 
 namespace earc {
 
@@ -86,7 +87,7 @@ static double latticeRefineShare(bool grid_lattice) { return grid_lattice ? 0.95
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
-                       double refine_s, const Deadline* refine_deadline) {
+                       const CrowdOptions& options) {
   CrowdOutcome out;
   Stopwatch clock;
   const CrowdRoadmap rm(world, models, robots, starts, goals);
@@ -106,15 +107,22 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     out.timed_out = r.timed_out;
     return out;
   }
-  out.stats.roadmap_steps = static_cast<std::int64_t>(r.configs.size()) - 1;
-  out.stats.first_solution_s = clock.seconds();
   std::vector<std::vector<int>> configs = r.configs;
-  const double lattice_refine_s = latticeRefineShare(rm.gridAligned()) * refine_s;
+  if (options.polish) {
+    // One round of single robots: cheap next to the search (a robot's
+    // space-time search each), and it takes out most of LaCAM's detours.
+    out.stats.polish = refineOnLattice(rm, configs, deadline, splitSeed(seed, 0x9011), rm.robotCount());
+  }
+  out.stats.roadmap_steps = static_cast<std::int64_t>(configs.size()) - 1;
+  out.stats.first_solution_s = clock.seconds();
+  const double lattice_refine_s = latticeRefineShare(rm.gridAligned()) * options.refine_s;
   if (lattice_refine_s > 0) {
     // The first plan's costs, for refinement's record of cost over time.
     if (auto first = crowdPaths(rm, configs, rm.stepsPerEdge(), starts, goals)) {
       std::size_t soc = 0, makespan = 0;
-      for (Path& p : *first) {
+      for (std::size_t i = 0; i < first->size(); ++i) {
+        Path& p = (*first)[i];
+        settleAtGoal(rm.model(static_cast<int>(i)), p);  // as plan() counts costs
         p.dropTrailingWaits();
         soc += p.size() - 1;
         makespan = std::max(makespan, p.size() - 1);
@@ -124,7 +132,7 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     }
     Stopwatch lns;
     nlohmann::json& lattice = out.stats.lattice_refine.emplace(
-        refineOnLattice(rm, configs, (refine_deadline ? *refine_deadline : deadline).capped(lattice_refine_s), seed));
+        refineOnLattice(rm, configs, (options.refine_deadline ? *options.refine_deadline : deadline).capped(lattice_refine_s), seed));
     lattice["s"] = lns.seconds();
   }
   const int per_step = rm.stepsPerEdge();

@@ -30,8 +30,9 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   // roadmap, where a space-time search is cheap next to refinePlan's on
   // the timed paths; refinePlan takes the rest (shortcuts off the axes).
   const double setup_s = clock.seconds();
-  CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed,
-                               settings.refine_s);
+  CrowdOptions options;
+  options.refine_s = settings.refine_s;
+  CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed, options);
   result.stats.lacam = out.stats;
   if (out.paths) {
     result.solution.solved = true;

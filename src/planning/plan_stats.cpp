@@ -70,6 +70,7 @@ template <class F> void statsFields(LacamStats& s, F&& f) {
   f("first_solution_s", s.first_solution_s);
   f("first_sum_of_costs", s.first_sum_of_costs);
   f("first_makespan", s.first_makespan);
+  f("polish", s.polish);
   f("lattice_refine", s.lattice_refine);
   f("steps_per_roadmap_step", s.steps_per_roadmap_step);
 }

@@ -25,14 +25,24 @@ struct CrowdOutcome {
   bool timed_out = false;
 };
 
+// What planCrowd does after its first plan.
+struct CrowdOptions {
+  // Each robot that waits or detours is replanned once alone on the
+  // roadmap, as part of the first plan (ARC's jams).
+  bool polish = false;
+  // Then the plan is shortened on the roadmap for most of refine_s seconds,
+  // within refine_deadline if given, else the plan's deadline.
+  double refine_s = 0.0;
+  const Deadline* refine_deadline = nullptr;
+};
+
 // Plans robots[i] (indices into models, all mobile) from starts[i] to
-// goals[i] together, ignoring every other robot, within `deadline`; then
-// shortens the plan on the roadmap for most of refine_s seconds, within
-// refine_deadline if given. Throws std::invalid_argument for an arm.
+// goals[i] together, ignoring every other robot, within `deadline`, then
+// as `options` say. Throws std::invalid_argument for an arm.
 CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const RobotModel*>& models,
                        const std::vector<int>& robots, const std::vector<std::vector<double>>& starts,
                        const std::vector<std::vector<double>>& goals, const Deadline& deadline, std::uint64_t seed,
-                       double refine_s = 0.0, const Deadline* refine_deadline = nullptr);
+                       const CrowdOptions& options = {});
 
 // Time-stamped paths of LaCAM's configurations, `per_step` time steps per
 // configuration step, headings turned on the lattice (crowd.cpp says how).

@@ -61,6 +61,7 @@ struct LacamStats {
   std::int64_t configurations = 0, expansions = 0, spread_meetings = 0;
   std::optional<std::int64_t> roadmap_steps, steps_per_roadmap_step, first_sum_of_costs, first_makespan;
   std::optional<double> first_solution_s;
+  std::optional<nlohmann::json> polish;          // CrowdOptions::polish: refineOnLattice's figures
   std::optional<nlohmann::json> lattice_refine;  // refineOnLattice's figures and "s"
 };
 
