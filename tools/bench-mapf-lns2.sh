@@ -12,7 +12,9 @@
 # MAPF-LNS2: github.com/Jiaoyang-Li/MAPF-LNS2, needs Boost (program_options,
 # system, filesystem) and Eigen 3: cmake -B build -DCMAKE_BUILD_TYPE=RELEASE
 # && make -C build; binary build/lns. Its -t does not count its heuristic
-# tables (about 0.1 s here); earc's and LaCAM3's times do.
+# tables (about 0.1 s here); earc's and LaCAM3's times do. BALANCE (Phan et
+# al. 2024, github.com/thomyphan/anytime-mapf, binary build/balance) takes
+# the same command line and writes the same CSV.
 set -euo pipefail
 build=${1:?build directory or -}; lns2=${2:?MAPF-LNS2 binary}; secs=${3:-5}; reps=${4:-3}
 shift $(( $# < 4 ? $# : 4 ))
@@ -37,11 +39,11 @@ for c in "${cases[@]}"; do
   [[ -n $build ]] && "$build/earc-scenario" movingai "$map" --scen "$map-random-1" --robots "$n" -o "$tmp/s.json" >/dev/null
   : > "$tmp/rows"
   for ((r = 1; r <= reps; r++)); do
-    # MAPF-LNS2 appends one CSV row per run: soc, first soc, LB, ..., first solution time.
+    # MAPF-LNS2 appends a CSV row per run: 2 SOC, 5 sum of distances, 8 first solution time.
     rm -f "$tmp/m-LNS.csv"
     "$lns2" -m "$data/$map.map" -a "$data/$map-random-1.scen" -k "$n" -t "$secs" --seed "$r" \
       "${lns2_opts[@]}" -o "$tmp/m" >/dev/null 2>&1 || true
-    row=$(tail -n 1 "$tmp/m-LNS.csv" 2>/dev/null | awk -F, '{print $2, $4, $8}')
+    row=$(tail -n 1 "$tmp/m-LNS.csv" 2>/dev/null | awk -F, '{print $2, $5, $8}')
     e=nan l=nan
     if [[ -n $build ]]; then
       "$build/earc-plan" plan "$tmp/s.json" --method lacam --refine "$secs" --seed "$r" -o "$tmp/e.json" >/dev/null 2>&1 || true
