@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "earc/cli/stop_signals.hpp"
 #include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
@@ -185,7 +186,17 @@ std::string databaseSummary(const PlanStats& st) {
   return line;
 }
 
+// The line said after a stop signal, once the solution is written.
+std::string interruptedLine(const char* signal_name, const PlanResult& r) {
+  std::string line = std::string("earc-plan: interrupted (") + signal_name + "): ";
+  if (!r.solution.solved) return line + "planning stopped unsolved, as at the time limit; the solution file says so";
+  return line + "planning stopped; the best valid plan found so far is written";
+}
+
 int runPlan(const PlanOptions& o) {
+  // Ctrl-C (or SIGTERM) stops planning soon instead of ending the process:
+  // what was planned is written as at the time limit (see interruptedLine).
+  cli::StopSignals signals;
   // Before any planning: no output may overwrite an input or the other
   // output, and each must be writable.
   requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db, true}, {"-o", o.output}, {"--trace", o.trace}});
@@ -235,6 +246,7 @@ int runPlan(const PlanOptions& o) {
   PlanProgress progress;
   PlanContext context;
   context.progress = &progress;
+  context.stop = &signals.flag();
   ProgressLine line(!o.quiet, o.method, o.time_limit, static_cast<int>(scenario.robots.size()), progress);
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store, context); })
                        : plan(scenario, s, nullptr, context);
@@ -243,6 +255,8 @@ int runPlan(const PlanOptions& o) {
     r.stats.db_learn_error = full_disk;
     r.solution.stats["db_learn_error"] = full_disk;
   }
+  const bool interrupted = signals.signal() != 0;
+  if (interrupted) r.solution.stats["interrupted"] = signals.signalName();
   saveSolution(o.output, r.solution);
   // What could not be written to the database (a full disk) is said once,
   // after the plan is saved. Closing here, not in the destructor, keeps it
@@ -282,6 +296,10 @@ int runPlan(const PlanOptions& o) {
               << " (the plan is written; the database keeps what it had)\n";
   else if (!close_error.empty())
     std::cerr << "earc-plan: warning: closing " << printableText(close_error, 4096) << "\n";
+  if (interrupted) {
+    std::cerr << interruptedLine(signals.signalName(), r) << "\n";
+    return signals.exitCode();
+  }
   return r.solution.solved ? 0 : 1;
 }
 
