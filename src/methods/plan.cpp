@@ -7,12 +7,14 @@
 #include <memory>
 
 #include "earc/baselines/lightning.hpp"
+#include "earc/experience/store.hpp"
 #include "earc/methods/database_solver.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/planning/refine.hpp"
 #include "earc/planning/roadmap.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/random.hpp"
 #include "earc/util/version.hpp"
 #include "earc/validate/validator.hpp"
@@ -225,6 +227,28 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   result.stats.earc_version = version();
   result.solution.stats = result.stats.toJson();
   return result;
+}
+
+// The check's verdict names damage best, so it is thrown also when planning
+// met the damage first. awaitCheck() also counts the session, a write: one
+// lost leaves the plan standing, as a lesson lost in learning does.
+PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore& store,
+                              const PlanContext& context) {
+  try {
+    PlanResult planned = plan(scenario, settings, &store, context);
+    try {
+      store.awaitCheck();
+    } catch (const exp::WriteLostError& e) {
+      if (!planned.stats.db_learn_error) {
+        planned.stats.db_learn_error = oneLine(e.what());
+        planned.solution.stats = planned.stats.toJson();
+      }
+    }
+    return planned;
+  } catch (const exp::DamagedDatabaseError&) {
+    store.awaitCheck();
+    throw;
+  }
 }
 
 }  // namespace earc

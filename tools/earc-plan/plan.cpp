@@ -51,26 +51,6 @@ struct PlanOptions {
   bool quiet = false;
 };
 
-// The plan, once the store's background quick_check has passed: its error
-// is thrown instead, also when planning met the damage first (the check's
-// verdict names it best).
-PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store,
-                              const PlanContext& context) {
-  try {
-    PlanResult planned = plan(scenario, s, &store, context);
-    try {
-      store.awaitCheck();  // also counts the session, a write
-    } catch (const exp::NoSpaceError& e) {
-      // The plan stands (see runPlan).
-      if (!planned.stats.db_learn_error) planned.stats.db_learn_error = oneLine(e.what());
-    }
-    return planned;
-  } catch (const exp::DamagedDatabaseError&) {
-    store.awaitCheck();
-    throw;
-  }
-}
-
 // On a terminal, a plan that takes a while says how far it has got: one
 // line on stderr, redrawn in place four times a second from the first half
 // second on, and cleared before the summary. Nothing when stderr is not a
@@ -251,28 +231,29 @@ int runPlan(const PlanOptions& o) {
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store, context); })
                        : plan(scenario, s, nullptr, context);
   line.stop();
-  if (!full_disk.empty()) {
-    r.stats.db_learn_error = full_disk;
-    r.solution.stats["db_learn_error"] = full_disk;
-  }
-  const bool interrupted = signals.signal() != 0;
-  if (interrupted) r.solution.stats["interrupted"] = signals.signalName();
-  saveSolution(o.output, r.solution);
-  // What could not be written to the database (a full disk) is said once,
-  // after the plan is saved. Closing here, not in the destructor, keeps it
-  // to one line; another error at close (the file found damaged) is a
-  // warning, as the destructor's was.
-  std::string learn_error = r.stats.db_learn_error.value_or("");
+  // Closed before the plan is saved, so that what it could not write (a
+  // full disk) reaches the solution's stats as what learning lost does.
+  // Closing here, not in the destructor, keeps it to one line; another
+  // error at close (the file found damaged) is a warning, as the
+  // destructor's was.
   std::string close_error;
   if (store) {
     try {
       store->close();
-    } catch (const exp::NoSpaceError& e) {
-      if (learn_error.empty()) learn_error = oneLine(e.what());
+    } catch (const exp::WriteLostError& e) {
+      if (!r.stats.db_learn_error) r.stats.db_learn_error = oneLine(e.what());
     } catch (const exp::StoreError& e) {
       close_error = oneLine(e.what());
     }
   }
+  if (!full_disk.empty()) r.stats.db_learn_error = full_disk;
+  const bool interrupted = signals.signal() != 0;
+  if (interrupted) r.stats.extra["interrupted"] = signals.signalName();
+  r.solution.stats = r.stats.toJson();
+  saveSolution(o.output, r.solution);
+  // What could not be written to the database is said once, after the
+  // plan is saved.
+  const std::string learn_error = r.stats.db_learn_error.value_or("");
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {
     const auto& st = r.stats;
