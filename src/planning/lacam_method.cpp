@@ -35,7 +35,7 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   // the timed paths; refinePlan takes the rest (shortcuts off the axes).
   const double setup_s = clock.seconds();
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed,
-                               kLatticeRefineShare * settings.refine_s);
+                               kLatticeRefineShare * settings.post.refine_s);
   result.stats.lacam = out.stats;
   if (out.paths) {
     result.solution.solved = true;

@@ -215,8 +215,8 @@ int runPlan(const PlanOptions& o) {
   // A disk too full to open the database for learning costs the lesson,
   // not the plan (said after the plan is written).
   std::string full_disk;
-  auto store = openStoreForPlanning(s.method, o.db, s.db_learn, &full_disk);
-  if (!full_disk.empty()) s.db_learn = false;
+  auto store = openStoreForPlanning(s.method, o.db, s.db.learn, &full_disk);
+  if (!full_disk.empty()) s.db.learn = false;
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
@@ -323,11 +323,11 @@ void setupPlan(CLI::App& app) {
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");
   cmd->add_option("--db-k", opts->db_k,
                   "E-ARC: stored solutions retrieved per subproblem, nearest first (default " +
-                      std::to_string(PlannerSettings{}.db_k) + ")")
+                      std::to_string(PlannerSettings{}.db.k) + ")")
       ->check(earc::cli::wholeNumberIn(1, 1000));
   cmd->add_option("--db-repair-max", opts->db_repair_max,
                   "E-ARC: repair a retrieved solution with at most this many invalid runs of segments; 0: never "
-                  "repair (default " + std::to_string(PlannerSettings{}.db_max_invalid_segments) + ")")
+                  "repair (default " + std::to_string(PlannerSettings{}.db.max_invalid_segments) + ")")
       ->check(earc::cli::wholeNumberIn(0, 1000));
   cmd->add_option("--db-max-stretch", opts->db_max_stretch,
                   "E-ARC: refuse a database answer longer than this many times the steps its slowest robot needs "

@@ -3,7 +3,7 @@
 // closest stored solutions of its class, map them back into the
 // subproblem's frame and robot order; and learn a solved subproblem.
 //
-//   auto candidates = exp::retrieveCandidates(store, robots, starts, goals, settings.db_k);
+//   auto candidates = exp::retrieveCandidates(store, robots, starts, goals, settings.db.k);
 //   for (auto& c : candidates) { ... validate / connect / repair c.paths ...
 //                                store.recordUse(c.id, resolved); }
 //   if (solved_from_scratch) exp::learn(store, robots, local.paths, seconds, exp::Source::Planner);
