@@ -286,7 +286,7 @@ int runPlan(const PlanOptions& o) {
 
 void setupPlan(CLI::App& app) {
   auto opts = std::make_shared<PlanOptions>();
-  auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved)");
+  auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved, 130 interrupted)");
   cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->check(earc::cli::kFileName)->required();
   cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->check(earc::cli::kFileName)->required();
   cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled, lightning or lacam (crowds)")->capture_default_str();
