@@ -377,8 +377,8 @@ PlanResult LightningDatabase::plan(const Scenario& scenario, const PlannerSettin
 // plan()'s Lightning: the database file of the settings, if any.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context) {
   LightningSettings ls;
-  ls.db_path = settings.lightning_db;
-  ls.learn = settings.db_learn;
+  ls.db_path = settings.db.lightning_file;
+  ls.learn = settings.db.learn;
   return planLightning(scenario, settings, ls, context);
 }
 

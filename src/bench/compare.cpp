@@ -112,6 +112,7 @@ CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t s
   return st;
 }
 
+// Under the heading: how many plans each side failed, and the ratios.
 std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats,
                        const std::vector<std::string>& heading) {
   struct Point {
@@ -525,6 +526,8 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
 
 }  // namespace
 
+// Bad options: a program that cannot run, a database missing for earc, a
+// scenario file that is not one, an argument plannerArgsProblem refuses.
 CompareSummary runCompare(const CompareOptions& options, std::ostream& log) {
   std::vector<Job> jobs = prepareJobs(options);
   InterruptGuard guard;

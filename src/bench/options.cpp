@@ -24,6 +24,8 @@ void requireExecutable(const std::string& path, const std::string& option) {
     throw InputError(path, option, "not an executable program");
 }
 
+// A name ending like a file is refused: plot -o fig.png would make a
+// directory fig.png holding the figures.
 void requireOutputDirectory(const std::string& path, const std::string& option) {
   std::error_code ec;
   if (fs::exists(path, ec)) {
@@ -96,6 +98,12 @@ bool stopsThePlan(const std::string& arg) {
 
 }  // namespace
 
+// Refused: an argument that sets what earc-bench gives earc-plan itself
+// (the scenario, -o, --method, --time-limit, --seed, --db, --no-learn, -q)
+// or stops every plan (--help, --version, --); an empty one; one with a
+// control character or not UTF-8 (results files record it, tables show it
+// on one line). Whether earc-plan takes the rest is for earc-plan to say:
+// compare and run stop at the first plan it refuses (refusedItsCommand).
 std::optional<std::string> plannerArgsProblem(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];

@@ -164,6 +164,10 @@ struct ResultsDb::Impl {
   }
 };
 
+// Refused, as exp::checkFileIdentity refuses an experience store: not
+// SQLite, another application_id, a newer schema version (the message
+// names both), a table of the schema missing; and a row holding a value no
+// run writes (two rows of one method with different planner_args too).
 ResultsDb::ResultsDb(const std::string& path, bool read_only) {
   try {
     impl_ = std::make_unique<Impl>(path, read_only);
@@ -360,6 +364,7 @@ std::vector<TrialRecord> ResultsDb::trials() const {
   return out;
 }
 
+// One read serves a resumed run's checks (runner.cpp) and the queries.
 const std::vector<TrialRecord>& ResultsDb::recordedTrials() const {
   if (!impl_->trials_read) trials();
   return *impl_->trials_read;

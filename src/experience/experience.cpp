@@ -154,6 +154,10 @@ std::optional<std::string> signatureProblem(const ExperienceClass& c, const std:
   return std::nullopt;
 }
 
+// kMaxStoredPosition: a subproblem is a conflict's neighbourhood, a few
+// units across from the builder, and a scenario at the default resolution
+// is at most 5e5 units across (1e7 steps of 0.05). Arm joints get the
+// checker's slack and the signature's rounding.
 std::optional<std::string> stateProblem(const ExperienceClass& c, const std::vector<Path>& paths) {
   auto at = [](std::size_t r, std::size_t t) {
     return "paths[" + std::to_string(r) + "][" + std::to_string(t) + "]: ";
@@ -189,6 +193,7 @@ std::optional<std::string> stateProblem(const ExperienceClass& c, const std::vec
   return std::nullopt;
 }
 
+// kMaxUseCount is 2^40, a million uses a second for twelve days.
 std::optional<std::string> findProblem(const Experience& e) {
   const ExperienceClass& c = e.cls;
   if (c.robot_count < 1 || c.robot_count > 64) return "robot_count " + std::to_string(c.robot_count) + " outside 1..64";

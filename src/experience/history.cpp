@@ -30,6 +30,8 @@ void HistoryWriter::describe(std::string operation, std::string detail) {
   detail_ = cleanDetail(detail);
 }
 
+// even_if_unchanged: creating or migrating a file, a curate that removed
+// nothing.
 void HistoryWriter::record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
                            bool even_if_unchanged) const {
   if (schema_version < kHistorySchemaVersion) return;

@@ -76,6 +76,8 @@ void ClassIndex::add(std::int64_t id, std::span<const double> key) {
   ids_.push_back(id);
 }
 
+// A scan of a tail that small costs little next to a rebuild, which then
+// comes seldom (figures in docs/performance-log.md).
 void ClassIndex::settle() {
   const double limit = std::max<double>(static_cast<double>(kMinTailBeforeRebuild),
                                         kTailRebuildFraction * static_cast<double>(indexed_));

@@ -270,6 +270,8 @@ nlohmann::json inspectJson(const InspectReport& r) {
           {"samples", std::move(samples)}};
 }
 
+// Every row: column types, blob headers and lengths, finite numbers, key
+// and class consistency; and one key dimension per class.
 VerifyReport verifyDatabase(const std::string& path) {
   if (isPostgresLocation(path)) return pgVerifyDatabase(path);
   VerifyReport r;
@@ -474,6 +476,10 @@ void removeStaleTemporaries(const std::string& out) {
 
 }  // namespace
 
+// In each eps-ball the entry kept is the one that succeeded most, then was
+// retrieved most, then is oldest. A compacted blob gives back exactly the
+// same paths; a damaged blob is left as it is. The file checked is the one
+// curated in place or the source of a copy.
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings) {
   if (isPostgresLocation(path)) return pgCurateDatabase(path, settings);
   // Every input before anything is written; curating in place writes, so a
@@ -520,6 +526,8 @@ CurateReport curateDatabase(const std::string& path, const CurateSettings& setti
   }
 }
 
+// Never cp: a live file's copy would tear. VACUUM INTO copies an index's
+// pages as they are, damage included, hence full_check.
 void copyDatabase(const std::string& from, const std::string& to, bool full_check) {
   if (std::filesystem::exists(to)) throw InputError(to, "", "already exists; not overwriting it");
   StoreOptions options = wholeFileStoreOptions(true);

@@ -40,6 +40,9 @@ std::optional<Experience> experienceOf(const std::vector<const RobotModel*>& rob
 
 }  // namespace
 
+// All robots move together, as in the coupled solver's time stamping;
+// paths that already fit come back unchanged. kMaxFittedStates leaves room
+// for a resolution ratio of hundreds (docs/performance-log.md).
 std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths) {
   const std::size_t n = paths.empty() ? 0 : paths.front().size();
   std::vector<int> steps(n > 0 ? n - 1 : 0);
@@ -82,6 +85,12 @@ std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, co
   return out;
 }
 
+// Each path starts near its robot's start and ends near its goal, not
+// exactly: the caller connects them. A symmetric arm pair is searched under
+// both role assignments, merged; after a skip a row found under one can
+// come back under the other. Coarser rows come back split (fitResolution);
+// one it refuses (NoStepCountError) is left out. skip: the next candidates
+// after a first call with k = skip, without reading the skipped rows.
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
                                           const std::vector<std::vector<double>>& goals, std::size_t k,

@@ -11,6 +11,8 @@ std::size_t cachedRowBytes(const Experience& e) {
   return n;
 }
 
+// Rows are immutable once committed except for their usage counters, so a
+// cached row stays right but for those; a deleted one is the owner's to drop.
 std::shared_ptr<const Experience> RowCache::find(std::int64_t id) {
   auto it = by_id_.find(id);
   if (it == by_id_.end()) {

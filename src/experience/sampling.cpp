@@ -9,6 +9,11 @@
 
 namespace earc::exp {
 
+// The defaults are fitted to the subproblems ARC makes at 32 robots with
+// obstacles: some robots of a 2-robot subproblem hardly move, and in 3- and
+// 4-robot ones the robots pass beside their common centre, not through it.
+// Drawn so, the database's keys lie nearer the subproblems planning meets
+// (figures in docs/performance-log.md).
 Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s) {
   Query q;
   constexpr double pi = std::numbers::pi;
@@ -37,6 +42,9 @@ Query sampleMobileQuery(int robots, std::mt19937_64& rng, const QuerySampling& s
   return q;
 }
 
+// Uniform joints almost never bring two arms of the generated layouts
+// together; these draws often do, so the database holds the close
+// encounters planning meets (docs/performance-log.md).
 Query sampleArmQuery(const RobotModel& a, const RobotModel& b, std::mt19937_64& rng, const QuerySampling& s) {
   Query q;
   const RobotModel* arms[2] = {&a, &b};

@@ -13,6 +13,8 @@ constexpr TableSince kTables[] = {{"experiences", 1}, {"store_meta", 2}, {"histo
 
 }  // namespace
 
+// One wording wherever it is refused: "FILE: empty file (0 bytes), not an
+// earc database yet". Commands that write a file make it a database.
 InputError notYetADatabase(const std::string& path, std::string_view what) {
   std::error_code ec;
   const bool zero = std::filesystem::file_size(path, ec) == 0 && !ec;
@@ -40,6 +42,9 @@ int checkIdentity(Connection& db) {
   return checkFileIdentity(db, {kApplicationId, "earc experience database", "earc", currentSchemaVersion(), kTables});
 }
 
+// Each migration runs in a BEGIN IMMEDIATE transaction with its user_version
+// bump, so a crash leaves the previous version intact; a new (empty) file
+// gets every migration in one such transaction.
 int migrate(Connection& db, int target) {
   if (target < 0) target = currentSchemaVersion();
   const auto steps = migrations();

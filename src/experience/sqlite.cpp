@@ -157,6 +157,9 @@ std::string literalName(const std::string& path) {
   return path;
 }
 
+// Every symbolic link on the way is followed, a dangling one too (to the
+// file SQLite would create). Look for -wal and -shm, or remove or rename
+// the database, at the file this names, not at `path`.
 std::string databaseFile(const std::string& path) {
   sqlite3_vfs* vfs = sqlite3_vfs_find(nullptr);
   if (!vfs || path.empty()) return path;
@@ -322,6 +325,10 @@ int checkFileBeforeOpen(const std::string& path, OpenMode mode, const Connection
 
 }  // namespace
 
+// File format bytes (18, 19) other than 1 or 2 are refused before SQLite
+// opens the file. own_application_id: only a read-write connection removes
+// -wal and -shm at the last close; reading the header first keeps a foreign
+// file from being opened read-write (its WAL would be checkpointed).
 Connection::Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings)
     : path_(path), mode_(mode), settings_(settings) {
   const bool memory = mode == OpenMode::Memory;
@@ -393,6 +400,10 @@ void Connection::requireQuickCheck() { requireCheck("quick_check"); }
 
 void Connection::requireIntegrityCheck() { requireCheck("integrity_check"); }
 
+// Each check reads every page once: unmapped and with a small page cache,
+// else the whole file stays in the process's memory. integrity_check also
+// finds an index missing rows (a flipped byte in an index page passes
+// quick_check), into which a write would compound the damage.
 void Connection::requireCheck(const char* pragma) {
   const std::int64_t mmap = pragmaInt("mmap_size"), cache = pragmaInt("cache_size");
   exec("PRAGMA mmap_size = 0");
@@ -505,6 +516,8 @@ void requireTables(Connection& db, int version, std::span<const TableSince> tabl
 
 }  // namespace
 
+// A missing table (damaged or edited file) is refused here, before a
+// statement needing it fails with SQL text.
 int checkFileIdentity(Connection& db, const FileIdentity& identity) {
   // One statement, one snapshot: another process may be creating the file
   // right now, and separate reads could mix its before and after.

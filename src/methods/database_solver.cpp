@@ -532,11 +532,11 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   // database file before planning, naming their own option.
   if (store == nullptr) throw std::invalid_argument("method earc needs an experience store (none was given)");
   DatabaseSolverSettings ds;
-  ds.k = static_cast<std::size_t>(settings.db_k);
-  ds.max_invalid_segments = settings.db_max_invalid_segments;
-  ds.max_stretch = settings.db_max_stretch;
-  ds.learn = settings.db_learn;
-  ds.shadow_decoupled = settings.db_shadow_decoupled;
+  ds.k = static_cast<std::size_t>(settings.db.k);
+  ds.max_invalid_segments = settings.db.max_invalid_segments;
+  ds.max_stretch = settings.db.max_stretch;
+  ds.learn = settings.db.learn;
+  ds.shadow_decoupled = settings.db.shadow_decoupled;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
   for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));

@@ -28,30 +28,30 @@ PlannerSettings plannerSettingsFor(const MethodOptions& o, OptionStyle style) {
   s.time_limit_s = o.time_limit;
   s.seed = o.seed;
   s.trace = o.trace;
-  if (o.window) s.initial_window = *o.window;
-  s.db_learn = o.learn;
+  if (o.window) s.arc.initial_window = *o.window;
+  s.db.learn = o.learn;
   if (o.deterministic && s.method == Method::Lightning)
     throw InputError(source, name("deterministic"), kWorkBudgetsNotForLightning);
   s.work_budgets = o.deterministic;
-  s.compact = o.compact;
-  s.crowd_fallback = o.crowd;
-  s.refine_s = o.refine;
+  s.post.compact = o.compact;
+  s.arc.crowd_fallback = o.crowd;
+  s.post.refine_s = o.refine;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "shadow_decoupled"}, std::pair{o.db_k.has_value(), "db_k"},
         std::pair{o.db_repair_max.has_value(), "db_repair_max"},
         std::pair{o.db_max_stretch.has_value(), "db_max_stretch"}})
     if (given && s.method != Method::Earc) throw InputError(source, name(option), "is for method earc");
-  s.db_shadow_decoupled = o.shadow_decoupled;
-  if (o.db_k) s.db_k = *o.db_k;
-  if (o.db_max_stretch) s.db_max_stretch = *o.db_max_stretch;
-  if (o.db_repair_max) s.db_max_invalid_segments = *o.db_repair_max;
+  s.db.shadow_decoupled = o.shadow_decoupled;
+  if (o.db_k) s.db.k = *o.db_k;
+  if (o.db_max_stretch) s.db.max_stretch = *o.db_max_stretch;
+  if (o.db_repair_max) s.db.max_invalid_segments = *o.db_repair_max;
   // Only ARC and E-ARC find conflicts and make subproblems to trace.
   if (o.trace && s.method != Method::Arc && s.method != Method::Earc)
     throw InputError(source, name("trace"), "is for methods arc and earc (the others make no subproblems to trace)");
   // A database the method would not read is a mistake, not a no-op.
   if (!o.db.empty() && s.method != Method::Earc && s.method != Method::Lightning)
     throw InputError(source, name("db"), "is for methods earc and lightning");
-  if (s.method == Method::Lightning) s.lightning_db = o.db;
+  if (s.method == Method::Lightning) s.db.lightning_file = o.db;
   return s;
 }
 

@@ -7,12 +7,14 @@
 #include <memory>
 
 #include "earc/baselines/lightning.hpp"
+#include "earc/experience/store.hpp"
 #include "earc/methods/database_solver.hpp"
 #include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
 #include "earc/planning/methods.hpp"
 #include "earc/planning/refine.hpp"
 #include "earc/planning/roadmap.hpp"
+#include "earc/util/format.hpp"
 #include "earc/util/random.hpp"
 #include "earc/util/version.hpp"
 #include "earc/validate/validator.hpp"
@@ -74,7 +76,7 @@ void compactResult(const Scenario& scenario, const PlannerSettings& settings, co
   result.stats.planning_time_s = spent + s;
 }
 
-// refinePlan on a validated result (PlannerSettings::refine_s), within
+// refinePlan on a validated result (PostPlanSettings::refine_s), within
 // the plan's time limit; the refined plan is validated again and kept only
 // if it passes. planning_time_s stays the time to the first valid plan;
 // "refine" says what refinement did and when (times on the same clock).
@@ -96,10 +98,10 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   // The refined plan is validated again within the budget: about as long
   // as the first plan's validation took (seconds on a crowd of hundreds).
   // Not with work budgets, whose refined plan may not depend on the clock.
-  rs.seconds = std::max(0.0, settings.refine_s - lattice_s - (settings.work_budgets ? 0.0 : validation_s));
+  rs.seconds = std::max(0.0, settings.post.refine_s - lattice_s - (settings.work_budgets ? 0.0 : validation_s));
   rs.seed = splitSeed(settings.seed, 0x7ef1e);
-  rs.roadmap_samples = settings.roadmap_samples;
-  rs.roadmap_neighbors = settings.roadmap_neighbors;
+  rs.roadmap_samples = settings.roadmap.samples;
+  rs.roadmap_neighbors = settings.roadmap.neighbors;
   rs.roadmap_seed = splitSeed(settings.seed, 1);  // the methods' roadmaps, as a cache keeps them
   rs.roadmap_cache = context.roadmap_cache;
   const double start = first_s + lattice_s + clock.seconds();
@@ -124,7 +126,7 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   j.final_sum_of_costs = count(rep.final_sum_of_costs);
   j.final_makespan = count(rep.final_makespan);
   j.final_s = rep.history.empty() ? last_s : start + rep.final_s;
-  j.budget_s = settings.refine_s;
+  j.budget_s = settings.post.refine_s;
   j.lower_bound = count(rep.lower_bound);
   j.retimed_steps = count(rep.retimed_steps);
   j.iterations = count(rep.iterations);
@@ -161,7 +163,7 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   // no cache outlives the plan (the same plan either way, RoadmapCache).
   PlanContext context = given;
   std::unique_ptr<RoadmapCache> roadmaps_for_refining;
-  if (settings.refine_s > 0 && !context.roadmap_cache) {
+  if (settings.post.refine_s > 0 && !context.roadmap_cache) {
     roadmaps_for_refining = std::make_unique<RoadmapCache>(std::size_t{256} << 20);
     context.roadmap_cache = roadmaps_for_refining.get();
   }
@@ -194,21 +196,21 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
     ValidatorSettings vs;
     vs.max_listed = 3;
     std::vector<Path> uncompacted;
-    if (settings.compact) {
+    if (settings.post.compact) {
       uncompacted = result.solution.paths;
       compactResult(scenario, settings, context, result);
     }
     Stopwatch validation;
     ValidationReport report = validateSolution(scenario, result.solution, vs);
     const double validation_s = validation.seconds();
-    if (!report.valid && settings.compact) {
+    if (!report.valid && settings.post.compact) {
       // Compaction keeps a valid plan valid; should it not have, the plan
       // as planned is checked and reported instead, and the stats say so.
       result.stats.compact->rejected = report.violations.empty() ? "invalid" : report.violations.front().detail;
       result.solution.paths = std::move(uncompacted);
       report = validateSolution(scenario, result.solution, vs);
     }
-    if (report.valid && settings.refine_s > 0)
+    if (report.valid && settings.post.refine_s > 0)
       refineResult(scenario, settings, context, result, report, vs, validation_s);
     if (!report.valid) {
       result.solution.solved = false;
@@ -229,6 +231,28 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   result.stats.earc_version = version();
   result.solution.stats = result.stats.toJson();
   return result;
+}
+
+// The check's verdict names damage best, so it is thrown also when planning
+// met the damage first. awaitCheck() also counts the session, a write: one
+// lost leaves the plan standing, as a lesson lost in learning does.
+PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore& store,
+                              const PlanContext& context) {
+  try {
+    PlanResult planned = plan(scenario, settings, &store, context);
+    try {
+      store.awaitCheck();
+    } catch (const exp::WriteLostError& e) {
+      if (!planned.stats.db_learn_error) {
+        planned.stats.db_learn_error = oneLine(e.what());
+        planned.solution.stats = planned.stats.toJson();
+      }
+    }
+    return planned;
+  } catch (const exp::DamagedDatabaseError&) {
+    store.awaitCheck();
+    throw;
+  }
 }
 
 }  // namespace earc

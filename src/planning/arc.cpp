@@ -36,7 +36,7 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
   sub.expansions = level;
   std::size_t horizon = 0;  // last step of the longest path among the robots
   for (int r : sub.robots) horizon = std::max(horizon, paths[static_cast<std::size_t>(r)].size() - 1);
-  const std::size_t w = static_cast<std::size_t>(settings.initial_window) << std::min(level, 30);
+  const std::size_t w = static_cast<std::size_t>(settings.arc.initial_window) << std::min(level, 30);
   const auto tc = static_cast<std::size_t>(std::floor(conflict.t));
   sub.t_start = tc > w ? tc - w : 0;
   sub.t_end = std::min(horizon, static_cast<std::size_t>(std::ceil(conflict.t)) + w);
@@ -44,7 +44,7 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
   // the end of the window forward until they are apart (at the latest the
   // robots' final goals, which a valid scenario keeps apart).
   while (sub.t_end < horizon && !goalsApart(sub.robots, models, paths, sub.t_end)) ++sub.t_end;
-  const bool last_level = level >= settings.max_expansions;
+  const bool last_level = level >= settings.arc.max_expansions;
   sub.whole_problem = sub.t_start == 0 && sub.t_end >= horizon && last_level;
   const bool saturated = sub.t_start == 0 && sub.t_end >= horizon && !last_level;
   bool regions_full = true;
@@ -79,7 +79,7 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
           box.hi[ju] = std::numbers::pi;
           continue;
         }
-        const double margin = (m.isMobile() ? settings.region_margin : settings.joint_margin) * grow;
+        const double margin = (m.isMobile() ? settings.arc.region_margin : settings.arc.joint_margin) * grow;
         box.lo[ju] = std::max(full.lo[ju], box.lo[ju] - margin);
         box.hi[ju] = std::min(full.hi[ju], box.hi[ju] + margin);
       }
@@ -279,7 +279,7 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // is refinement's (plan.cpp's refineResult reads stats.lacam).
   CrowdOptions options;
   options.polish = true;
-  if (group.size() == paths_.size()) options.refine_s = settings_.refine_s;
+  if (group.size() == paths_.size()) options.refine_s = settings_.post.refine_s;
   options.refine_deadline = &deadline_;
   CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
                                splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())),
@@ -354,7 +354,7 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   // Levels beyond max_expansions re-solve the last level's subproblem (the
   // whole problem, unless the paths are very long) with ever larger
   // budgets, until the deadline: giving up with time left helps no one.
-  if (robots.size() >= static_cast<std::size_t>(settings_.max_merged_robots)) ++capped_since_handover_;
+  if (robots.size() >= static_cast<std::size_t>(settings_.arc.max_merged_robots)) ++capped_since_handover_;
   if (std::binary_search(jam_group_.begin(), jam_group_.end(), c.a) ||
       std::binary_search(jam_group_.begin(), jam_group_.end(), c.b))
     ++jam_conflicts_since_handover_;
@@ -372,9 +372,9 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       ++expansions_;
       tried = level;
     }
-    Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.max_expansions), models_, paths_, world_,
+    Subproblem sub = createSubproblem(c, robots, std::min(level, settings_.arc.max_expansions), models_, paths_, world_,
                                       settings_);
-    if (sub.whole_problem && level < settings_.max_expansions) level = settings_.max_expansions;
+    if (sub.whole_problem && level < settings_.arc.max_expansions) level = settings_.arc.max_expansions;
     report(&PlanProgress::subproblem_robots, static_cast<int>(sub.robots.size()));
     report(&PlanProgress::expansions, level);
     nlohmann::json ev;
@@ -382,18 +382,18 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       ev = {{"type", "subproblem"}, {"id", subproblem_id_}, {"conflict", conflicts_ - 1}, {"robots", sub.robots},
             {"window", {sub.t_start, sub.t_end}}, {"region", boxJson(sub.workspace_region)},
             {"expansions", level}, {"merged", merged_here}};
-    if (settings_.trace && max_robots > static_cast<std::size_t>(settings_.max_merged_robots))
+    if (settings_.trace && max_robots > static_cast<std::size_t>(settings_.arc.max_merged_robots))
       ev["merge_cap"] = max_robots;
     ++subproblem_id_;
     SolverContext ctx{world_, models_, *roadmaps_, paths_, sub, deadline_,
-                      splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_)), budgetScale(level, settings_.max_expansions)};
+                      splitSeed(settings_.seed, static_cast<std::uint64_t>(subproblem_id_)), budgetScale(level, settings_.arc.max_expansions)};
     // Every other retry beyond the last level plans the group as if the
     // robots outside it were not there. A group can be walled in by their
     // paths, which bigger budgets do not change (48 and 64 robots on a
     // dense MovingAI map: a 4- or 5-robot group whose window spanned its
     // whole paths failed for the whole limit); the robots in its way then
     // meet its answer as later conflicts of their own and are replanned.
-    ctx.ignore_others = level > settings_.max_expansions && (level - settings_.max_expansions) % 2 == 1;
+    ctx.ignore_others = level > settings_.arc.max_expansions && (level - settings_.arc.max_expansions) % 2 == 1;
     if (settings_.trace && ctx.ignore_others) ev["ignore_others"] = true;
     nlohmann::json attempts = nlohmann::json::array();
     bool restart = false;
@@ -459,7 +459,7 @@ PlanResult ArcRun::run() {
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario_.name;
-  roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap_samples, settings_.roadmap_neighbors,
+  roadmaps_ = std::make_unique<RoadmapSet>(world_, models_, settings_.roadmap.samples, settings_.roadmap.neighbors,
                                            splitSeed(settings_.seed, 1), deadline_);
   if (context_.roadmap_cache) roadmaps_->useCache(*context_.roadmap_cache, scenario_);
   for (std::size_t r = 0; r < models_.size(); ++r) {
@@ -474,7 +474,7 @@ PlanResult ArcRun::run() {
     report(&PlanProgress::individual_paths, static_cast<int>(paths_.size()));
   }
   const double individual_s = clock.seconds();
-  crowd_ok_ = settings_.crowd_fallback;
+  crowd_ok_ = settings_.arc.crowd_fallback;
   for (const RobotModel* m : models_) crowd_ok_ = crowd_ok_ && m->isMobile();
   bool solved = false;
   if (failures_.empty()) {
@@ -504,8 +504,8 @@ PlanResult ArcRun::run() {
       }
       traceEvent({{"type", "conflict"}, {"id", conflicts_ - 1}, {"robots", {c->a, c->b}}, {"t", c->t},
                   {"place", {c->place.x, c->place.y}}, {"at_s", clock.seconds()}});
-      const std::size_t cap = recurrence_.capFor(*c, static_cast<std::size_t>(settings_.max_merged_robots));
-      if (cap > static_cast<std::size_t>(settings_.max_merged_robots)) ++cap_raised_;
+      const std::size_t cap = recurrence_.capFor(*c, static_cast<std::size_t>(settings_.arc.max_merged_robots));
+      if (cap > static_cast<std::size_t>(settings_.arc.max_merged_robots)) ++cap_raised_;
       if (!resolve(*c, cap)) {
         failures_.insert(deadline_.expired() ? FailureCause::TimeLimit : FailureCause::SubproblemUnsolved);
         // Said too when the time ran out re-solving a conflict whose

@@ -31,7 +31,7 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   // the timed paths; refinePlan takes the rest (shortcuts off the axes).
   const double setup_s = clock.seconds();
   CrowdOptions options;
-  options.refine_s = settings.refine_s;
+  options.refine_s = settings.post.refine_s;
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed, options);
   result.stats.lacam = out.stats;
   if (out.paths) {

@@ -63,7 +63,7 @@ PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& sett
   const RobotModels robots(scenario);
   const std::vector<const RobotModel*>& models = robots.raw;
   const Deadline deadline = Deadline(settings.time_limit_s).stoppedBy(context.stop);
-  RoadmapSet roadmaps(world, models, settings.roadmap_samples, settings.roadmap_neighbors,
+  RoadmapSet roadmaps(world, models, settings.roadmap.samples, settings.roadmap.neighbors,
                       splitSeed(settings.seed, 1), deadline);
   if (context.roadmap_cache) roadmaps.useCache(*context.roadmap_cache, scenario);
   // The whole problem as one subproblem: every robot, its real start and

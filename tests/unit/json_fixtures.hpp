@@ -16,6 +16,7 @@
 
 #include "earc/bench/suites.hpp"
 #include "earc/io/json_io.hpp"
+#include "earc/validate/scenario_check.hpp"
 #include "support.hpp"
 
 using earc::InputError;

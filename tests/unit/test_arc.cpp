@@ -130,13 +130,13 @@ TEST_CASE("ARC keeps trying a conflict that grew to the whole problem until the 
   s.robots = {disc("a", 0.3, {0.5, 0.5, 0}, {5.5, 0.5, 0}), disc("b", 0.3, {5.5, 0.5, 0}, {0.5, 0.5, 0})};
   PlannerSettings settings;
   settings.time_limit_s = 5.0;
-  settings.max_expansions = 3;  // 64 steps each side: the whole 100-step paths
+  settings.arc.max_expansions = 3;  // 64 steps each side: the whole 100-step paths
   PlanResult r = plan(s, settings);
   CHECK_FALSE(r.solution.solved);
   CHECK(r.failures.count(FailureCause::TimeLimit) == 1);
   CHECK(r.failures.count(FailureCause::SubproblemUnsolved) == 1);
   CHECK(*r.stats.planning_time_s >= 4.9);
-  CHECK(r.stats.arc->subproblems > settings.max_expansions + 1);  // retried beyond the last level
+  CHECK(r.stats.arc->subproblems > settings.arc.max_expansions + 1);  // retried beyond the last level
   // Every window after the first was an expansion, though none solved.
   CHECK(r.stats.arc->window_expansions == r.stats.arc->subproblems - 1);
 }
@@ -180,9 +180,9 @@ TEST_CASE("ARC's retries beyond the last level ignore the robots outside the gro
               disc("n", 0.3, {0.5, 5.5, 0}, {0.6, 5.5, 0})};
   PlannerSettings settings;
   settings.time_limit_s = 20;
-  settings.max_expansions = 2;
-  settings.initial_window = 64;  // the window spans the paths: level 2 is the whole problem
-  settings.crowd_fallback = false;  // ARC's own retries, not a jam handed over
+  settings.arc.max_expansions = 2;
+  settings.arc.initial_window = 64;  // the window spans the paths: level 2 is the whole problem
+  settings.arc.crowd_fallback = false;  // ARC's own retries, not a jam handed over
   std::vector<std::pair<bool, bool>> seen;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<Recorder>(&seen));
@@ -234,8 +234,8 @@ TEST_CASE("Groups at the merge cap that undo each other grow until the plan is s
   const Scenario s = gen::generateMobile(crowd);
   PlannerSettings settings;
   settings.time_limit_s = 30;
-  settings.crowd_fallback = false;  // the merge cap as published, not a jam handed over
-  settings.max_merged_robots = 2;
+  settings.arc.crowd_fallback = false;  // the merge cap as published, not a jam handed over
+  settings.arc.max_merged_robots = 2;
   settings.work_budgets = true;  // the same plan under sanitizers
   settings.trace = true;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;

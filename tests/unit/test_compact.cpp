@@ -174,7 +174,7 @@ TEST_CASE("Compacted ARC plans keep every route, arrive no later and validate, o
     settings.time_limit_s = 60;
     const PlanResult plain = plan(s, settings);
     REQUIRE(plain.solution.solved);
-    settings.compact = true;
+    settings.post.compact = true;
     const PlanResult compacted = plan(s, settings);
     REQUIRE(compacted.solution.solved);  // plan() validates it
     const auto& st = compacted.stats;

@@ -249,7 +249,7 @@ TEST_CASE("ARC hands a jam on a crowded grid to the crowd solver and solves it; 
   CHECK(validateSolution(sc, r.solution).valid);
   CHECK(r.stats.arc->crowd_handovers.size() >= 1);
   // (How much longer ARC takes alone is for a benchmark, not a test.)
-  s.crowd_fallback = false;
+  s.arc.crowd_fallback = false;
   s.time_limit_s = 1;
   const PlanResult alone = plan(sc, s);
   CHECK(alone.stats.arc->crowd_handovers.empty());
@@ -267,7 +267,7 @@ TEST_CASE("ARC with --refine shortens a jam of every robot on the crowd solver's
   PlannerSettings s;
   s.method = Method::Arc;
   s.time_limit_s = 30;
-  s.refine_s = 1.0;
+  s.post.refine_s = 1.0;
   const PlanResult r = plan(sc, s);
   REQUIRE(r.solution.solved);
   CHECK(validateSolution(sc, r.solution).valid);

@@ -30,7 +30,7 @@ using namespace earc::arc_test;
 TEST_CASE("A subproblem's window spans the conflict and its local query lies on the paths") {
   CrossingFixture f;
   PlannerSettings settings;
-  settings.initial_window = 8;
+  settings.arc.initial_window = 8;
   Subproblem sub = f.subproblem(settings);
   CHECK(sub.t_start + 8 == static_cast<std::size_t>(f.c.t));
   CHECK(sub.t_end >= static_cast<std::size_t>(f.c.t) + 8);
@@ -66,8 +66,8 @@ TEST_CASE("The decoupled solver builds its robots' roadmaps before its time budg
 TEST_CASE("Expanding a subproblem doubles its window and grows its region until it is the whole problem") {
   CrossingFixture f;
   PlannerSettings settings;
-  settings.initial_window = 4;
-  settings.max_expansions = 5;
+  settings.arc.initial_window = 4;
+  settings.arc.max_expansions = 5;
   Subproblem a = f.subproblem(settings);
   Subproblem b = f.subproblem(settings, 1);
   CHECK(a.t_start - b.t_start == 4);
@@ -84,10 +84,10 @@ TEST_CASE("A subproblem whose window and regions already cover everything is the
   // the same budgets; marked whole, ARC goes on to larger budgets.
   CrossingFixture f;
   PlannerSettings settings;
-  settings.initial_window = 4;
-  settings.max_expansions = 12;
+  settings.arc.initial_window = 4;
+  settings.arc.max_expansions = 12;
   int first_saturated = -1;
-  for (int level = 0; level <= settings.max_expansions; ++level) {
+  for (int level = 0; level <= settings.arc.max_expansions; ++level) {
     CAPTURE(level);
     Subproblem sub = f.subproblem(settings, level);
     bool covers = sub.t_start == 0 && sub.t_end == 80;
@@ -97,11 +97,11 @@ TEST_CASE("A subproblem whose window and regions already cover everything is the
       covers = covers && sub.region[static_cast<std::size_t>(r)].lo == full.lo &&
                sub.region[static_cast<std::size_t>(r)].hi == full.hi;
     }
-    CHECK(sub.whole_problem == (covers || level == settings.max_expansions));
+    CHECK(sub.whole_problem == (covers || level == settings.arc.max_expansions));
     if (covers && first_saturated < 0) first_saturated = level;
   }
   CHECK(first_saturated > 0);
-  CHECK(first_saturated < settings.max_expansions);
+  CHECK(first_saturated < settings.arc.max_expansions);
 }
 
 TEST_CASE("A subproblem spanning the paths whose regions together span the workspace is the whole problem") {
@@ -110,8 +110,8 @@ TEST_CASE("A subproblem spanning the paths whose regions together span the works
   // margin a level, each at the same budget.
   CrossingFixture f;
   PlannerSettings settings;
-  settings.initial_window = 64;  // the window spans both paths from level 0
-  settings.max_expansions = 12;
+  settings.arc.initial_window = 64;  // the window spans both paths from level 0
+  settings.arc.max_expansions = 12;
   ConfigBox full;
   f.m.raw[0]->samplingBounds(f.world.workspace(), full.lo, full.hi);
   Subproblem one = f.subproblem(settings, 1);
@@ -178,8 +178,8 @@ TEST_CASE("The decoupled solver's robots arrive within the window and 50 steps, 
   // that, later than its horizon allows.
   CrossingFixture f(0.1);
   PlannerSettings settings;
-  settings.region_margin = 0.2;
-  settings.initial_window = 16;
+  settings.arc.region_margin = 0.2;
+  settings.arc.initial_window = 16;
   const Subproblem sub = f.subproblem(settings);
   const std::size_t window = sub.t_end - sub.t_start;
   f.paths[2] = Path(3);
@@ -211,7 +211,7 @@ TEST_CASE("A failed decoupled attempt says how its last priority order failed") 
   auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
   REQUIRE(conflict.has_value());
   PlannerSettings settings;
-  settings.region_margin = 0.2;
+  settings.arc.region_margin = 0.2;
   const Subproblem sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
   RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
   SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
@@ -291,8 +291,8 @@ TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through
   }
   paths[1] = parked;
   PlannerSettings settings;
-  settings.initial_window = 16;
-  settings.region_margin = 0.2;  // too narrow a region to pass b
+  settings.arc.initial_window = 16;
+  settings.arc.region_margin = 0.2;  // too narrow a region to pass b
   Subproblem sub = createSubproblem(f.c, {0}, 0, f.m.raw, paths, f.world, settings);
   RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
   SolverContext ctx{f.world, f.m.raw, roadmaps, paths, sub, Deadline(10), 7};

@@ -146,8 +146,8 @@ TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the dat
   exp::ExperienceStore store(tmp.file());
   REQUIRE(plan(crossing(0, 0, 12), earcSettings(2), &store).solution.solved);  // something to retrieve
   PlannerSettings settings = earcSettings(3);
-  settings.db_learn = false;
-  settings.db_shadow_decoupled = true;
+  settings.db.learn = false;
+  settings.db.shadow_decoupled = true;
   PlanResult r = plan(crossing(5.0, 4.0, 12), settings, &store);
   REQUIRE(r.solution.solved);
   REQUIRE(r.stats.db->db_shadow_decoupled);
@@ -167,7 +167,7 @@ TEST_CASE("E-ARC's decoupled shadow accounts for every subproblem put to the dat
   }
   CHECK(neither == queries - database - decoupled + both);
   // Without the flag there is no such entry.
-  settings.db_shadow_decoupled = false;
+  settings.db.shadow_decoupled = false;
   CHECK_FALSE(plan(crossing(5.0, 4.0, 12), settings, &store).stats.db->db_shadow_decoupled.has_value());
 }
 
@@ -185,7 +185,7 @@ TEST_CASE("E-ARC reuses a mobile experience translated to where the conflict hap
     REQUIRE(store.size() >= 1);
     Scenario moved = crossing(5.0, 4.0, 12);
     PlannerSettings settings = earcSettings(seed);
-    settings.db_learn = false;
+    settings.db.learn = false;
     PlanResult second = plan(moved, settings, &store);
     REQUIRE(second.solution.solved);
     CHECK(validateSolution(moved, second.solution).valid);

@@ -100,8 +100,8 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
   // whichever did, and the file stays as it was.
   const auto size = std::filesystem::file_size(file.path);
   PlannerSettings st = settings(9);
-  st.lightning_db = file.path;
-  st.db_learn = false;
+  st.db.lightning_file = file.path;
+  st.db.learn = false;
   PlanResult r = plan(s, st);
   REQUIRE(r.solution.solved);
   CHECK(r.stats.lightning->lightning_db_entries == 1);
@@ -160,7 +160,7 @@ TEST_CASE("a Lightning database file is created when missing, and only then") {
   TempFile file("earc-lightning-create");
   const Scenario s = twoMobile(17);
   PlannerSettings st = settings(1);
-  st.lightning_db = file.path;
+  st.db.lightning_file = file.path;
   PlanResult r = plan(s, st);
   REQUIRE(r.solution.solved);
   CHECK(std::filesystem::exists(file.path));

@@ -22,7 +22,7 @@ TEST_CASE("method options name a refused option as the front end spells it") {
   o.method = "earc";
   const PlannerSettings s = plannerSettingsFor(o, OptionStyle::Request);
   CHECK(s.method == Method::Earc);
-  CHECK(s.db_k == 3);
+  CHECK(s.db.k == 3);
   o.method = "lightning";
   o.db_k.reset();
   o.deterministic = true;

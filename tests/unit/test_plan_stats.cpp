@@ -25,8 +25,8 @@ TEST_CASE("a plan's stats read back from their JSON to the same fields and text"
   ms.seed = 5;
   PlannerSettings settings;
   settings.work_budgets = true;
-  settings.compact = true;
-  settings.refine_s = 0.2;
+  settings.post.compact = true;
+  settings.post.refine_s = 0.2;
   const PlanResult r = plan(gen::generateMobile(ms), settings);
   REQUIRE(r.solution.solved);
   const json j = r.stats.toJson();

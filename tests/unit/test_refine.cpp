@@ -195,7 +195,7 @@ TEST_CASE("Refinement through plan(): the stats say what it did and the plan ret
   PlannerSettings settings;
   settings.method = Method::Arc;
   settings.work_budgets = true;
-  settings.refine_s = 0.3;
+  settings.post.refine_s = 0.3;
   const PlanResult r = plan(s, settings);
   REQUIRE(r.solution.solved);
   REQUIRE(r.stats.refine);
@@ -212,7 +212,7 @@ TEST_CASE("Refinement through plan(): the stats say what it did and the plan ret
   CHECK(st.seconds_spent >= 0);
   CHECK(refineValid(s, r.solution.paths));
   // Off by default: no stats, the plan as planned.
-  settings.refine_s = 0;
+  settings.post.refine_s = 0;
   CHECK_FALSE(plan(s, settings).stats.refine);
 }
 

@@ -23,6 +23,7 @@
 #include "earc/bench/options.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/stop_signals.hpp"
 #include "earc/cli/subcommands.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/util/deadline.hpp"
@@ -51,7 +52,9 @@ const bench::Suite& chooseSuite(const LightningDbOptions& o) {
   return bench::suiteByName(o.family + (o.obstacles ? "-obst" : ""));
 }
 
-void runLightningDb(const LightningDbOptions& o) {
+// Exit status: 0, or 128 + the signal's number after Ctrl-C or SIGTERM,
+// which stop the problem being planned and leave every file as it was.
+int runLightningDb(const LightningDbOptions& o) {
   // A scenario file's world, or a suite.
   std::optional<bench::ScenarioFile> file;
   if (!o.scenario.empty()) file = std::move(bench::loadScenarioFiles({o.scenario}).front());
@@ -77,16 +80,21 @@ void runLightningDb(const LightningDbOptions& o) {
   const std::size_t before = db.entries();
   LightningSettings ls;
   ls.learn = true;
+  cli::StopSignals signals;
+  PlanContext context;
+  context.stop = &signals.flag();
   Progress progress("lightning-db", static_cast<std::size_t>(o.count));
-  int solved = 0, recalled = 0;
+  int solved = 0, recalled = 0, planned = 0;
   Stopwatch clock;
-  for (int i = 0; i < o.count; ++i) {
+  for (int i = 0; i < o.count && !stopSet(context.stop); ++i) {
     Scenario s = i == 0 ? first : problem(i);
     PlannerSettings ps;
     ps.method = Method::Lightning;
     ps.time_limit_s = o.problem_time_limit;
     ps.seed = splitSeed(o.seed, static_cast<std::uint64_t>(i));
-    PlanResult r = db.plan(s, ps, ls);
+    PlanResult r = db.plan(s, ps, ls, context);
+    if (stopSet(context.stop)) break;
+    ++planned;
     if (r.solution.solved) ++solved;
     if (r.stats.lightning && r.stats.lightning->lightning_source == "recall") ++recalled;
     progress.setStatus(std::to_string(db.entries()) + " entries");
@@ -94,6 +102,13 @@ void runLightningDb(const LightningDbOptions& o) {
   }
   const double construction = clock.seconds();
   progress.finish();
+  if (signals.signal() != 0) {
+    // A database of fewer problems than asked, timed as if whole, would
+    // mislead: nothing is written.
+    std::cerr << "earc-bench lightning-db: interrupted (" << signals.signalName() << ") after " << planned << " of "
+              << o.count << " problems; nothing written\n";
+    return signals.exitCode();
+  }
   db.save(o.output);
   const auto size = static_cast<std::int64_t>(std::filesystem::file_size(o.output));
   std::cout << o.output << ": " << db.entries() << " entries (" << db.entries() - before << " new, " << db.states()
@@ -114,6 +129,7 @@ void runLightningDb(const LightningDbOptions& o) {
     d.seed = o.seed;
     results->addDatabase(d);
   }
+  return 0;
 }
 
 void setupLightningDb(CLI::App& app) {
@@ -135,7 +151,7 @@ void setupLightningDb(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "Database file (OMPL Lightning format)")->check(earc::cli::kFileName)->required();
   cmd->add_flag("--append", o->append, "Grow an existing database");
   cmd->add_option("--results", o->results, "Record construction time, entries and size in this results database");
-  cmd->callback([o] { runLightningDb(*o); });
+  cmd->callback([o] { cli::setExitCode(runLightningDb(*o)); });
 }
 
 cli::Registrar registered_lightning_db("earc-bench", "lightning-db", setupLightningDb);

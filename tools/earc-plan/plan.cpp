@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "earc/cli/stop_signals.hpp"
 #include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
@@ -49,26 +50,6 @@ struct PlanOptions {
   std::optional<double> db_max_stretch;
   bool quiet = false;
 };
-
-// The plan, once the store's background quick_check has passed: its error
-// is thrown instead, also when planning met the damage first (the check's
-// verdict names it best).
-PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& s, exp::ExperienceStore& store,
-                              const PlanContext& context) {
-  try {
-    PlanResult planned = plan(scenario, s, &store, context);
-    try {
-      store.awaitCheck();  // also counts the session, a write
-    } catch (const exp::NoSpaceError& e) {
-      // The plan stands (see runPlan).
-      if (!planned.stats.db_learn_error) planned.stats.db_learn_error = oneLine(e.what());
-    }
-    return planned;
-  } catch (const exp::DamagedDatabaseError&) {
-    store.awaitCheck();
-    throw;
-  }
-}
 
 // On a terminal, a plan that takes a while says how far it has got: one
 // line on stderr, redrawn in place four times a second from the first half
@@ -185,7 +166,17 @@ std::string databaseSummary(const PlanStats& st) {
   return line;
 }
 
+// The line said after a stop signal, once the solution is written.
+std::string interruptedLine(const char* signal_name, const PlanResult& r) {
+  std::string line = std::string("earc-plan: interrupted (") + signal_name + "): ";
+  if (!r.solution.solved) return line + "planning stopped unsolved, as at the time limit; the solution file says so";
+  return line + "planning stopped; the best valid plan found so far is written";
+}
+
 int runPlan(const PlanOptions& o) {
+  // Ctrl-C (or SIGTERM) stops planning soon instead of ending the process:
+  // what was planned is written as at the time limit (see interruptedLine).
+  cli::StopSignals signals;
   // Before any planning: no output may overwrite an input or the other
   // output, and each must be writable.
   requireDistinctFiles({{"the scenario", o.scenario}, {"--db", o.db, true}, {"-o", o.output}, {"--trace", o.trace}});
@@ -224,8 +215,8 @@ int runPlan(const PlanOptions& o) {
   // A disk too full to open the database for learning costs the lesson,
   // not the plan (said after the plan is written).
   std::string full_disk;
-  auto store = openStoreForPlanning(s.method, o.db, s.db_learn, &full_disk);
-  if (!full_disk.empty()) s.db_learn = false;
+  auto store = openStoreForPlanning(s.method, o.db, s.db.learn, &full_disk);
+  if (!full_disk.empty()) s.db.learn = false;
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
   // solution written. Busy stays exit 1.
@@ -235,30 +226,34 @@ int runPlan(const PlanOptions& o) {
   PlanProgress progress;
   PlanContext context;
   context.progress = &progress;
+  context.stop = &signals.flag();
   ProgressLine line(!o.quiet, o.method, o.time_limit, static_cast<int>(scenario.robots.size()), progress);
   PlanResult r = store ? exp::withInputErrors(o.db, [&] { return planThenAwaitCheck(scenario, s, *store, context); })
                        : plan(scenario, s, nullptr, context);
   line.stop();
-  if (!full_disk.empty()) {
-    r.stats.db_learn_error = full_disk;
-    r.solution.stats["db_learn_error"] = full_disk;
-  }
-  saveSolution(o.output, r.solution);
-  // What could not be written to the database (a full disk) is said once,
-  // after the plan is saved. Closing here, not in the destructor, keeps it
-  // to one line; another error at close (the file found damaged) is a
-  // warning, as the destructor's was.
-  std::string learn_error = r.stats.db_learn_error.value_or("");
+  // Closed before the plan is saved, so that what it could not write (a
+  // full disk) reaches the solution's stats as what learning lost does.
+  // Closing here, not in the destructor, keeps it to one line; another
+  // error at close (the file found damaged) is a warning, as the
+  // destructor's was.
   std::string close_error;
   if (store) {
     try {
       store->close();
-    } catch (const exp::NoSpaceError& e) {
-      if (learn_error.empty()) learn_error = oneLine(e.what());
+    } catch (const exp::WriteLostError& e) {
+      if (!r.stats.db_learn_error) r.stats.db_learn_error = oneLine(e.what());
     } catch (const exp::StoreError& e) {
       close_error = oneLine(e.what());
     }
   }
+  if (!full_disk.empty()) r.stats.db_learn_error = full_disk;
+  const bool interrupted = signals.signal() != 0;
+  if (interrupted) r.stats.extra["interrupted"] = signals.signalName();
+  r.solution.stats = r.stats.toJson();
+  saveSolution(o.output, r.solution);
+  // What could not be written to the database is said once, after the
+  // plan is saved.
+  const std::string learn_error = r.stats.db_learn_error.value_or("");
   if (!o.trace.empty()) writeTextFileAtomic(o.trace, r.trace.dump() + "\n");
   if (!o.quiet) {
     const auto& st = r.stats;
@@ -282,12 +277,16 @@ int runPlan(const PlanOptions& o) {
               << " (the plan is written; the database keeps what it had)\n";
   else if (!close_error.empty())
     std::cerr << "earc-plan: warning: closing " << printableText(close_error, 4096) << "\n";
+  if (interrupted) {
+    std::cerr << interruptedLine(signals.signalName(), r) << "\n";
+    return signals.exitCode();
+  }
   return r.solution.solved ? 0 : 1;
 }
 
 void setupPlan(CLI::App& app) {
   auto opts = std::make_shared<PlanOptions>();
-  auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved)");
+  auto* cmd = app.add_subcommand("plan", "Plan a scenario and write its solution (exit 0 solved, 1 not solved, 130 interrupted)");
   cmd->add_option("scenario", opts->scenario, "Scenario JSON file")->check(earc::cli::kFileName)->required();
   cmd->add_option("-o,--output", opts->output, "Solution JSON file to write")->check(earc::cli::kFileName)->required();
   cmd->add_option("--method", opts->method, "arc, earc, prioritized, coupled, lightning or lacam (crowds)")->capture_default_str();
@@ -324,11 +323,11 @@ void setupPlan(CLI::App& app) {
                 "report what each solved (stats db_shadow_decoupled; planning times then include it)");
   cmd->add_option("--db-k", opts->db_k,
                   "E-ARC: stored solutions retrieved per subproblem, nearest first (default " +
-                      std::to_string(PlannerSettings{}.db_k) + ")")
+                      std::to_string(PlannerSettings{}.db.k) + ")")
       ->check(earc::cli::wholeNumberIn(1, 1000));
   cmd->add_option("--db-repair-max", opts->db_repair_max,
                   "E-ARC: repair a retrieved solution with at most this many invalid runs of segments; 0: never "
-                  "repair (default " + std::to_string(PlannerSettings{}.db_max_invalid_segments) + ")")
+                  "repair (default " + std::to_string(PlannerSettings{}.db.max_invalid_segments) + ")")
       ->check(earc::cli::wholeNumberIn(0, 1000));
   cmd->add_option("--db-max-stretch", opts->db_max_stretch,
                   "E-ARC: refuse a database answer longer than this many times the steps its slowest robot needs "

@@ -69,11 +69,11 @@ class LightningDatabase {
 
 // Lightning with the database file lightning.db_path (created when missing
 // and learn and save are set). Not validated here: plan() (method
-// lightning, settings.lightning_db) validates, and is what callers want.
+// lightning, settings.db.lightning_file) validates, and is what callers want.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings,
                          const LightningSettings& lightning, const PlanContext& context = {});
 
-// plan()'s Lightning: the database file settings.lightning_db, if any.
+// plan()'s Lightning: the database file settings.db.lightning_file, if any.
 PlanResult planLightning(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context = {});
 
 }  // namespace earc

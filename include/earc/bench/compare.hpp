@@ -81,11 +81,9 @@ struct CompareStats {
 // a generator seeded by `seed`, so the interval is reproducible.
 CompareStats compareStats(const std::vector<ComparePair>& pairs, std::uint64_t seed);
 
-// A scatter plot: per paired scenario, old time across and new time up,
-// both logarithmic, with the line new = old and the line of the paired
-// median ratio; points whose plans differed are drawn hollow. The heading's
-// lines (the first the title) say what was compared; under them, how many
-// plans each side failed and the ratios.
+// A log-log scatter plot (SVG) of old time against new time per scenario,
+// with new = old and the median ratio; hollow points: the plans differed.
+// heading: lines above the plot, the first its title.
 std::string compareSvg(const std::vector<ComparePair>& pairs, const CompareStats& stats,
                        const std::vector<std::string>& heading);
 
@@ -95,11 +93,9 @@ struct CompareSummary {
   bool interrupted = false;
 };
 
-// Runs the comparison; a progress line on a terminal, the summary (and with
-// verbose a line per scenario) on `log`. Bad options (a program that
-// cannot run, a database missing for earc, a scenario file that is not
-// one, an argument plannerArgsProblem refuses) throw InputError before
-// any plan runs.
+// Runs the comparison, writing the summary (verbose: a line per scenario)
+// on `log`. Throws InputError for bad options before any plan runs.
+// SIGINT or SIGTERM stop it early (CompareSummary::interrupted).
 CompareSummary runCompare(const CompareOptions& options, std::ostream& log);
 
 }  // namespace earc::bench

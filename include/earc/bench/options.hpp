@@ -16,10 +16,8 @@ namespace earc::bench {
 // An executable regular file (e.g. --plan-program).
 void requireExecutable(const std::string& path, const std::string& option);
 
-// A directory to write files into (plot -o, export --ompl-log): missing
-// (it is made) or a directory, never an existing file, nor a new name that
-// ends like one of the files (plot -o fig.png would make a directory
-// fig.png holding the figures).
+// Refuses (InputError naming `option`) a directory to write files into
+// that is an existing file or a new name ending like a file (fig.png).
 void requireOutputDirectory(const std::string& path, const std::string& option);
 
 // "a,b,c" as its items; an empty list or item ("2,,4", "a,") is refused.
@@ -35,15 +33,9 @@ std::string reasonAbout(const std::exception& e, const std::string& path);
 void requireSeparateOutputs(const std::string& input, const std::string& input_option,
                             const std::vector<std::pair<std::string, std::string>>& outputs);
 
-// Arguments added to every `earc-plan plan` command (compare's
-// --old-arg/--new-arg, run's --method-arg): why they cannot be given, or
-// nothing. Refused: an argument that sets what earc-bench gives earc-plan
-// itself (the scenario, -o, --method, --time-limit, --seed, --db,
-// --no-learn, -q) or that would stop every plan (--help, --version, --);
-// an empty one; one with a control character or that is not UTF-8 (a
-// results file records it, a table shows it on one line). Whether
-// earc-plan takes the rest is for earc-plan to say: compare and run stop
-// at the first plan it refuses (refusedItsCommand in runner.hpp).
+// Why arguments added to every `earc-plan plan` command (--old-arg,
+// --new-arg, --method-arg) cannot be given, or nothing. Does not ask
+// earc-plan whether it takes them.
 std::optional<std::string> plannerArgsProblem(const std::vector<std::string>& args);
 // The same, thrown as InputError naming `option`.
 void requirePlannerArgs(const std::vector<std::string>& args, const std::string& option);

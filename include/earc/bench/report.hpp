@@ -80,13 +80,13 @@ PairedRatio pairedRatio(const std::vector<TrialRecord>& trials, const std::strin
 std::string jobsNote(const std::vector<TrialRecord>& trials);
 
 // Which builds planned the trials (TrialRecord::planner_version), in one
-// line: "Planned by earc 0.1.0+66772d4." / "Planned by 2 builds: earc A
+// line: "Planned by earc 0.1.0+HASH." / "Planned by 2 builds: earc A
 // (N trials), earc B (M trials): ..." / how many trials did not record it.
 std::string versionNote(const std::vector<TrialRecord>& trials);
 
 // Which builds of earc-bench ran and timed the trials
 // (TrialRecord::bench_version), the same way: "Timed by earc-bench
-// 0.1.0+66772d4." / ... / how many did not record it (before schema 4).
+// 0.1.0+HASH." / ... / how many did not record it (before schema 4).
 std::string benchNote(const std::vector<TrialRecord>& trials);
 
 // What goes under a table: jobsNote, versionNote and benchNote, a line each, after a

@@ -78,12 +78,9 @@ struct TrialRecord {
   // An earc or lightning trial's: whether its run let the databases learn
   // (--learn); unset for other methods (and every trial before schema 8).
   std::optional<bool> learn;
-  // An earc trial's E-ARC database, as the run used it, and where that
-  // database's history stood when the run began: the token of its last
-  // line (experience/history.hpp), which names the file, wherever it is
-  // moved or copied, as it was then. Unset for a database without a
-  // history (experience schema before 5). "" and unset for other methods
-  // (and every trial before schema 8).
+  // An earc trial's E-ARC database as the run named it, and the token of
+  // its history's last line when the run began (unset without a history);
+  // "" and unset for other methods (and every trial before schema 8).
   std::string earc_db;
   std::optional<std::int64_t> earc_db_state;
   // A crowd suite's trial: the lower bound its sum of costs is compared
@@ -114,14 +111,9 @@ using TrialKey = std::tuple<std::string, int, std::string, int>;
 
 class ResultsDb {
  public:
-  // Opens or creates the file. Throws InputError naming the file, before
-  // anything is read or written, when it is not a results database of this
-  // program (not SQLite, another application_id, a newer schema version:
-  // the message names both versions) or is damaged (a table of its schema
-  // missing), as exp::checkFileIdentity checks the experience store, or
-  // when a row holds a value no run writes (see above; two rows of one
-  // method with different planner_args too): every row is read and
-  // checked at open, as trials() and databases() read them.
+  // Opens or creates the file, reading and checking every row. Throws
+  // InputError naming the file, before writing anything, when it is not a
+  // results database of this program, is damaged or holds a bad row.
   explicit ResultsDb(const std::string& path, bool read_only = false);
   ~ResultsDb();
   ResultsDb(const ResultsDb&) = delete;
@@ -136,10 +128,9 @@ class ResultsDb {
   std::set<TrialKey> finishedTrials(std::uint64_t seed, double time_limit_s) const;
   // Every trial, read (and checked) now.
   std::vector<TrialRecord> trials() const;
-  // The trials as trials() last read them: at open, which reads every row
-  // to check it, or again once addTrial has added one. One read serves a
-  // resumed run's checks (runner.cpp) and the queries below, which answer
-  // from it; what another process adds meanwhile is not in it.
+  // The trials as trials() last read them (at open, or after addTrial):
+  // what another process added since is not in it. The queries below
+  // answer from it.
   const std::vector<TrialRecord>& recordedTrials() const;
   // The planner arguments the file's trials of `method` ran with; nothing
   // when it has none of them.

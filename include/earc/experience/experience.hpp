@@ -21,9 +21,8 @@ std::optional<Source> sourceFromName(std::string_view name);
 const char* kindName(RobotKind k);                         // "mobile", "manipulator"
 std::optional<RobotKind> kindFromName(std::string_view name);
 
-// Experiences are only ever handed between subproblems of one class: same
-// kind, same number of robots, same bodies in the same canonical order,
-// and (manipulators) the same relative base transform class. All keys of a
+// What subproblems must share to share experiences: kind, robot count,
+// bodies in canonical order and (arms) base transform class. All keys of a
 // class have one dimension.
 struct ExperienceClass {
   RobotKind kind = RobotKind::Mobile;
@@ -65,10 +64,8 @@ double pathCost(const std::vector<Path>& paths);
 // second for thirty years).
 inline constexpr std::int64_t kMaxSession = 1'000'000'000;
 
-// The most uses one experience may count (retrieved, succeeded): 2^40, a
-// million a second for twelve days. A row's counters stop there instead
-// of overflowing, and the sums over a class (inspect) stay far from
-// 64-bit overflow.
+// The most uses one experience may count (retrieved, succeeded): counters
+// stop there, so that sums over a class (inspect) cannot overflow.
 inline constexpr std::int64_t kMaxUseCount = std::int64_t{1} << 40;
 
 // The latest creation time an experience may carry (created_at, Unix
@@ -79,31 +76,22 @@ inline constexpr std::int64_t kMaxCreatedAt = 253'402'300'799;
 std::vector<std::string_view> signatureParts(const std::string& signature);
 
 // What is wrong with a class's signature for these paths, or nothing: it
-// must name robot_count robots ('|'-joined), each by a geometry signature
-// earc writes (robotFromSignature), of the class's kind and with its path's
-// dimension.
+// must name robot_count robots ('|'-joined) by signatures earc writes
+// (robotFromSignature), of the class's kind and its paths' dimension.
 std::optional<std::string> signatureProblem(const ExperienceClass& c, const std::vector<Path>& paths);
 
-// The farthest a stored mobile state's x or y may lie from 0. Stored
-// mobile paths are relative to their subproblem's centre (keys.hpp), and a
-// subproblem is a conflict's neighbourhood: the builder's are a few units
-// across, and a scenario at the default resolution is at most 5e5 units
-// across (1e7 steps of 0.05). A position beyond this is a damaged or made-up
-// row; retrieved, it is millions of steps from anything in the workspace.
+// The farthest a stored mobile state's x or y may lie from its
+// subproblem's centre (keys.hpp); beyond it a row is damaged or made up.
 inline constexpr double kMaxStoredPosition = 1e6;
 
-// Which state of the paths no robot of the class could take, as
-// "paths[r][t]: ...", or nothing: a mobile x or y beyond
-// kMaxStoredPosition, an arm joint outside the limits its signature gives
-// (with the checker's slack and the signature's rounding). Nothing for
-// what signatureProblem finds.
+// The first state no robot of the class could take, as "paths[r][t]: ...":
+// a mobile x or y beyond kMaxStoredPosition, an arm joint outside its
+// signature's limits; or nothing (signatureProblem's faults included).
 std::optional<std::string> stateProblem(const ExperienceClass& c, const std::vector<Path>& paths);
 
-// What is wrong with an experience, or nothing: robot count, path
-// dimensions and lengths, finite numbers, signature (signatureProblem),
-// states (stateProblem), key dimension and agreement with the paths'
-// endpoints, cost, base class form. Used on every insert and on every
-// imported, verified or retrieved row.
+// What is wrong with an experience (counts, dimensions, numbers, signature,
+// states, key, cost, base class), or nothing. Checked on every insert and
+// every imported, verified or retrieved row.
 std::optional<std::string> findProblem(const Experience& e);
 
 }  // namespace earc::exp

@@ -34,11 +34,9 @@ class HistoryWriter {
   explicit HistoryWriter(std::string operation = "learn", std::string detail = {});
   void describe(std::string operation, std::string detail);
 
-  // Inside a write transaction on a file at schema >= 5 (older: nothing):
-  // counts the rows on this open's line, writing the line when it is the
-  // first change. Both counts zero writes nothing unless even_if_unchanged
-  // (creating or migrating a file; a curate that removed nothing). Once
-  // the line is written, describe() no longer changes it.
+  // Inside a write transaction (schema >= 5; older: nothing): counts rows
+  // on this open's line, written at the first change; zero counts write
+  // nothing unless even_if_unchanged. describe() is ignored once written.
   void record(Connection& db, int schema_version, std::int64_t added, std::int64_t removed,
               bool even_if_unchanged = false) const;
 

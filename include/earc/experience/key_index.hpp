@@ -20,9 +20,7 @@ struct Neighbor {
 };
 
 // The tail is folded into the tree when it holds more than this fraction of
-// the indexed keys (and more than kMinTailBeforeRebuild): with 100,000 keys
-// a linear scan of up to 3,000 8-dim keys costs ~5 us, while a rebuild
-// (~40 ms) then happens once per 3,000 inserts.
+// the indexed keys and more than kMinTailBeforeRebuild.
 inline constexpr double kTailRebuildFraction = 1.0 / 32.0;
 inline constexpr std::size_t kMinTailBeforeRebuild = 64;
 

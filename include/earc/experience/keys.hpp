@@ -54,21 +54,6 @@ inline constexpr double kBaseClassQuantum = 1e-3;
 // Mobile starts are ordered after rounding to this (units).
 inline constexpr double kOrderQuantum = 1e-6;
 // Joints of each arm that enter the key (from the base outwards).
-//
-//
-// Measured on 100,000 keys of one facing-pair class drawn like the
-// builder's queries (sampleArmQuery), k = 10, 500 queries, Release build,
-// 2-core machine under a load average of ~7.7 (absolute times are inflated;
-// the ratios are what matter):
-//   5 joints (20 dims): k-d tree median 2,241 us, brute force 1,781 us
-//   4 joints (16 dims): k-d tree median   631 us, brute force   969 us
-//   3 joints (12 dims): k-d tree median   214 us, brute force   608 us
-//   2 joints  (8 dims): k-d tree median    59 us, brute force   392 us
-// With all 20 dimensions the tree visits nearly every leaf and loses to a
-// linear scan. The joints near the base decide where the arm is (joint 1
-// swings all 2.5 units of it, joint 5 the last 0.5), so the first three
-// keep most of what "close" should mean while the tree is 3x faster than
-// a scan; every candidate is validated (and repaired) by the planner anyway.
 inline constexpr int kArmKeyJoints = 3;
 
 // Key dimension of a class: 4 per mobile robot; 2 x min(dim, kArmKeyJoints)
@@ -103,10 +88,9 @@ struct Canonical {
   std::vector<Path> fromCanonical(const std::vector<Path>& paths) const;
 };
 
-// A stored-form experience of a solved subproblem: paths in subproblem
-// order and world frame, mapped to canonical form; key from the canonical
-// paths' endpoints, cost from their lengths. Source and bookkeeping are
-// left at their defaults.
+// The stored form of a solved subproblem's paths (subproblem order, world
+// frame): canonical paths, key and cost; source and bookkeeping at their
+// defaults.
 Experience canonicalExperience(const Canonical& form, const std::vector<Path>& subproblem_paths);
 
 // True when the robots form a class the store can hold: one or more mobile

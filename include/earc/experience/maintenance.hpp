@@ -69,10 +69,9 @@ struct VerifyReport {
   bool ok() const { return problems.empty(); }
 };
 
-// integrity_check, application_id and schema version, every row (column
-// types, blob headers and lengths, finite numbers, key and class
-// consistency), one key dimension per class. Never writes. Throws
-// InputError for a file that is not readable as an earc database at all.
+// Checks the file's integrity, identity and version and every row, and
+// reports each problem; never writes. Throws InputError for a file that is
+// not readable as an earc database at all.
 VerifyReport verifyDatabase(const std::string& path);
 
 struct CurateSettings {
@@ -106,20 +105,14 @@ struct CurateReport {
   std::string curated_path;
 };
 
-// Merges, then removes near-duplicates (keeping in each eps-ball the entry
-// that succeeded most, then was retrieved most, then is oldest), then drops
-// unused entries, then those made by the builds named, then (compact)
-// rewrites path blobs of an older format in the current one, which gives
-// back exactly the same paths; each step one write transaction. A damaged
-// blob is left as it is; a file that fails integrity_check (the one
-// curated in place, or the source of a copy) is refused before anything
-// is written (DamagedDatabaseError).
+// Merges, removes near-duplicates, drops unused entries and those of the
+// builds named, then (compact) rewrites older path blobs: a transaction a
+// step. A file failing integrity_check throws DamagedDatabaseError first.
 CurateReport curateDatabase(const std::string& path, const CurateSettings& settings);
 
-// A consistent copy of a live database (VACUUM INTO; never cp): readers and
-// writers may keep using the source. `to` must not exist. full_check: the
-// source must pass integrity_check, not only quick_check (VACUUM INTO
-// copies an index's pages as they are, damage included).
+// A consistent copy of a live database (VACUUM INTO) that readers and
+// writers may keep using; `to` must not exist. full_check: the source must
+// pass integrity_check, not only quick_check.
 void copyDatabase(const std::string& from, const std::string& to, bool full_check = false);
 
 // Runs f(); a database file that cannot be used (missing, foreign, newer,

@@ -21,10 +21,9 @@
 //                         estimate between the keyframes around it
 //                         (keyframeEstimate), usually 0 or 1 (one byte).
 // Version 3 body: version 2's, then a u32 CRC-32C (Castagnoli) of every
-// byte before it, header included. SQLite checks its
-// pages' structure, not their contents: without it a flipped bit in a
-// stored path read back as another path (in 40 of 60 random bit flips
-// of a real file, earc-db verify passed and the export differed).
+// byte before it, header included. SQLite checks its pages' structure,
+// not their contents: without it a flipped bit in a stored path read back
+// as another path.
 // Written from schema version 6 on (migrations/0006_path_blob_checksums.sql).
 // Decoding checks every header field, the exact length, and that every
 // number is finite, and names the row on error (like nanoflann's saved

@@ -3,7 +3,7 @@
 // closest stored solutions of its class, map them back into the
 // subproblem's frame and robot order; and learn a solved subproblem.
 //
-//   auto candidates = exp::retrieveCandidates(store, robots, starts, goals, settings.db_k);
+//   auto candidates = exp::retrieveCandidates(store, robots, starts, goals, settings.db.k);
 //   for (auto& c : candidates) { ... validate / connect / repair c.paths ...
 //                                store.recordUse(c.id, resolved); }
 //   if (solved_from_scratch) exp::learn(store, robots, local.paths, seconds, exp::Source::Planner);
@@ -30,43 +30,26 @@ struct Candidate {
   std::vector<Path> paths;  // subproblem robot order and world frame
 };
 
-// Up to k stored solutions for the subproblem, nearest first, mapped into
-// its frame and robot order: each path starts near the robot's start and
-// ends near its goal (not exactly; the caller connects them). Empty when
-// the robots form no experience class (hasExperienceClass). For a
-// symmetric arm pair both role assignments are searched and merged.
-// Entries stored under a coarser resolution than the robots' come back
-// with their long steps split (fitResolution), never breaking the
-// resolution rule. With skip > 0, the k nearest less the `skip` nearest
-// (rows not read): the next candidates after a first call with k = skip.
-// (For a symmetric pair, a row found under one role assignment before the
-// skip can come back under the other after it.) A row the robots cannot
-// follow at their resolution (fitResolution throws NoStepCountError) is
-// left out, its id put in `unusable` when given.
+// Up to k stored solutions nearest the subproblem (the `skip` nearest left
+// out), mapped to its frame, robot order and resolution; empty when the
+// robots form no class. Rows they cannot follow go to `unusable`.
 std::vector<Candidate> retrieveCandidates(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                           const std::vector<std::vector<double>>& starts,
                                           const std::vector<std::vector<double>>& goals, std::size_t k,
                                           std::size_t skip = 0, std::vector<std::int64_t>* unusable = nullptr);
 
-// The most states fitResolution makes of a stored solution. Stored ones
-// are tens to hundreds of states (at most 287 in a 198-row database the
-// builder made, 76 on average), split by the ratio of two scenarios'
-// resolutions: this leaves a ratio of 300 to the longest.
+// The most states fitResolution makes of a stored solution: far above
+// what the builder stores, split by the ratio of two resolutions.
 inline constexpr std::size_t kMaxFittedStates = 100'000;
 
-// Paths whose consecutive states some robot cannot reach in one step at
-// its resolution, with every such step split into as many as the slowest
-// robot needs (all robots move together, as in the coupled solver's time
-// stamping). Paths that already fit are returned unchanged. Throws
-// NoStepCountError for a step too long for an int count, or when the
-// split paths would hold more than kMaxFittedStates states.
+// The paths with every step some robot cannot make at its resolution split
+// into as many as the slowest needs. Throws NoStepCountError for a step
+// too long for an int count or beyond kMaxFittedStates states.
 std::vector<Path> fitResolution(const std::vector<const RobotModel*>& robots, const std::vector<Path>& paths);
 
-// Stores a solved subproblem: paths in subproblem robot order and world
-// frame, all of one length (a LocalSolution). Its starts and goals are the
-// paths' endpoints. Returns the new id, or nothing for a near duplicate,
-// robots that form no class, or paths beyond what the store holds
-// (stateProblem).
+// Stores a solved subproblem (paths in its robot order and world frame,
+// all of one length); the new id, or nothing for a near duplicate, robots
+// of no class, or paths the store cannot hold (stateProblem).
 std::optional<std::int64_t> learn(ExperienceStore& store, const std::vector<const RobotModel*>& robots,
                                   const std::vector<Path>& paths, double solve_time_s, Source source = Source::Planner,
                                   double near_duplicate_eps = kNearDuplicateEps);

@@ -16,10 +16,9 @@ namespace earc::exp {
 // cache's own bookkeeping), approximately, in bytes.
 std::size_t cachedRowBytes(const Experience& e);
 
-// Rows are immutable once committed except for their usage counters, which
-// a cached row holds as they were when it was read. A row deleted from the
-// store must be dropped by the owner (clear() when the store's deletions
-// change). Not thread-safe: the store serializes its use.
+// Decoded rows by id, least recently used dropped first; usage counters as
+// read. The owner clears it after deletions in the store. Not thread-safe:
+// the store serializes its use.
 class RowCache {
  public:
   // Holds rows while their cachedRowBytes add up to at most max_bytes

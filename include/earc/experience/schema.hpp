@@ -35,30 +35,24 @@ int currentSchemaVersion();
 // the same in every program since, whatever later migrations added.
 inline constexpr int kExperienceRowsSchemaVersion = 4;
 
-// Checks that the connection's file is an earc database this program can
-// use (or an empty file): ForeignDatabaseError for another application's
-// SQLite file or not a SQLite file at all, SchemaVersionError for a newer
-// schema. Returns the file's schema version (0 for an empty file).
+// The file's schema version (0: an empty file). Throws ForeignDatabaseError
+// for another application's file or not SQLite, SchemaVersionError for a
+// newer schema.
 int checkIdentity(Connection& db);
 
-// A file with no earc database in it yet (0 bytes, or SQLite without
-// tables): commands that write make it one, commands that only read refuse
-// it with this error, in one wording: "FILE: empty file (0 bytes), not an
-// earc database yet" (`what`: the kind of database, for earc-bench's
-// results).
+// The error for a file with no database in it yet (0 bytes, or SQLite
+// without tables), refused by a command that only reads it; `what`: the
+// kind of database named.
 InputError notYetADatabase(const std::string& path, std::string_view what = "an earc database");
 
-// Refuses, before SQLite sees it, a database file that a command only
-// reads (inspect, verify, export, import sources, curate's inputs) and that
-// is missing ("FILE: no such file"), a directory, or, unless may_be_empty
-// (a command that writes it), 0 bytes (notYetADatabase).
+// Throws InputError, before SQLite sees it, for a database file that is
+// missing, a directory, or 0 bytes unless may_be_empty (notYetADatabase).
+// For the commands that only read a file.
 void requireDatabaseFile(const std::string& path, bool may_be_empty = false);
 
-// Brings the file up to `target` (default: current), one migration per
-// BEGIN IMMEDIATE transaction with its user_version bump, so a crash
-// mid-way leaves the previous version intact; a new (empty) file gets every
-// migration in one such transaction. Safe against another process
-// migrating the same file at the same time. Returns the version reached.
+// Brings the file up to `target` (default: current), a transaction per
+// migration; returns the version reached. Safe against a crash mid-way and
+// against another process migrating the same file at once.
 int migrate(Connection& db, int target = -1);
 
 }  // namespace earc::exp

@@ -36,10 +36,9 @@ class ForeignDatabaseError : public StoreError {
   using StoreError::StoreError;
 };
 
-// The file is damaged: SQLite found it malformed (a truncated file, flipped
-// bytes, a torn page), quick_check or integrity_check failed, or its
-// header's file format bytes hold a value SQLite never writes. what()
-// names the file and says what to do.
+// The file is damaged (malformed to SQLite, failing quick_check or
+// integrity_check, or with header bytes SQLite never writes); what() names
+// the file and says what to do.
 class DamagedDatabaseError : public StoreError {
  public:
   using StoreError::StoreError;
@@ -73,10 +72,9 @@ class WriteLostError : public StoreError {
   using StoreError::StoreError;
 };
 
-// The disk (or the file's page limit) has no room for a write: SQLite
-// rolled the transaction back, and the file holds what it held. what() is
-// "FILE: cannot write: the disk is full" (kDiskFull), without the
-// statement that met it.
+// The disk (or the file's page limit) had no room for a write, which was
+// rolled back. what() is "FILE: " + kDiskFull, without the statement that
+// met it.
 class NoSpaceError : public WriteLostError {
  public:
   using WriteLostError::WriteLostError;
@@ -104,12 +102,9 @@ std::vector<std::string> checkProblemLines(const std::string& row);
 // layer so that this process's locks on the file stay (see sqlite.cpp).
 bool startsLikeSqlite(const std::string& path);
 
-// The file SQLite opens for a database named `path`: absolute, every
-// symbolic link on the way followed (a dangling one too, to the file it
-// would create), as SQLite resolves a main database's name; `path` as
-// given when it cannot be resolved. Its -wal and -shm are beside it: look
-// for them, or remove or rename the database, here, not at `path`. For
-// the filesystem only; messages name the path as given.
+// The file SQLite opens for `path`, symbolic links followed as SQLite
+// follows them (`path` when it cannot be resolved): where its -wal and
+// -shm lie. For the filesystem only; messages name `path`.
 std::string databaseFile(const std::string& path);
 
 // `path` as a name SQLite opens as that very file: a relative name that
@@ -182,15 +177,9 @@ struct ConnectionSettings {
   int write_attempts = 8;
   std::chrono::milliseconds first_backoff{5};
   std::chrono::milliseconds max_backoff{400};
-  // ReadOnly mode: when the file's header says it is in WAL mode and
-  // carries this application_id (0: never), the connection opens it
-  // read-write under PRAGMA query_only instead. SQLite lets only a
-  // read-write connection remove the -wal and -shm files when the last
-  // connection closes; a read-only one leaves an empty -wal and a 32 KB
-  // -shm beside the file after every `earc-db inspect`. The header is
-  // read before SQLite opens the file, so a foreign file is never opened
-  // read-write (its WAL would be checkpointed before the identity check
-  // refused it).
+  // ReadOnly mode: a file whose header says WAL mode and this
+  // application_id (0: never) is opened read-write under PRAGMA query_only,
+  // so that closing it removes its -wal and -shm.
   std::int64_t own_application_id = 0;
 };
 
@@ -200,9 +189,7 @@ inline constexpr std::int64_t kJournalSizeLimit = 64ll << 20;
 // places in the file; keeping recently read pages saves the system calls.
 inline constexpr int kPageCacheKiB = 32 * 1024;
 // Memory-mapped reads of our own files (never of hostile ones): a page read
-// becomes a memory access instead of a system call. Measured on 100,000
-// 2-robot rows, 10 random rows not in the page cache: 69 us with pread,
-// 47 us mapped.
+// becomes a memory access instead of a system call.
 inline constexpr std::int64_t kMmapBytes = 1ll << 30;
 // Page cache while quick_check reads the whole file (KiB).
 inline constexpr int kQuickCheckCacheKiB = 2 * 1024;
@@ -217,13 +204,9 @@ inline constexpr const char* kNotARegularFile = "not a regular file (a device, F
 
 class Connection {
  public:
-  // Refuses a file whose SQLite header has a file format byte (18, 19)
-  // other than 1 or 2 (DamagedDatabaseError) before SQLite opens it. Then
-  // opens and configures: extended result codes, SQLITE_DBCONFIG_DEFENSIVE,
-  // trusted_schema=OFF, foreign_keys=ON, busy_timeout; Hostile adds
-  // cell_size_check=ON, mmap_size=0 and a length limit. Journal mode is
-  // left to enableWal(), which the store calls once it has checked that the
-  // file is its own. Throws StoreError naming the file.
+  // Opens and configures the file, Hostile with the stricter limits; the
+  // journal mode is left to enableWal(). Throws StoreError naming the file
+  // (DamagedDatabaseError for a header SQLite never writes).
   Connection(const std::string& path, OpenMode mode, const ConnectionSettings& settings = {});
 
   const std::string& path() const { return path_; }
@@ -235,49 +218,35 @@ class Connection {
   std::int64_t pragmaInt(std::string_view pragma);
   std::string pragmaText(std::string_view pragma);
 
-  // PRAGMA quick_check (page structure, record formats, NOT NULL and
-  // CHECK constraints; not index contents): throws DamagedDatabaseError
-  // naming the file and the first problem. O(file size), about 0.1 s for
-  // a 95 MB file (50,000 entries) in the page cache. The check reads every page once, so it
-  // runs unmapped and with a small page cache: otherwise the whole file
-  // stays in the process's memory (a 48 MB database added 45 MB to a
-  // 2-robot plan's peak resident size).
+  // PRAGMA quick_check (all but index contents), reading the whole file
+  // with little memory: throws DamagedDatabaseError naming the file and the
+  // first problem.
   void requireQuickCheck();
 
-  // PRAGMA integrity_check: quick_check's checks and also that every index
-  // holds exactly its table's rows. A flipped byte in an index page passes
-  // quick_check ("row 3 missing from index experiences_keys"), and a
-  // write into such a file compounds the damage. Same error, same memory
-  // limits; slower (measured in the README, *Hostile files*), so for the
-  // offline writers (earc-db build, import, curate: StoreOptions::
-  // full_check), never for a planner's open.
+  // PRAGMA integrity_check: quick_check's checks and index contents too;
+  // the same error and memory. Slower: for the offline writers
+  // (StoreOptions::full_check), never for a planner's open.
   void requireIntegrityCheck();
 
   // journal_mode=WAL (checked: a file system without WAL support is an
   // error), journal_size_limit, synchronous=FULL.
   void enableWal();
 
-  // Runs body() inside BEGIN IMMEDIATE ... COMMIT. On SQLITE_BUSY anywhere
-  // (begin, body, commit) the transaction is rolled back and run again after
-  // a doubling backoff, at most settings.write_attempts times, then
-  // BusyError. Any other exception rolls back and propagates. body must
-  // therefore keep its effects inside the database until it returns.
+  // Runs body() in BEGIN IMMEDIATE ... COMMIT, run again on SQLITE_BUSY (at
+  // most settings.write_attempts times, then BusyError); another exception
+  // rolls back and propagates. body's effects must stay in the database.
   template <class Body>
   auto write(Body&& body) -> decltype(body());
 
-  // Runs body() inside one read transaction (BEGIN ... COMMIT), so that
-  // its statements share one snapshot and take the WAL read lock once
-  // instead of once each (k = 10 retrieval: 11 statements). Inside a
-  // transaction already, just runs body(). An exception rolls back and
+  // Runs body() in one read transaction (one snapshot, one WAL read lock),
+  // or as it is inside a transaction already. An exception rolls back and
   // propagates.
   template <class Body>
   auto read(Body&& body) -> decltype(body());
 
-  // Runs f(); on BusyError runs it again after a doubling backoff, at most
-  // settings.write_attempts times, then BusyError. For steps outside a
-  // transaction that other connections can make busy without the busy
-  // handler waiting (switching a new file to WAL while another process
-  // creates it too).
+  // Runs f(), again after a doubling backoff on BusyError, at most
+  // settings.write_attempts times. For steps outside a transaction that the
+  // busy handler does not wait on (switching a new file to WAL).
   template <class F>
   auto retryWhileBusy(F&& f) -> decltype(f());
 
@@ -363,13 +332,9 @@ struct FileIdentity {
   std::span<const TableSince> tables;
 };
 
-// Checks that the connection's file is one of `identity` that this program
-// can use (or an empty file): ForeignDatabaseError for another
-// application's SQLite file or not a SQLite file at all,
-// SchemaVersionError for a newer schema, DamagedDatabaseError for a file
-// without a table its schema version has (damaged or edited: refused
-// before a statement needing the table fails with SQL text). Returns the
-// file's schema version (0 for an empty file).
+// The file's schema version (0: an empty file) when it is one of
+// `identity`'s; else ForeignDatabaseError, SchemaVersionError (newer), or
+// DamagedDatabaseError (a table of its version missing).
 int checkFileIdentity(Connection& db, const FileIdentity& identity);
 
 }  // namespace earc::exp

@@ -22,9 +22,8 @@ namespace earc::exp {
 // "rows": count}; then one JSON object per row, in id order.
 inline constexpr const char* kExportFormat = "earc.experiences.v1";
 
-// Writes every row of the database at db_path to out_path (atomically:
-// temporary file, fsync, rename). Doubles are written in the shortest form
-// that reads back to the same double. Returns the number of rows. Counts
+// Writes every row of the database at db_path to out_path atomically, each
+// double in its shortest exact form; returns the number of rows. Counts
 // rows on `progress` when given.
 std::size_t exportJsonl(const std::string& db_path, const std::string& out_path, Progress* progress = nullptr);
 
@@ -33,10 +32,9 @@ std::size_t exportJsonl(const std::string& db_path, const std::string& out_path,
 nlohmann::json experienceToJson(const Experience& e);
 Experience experienceFromJson(const nlohmann::json& row, const std::string& file, const std::string& where);
 
-// Every row of an import source (.jsonl export or earc SQLite database,
-// told apart by content), validated. Throws InputError naming the file and
-// the bad rows (line numbers for exports, row ids for databases). Counts
-// rows on `progress` when given.
+// Every row of an import source (.jsonl export or earc database, told apart
+// by content), validated; throws InputError naming the file and bad rows.
+// Counts rows on `progress` when given.
 std::vector<Experience> readImportSource(const std::string& path, Progress* progress = nullptr);
 
 struct ImportSettings {

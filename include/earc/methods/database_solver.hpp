@@ -32,7 +32,7 @@ struct DatabaseSolverSettings {
   // robot needs to go straight from start to goal (0: take any length).
   double max_stretch = 0.0;
   bool learn = true;              // insert subproblems solved from scratch, count uses
-  bool shadow_decoupled = false;  // see PlannerSettings::db_shadow_decoupled
+  bool shadow_decoupled = false;  // see DatabaseSettings::shadow_decoupled
 };
 
 // What the database answered in an E-ARC plan (its subproblems_by_solver):

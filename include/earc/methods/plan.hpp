@@ -11,4 +11,10 @@ namespace earc {
 PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore* store = nullptr,
                 const PlanContext& context = {});
 
+// plan() with a store opened with check_in_background, then its check's
+// verdict: DamagedDatabaseError is thrown; a write lost to the disk or
+// server (WriteLostError) goes to stats.db_learn_error and the file's stats.
+PlanResult planThenAwaitCheck(const Scenario& scenario, const PlannerSettings& settings, exp::ExperienceStore& store,
+                              const PlanContext& context = {});
+
 }  // namespace earc

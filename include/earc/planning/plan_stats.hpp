@@ -43,7 +43,7 @@ struct DatabaseStats {
   std::optional<double> db_retrieval_time_s;
   std::optional<std::int64_t> db_row_cache_hits, db_row_cache_misses;
   std::optional<double> db_hit_rate;                 // retrieved or repaired over solved
-  std::optional<nlohmann::json> db_shadow_decoupled;  // with PlannerSettings::db_shadow_decoupled
+  std::optional<nlohmann::json> db_shadow_decoupled;  // with DatabaseSettings::shadow_decoupled
 };
 
 // Lightning's database (top-level keys lightning_*).

@@ -38,49 +38,67 @@ struct PlanProgress {
   std::atomic<int> expansions{0};         // its window expansion level
 };
 
-struct PlannerSettings {
-  Method method = Method::Arc;
-  double time_limit_s = 60.0;
-  std::uint64_t seed = 1;
-  bool trace = false;                 // record a trace of conflicts and subproblems
-  // ARC's and E-ARC's solver attempts count their budgets in work done, not
-  // seconds (Deadline::withWorkBudgets): the same seed, the same plan on
-  // any machine of the same build, unless time_limit_s stops it.
-  bool work_budgets = false;
-  // Individual roadmaps.
-  int roadmap_samples = 0;            // 0: chosen from the workspace and robot size
-  int roadmap_neighbors = 10;
-  // ARC's subproblems.
-  int initial_window = 8;             // steps before and after the conflict
-  double region_margin = 1.0;         // plane units (mobile) around the local query
-  double joint_margin = 0.6;          // radians (arms)
+// The individual roadmaps (ARC, E-ARC, prioritized, refinement).
+struct RoadmapSettings {
+  int samples = 0;  // 0: chosen from the workspace and robot size
+  int neighbors = 10;
+};
+
+// ARC's and E-ARC's subproblems.
+struct ArcSettings {
+  int initial_window = 8;      // steps before and after the conflict
+  double region_margin = 1.0;  // plane units (mobile) around the local query
+  double joint_margin = 0.6;   // radians (arms)
   int max_expansions = 12;
   // Merging stops at this many robots (at least 2), except for a conflict
   // that keeps coming back (ConflictRecurrence, arc.hpp).
   int max_merged_robots = 5;
-  // E-ARC's database solver.
-  int db_k = 10;                      // candidates retrieved per subproblem
-  int db_max_invalid_segments = 3;    // repair at most this many segments
-  double db_max_stretch = 0.0;        // refuse longer answers (DatabaseSolverSettings::max_stretch); 0: off
-  bool db_learn = true;               // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
-  // Diagnostic: also run the decoupled solver on every subproblem put to the
-  // database and report what each solved (stats db_shadow_decoupled).
-  bool db_shadow_decoupled = false;
-  // After planning, leave out the waits each robot does not need
-  // (compactPlan, compact.hpp); stats "compact".
-  bool compact = false;
-  // Seconds spent after the first valid plan improving it (refinePlan,
-  // refine.hpp), within time_limit_s; 0: off. Stats "refine".
-  double refine_s = 0.0;
-  // Crowds: ARC and E-ARC hand a jam to the configuration-based crowd
-  // solver (lacam.hpp) when their local solvers fail on it; false: never.
+  // Hand a jam to the crowd solver (lacam.hpp) when the local solvers fail
+  // on it; false: never (the methods as published).
   bool crowd_fallback = true;
-  // Lightning's database file (OMPL's format): empty starts from an empty
-  // database and writes none; a missing file is created when db_learn is set.
-  std::string lightning_db;
-  // A scenario whose straight start-to-goal motions alone would take more
-  // time-stamped scalars than this (8 bytes each) is refused as too large.
+};
+
+// The experience databases: E-ARC's store and Lightning's file.
+struct DatabaseSettings {
+  int k = 10;                    // candidates retrieved per subproblem (E-ARC)
+  int max_invalid_segments = 3;  // repair at most this many segments (E-ARC)
+  double max_stretch = 0.0;      // refuse longer answers (DatabaseSolverSettings::max_stretch); 0: off
+  bool learn = true;             // insert subproblems solved from scratch (E-ARC), the solution (Lightning)
+  // E-ARC diagnostic: also run the decoupled solver on every subproblem put
+  // to the database (stats db_shadow_decoupled).
+  bool shadow_decoupled = false;
+  // Lightning's file (OMPL's format); empty: an empty database, none
+  // written. A missing file is created when learn is set.
+  std::string lightning_file;
+};
+
+// What every method's plan goes through once it is valid.
+struct PostPlanSettings {
+  // Leave out the waits each robot does not need (compactPlan, compact.hpp);
+  // stats "compact".
+  bool compact = false;
+  // Seconds spent improving the first valid plan (refinePlan, refine.hpp),
+  // within time_limit_s; 0: off. Stats "refine".
+  double refine_s = 0.0;
+};
+
+// How to plan: the settings every method reads, then each group's own.
+struct PlannerSettings {
+  Method method = Method::Arc;
+  double time_limit_s = 60.0;
+  std::uint64_t seed = 1;
+  bool trace = false;  // record a trace of conflicts and subproblems
+  // ARC's and E-ARC's solver attempts count their budgets in work done, not
+  // seconds (Deadline::withWorkBudgets): the same seed, the same plan on
+  // any machine of the same build, unless time_limit_s stops it.
+  bool work_budgets = false;
+  // Refuse as too large a scenario whose straight start-to-goal motions
+  // alone take more time-stamped scalars (8 bytes each).
   std::int64_t max_path_scalars = std::int64_t{1} << 24;  // 128 MiB
+  RoadmapSettings roadmap;
+  ArcSettings arc;
+  DatabaseSettings db;
+  PostPlanSettings post;
 };
 
 // What a plan runs with besides its settings, owned by the caller and kept
