@@ -26,7 +26,7 @@ using SharedRows = std::vector<std::shared_ptr<const Experience>>;
 // What a store knows whichever engine holds its rows. Not thread-safe:
 // ExperienceStore's mutex guards it.
 struct StoreCore {
-  StoreCore(std::string path_, const StoreOptions& options_);
+  StoreCore(std::string location, const StoreOptions& opts);
 
   std::string path;
   StoreOptions options;

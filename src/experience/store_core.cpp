@@ -31,8 +31,8 @@ bool plausibleKeyDimension(const ExperienceClass& cls, std::size_t n) {
 
 }  // namespace
 
-StoreCore::StoreCore(std::string path_, const StoreOptions& options_)
-    : path(std::move(path_)), options(options_), row_cache(options_.row_cache_bytes) {}
+StoreCore::StoreCore(std::string location, const StoreOptions& opts)
+    : path(std::move(location)), options(opts), row_cache(opts.row_cache_bytes) {}
 
 void StoreCore::indexKeyRow(std::int64_t id, const std::string& kind_name, std::int64_t robot_count,
                             std::string signature, std::string base_class, std::span<const unsigned char> key_blob) {
@@ -108,25 +108,26 @@ std::vector<Experience> StoreCore::prepareRows(const std::vector<Experience>& ba
 
 std::vector<std::size_t> StoreCore::novelRows(const std::vector<Experience>& rows, double eps) const {
   std::vector<std::size_t> novel;
+  if (eps < 0) {
+    for (std::size_t i = 0; i < rows.size(); ++i) novel.push_back(i);
+    return novel;
+  }
   KeyIndex batch_index;  // the batch's rows kept so far, by their position
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const Experience& e = rows[i];
-    bool duplicate = false;
-    if (eps >= 0)
-      for (const ClassIndex* in : {index.find(e.cls), batch_index.find(e.cls)}) {
-        if (!in) continue;
-        if (in->dim() != e.key.size())
-          throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
-                                      " differs from the class's " + std::to_string(in->dim()));
-        auto n = in->nearest(e.key, 1);
-        if (!n.empty() && n.front().distance <= eps) duplicate = true;
-        if (duplicate) break;
-      }
-    if (duplicate) continue;
-    if (eps >= 0) {
-      batch_index.add(e.cls, static_cast<std::int64_t>(i), e.key);
-      if (novel.size() % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
+  const auto duplicate = [&](const Experience& e) {
+    for (const ClassIndex* in : {index.find(e.cls), batch_index.find(e.cls)}) {
+      if (!in) continue;
+      if (in->dim() != e.key.size())
+        throw std::invalid_argument("ExperienceStore::insert: key dimension " + std::to_string(e.key.size()) +
+                                    " differs from the class's " + std::to_string(in->dim()));
+      auto n = in->nearest(e.key, 1);
+      if (!n.empty() && n.front().distance <= eps) return true;
     }
+    return false;
+  };
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (duplicate(rows[i])) continue;
+    batch_index.add(rows[i].cls, static_cast<std::int64_t>(i), rows[i].key);
+    if (novel.size() % ClassIndex::kBulkSettleEvery == 0) batch_index.settle();
     novel.push_back(i);
   }
   return novel;
