@@ -5,8 +5,9 @@
 # refusals, retrieval, round trips, concurrent and killed writers), then
 # earc-db and earc-plan with --db postgresql://...: build, inspect,
 # verify, export into a file and back exactly, curate both ways, a plan
-# learning into the store, a service reading it, and one-line errors for
-# a server that is not there and a password in the URI (never printed).
+# learning into the store, --db-row-cache-mb, a service reading it, and
+# one-line errors for a server that is not there and a password in the
+# URI (never printed).
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
@@ -56,6 +57,23 @@ after=$(pgValue "$db" "SELECT count(*) FROM earc.experiences")
 for id in $(jq -r '.stats.db_learned_ids[]?' "$WORK/s.sol.json" 2> /dev/null); do
   [ "$(pgValue "$db" "SELECT count(*) FROM earc.experiences WHERE id = $id")" = 1 ] || fail "learned row $id is not there"
 done
+
+# --db-row-cache-mb reaches the store: a store this small is read whole
+# at open by default, and no retrieval reads a row from the server; with 0
+# nothing is cached and every row is read. The paths are the same.
+for mb in 0 64; do
+  "$BUILD/earc-plan" plan "$WORK/s.json" -o "$WORK/c$mb.json" --method earc --db "$db" --no-learn --deterministic \
+    --seed 2 --db-row-cache-mb $mb -q > "$WORK/out" 2> "$WORK/err"
+  [ $? -le 1 ] || fail "plan with --db-row-cache-mb $mb: $(cat "$WORK/err")"
+done
+"$PY" - "$WORK/c0.json" "$WORK/c64.json" <<'PY' || fail "--db-row-cache-mb on PostgreSQL"
+import json, sys
+off, on = (json.load(open(p)) for p in sys.argv[1:])
+so, sn = off["stats"], on["stats"]
+assert so["db_row_cache_hits"] == 0 and so["db_row_cache_misses"] > 0, so
+assert sn["db_row_cache_misses"] == 0 and sn["db_row_cache_hits"] == so["db_row_cache_misses"], sn
+assert off.get("paths") == on.get("paths"), "different paths"
+PY
 
 # A service keeping the store open answers from it, and plans learning
 # into it: every id it reports learned is there.

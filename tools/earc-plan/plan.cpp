@@ -48,6 +48,7 @@ struct PlanOptions {
   double refine = 0.0;
   std::optional<int> db_k, db_repair_max;
   std::optional<double> db_max_stretch;
+  std::optional<std::size_t> db_row_cache_mb;
   bool quiet = false;
 };
 
@@ -206,6 +207,7 @@ int runPlan(const PlanOptions& o) {
   m.db_repair_max = o.db_repair_max;
   m.db_max_stretch = o.db_max_stretch;
   PlannerSettings s = plannerSettingsFor(m, OptionStyle::Cli);
+  if (o.db_row_cache_mb && s.method != Method::Earc) throw InputError("", "--db-row-cache-mb", "is for method earc");
   if (s.method == Method::Lightning) {
     if (!o.db.empty() && o.no_learn && !std::filesystem::exists(o.db))
       throw InputError(o.db, "--db", "no such Lightning database (build one with earc-bench lightning-db)");
@@ -215,7 +217,7 @@ int runPlan(const PlanOptions& o) {
   // A disk too full to open the database for learning costs the lesson,
   // not the plan (said after the plan is written).
   std::string full_disk;
-  auto store = openStoreForPlanning(s.method, o.db, s.db.learn, &full_disk);
+  auto store = openStoreForPlanning(s.method, o.db, s.db.learn, rowCacheBytes(o.db_row_cache_mb), &full_disk);
   if (!full_disk.empty()) s.db.learn = false;
   // A database found damaged (by the quick_check that ran while planning,
   // or by a read) is bad input too: one line naming the file, exit 2, no
@@ -334,6 +336,7 @@ void setupPlan(CLI::App& app) {
                   "to go straight from start to goal, and plan that subproblem from scratch (shorter plans for "
                   "arms, slower; default 0: any length)")
       ->check(earc::cli::kFiniteNonNegative);
+  addRowCacheOption(*cmd, opts->db_row_cache_mb);
   cmd->add_flag("-q,--quiet", opts->quiet, "Print nothing on success");
   cmd->callback([opts] { cli::setExitCode(runPlan(*opts)); });
 }

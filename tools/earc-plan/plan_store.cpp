@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "earc/cli/subcommands.hpp"
 #include "earc/experience/pg_connection.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/io/input_error.hpp"
@@ -29,6 +30,7 @@ std::shared_ptr<exp::ExperienceStore> openStore(const std::string& db, const exp
     std::error_code ec;
     const bool there = std::filesystem::file_size(db, ec) > 0 && !ec;
     exp::StoreOptions fallback;
+    fallback.row_cache_bytes = options.row_cache_bytes;
     fallback.new_session = false;
     fallback.check_in_background = there;
     fallback.read_only = there;
@@ -53,16 +55,29 @@ void requireDatabaseFor(Method method, const std::string& db) {
 }
 
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
-                                                           std::string* full_disk) {
+                                                           std::size_t row_cache_bytes, std::string* full_disk) {
   if (method != Method::Earc) return nullptr;
   requireDatabaseFor(method, db);
   exp::StoreOptions options;
+  options.row_cache_bytes = row_cache_bytes;
   options.check_in_background = true;
   if (!learn) {
     options.read_only = true;
     options.new_session = false;
   }
   return openStore(db, options, full_disk);
+}
+
+void addRowCacheOption(CLI::App& cmd, std::optional<std::size_t>& mib) {
+  cmd.add_option("--db-row-cache-mb", mib,
+                 "E-ARC: keep up to this many MiB of retrieved experiences decoded in memory, and a PostgreSQL "
+                 "store that fits in half of it whole from the open (0: off; default " +
+                     std::to_string(exp::kDefaultRowCacheBytes >> 20) + ")")
+      ->check(cli::wholeNumberIn(0, 65536));
+}
+
+std::size_t rowCacheBytes(const std::optional<std::size_t>& mib) {
+  return mib ? *mib << 20 : exp::kDefaultRowCacheBytes;
 }
 
 }  // namespace earc

@@ -1,14 +1,14 @@
 // earc-plan serve [--db FILE] [--socket PATH] [--method M] [--seed K]
-// [--time-limit S] [--roadmap-cache-mib N]: a long-running planner. Opens
-// the experience store, when given, once, keeps the robots' roadmaps
-// between requests, and answers planning requests, one JSON line each
-// (protocol in earc/service/service.hpp), on stdin/stdout and, with
-// --socket, on a Unix domain socket (any number of connections, requests
-// answered one at a time in arrival order). SIGINT or SIGTERM cuts the
-// request in flight short (its answer says "interrupted"), commits what
-// was learned, closes the database and exits 0. Without --socket the
-// service also ends at the end of stdin; with one, it keeps serving the
-// socket.
+// [--time-limit S] [--roadmap-cache-mib N] [--db-row-cache-mb N]: a
+// long-running planner. Opens the experience store, when given, once,
+// keeps the robots' roadmaps between requests, and answers planning
+// requests, one JSON line each (protocol in earc/service/service.hpp),
+// on stdin/stdout and, with --socket, on a Unix domain socket (any number
+// of connections, requests answered one at a time in arrival order).
+// SIGINT or SIGTERM cuts the request in flight short (its answer says
+// "interrupted"), commits what was learned, closes the database and exits
+// 0. Without --socket the service also ends at the end of stdin; with
+// one, it keeps serving the socket.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -44,6 +44,7 @@ struct ServeOptions {
   std::uint64_t seed = 1;
   bool deterministic = false;
   std::size_t roadmap_cache_mib = service::ServiceSettings{}.roadmap_cache_mib;
+  std::optional<std::size_t> db_row_cache_mb;
 };
 
 // Written by the signal handler only: the signal's number, and a byte into
@@ -352,6 +353,7 @@ int runServe(const ServeOptions& o) {
   // most requests would be errors, before anything is bound or opened.
   const Method store_method = o.db.empty() ? method : Method::Earc;
   requireDatabaseFor(store_method, o.db);
+  if (o.db_row_cache_mb && o.db.empty()) throw InputError("", "--db-row-cache-mb", "is for the experience database (--db)");
   // The socket next: a second service on the same path is refused before
   // it touches the database. Clients that connect meanwhile wait in the
   // backlog until the store is open.
@@ -359,7 +361,7 @@ int runServe(const ServeOptions& o) {
   if (!o.socket.empty()) listener = listenOn(o.socket);
   std::shared_ptr<exp::ExperienceStore> store;
   try {
-    store = openStoreForPlanning(store_method, o.db, true);
+    store = openStoreForPlanning(store_method, o.db, true, rowCacheBytes(o.db_row_cache_mb));
     // A damaged file keeps the service from starting, as it always did;
     // the check only ran while the index loaded.
     if (store) exp::withInputErrors(o.db, [&] { store->awaitCheck(); });
@@ -419,6 +421,7 @@ void setupServe(CLI::App& app) {
                   "world, robots and seed (the same plans; 0: build them anew every time)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 20))
       ->capture_default_str();
+  addRowCacheOption(*cmd, opts->db_row_cache_mb);
   cmd->callback([opts] { cli::setExitCode(runServe(*opts)); });
 }
 

@@ -17,10 +17,8 @@
 // store open across fork().
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <exception>
 #include <functional>
 #include <map>
 #include <memory>
@@ -28,7 +26,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "earc/experience/experience.hpp"
@@ -40,7 +37,8 @@
 namespace earc::exp {
 
 class PgConnection;
-class PgResult;
+struct StoreCore;
+class StoreBackend;
 
 // How often a PostgreSQL store asks the server for rows other planners
 // committed (the highest id seen, polled) before a retrieval; inserts
@@ -73,7 +71,7 @@ struct StoreOptions {
   bool check_in_background = false;
   // ... except on a machine with no spare core (runnable threads at least
   // the cores this process may use): there an idle-class thread gets no
-  // time, and the check runs in the open instead (see openLocked). Off:
+  // time, and the check runs in the open instead (src/experience/sqlite_backend.cpp). Off:
   // always in the background (tests of the background path).
   bool check_in_open_when_busy = true;
   // Run PRAGMA integrity_check at open instead of quick_check: index
@@ -120,7 +118,9 @@ inline constexpr std::chrono::seconds kCheckpointInterval{30};
 // One store, two engines: `path` is an SQLite file, or a PostgreSQL
 // database given as a libpq URI (postgresql://USER@HOST:PORT/DBNAME;
 // isPostgresLocation), which the same methods read and write with the same
-// promises (docs/experience-postgresql.md). The k-d trees are the same.
+// promises (docs/experience-postgresql.md). The k-d trees, the row cache
+// and the duplicate check are shared (StoreCore); each engine is a
+// StoreBackend (src/experience/store_backend.hpp).
 class ExperienceStore {
  public:
   // Opens (creating when missing, unless read_only) and loads the index.
@@ -137,12 +137,12 @@ class ExperienceStore {
   ExperienceStore(const ExperienceStore&) = delete;
   ExperienceStore& operator=(const ExperienceStore&) = delete;
 
-  const std::string& path() const { return path_; }
-  int schemaVersion() const { return version_; }
+  const std::string& path() const;
+  int schemaVersion() const;
   // This open's planning session (store_meta 'sessions' after counting it).
   // Waits for a background check, which comes before counting it.
   std::int64_t session();
-  bool readOnly() const { return options_.read_only; }
+  bool readOnly() const;
 
   // Waits for the background quick_check (StoreOptions::check_in_background)
   // and throws DamagedDatabaseError when it failed; returns at once when
@@ -151,7 +151,7 @@ class ExperienceStore {
 
   // Where this open's structural check ran: in the constructor, or in the
   // background thread, or (a background check starved of CPU) on the
-  // thread that awaited it.
+  // thread that awaited it. InOpen for PostgreSQL and once closed.
   enum class CheckRun { InOpen, Background, TakenOver };
   CheckRun checkRun() const;
 
@@ -221,7 +221,7 @@ class ExperienceStore {
   // the planner: bypasses the index and the mutex. SQLite only
   // (std::logic_error for a PostgreSQL store); pgConnection() the other.
   Connection& connection();
-  bool isPostgres() const { return pg_ != nullptr; }
+  bool isPostgres() const;
   PgConnection& pgConnection();
   // The last `limit` lines of the store's history, either engine.
   HistoryTail readHistoryLines(int limit);
@@ -232,105 +232,18 @@ class ExperienceStore {
   // transaction; a maintenance command that changes rows through
   // connection() records them itself, inside its transaction.
   void describeHistory(std::string operation, std::string detail);
-  const HistoryWriter& history() const { return history_; }
-
- // The background check's state (store.cpp).
-  struct BackgroundCheck;
+  const HistoryWriter& history() const;
 
  private:
-  void openLocked();
-  // After a failed open that created the file `real`: closes the
-  // connection and removes the file and its -wal, -shm and -journal
-  // unless something was committed to it.
-  void discardCreatedLocked(const std::string& real);
-  void refreshLocked();
-  void loadTailLocked();
-  std::int64_t metaLocked(const char* name);
-  std::optional<Experience> fetchLocked(std::int64_t id);
-  // near[skip..] as matches, nearest first: rows from the row cache, the
-  // others read by `read` (given their ids; a row it does not return is
-  // left out) and cached.
-  using RowReader = std::function<std::vector<std::shared_ptr<const Experience>>(const std::vector<std::int64_t>&)>;
-  std::vector<Match> matchesLocked(const std::vector<Neighbor>& near, std::size_t skip, const RowReader& read);
-  // After a deletion anywhere: the index and the row cache start afresh.
-  void forgetRowsLocked();
-  std::vector<std::optional<std::int64_t>> insertLocked(const std::vector<Experience>& batch, double eps,
-                                                        SessionStamp stamp = SessionStamp::ThisSession);
   void flushLocked();
-  void afterWriteLocked();
-  void warnSkipped(std::int64_t id, const std::string& why);
   void requireOpen() const;
   void requireWritable() const;
-  void startCheckLocked();
-  ConnectionSettings checkSettings() const;
-  // Waits for the background check (if any) to end; its error, if any, in
-  // check_error_. A check starved of CPU (its idle class gets none beside
-  // busy processes) is stopped and run on the calling thread instead.
-  void finishCheckLocked();
-  // Stops a background check whose verdict is no longer wanted (a failed
-  // open) and lets its thread go.
-  void dropCheckLocked();
-  // finishCheckLocked, then throws the check's error.
-  void joinCheckLocked();
-  // joinCheckLocked, then counts the session when that was left for after
-  // the check. Every write calls it first.
-  void awaitCheckLocked();
-  bool checkRunning() const;
-  // Shared by both engines (store.cpp).
-  void indexKeyRowLocked(std::int64_t id, const std::string& kind, std::int64_t robot_count, std::string signature,
-                         std::string base_class, std::span<const unsigned char> key_blob);
-  std::vector<Experience> prepareRowsLocked(const std::vector<Experience>& batch, SessionStamp stamp) const;
-  bool nearDuplicate(const KeyIndex& batch_index, const Experience& e, double eps) const;
-  void indexInsertedLocked(const std::vector<Experience>& rows, const std::vector<std::optional<std::int64_t>>& ids);
-  // The PostgreSQL engine (store_pg.cpp).
-  void pgOpenLocked();
-  void pgRefreshLocked(bool force);
-  std::vector<Match> pgNearestLocked(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
-                                     std::size_t skip);
-  std::optional<Experience> pgFetchLocked(std::int64_t id);
-  std::vector<std::shared_ptr<const Experience>> pgReadRowsLocked(const std::vector<std::int64_t>& ids);
-  // Row `row` of a tail read whole (pgSelectTailWithDeletionsSql) into the
-  // row cache; preloading stops when the cache is full.
-  void pgPreloadRowLocked(const PgResult& r, int row);
-  std::vector<std::optional<std::int64_t>> pgInsertLocked(const std::vector<Experience>& batch, double eps,
-                                                          SessionStamp stamp);
-  void pgFlushLocked();
 
-  std::string path_;
-  StoreOptions options_;
-  int version_ = 0;
-  std::int64_t session_ = 0;
   mutable std::mutex mutex_;
-  std::unique_ptr<Connection> conn_;
-  std::unique_ptr<Statement> fetch_;
-  std::unique_ptr<Statement> data_version_;
-  KeyIndex index_;
-  RowCache row_cache_;
-  std::uint64_t retrievals_ = 0;
-  std::uint64_t rows_returned_ = 0;
-  std::int64_t max_loaded_ = 0;
-  std::int64_t loaded_data_version_ = -1;
-  std::int64_t loaded_deletions_ = -1;
-  std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>> pending_uses_;  // id -> (retrieved, succeeded)
-  int writes_since_checkpoint_ = 0;
-  std::chrono::steady_clock::time_point last_checkpoint_;
-  // The background quick_check (StoreOptions::check_in_background): its
-  // thread and what it found, shared with the thread, which a starved
-  // check is left to (see finishCheckLocked).
-  std::shared_ptr<BackgroundCheck> check_;
-  std::exception_ptr check_error_;   // set by the thread, read after join
-  bool check_error_reported_ = false;  // thrown to a caller at least once
-  bool session_pending_ = false;       // 'sessions' not yet counted
-  CheckRun check_run_ = CheckRun::InOpen;
-  HistoryWriter history_;
-  bool history_described_ = false;     // else "learn", "planning session N"
-  // The PostgreSQL engine's connection (null for an SQLite file), when it
-  // last polled, and until when a retrieval skips a server that went away.
-  std::unique_ptr<PgConnection> pg_;
-  std::chrono::steady_clock::time_point pg_polled_{};
-  std::chrono::steady_clock::time_point pg_down_until_{};
-  std::int64_t pg_rows_added_ = 0;     // on this open's history line
-  bool pg_preload_ = false;            // every row read into the row cache
+  // The engine-independent state and the engine (src/experience/store_backend.hpp);
+  // backend_ is null once closed.
+  std::unique_ptr<StoreCore> core_;
+  std::unique_ptr<StoreBackend> backend_;
 };
 
 // A database that holds experiences, none of them for these robots'

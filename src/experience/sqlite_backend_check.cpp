@@ -1,4 +1,4 @@
-// ExperienceStore's structural check of an SQLite file in a background
+// The SQLite engine's structural check of its file in a background
 // thread (StoreOptions::check_in_background): started at open, awaited by
 // every write, taken over by the caller when the thread gets no CPU.
 #include <pthread.h>
@@ -8,11 +8,11 @@
 #include <condition_variable>
 
 #include "earc/experience/schema.hpp"
-#include "earc/experience/store.hpp"
+#include "sqlite_backend.hpp"
 
 namespace earc::exp {
 
-struct ExperienceStore::BackgroundCheck {
+struct SqliteBackend::BackgroundCheck {
   std::thread thread;
   std::mutex mutex;  // the fields below
   std::condition_variable ended;
@@ -27,14 +27,14 @@ namespace {
 
 // Asks `check` to stop: interrupts its quick_check, if running; it ends
 // without a verdict.
-void stopCheck(ExperienceStore::BackgroundCheck& check) {
+void stopCheck(SqliteBackend::BackgroundCheck& check) {
   std::lock_guard l(check.mutex);
   check.stopped = true;
   if (check.db) sqlite3_interrupt(check.db);
 }
 
 // Waits for `check` to end, at most `wait`; whether it has.
-bool awaitEnd(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
+bool awaitEnd(SqliteBackend::BackgroundCheck& check, std::chrono::milliseconds wait) {
   std::unique_lock l(check.mutex);
   return check.ended.wait_for(l, wait, [&] { return check.done; });
 }
@@ -43,7 +43,7 @@ bool awaitEnd(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds
 // go: given an ordinary priority where that is allowed (root), so that a
 // starved idle-class thread gets the time to notice, and joined if it
 // ends within `wait`, else detached, holding its own state.
-void abandonCheck(ExperienceStore::BackgroundCheck& check, std::chrono::milliseconds wait) {
+void abandonCheck(SqliteBackend::BackgroundCheck& check, std::chrono::milliseconds wait) {
   stopCheck(check);
   sched_param normal{};
   pthread_setschedparam(check.thread.native_handle(), SCHED_OTHER, &normal);
@@ -55,7 +55,7 @@ void abandonCheck(ExperienceStore::BackgroundCheck& check, std::chrono::millisec
 
 }  // namespace
 
-void ExperienceStore::dropCheckLocked() {
+void SqliteBackend::dropCheck() {
   if (!check_) return;
   abandonCheck(*check_, std::chrono::milliseconds(10));
   check_.reset();
@@ -72,7 +72,7 @@ double threadCpuNs(std::thread& t) {
 }
 
 void runQuickCheck(const std::string& path, const ConnectionSettings& settings,
-                   ExperienceStore::BackgroundCheck* publish_to) {
+                   SqliteBackend::BackgroundCheck* publish_to) {
   // A connection of its own: the store's serves the planner meanwhile.
   Connection c(path, OpenMode::ReadOnly, settings);
   if (publish_to) {
@@ -81,7 +81,7 @@ void runQuickCheck(const std::string& path, const ConnectionSettings& settings,
     publish_to->db = c.handle();
   }
   struct Unpublish {
-    ExperienceStore::BackgroundCheck* check;
+    SqliteBackend::BackgroundCheck* check;
     ~Unpublish() {
       if (!check) return;
       std::lock_guard l(check->mutex);
@@ -93,33 +93,28 @@ void runQuickCheck(const std::string& path, const ConnectionSettings& settings,
 
 }  // namespace
 
-ExperienceStore::CheckRun ExperienceStore::checkRun() const {
-  std::lock_guard lock(mutex_);
-  return check_run_;
-}
-
-bool ExperienceStore::checkRunning() const {
+bool SqliteBackend::checkRunning() const {
   if (!check_) return false;
   std::lock_guard l(check_->mutex);
   return !check_->done;
 }
 
-ConnectionSettings ExperienceStore::checkSettings() const {
-  ConnectionSettings settings = options_.connection;
-  settings.own_application_id = kApplicationId;  // query_only, as openLocked's
+ConnectionSettings SqliteBackend::checkSettings() const {
+  ConnectionSettings settings = core_.options.connection;
+  settings.own_application_id = kApplicationId;  // query_only, as open()'s
   return settings;
 }
 
-void ExperienceStore::startCheckLocked() {
+void SqliteBackend::startCheck() {
   check_ = std::make_shared<BackgroundCheck>();
-  check_->thread = std::thread([check = check_, path = path_, settings = checkSettings()] {
+  check_->thread = std::thread([check = check_, path = core_.path, settings = checkSettings()] {
     // Spare cores only: under full load (earc-bench --jobs 2 on two cores)
     // a normal thread took time from the plans, its own and the others';
     // E-ARC's plans of 2 and 4 robots on the MovingAI random field took
     // 1.3x ARC's time instead of 1.0x. An idle-class thread runs when a
     // core would otherwise idle. On a machine kept busy by other processes
     // it gets no time at all, not even while awaitCheck() waits for it:
-    // finishCheckLocked then runs the check itself (see there).
+    // finishCheck then runs the check itself (see there).
     // Best effort: where the policy is refused, the check runs anyway.
     sched_param idle{};
     pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
@@ -133,7 +128,7 @@ void ExperienceStore::startCheckLocked() {
     }
     {
       std::lock_guard l(check->mutex);
-      // Stopped (interrupted, or never begun): finishCheckLocked checks anew.
+      // Stopped (interrupted, or never begun): finishCheck checks anew.
       check->passed = passed && !check->stopped;
       if (!check->stopped) check->error = error;
       check->done = true;
@@ -142,7 +137,7 @@ void ExperienceStore::startCheckLocked() {
   });
 }
 
-void ExperienceStore::finishCheckLocked() {
+void SqliteBackend::finishCheck() {
   if (check_) {
     std::shared_ptr<BackgroundCheck> check = std::move(check_);
     // Waits while the check gets CPU time. One that got almost none over
@@ -162,22 +157,22 @@ void ExperienceStore::finishCheckLocked() {
     bool passed = false;
     if (starved) {
       abandonCheck(*check, kWait);
-      check_run_ = CheckRun::TakenOver;
+      check_run_ = ExperienceStore::CheckRun::TakenOver;
     } else {
       check->thread.join();
       passed = check->passed;
       check_error_ = check->error;
     }
     if (!passed && !check_error_) try {
-        runQuickCheck(path_, checkSettings(), nullptr);
+        runQuickCheck(core_.path, checkSettings(), nullptr);
       } catch (...) {
         check_error_ = std::current_exception();
       }
   }
 }
 
-void ExperienceStore::joinCheckLocked() {
-  finishCheckLocked();
+void SqliteBackend::joinCheck() {
+  finishCheck();
   if (check_error_) {
     check_error_reported_ = true;
     std::rethrow_exception(check_error_);
