@@ -104,6 +104,9 @@ void SqliteBackend::open() {
   // Not on a machine without a spare core: there the idle-class thread
   // gets no time, and while it waits for some it can hold SQLite's
   // process-wide locks that this connection needs; the check runs here.
+  // quick_check reads the whole file (longer than the plan it would hold
+  // up); in the background, writes still wait for it, so a damaged file is
+  // never written to. Only a current file of ours (nothing to migrate).
   const bool background = options.check_in_background && !options.full_check &&
                           (!options.check_in_open_when_busy || spareCore()) &&
                           core_.version == currentSchemaVersion() &&

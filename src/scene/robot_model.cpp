@@ -294,6 +294,8 @@ class SignatureReader {
 
 }  // namespace
 
+// The writer stays the one description of the format: what is read is
+// written again and must come out the same.
 std::optional<RobotSpec> robotFromSignature(std::string_view signature) {
   SignatureReader in(signature);
   RobotSpec spec;

@@ -38,10 +38,8 @@ class PgRetryableError : public StoreError {
   using StoreError::StoreError;
 };
 
-// The connection broke (server restarted, network dropped) or the server
-// is shutting down or starting up; the transaction's fate is unknown when
-// it broke during COMMIT. A write that meets it through every attempt is
-// lost, as a write to a full disk is (WriteLostError).
+// The connection broke, or the server is stopping or starting. A write
+// that meets it through every attempt is lost (as on a full disk).
 class PgConnectionLostError : public WriteLostError {
  public:
   using WriteLostError::WriteLostError;
@@ -125,11 +123,9 @@ class PgConnection {
   void reconnect();
   bool inTransaction() const;
 
-  // Runs body() between BEGIN and COMMIT; rolled back on any exception.
-  // A retryable error or a lost connection before COMMIT runs it again
-  // (reconnecting) after a backoff, at most settings.write_attempts
-  // times. A connection lost during COMMIT asks committed() (on the new
-  // connection) whether it went through; without it the error is thrown.
+  // Runs body() in one transaction, again after a retryable error or a lost
+  // connection (at most settings.write_attempts times; committed() settles a
+  // COMMIT cut off). Rolled back on any exception, which is rethrown.
   template <class Body>
   auto write(Body&& body, const std::function<bool()>& committed = {}) -> decltype(body());
 

@@ -24,10 +24,8 @@ int pgCurrentSchemaVersion();
 // writers one at a time, as SQLite's BEGIN IMMEDIATE makes them.
 inline constexpr std::int64_t kPgWriteLock = 0x45415243;
 
-// The store's schema version, 0 for a database without any table (ours
-// to create). Throws ForeignDatabaseError for a database with tables but
-// no earc schema (or another application's), SchemaVersionError for a
-// newer version. Reads only.
+// The store's schema version, 0 for a database without tables. Reads only;
+// throws ForeignDatabaseError (tables, no earc schema), SchemaVersionError.
 int pgCheckIdentity(PgConnection& db);
 
 // Brings the database up to the current version, one migration per
@@ -52,10 +50,9 @@ inline constexpr int kPgInsertColumns = 14;
 std::string pgInsertExperiencesSql(std::size_t rows);
 PgParams pgExperienceParams(const Experience& e);
 
-// Every row in `order` (an ORDER BY clause), in one snapshot (a read-only
-// REPEATABLE READ transaction, fetched a thousand rows at a time): first
-// the row count to onCount, then each readable row to onRow and each
-// damaged one to onDamaged (rethrown when not given).
+// Every row in `order` (an ORDER BY clause) in one snapshot: the count to
+// onCount, each readable row to onRow, each damaged one to onDamaged
+// (rethrown when not given).
 void pgForEachExperience(PgConnection& db, const std::string& order,
                          const std::function<void(std::int64_t)>& onCount,
                          const std::function<void(Experience&&)>& onRow,

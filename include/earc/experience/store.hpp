@@ -59,31 +59,18 @@ struct StoreOptions {
   // Whole-file commands turn it off: they read every row and report a bad
   // one in their own single line, or list them (verify), or count them.
   bool warn_skipped = true;
-  // Run PRAGMA quick_check on a second connection in a background thread
-  // instead of before the constructor returns (planner opens). It reads the
-  // whole file: about 0.2 s at 100,000 mobile entries (190 MB), more than
-  // the plan it would hold up. Only a file that is already ours, in WAL
-  // mode and at the current schema version is opened this way (nothing to
-  // migrate or switch). Every write (insert, counter flush) and the
-  // session count wait for the check first and throw its error, so a
-  // damaged file is still never written to. awaitCheck() asks for the
-  // verdict (and counts the session).
+  // SQLite: quick_check in a background thread, not before the constructor
+  // returns (a current file of ours only). Writes wait for its verdict and
+  // throw its error; awaitCheck() asks for it.
   bool check_in_background = false;
-  // ... except on a machine with no spare core (runnable threads at least
-  // the cores this process may use): there an idle-class thread gets no
-  // time, and the check runs in the open instead (src/experience/sqlite_backend.cpp). Off:
-  // always in the background (tests of the background path).
+  // With check_in_background: on a machine with no spare core the check
+  // runs in the open instead. Off: always in the background.
   bool check_in_open_when_busy = true;
-  // Run PRAGMA integrity_check at open instead of quick_check: index
-  // contents too (Connection::requireIntegrityCheck). For the offline
-  // commands that write into an existing file (earc-db build, import,
-  // curate), which must not add to a damaged one; ignores
-  // check_in_background.
+  // SQLite: integrity_check at open instead of quick_check (index contents
+  // too), for the offline commands that write; ignores check_in_background.
   bool full_check = false;
-  // A new, empty database in memory instead of the file, which is not
-  // touched (the path only names it in messages): for a plan whose
-  // database cannot be created (a full disk), which then plans as E-ARC
-  // with no experience. Nothing it learns is kept.
+  // An empty database in memory instead of the file, which is not touched
+  // (the path only names it in messages). Nothing it learns is kept.
   bool in_memory = false;
   // Rows nearest() read are kept decoded, up to this many bytes (RowCache),
   // and served from memory when retrieved again; 0 turns the cache off.
@@ -115,22 +102,14 @@ inline constexpr std::size_t kMaxPendingUses = 256;
 inline constexpr int kCheckpointEveryWrites = 100;
 inline constexpr std::chrono::seconds kCheckpointInterval{30};
 
-// One store, two engines: `path` is an SQLite file, or a PostgreSQL
-// database given as a libpq URI (postgresql://USER@HOST:PORT/DBNAME;
-// isPostgresLocation), which the same methods read and write with the same
-// promises (docs/experience-postgresql.md). The k-d trees, the row cache
-// and the duplicate check are shared (StoreCore); each engine is a
-// StoreBackend (src/experience/store_backend.hpp).
+// The experience store: an SQLite file, or a PostgreSQL database given as a
+// libpq URI (isPostgresLocation), with the same methods and promises.
+// Thread-safe (one internal mutex).
 class ExperienceStore {
  public:
-  // Opens (creating when missing, unless read_only) and loads the index.
-  // A PostgreSQL location: connects (a one-line StoreError naming it when
-  // the server cannot be reached), checks identity, migrates, loads.
-  // Throws ForeignDatabaseError, SchemaVersionError, StoreError; read_only,
-  // InputError for a file that is missing or no database yet
-  // (requireDatabaseFile). A file this open created is removed again when
-  // the open fails before anything was committed to it (a full disk): a
-  // new database appears whole or not at all, never as an empty file.
+  // Opens (creating when missing, unless read_only), migrates, loads the index.
+  // Throws ForeignDatabaseError, SchemaVersionError, StoreError (unreachable
+  // server), InputError (read_only and no database); a failed open leaves no file.
   explicit ExperienceStore(const std::string& path, const StoreOptions& options = {});
   // Flushes pending counters; errors are reported on stderr, not thrown.
   ~ExperienceStore();
@@ -160,12 +139,9 @@ class ExperienceStore {
   // PRAGMA data_version. nearest() and insert() call it themselves.
   void refresh();
 
-  // Up to k experiences of the class, nearest key first (Euclidean), decoded
-  // and checked. Rows that fail decoding are skipped and reported once on
-  // stderr (earc-db verify names them all). The first `skip` of the k
-  // nearest are left out, unread: a caller that wants more after trying
-  // the k nearest asks for the next ones without reading those again. Rows
-  // read before come from the row cache, usage counters as they were then.
+  // Up to k experiences of the class, nearest key first, decoded and checked,
+  // the first `skip` of them left out unread; damaged rows are skipped (said
+  // once on stderr). Cached rows keep the usage counters they were read with.
   std::vector<Match> nearest(const ExperienceClass& cls, std::span<const double> key, std::size_t k,
                              std::size_t skip = 0);
   // The same search without reading rows: ids and distances only.
@@ -185,18 +161,16 @@ class ExperienceStore {
   // The row cache's size now: rows and their bytes. Thread-safe.
   std::pair<std::size_t, std::size_t> rowCacheSize() const;
 
-  // Stores e unless an entry of its class lies within near_duplicate_eps in
-  // key space (distance <= eps; eps < 0 disables the check), checked inside
-  // the write transaction after loading every committed row. Sets id,
-  // created_session and (when 0) created_at. Returns the new id, or nothing
-  // for a near duplicate. Throws std::invalid_argument when findProblem(e).
+  // Stores e unless its class holds a key within near_duplicate_eps (< 0: no
+  // check), checked in the write transaction. Returns the new id, or nothing
+  // for a near duplicate; throws std::invalid_argument when findProblem(e).
   std::optional<std::int64_t> insert(const Experience& e, double near_duplicate_eps);
-  // Several experiences in ONE transaction, each checked against the store
-  // and the batch's earlier entries: all are stored (or skipped as
-  // duplicates) or, on error, none. SessionStamp::AsGiven keeps each row's
-  // created_session (an import restoring exported rows) instead of this
-  // session's.
+  // insertAll's session for its rows: this session's, or each row's own
+  // created_session (an import restoring exported rows).
   enum class SessionStamp { ThisSession, AsGiven };
+  // Several experiences in one transaction, each checked against the store
+  // and the batch's earlier ones: all stored (or skipped as near duplicates)
+  // or, on error, none. Returns insert()'s answer per entry.
   std::vector<std::optional<std::int64_t>> insertAll(const std::vector<Experience>& batch, double near_duplicate_eps,
                                                      SessionStamp stamp = SessionStamp::ThisSession);
 
@@ -226,11 +200,9 @@ class ExperienceStore {
   // The last `limit` lines of the store's history, either engine.
   HistoryTail readHistoryLines(int limit);
 
-  // This open's line in the file's history (history.hpp): "learn" in the
-  // planning session unless a command describes itself (build, import,
-  // curate). insert() and insertAll() count their rows on it in their own
-  // transaction; a maintenance command that changes rows through
-  // connection() records them itself, inside its transaction.
+  // Names this open's line in the store's history (history.hpp; "learn"
+  // unless a command describes itself); insert() and insertAll() count
+  // their rows on it.
   void describeHistory(std::string operation, std::string detail);
   const HistoryWriter& history() const;
 
@@ -246,10 +218,9 @@ class ExperienceStore {
   std::unique_ptr<StoreBackend> backend_;
 };
 
-// A database that holds experiences, none of them for these robots'
-// geometry, answers nothing: E-ARC then plans as ARC does (and learns).
-// The one line that says so, naming `db`, or "" when a class fits or the
-// store is empty (a new file is expected to start so).
+// The one line, naming `db`, saying that a store with experiences holds
+// none for these robots' geometry (E-ARC then plans as ARC); "" when a
+// class fits or the store is empty.
 std::string noClassFitsWarning(const ExperienceStore& store, const Scenario& scenario, const std::string& db);
 
 }  // namespace earc::exp

@@ -50,11 +50,9 @@ std::string footprintTag(const MobileFootprint& f);
 // Robot "m<index>" with this footprint; start and goal left empty.
 RobotSpec mobileRobot(int index, const MobileFootprint& footprint);
 
-// A footprint's sizes must be at least 0.01 and at most a quarter (disc
-// radius) or half (box sides) of `workspace_side`; else SettingError. A
-// box too big for the space is a SettingError of "shape" whose reason
-// begins with `space` ("the 1 x 1 map") and names the options earc-scenario
-// offers instead: the box's sides are no option.
+// Throws SettingError unless the footprint's sizes are 0.01 to a quarter
+// (disc radius) or half (box sides) of `workspace_side`; a box too big is
+// an error of "shape" whose reason begins with `space` ("the 1 x 1 map").
 void requireFootprint(const MobileFootprint& footprint, double workspace_side, const std::string& space);
 
 // Obstacle count used when obstacles are asked for without a count.

@@ -10,11 +10,9 @@
 
 namespace earc {
 
-// The robot (kind, footprint or links, link radius and joint limits; no
-// name, placement, start or goal) whose geometrySignature() is exactly
-// `signature`, or nothing when no valid robot has that signature. The
-// writer stays the one description of the format: what is read is
-// written again and must come out the same.
+// The robot (geometry only: no name, placement, start or goal) whose
+// geometrySignature() is exactly `signature`; nothing when no valid robot
+// has it. Thread-safe.
 std::optional<RobotSpec> robotFromSignature(std::string_view signature);
 
 }  // namespace earc

@@ -17,11 +17,9 @@ struct Solution {
   bool solved = false;
   std::vector<Path> paths;  // one per robot, in the scenario's order
   nlohmann::json stats = nlohmann::json::object();
-  // robot_names[i] names the robot of paths[i] (the document's "robot").
-  // Empty means the scenario's order. A solution read from a file keeps the
-  // file's entries as they are, so that the validator can report a path out
-  // of order or for an unknown robot (an unknown robot's path is left empty).
-  // solutionToJson needs the names: set them with nameRobots().
+  // The robot of paths[i], as the file names it (empty: the scenario's
+  // order). Kept as read, so that the validator can report a path out of
+  // order or for an unknown robot; solutionToJson needs them (nameRobots()).
   std::vector<std::string> robot_names;
 
   // Sets robot_names to the scenario's robot names (paths in scenario order).
