@@ -274,9 +274,10 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // on a lattice that does not suit these robots (a dense few box robots)
   // must not take ARC's time.
   const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, plan_clock_.seconds()));
-  // A jam of every robot is the whole plan: with --refine it is shortened
-  // on the crowd solver's roadmap, as --method lacam does, and that time
-  // is refinement's (plan.cpp's refineResult reads stats.lacam).
+  // Each jam's plan is polished as part of the first plan. A jam of every
+  // robot is the whole plan: with --refine it is shortened on the crowd
+  // solver's roadmap, as --method lacam does, and that time is
+  // refinement's (plan.cpp's refineResult reads stats.lacam).
   CrowdOptions options;
   options.polish = true;
   if (group.size() == paths_.size()) options.refine_s = settings_.post.refine_s;
@@ -289,11 +290,12 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
     whole_crowd_ = out.stats;
     lattice_s_ += lattice_s;
   }
-  crowd_s_ += sw.seconds() - lattice_s;
+  const double jam_s = sw.seconds() - lattice_s;
+  crowd_s_ += jam_s;
   nlohmann::json ev = {{"type", "jam"}, {"conflict", conflicts_ - 1}, {"robots", group.size()},
-                       {"solved", out.paths.has_value()}, {"time_s", sw.seconds() - lattice_s}};
+                       {"solved", out.paths.has_value()}, {"time_s", jam_s}};
   if (!out.why.empty()) ev["detail"] = out.why;
-  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), sw.seconds() - lattice_s});
+  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), jam_s});
   traceEvent(ev);
   if (!out.paths) {
     if (deadline_.expired()) return false;
