@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <stdexcept>
 
 #include "earc/planning/composite.hpp"
@@ -11,101 +10,6 @@
 #include "earc/util/random.hpp"
 
 namespace earc {
-
-namespace {
-
-bool goalsApart(const std::vector<int>& robots, const std::vector<const RobotModel*>& models,
-                const std::vector<Path>& paths, std::size_t t) {
-  for (std::size_t i = 0; i < robots.size(); ++i)
-    for (std::size_t j = i + 1; j < robots.size(); ++j) {
-      auto a = static_cast<std::size_t>(robots[i]);
-      auto b = static_cast<std::size_t>(robots[j]);
-      if (robotsTouch(*models[a], paths[a].at(t), *models[b], paths[b].at(t))) return false;
-    }
-  return true;
-}
-
-}  // namespace
-
-Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& robots, int level,
-                            const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
-                            const CollisionWorld& world, const PlannerSettings& settings) {
-  Subproblem sub;
-  sub.robots = robots;
-  std::sort(sub.robots.begin(), sub.robots.end());
-  sub.expansions = level;
-  std::size_t horizon = 0;  // last step of the longest path among the robots
-  for (int r : sub.robots) horizon = std::max(horizon, paths[static_cast<std::size_t>(r)].size() - 1);
-  const std::size_t w = static_cast<std::size_t>(settings.arc.initial_window) << std::min(level, 30);
-  const auto tc = static_cast<std::size_t>(std::floor(conflict.t));
-  sub.t_start = tc > w ? tc - w : 0;
-  sub.t_end = std::min(horizon, static_cast<std::size_t>(std::ceil(conflict.t)) + w);
-  // Local goals that touch each other make the subproblem unsolvable: move
-  // the end of the window forward until they are apart (at the latest the
-  // robots' final goals, which a valid scenario keeps apart).
-  while (sub.t_end < horizon && !goalsApart(sub.robots, models, paths, sub.t_end)) ++sub.t_end;
-  const bool last_level = level >= settings.arc.max_expansions;
-  sub.whole_problem = sub.t_start == 0 && sub.t_end >= horizon && last_level;
-  const bool saturated = sub.t_start == 0 && sub.t_end >= horizon && !last_level;
-  bool regions_full = true;
-
-  for (int r : sub.robots) {
-    const RobotModel& m = *models[static_cast<std::size_t>(r)];
-    const Path& p = paths[static_cast<std::size_t>(r)];
-    const double* s = p.at(sub.t_start);
-    const double* g = p.at(sub.t_end);
-    sub.starts.emplace_back(s, s + m.dim());
-    sub.goals.emplace_back(g, g + m.dim());
-    ConfigBox full;
-    m.samplingBounds(world.workspace(), full.lo, full.hi);
-    ConfigBox box;
-    if (sub.whole_problem) {
-      box = full;
-    } else {
-      box.lo.assign(static_cast<std::size_t>(m.dim()), 1e300);
-      box.hi.assign(static_cast<std::size_t>(m.dim()), -1e300);
-      for (std::size_t t = sub.t_start; t <= sub.t_end; ++t) {
-        const double* q = p.at(t);
-        for (int j = 0; j < m.dim(); ++j) {
-          box.lo[static_cast<std::size_t>(j)] = std::min(box.lo[static_cast<std::size_t>(j)], q[j]);
-          box.hi[static_cast<std::size_t>(j)] = std::max(box.hi[static_cast<std::size_t>(j)], q[j]);
-        }
-      }
-      const double grow = 1.0 + level;
-      for (int j = 0; j < m.dim(); ++j) {
-        auto ju = static_cast<std::size_t>(j);
-        if (m.isMobile() && j == 2) {  // headings stay free
-          box.lo[ju] = -std::numbers::pi;
-          box.hi[ju] = std::numbers::pi;
-          continue;
-        }
-        const double margin = (m.isMobile() ? settings.arc.region_margin : settings.arc.joint_margin) * grow;
-        box.lo[ju] = std::max(full.lo[ju], box.lo[ju] - margin);
-        box.hi[ju] = std::min(full.hi[ju], box.hi[ju] + margin);
-      }
-    }
-    // The footprint of the region in the plane: where the robot's body can be.
-    geo::Aabb foot;
-    if (m.isMobile()) {
-      foot = geo::Aabb{{box.lo[0], box.lo[1]}, {box.hi[0], box.hi[1]}}.inflated(m.boundingRadius());
-    } else {
-      geo::Vec2 c = m.boundingCenter(s);
-      foot = geo::Aabb{c, c}.inflated(m.boundingRadius());
-    }
-    sub.workspace_region.expand(foot);
-    sub.region.push_back(std::move(box));
-    regions_full = regions_full && sub.region.back() == full;
-  }
-  // A window grown to span the robots' whole paths, with regions that
-  // cover everything, is the whole problem before the last level: say so,
-  // and ARC goes straight on to larger budgets instead of retrying the
-  // same subproblem level by level. So is one whose regions together
-  // already span the workspace: the levels left would only widen the
-  // region of a robot whose path keeps to one part of it, a margin a
-  // level, each at the same budget.
-  if (saturated && (regions_full || sub.workspace_region.inflated(1e-9).contains(world.workspace()))) sub.whole_problem = true;
-  return sub;
-}
 
 // A solver's answer is spliced into the robots' paths: one path per robot
 // of the subproblem, all of one length, is what makes that safe. Anything
@@ -191,7 +95,9 @@ class ArcRun {
  private:
   bool resolve(const Conflict& c, std::size_t max_robots);
   std::optional<bool> handOverJam(const Conflict& c, const std::vector<int>& robots);
+  std::size_t firstJamSize(std::size_t conflict_robots) const;
   std::optional<int> conflictsWithResolved(const Subproblem& sub, const LocalSolution& local);
+  void leaveOutGroupWaits(const Subproblem& sub, const LocalSolution& local);
   void traceEvent(nlohmann::json ev) {
     if (settings_.trace) events_.push_back(std::move(ev));
   }
@@ -238,6 +144,7 @@ class ArcRun {
   std::optional<LacamStats> whole_crowd_;
   double lattice_s_ = 0.0;
   Stopwatch plan_clock_;
+  std::int64_t waits_left_out_ = 0;
 };
 
 // A jam: ARC's local solvers failed on a conflict's subproblem through
@@ -250,7 +157,8 @@ class ArcRun {
 // the others left out; what their new paths meet is resolved as any
 // conflict. The first jam takes at least a quarter of the robots, each
 // later one kJamGrowth times the last one's, so a crowd that keeps
-// jamming is planned whole after a few.
+// jamming is planned whole after a few. In a fleet whose first jam would
+// be half of it or more, only a conflict that failed every level is one.
 constexpr int kJamLevel = 1;
 constexpr double kJamConflictsPerRobot = 3.0;
 constexpr int kJamCappedGroups = 8;
@@ -259,10 +167,13 @@ constexpr std::size_t kFirstJam = 16;
 constexpr std::size_t kJamGrowth = 4;
 constexpr double kJamMinBudgetS = 0.25;
 
+std::size_t ArcRun::firstJamSize(std::size_t conflict_robots) const {
+  return std::min(std::max({kFirstJam, 4 * conflict_robots, paths_.size() / 4}), paths_.size());
+}
+
 std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int>& robots) {
   Stopwatch sw;
-  jam_size_ = jam_size_ == 0 ? std::max({kFirstJam, 4 * robots.size(), paths_.size() / 4}) : jam_size_ * kJamGrowth;
-  jam_size_ = std::min(jam_size_, paths_.size());
+  jam_size_ = jam_size_ == 0 ? firstJamSize(robots.size()) : std::min(jam_size_ * kJamGrowth, paths_.size());
   std::vector<int> group = jamGroup(paths_, robots, jam_group_, c.place, jam_size_);
   std::vector<std::vector<double>> starts, goals;
   for (int r : group) {
@@ -316,6 +227,51 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   return true;
 }
 
+void ArcRun::leaveOutGroupWaits(const Subproblem& sub, const LocalSolution& local) {
+  // A local solution's paths share one length, so a robot that reaches its
+  // window goal before the group's last step waits there, and its whole
+  // later path is late by as much. Leave that wait out when the robot's
+  // first conflict comes no sooner than it did with the wait. Mobile robots
+  // only: for arms the checks cost more than the few steps they save.
+  const std::size_t len = local.length();
+  ConflictDetector detector(models_, deadline_);
+  std::vector<char> focus(paths_.size(), 0);
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) {
+    if (!models_[static_cast<std::size_t>(sub.robots[i])]->isMobile()) continue;
+    const Path& lp = local.paths[i];
+    std::size_t a = len - 1;
+    const auto same = [&](std::size_t x, std::size_t y) {
+      for (int d = 0; d < lp.dim(); ++d)
+        if (lp.at(x)[d] != lp.at(y)[d]) return false;
+      return true;
+    };
+    while (a > 0 && same(a - 1, len - 1)) --a;
+    if (a + 1 >= len) continue;
+    const auto r = static_cast<std::size_t>(sub.robots[i]);
+    Path cand = paths_[r].slice(0, sub.t_start + a + 1);
+    cand.append(paths_[r], sub.t_start + len);
+    focus[r] = 1;
+    std::vector<const Path*> view = pathPointers(paths_);
+    view[r] = &cand;
+    // Only the group's span again past the arrival is looked at: what comes
+    // later is ARC's next conflict either way.
+    const std::size_t from = sub.t_start + a;
+    const std::size_t to = sub.t_start + 2 * len;
+    const auto after = detector.first(view, from, to, &focus);
+    bool take = !after;
+    if (after && !detector.interrupted()) {
+      view[r] = &paths_[r];  // with the wait: did it meet someone that soon too?
+      const auto before = detector.first(view, from, static_cast<std::size_t>(std::ceil(after->t)), &focus);
+      take = before && before->t <= after->t;
+    }
+    focus[r] = 0;
+    if (detector.interrupted()) return;
+    if (!take) continue;
+    waits_left_out_ += static_cast<std::int64_t>(len - 1 - a);
+    paths_[r] = std::move(cand);
+  }
+}
+
 std::optional<int> ArcRun::conflictsWithResolved(const Subproblem& sub, const LocalSolution& local) {
   // Would this local solution collide, inside its own span, with a robot
   // whose earlier local solution covers that span? Then that robot joins.
@@ -360,13 +316,20 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
   if (std::binary_search(jam_group_.begin(), jam_group_.end(), c.a) ||
       std::binary_search(jam_group_.begin(), jam_group_.end(), c.b))
     ++jam_conflicts_since_handover_;
+  // In a fleet whose first jam would be half of it or more, a jam is
+  // handed over only once ARC's own window levels have failed: replanning
+  // most of a small fleet on the crowd solver's roadmap makes its plan far
+  // longer than ARC's.
+  const bool small_fleet = 2 * firstJamSize(robots.size()) >= paths_.size();
   const bool jammed =
-      crowd_ok_ && (conflicts_ - conflicts_at_handover_ > kJamConflictsPerRobot * static_cast<double>(paths_.size()) ||
-                    capped_since_handover_ >= kJamCappedGroups ||
-                    jam_conflicts_since_handover_ > std::max<std::size_t>(kJamMinRecurrences, paths_.size() / 32));
+      crowd_ok_ && !small_fleet &&
+      (conflicts_ - conflicts_at_handover_ > kJamConflictsPerRobot * static_cast<double>(paths_.size()) ||
+       capped_since_handover_ >= kJamCappedGroups ||
+       jam_conflicts_since_handover_ > std::max<std::size_t>(kJamMinRecurrences, paths_.size() / 32));
+  const int jam_level = small_fleet ? settings_.arc.max_expansions + 1 : kJamLevel;
   for (int level = 0, tried = 0;;) {
     if (deadline_.expired()) return false;
-    if (crowd_ok_ && (jammed || level >= kJamLevel))
+    if (crowd_ok_ && (jammed || level >= jam_level))
       if (auto handed = handOverJam(c, robots)) return *handed;
     // Every window tried counts, also when the plan then fails: the
     // stats say how far it went.
@@ -436,6 +399,7 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
       splice(paths_, sub, *out.solution);
+      leaveOutGroupWaits(sub, *out.solution);
       spans_.push_back({sub.robots, sub.t_start, sub.t_start + out.solution->length() - 1});
       last_t_start_ = sub.t_start;
       if (settings_.trace) {
@@ -531,6 +495,7 @@ PlanResult ArcRun::run() {
   st.subproblems_by_robots = by_size_;
   st.solver_time_s = solver_time_;
   st.window_expansions = expansions_;
+  st.waits_left_out = waits_left_out_;
   st.solver_budgets = settings_.work_budgets ? "work" : "seconds";
   st.robots_merged = merged_;
   st.merge_cap_raised = cap_raised_;

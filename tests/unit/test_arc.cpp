@@ -322,3 +322,78 @@ TEST_CASE("Dropping a path's trailing waits keeps every state up to its last mov
   turn.dropTrailingWaits();
   CHECK(turn.size() == 2);
 }
+
+namespace {
+
+// The decoupled solver's answers, each robot then waiting `pad` more steps
+// at its window goal, as a group whose slowest robot arrives later would.
+struct PaddedDecoupled : SubproblemSolver {
+  std::size_t pad;
+  explicit PaddedDecoupled(std::size_t p) : pad(p) {}
+  const char* name() const override { return "decoupled"; }
+  SolverOutcome solve(SolverContext& ctx) override {
+    SolverOutcome out = DecoupledSolver().solve(ctx);
+    if (out.solution)
+      for (Path& p : out.solution->paths)
+        for (std::size_t k = 0; k < pad; ++k) p.push(p.back());
+    return out;
+  }
+};
+
+Scenario longCrossing() {
+  // Two discs crossing the middle of a 20 m square, their paths far longer
+  // than a window, so the window goals lie midway along them.
+  Scenario s = openScenario(20);
+  s.robots = {disc("w", 0.3, {1, 10, 0}, {19, 10.2, 0}), disc("e", 0.3, {19, 10, 3.14}, {1, 9.8, 3.14})};
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("A group's robots go on from their window goals when they reach them, not at the group's last step") {
+  const Scenario s = longCrossing();
+  PlannerSettings settings;
+  settings.time_limit_s = 20;
+  settings.arc.crowd_fallback = false;
+  auto run = [&](std::size_t pad) {
+    std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+    hierarchy.push_back(std::make_unique<PaddedDecoupled>(pad));
+    return runArc(s, settings, {}, std::move(hierarchy));
+  };
+  const PlanResult plain = run(0);
+  const PlanResult padded = run(25);
+  REQUIRE(plain.solution.solved);
+  REQUIRE(padded.solution.solved);
+  CHECK(validateSolution(s, padded.solution).valid);
+  REQUIRE(plain.stats.arc->subproblems >= 1);
+  // Every padded wait is left out: the same paths as without padding.
+  CHECK(padded.solution.paths == plain.solution.paths);
+  CHECK(*padded.stats.arc->waits_left_out >=
+        *plain.stats.arc->waits_left_out + 25 * 2 * plain.stats.arc->subproblems);
+}
+
+TEST_CASE("A small fleet's failed window goes to ARC's next window, not to the crowd solver") {
+  // A solver that fails its first subproblem once: in a fleet of six, a jam
+  // would be the whole fleet, so ARC expands the window instead.
+  struct FailsOnce : SubproblemSolver {
+    int calls = 0;
+    const char* name() const override { return "decoupled"; }
+    SolverOutcome solve(SolverContext& ctx) override {
+      if (calls++ == 0) return {std::nullopt, name(), -1};
+      return DecoupledSolver().solve(ctx);
+    }
+  };
+  Scenario s = openScenario(8);
+  s.robots = {disc("w", 0.3, {1, 4, 0}, {7, 4, 0}), disc("e", 0.3, {7, 4, 3.14}, {1, 4, 3.14}),
+              disc("a", 0.3, {1, 1, 0}, {2, 1, 0}), disc("b", 0.3, {7, 1, 0}, {6, 1, 0}),
+              disc("c", 0.3, {1, 7, 0}, {2, 7, 0}), disc("d", 0.3, {7, 7, 0}, {6, 7, 0})};
+  PlannerSettings settings;
+  settings.time_limit_s = 20;
+  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
+  hierarchy.push_back(std::make_unique<FailsOnce>());
+  const PlanResult r = runArc(s, settings, {}, std::move(hierarchy));
+  REQUIRE(r.solution.solved);
+  CHECK(validateSolution(s, r.solution).valid);
+  CHECK(r.stats.arc->crowd_handovers.empty());
+  CHECK(r.stats.arc->window_expansions >= 1);
+}

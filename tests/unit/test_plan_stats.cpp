@@ -50,7 +50,7 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
   const json j = json::parse(R"({
     "planning_time_s": 1.5, "method": "earc", "seed": 7, "earc_version": "0.1.0", "makespan": 40,
     "sum_of_costs": 90, "db_hits": 2, "db_learn_error": "disk full", "request_s": 1.75,
-    "individual_paths_s": 0.1, "conflicts": 3, "subproblems": 4, "window_expansions": 1,
+    "individual_paths_s": 0.1, "conflicts": 3, "subproblems": 4, "window_expansions": 1, "waits_left_out": 6,
     "subproblems_by_solver": {"database": 2, "decoupled": 2}, "subproblems_by_robots": {"2": 4},
     "solver_time_s": {"decoupled": 0.25}, "solver_budgets": "seconds", "robots_merged": 0,
     "merge_cap_raised": 0, "crowd_handovers": [{"robots": 5, "solved": true, "s": 0.5}], "crowd_s": 0.5,

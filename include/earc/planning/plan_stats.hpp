@@ -31,6 +31,8 @@ struct ArcStats {
   double crowd_s = 0.0;
   std::int64_t roadmap_edge_checks = 0, roadmaps_built = 0, roadmap_vertices = 0;
   double roadmap_build_s = 0.0;
+  // Steps a group's robots no longer wait at their window goals (ARC's splice).
+  std::optional<std::int64_t> waits_left_out;
 };
 
 // E-ARC's database solver (top-level keys db_*; db_hits is PlanStats's).
