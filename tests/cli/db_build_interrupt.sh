@@ -1,10 +1,10 @@
 #!/bin/bash
-# earc-db build and Ctrl-C: SIGINT a second or two into a build that would
-# run for minutes stops it within seconds with exit 130 and one line
-# saying how many entries were kept; the file verifies and holds them,
-# they are those of a whole build of the problems it got through, and
-# --report logged each of them. SIGTERM exits 143 and adds to the file.
-# Skipped (77) without /usr/bin/python3.
+# earc-db build and Ctrl-C: SIGINT, once a build that would run for
+# minutes has committed rows, stops it within seconds with exit 130 and
+# one line saying how many entries were kept; the file verifies and
+# holds them, they are those of a whole build of the problems it got
+# through, and --report logged each of them. SIGTERM exits 143 and adds
+# to the file. Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
 . "$(dirname "$0")/common.bash"
@@ -14,16 +14,21 @@ failShowsOutput
 cd "$WORK" || exit 1
 DB="$BUILD/earc-db"
 
-# interrupt SIGNAL EXPECTED_STATUS ARGS...: starts `earc-db build ARGS`,
-# sends SIGNAL 1.5 s in, and leaves its stderr in err and the kept count
-# in $kept and the problems it got through in $through.
+# interrupt SIGNAL EXPECTED_STATUS REPORT ARGS...: starts `earc-db build
+# --report REPORT ARGS`, sends SIGNAL once it has committed rows, and
+# leaves its stderr in err, the kept count in $kept and the problems it
+# got through in $through.
 interrupt() {
-  local sig=$1 want=$2
-  shift 2
-  "$DB" build "$@" > out 2> err &
+  local sig=$1 want=$2 report=$3
+  shift 3
+  "$DB" build --report "$report" "$@" > out 2> err &
   local pid=$!
-  sleep 1.5
-  kill -0 $pid 2> /dev/null || fail "the build ended before $sig"
+  for _ in $(seq 1 600); do
+    [ -s "$report" ] && break
+    kill -0 $pid 2> /dev/null || fail "the build ended before $sig"
+    sleep 0.1
+  done
+  [ -s "$report" ] || fail "no rows committed within 60 s"
   kill -"$sig" $pid
   endsWithin $pid 15 "the build, after $sig,"
   wait $pid
@@ -37,10 +42,10 @@ interrupt() {
     fail "unexpected line: $line"
   kept=$(sed -E 's/.*kept ([0-9]+) entries.*/\1/' <<< "$line")
   through=$(sed -E 's/.*the first ([0-9]+) of.*/\1/' <<< "$line")
-  [ "$kept" -gt 0 ] || fail "nothing kept after 1.5 s of building: $line"
+  [ "$kept" -gt 0 ] || fail "nothing kept after rows were committed: $line"
 }
 
-interrupt INT 130 --db b.db --count 1000000 --threads 2 --deterministic --seed 5 --report ids -q
+interrupt INT 130 ids --db b.db --count 1000000 --threads 2 --deterministic --seed 5 -q
 first=$kept
 "$DB" verify --db b.db > out 2> err || fail "verify after SIGINT"
 rows=$("$DB" inspect --db b.db --json | "$PY" -c 'import json,sys; print(json.load(sys.stdin)["entries"])') ||
@@ -54,7 +59,7 @@ logged=$(wc -w < ids)
 whole=$("$DB" inspect --db whole.db --json | "$PY" -c 'import json,sys; print(json.load(sys.stdin)["entries"])')
 [ "$whole" -eq "$first" ] || fail "a whole build of $through problems holds $whole entries, the interrupted $first"
 
-interrupt TERM 143 --db b.db --count 1000000 --threads 1 --seed 6 -q
+interrupt TERM 143 ids2 --db b.db --count 1000000 --threads 1 --seed 6 -q
 "$DB" verify --db b.db > out 2> err || fail "verify after SIGTERM"
 rows=$("$DB" inspect --db b.db --json | "$PY" -c 'import json,sys; print(json.load(sys.stdin)["entries"])')
 [ "$rows" -eq $((first + kept)) ] || fail "$rows entries after SIGTERM, not $first + $kept"
