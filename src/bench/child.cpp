@@ -154,31 +154,6 @@ std::string firstLine(const std::string& path, std::size_t max_chars) {
   return clip(s.substr(from, s.find_first_of("\r\n", from) - from), max_chars);
 }
 
-namespace {
-std::atomic<bool> g_interrupted{false};
-void onInterrupt(int) { g_interrupted.store(true); }
-}  // namespace
-
-std::atomic<bool>& interruptFlag() { return g_interrupted; }
-
-// SIGINT and SIGTERM, while a guard lives, set interruptFlag() instead of
-// ending the process: a long run stops between children and kills the
-// running ones (pass &interruptFlag() as runChild's cancel). The guard
-// clears the flag when made; the previous handlers come back when it ends.
-InterruptGuard::InterruptGuard() {
-  g_interrupted.store(false);
-  struct sigaction sa{};
-  sa.sa_handler = onInterrupt;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, &old_int_);
-  sigaction(SIGTERM, &sa, &old_term_);
-}
-
-InterruptGuard::~InterruptGuard() {
-  sigaction(SIGINT, &old_int_, nullptr);
-  sigaction(SIGTERM, &old_term_, nullptr);
-}
-
 const char* signalName(int sig) {
   switch (sig) {
     case SIGSEGV: return "SIGSEGV";

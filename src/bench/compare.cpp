@@ -18,6 +18,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/runner.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/stop_signals.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/io/input_error.hpp"
 #include "earc/io/json_io.hpp"
@@ -232,11 +233,11 @@ class Comparer {
          << "\n  new: " << describe(new_, o_.new_args) << "\n";
     log_.flush();
     Progress progress("compare", jobs_.size() * static_cast<std::size_t>(o_.repeats));
-    for (std::size_t i = 0; i < jobs_.size() && !interruptFlag().load(); ++i) {
-      for (int r = 0; r < o_.repeats && !interruptFlag().load(); ++r) {
+    for (std::size_t i = 0; i < jobs_.size() && !cli::stopFlag().load(); ++i) {
+      for (int r = 0; r < o_.repeats && !cli::stopFlag().load(); ++r) {
         progress.setStatus(jobs_[i].name);
         ComparePair p = runPair(jobs_[i], r, (i + static_cast<std::size_t>(r)) % 2 == 1);
-        if (interruptFlag().load()) break;
+        if (cli::stopFlag().load()) break;
         if (out.pairs.empty()) stopIfRefused(p);
         out.pairs.push_back(std::move(p));
         progress.tick();
@@ -244,7 +245,7 @@ class Comparer {
       if (o_.verbose && !out.pairs.empty() && out.pairs.back().scenario == jobs_[i].name) scenarioLine(out.pairs, jobs_[i].name);
     }
     progress.finish();
-    out.interrupted = interruptFlag().load();
+    out.interrupted = cli::stopFlag().load();
     out.stats = compareStats(out.pairs, o_.seed);
     report(out);
     if (!o_.csv.empty()) writeCsv(out.pairs);
@@ -327,7 +328,7 @@ class Comparer {
     spec.stderr_path = err;
     spec.wall_limit_s = o_.time_limit_s + wallMargin(o_.time_limit_s);
     spec.memory_limit_mb = o_.memory_limit_mb;
-    const ChildOutcome run = runChild(spec, &interruptFlag());
+    const ChildOutcome run = runChild(spec, &cli::stopFlag());
     p.failure = childFailure(run, spec, err);
     p.refused = refusedItsCommand(run, p.failure, job.scenario_file);
     if (!p.failure.empty()) return p;
@@ -530,7 +531,7 @@ std::vector<Job> prepareJobs(const CompareOptions& o) {
 // scenario file that is not one, an argument plannerArgsProblem refuses.
 CompareSummary runCompare(const CompareOptions& options, std::ostream& log) {
   std::vector<Job> jobs = prepareJobs(options);
-  InterruptGuard guard;
+  cli::StopSignals guard(cli::StopSignals::Repeats::Caught);
   Comparer comparer(options, std::move(jobs), log);
   return comparer.run();
 }

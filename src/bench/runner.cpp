@@ -37,12 +37,12 @@ RunSummary Runner::run() {
        << " already recorded), time limit " << fmtSeconds(o_.time_limit_s) << " s, " << o_.jobs
        << (o_.jobs == 1 ? " job" : " jobs") << ", results " << o_.results << "\n";
   prepareDatabases(cells);
-  if (interruptFlag().load()) return finishInterrupted();
+  if (cli::stopFlag().load()) return finishInterrupted();
   Progress progress("bench", cells.size());
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (;;) {
-      if (interruptFlag().load()) return;
+      if (cli::stopFlag().load()) return;
       const std::size_t i = next.fetch_add(1);
       if (i >= cells.size()) return;
       const Cell& c = cells[i];
@@ -50,7 +50,7 @@ RunSummary Runner::run() {
         progress.tick();
         continue;
       }
-      if (interruptFlag().load()) {
+      if (cli::stopFlag().load()) {
         if (o_.cutoff) done(c);
         return;
       }
@@ -58,7 +58,7 @@ RunSummary Runner::run() {
       progress.setStatus(c.suiteName() + " " + std::to_string(c.robots) + " " + c.method + " #" +
                          std::to_string(c.trial));
       TrialRecord t = runTrial(c);
-      if (interruptFlag().load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
+      if (cli::stopFlag().load() && !t.success && t.failure.rfind("interrupted", 0) == 0) {
         if (o_.cutoff) done(c);
         return;
       }
@@ -85,7 +85,7 @@ RunSummary Runner::run() {
         // Set under the mutex cutOff's waiters check it under: set
         // between their check and their wait, they would sleep for good.
         std::lock_guard lock(record_mutex_);
-        interruptFlag().store(true);
+        cli::stopFlag().store(true);
       }
       finished_cv_.notify_all();
     }
@@ -96,10 +96,10 @@ RunSummary Runner::run() {
   for (auto& t : threads) t.join();
   progress.finish();
   if (error) {
-    interruptFlag().store(false);  // the error stopped the run, not a signal
+    cli::stopFlag().store(false);  // the error stopped the run, not a signal
     std::rethrow_exception(error);
   }
-  if (interruptFlag().load()) return finishInterrupted();
+  if (cli::stopFlag().load()) return finishInterrupted();
   log_ << "ran " << summary_.run << " trials: " << summary_.solved << " solved";
   if (summary_.invalid) log_ << ", " << summary_.invalid << " INVALID solutions";
   log_ << "\n";
@@ -195,7 +195,7 @@ bool Runner::cutOff(const Cell& c) {
     }
     return false;
   };
-  finished_cv_.wait(lock, [&] { return !undecided() || interruptFlag().load(); });
+  finished_cv_.wait(lock, [&] { return !undecided() || cli::stopFlag().load(); });
   for (const auto& [key, o] : outcomes_) {
     const auto& [suite, method, robots] = key;
     if (suite != c.suiteName() || method != c.method || robots >= c.robots) continue;
@@ -261,7 +261,7 @@ void Runner::printTable() {
 RunSummary runBenchmark(const RunOptions& options, std::ostream& log) {
   const std::vector<ScenarioFile> files = loadScenarioFiles(options.scenario_files);
   runner::ExistingEarcDbs existing = runner::validateOptions(options, files);
-  InterruptGuard guard;
+  cli::StopSignals guard(cli::StopSignals::Repeats::Caught);
   runner::Runner runner(options, files, std::move(existing), log);
   return runner.run();
 }

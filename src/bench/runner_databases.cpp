@@ -145,7 +145,7 @@ std::string Runner::lightningDb(const Cell& c) const {
 void Runner::buildFailed(const std::string& path, const ChildOutcome& out, const std::string& stem,
                         std::string_view method) {
   // Stopped by Ctrl-C (or SIGTERM): the run says it was interrupted.
-  if (interruptFlag().load()) return;
+  if (cli::stopFlag().load()) return;
   std::cerr << "earc-bench: building " << path << " failed (" << exitDescription(out)
             << "): " << lastLine(stem + ".err") << "; its " << method << " trials will fail\n";
 }
@@ -156,7 +156,7 @@ void Runner::buildFailed(const std::string& path, const ChildOutcome& out, const
 // solve). One build at a time; other workers wait for theirs.
 void Runner::ensureLightningDb(const Cell& c) {
   std::lock_guard lock(lightning_mutex_);
-  if (interruptFlag().load()) return;
+  if (cli::stopFlag().load()) return;
   const int robots = c.robots;
   const std::string path = lightningDb(c);
   if (fs::exists(path)) return;
@@ -181,7 +181,7 @@ void Runner::ensureLightningDb(const Cell& c) {
   spec.wall_limit_s =
       problems * (o_.lightning_problem_time_limit_s + wallMargin(o_.lightning_problem_time_limit_s)) + 60.0;
   spec.memory_limit_mb = o_.memory_limit_mb;
-  ChildOutcome out = runChild(spec, &interruptFlag());
+  ChildOutcome out = runChild(spec, &cli::stopFlag());
   if (out.exit_code != 0) {
     buildFailed(path, out, stem, "Lightning");
     return;
@@ -197,7 +197,7 @@ void Runner::prepareDatabases(const std::vector<Cell>& cells) {
   for (const Cell& c : cells)
     if (c.method == "earc") families.insert(c.family());
   for (const std::string& family : families) {
-    if (interruptFlag().load()) return;
+    if (cli::stopFlag().load()) return;
     const std::string path = earcDb(family);
     std::optional<double> construction;
     if (!exp::isPostgresLocation(path) && !fs::exists(path)) {
@@ -279,7 +279,7 @@ std::optional<double> Runner::buildEarcDb(const std::string& family, const std::
   }
   double construction = 0;
   for (const auto& [how, stem] : builds) {
-    if (interruptFlag().load()) break;
+    if (cli::stopFlag().load()) break;
     log_ << "building E-ARC database " << path << " (earc-db build " << how << ")\n";
     log_.flush();
     ChildSpec spec;
@@ -292,7 +292,7 @@ std::optional<double> Runner::buildEarcDb(const std::string& family, const std::
     spec.stderr_path = stem + ".err";
     spec.wall_limit_s = kEarcDbWallLimitS;
     spec.memory_limit_mb = o_.memory_limit_mb;
-    ChildOutcome out = runChild(spec, &interruptFlag());
+    ChildOutcome out = runChild(spec, &cli::stopFlag());
     if (out.exit_code != 0) {
       buildFailed(path, out, stem, "earc");
       // A half-built database must not pass for a built one: the file

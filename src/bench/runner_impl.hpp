@@ -34,6 +34,7 @@
 #include "earc/bench/report.hpp"
 #include "earc/bench/results_db.hpp"
 #include "earc/bench/suites.hpp"
+#include "earc/cli/stop_signals.hpp"
 #include "earc/methods/builder.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"

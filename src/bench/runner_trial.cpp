@@ -115,7 +115,7 @@ TrialRecord Runner::runTrial(const Cell& c) {
   spec.wall_limit_s = o_.time_limit_s + o_.wall_margin_s.value_or(wallMargin(o_.time_limit_s));
   spec.memory_limit_mb = o_.memory_limit_mb;
   spec.fault = faultFor(c.method);
-  ChildOutcome run = runChild(spec, &interruptFlag());
+  ChildOutcome run = runChild(spec, &cli::stopFlag());
   t.wall_time_s = run.wall_s;
   t.peak_memory_kb = run.peak_rss_kb;
   t.exit_status = run.exit_code;
@@ -224,7 +224,7 @@ std::string exitDescription(const ChildOutcome& outcome) {
 // `validator validate SCENARIO SOLUTION` (an earc-plan) in a child, its
 // output in LOG_STEM.validate.out and .err (removed when valid): nothing
 // when the solution is valid, else why in one line ("interrupted" when
-// interruptFlag() was raised).
+// cli::stopFlag() was raised).
 std::optional<std::string> validateSolution(const std::string& validator, const std::string& scenario,
                                             const std::string& solution, const std::string& log_stem,
                                             std::size_t memory_limit_mb) {
@@ -235,7 +235,7 @@ std::optional<std::string> validateSolution(const std::string& validator, const 
   spec.stderr_path = err;
   spec.wall_limit_s = runner::kValidateWallLimitS;
   spec.memory_limit_mb = memory_limit_mb;
-  ChildOutcome v = runChild(spec, &interruptFlag());
+  ChildOutcome v = runChild(spec, &cli::stopFlag());
   if (v.cancelled) return "interrupted";
   if (v.exit_code == 0) {
     std::filesystem::remove(out);

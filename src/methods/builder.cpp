@@ -343,9 +343,12 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
+  // A stop request starts no new problem: those under way finish, and
+  // the inserter keeps the results before the first one not started.
+  auto stopping = [&] { return stop || stopSet(s.stop); };
   auto worker = [&] {
     try {
-      for (std::size_t i; !stop && (i = next++) < n;) {
+      for (std::size_t i; !stopping() && (i = next++) < n;) {
         ProblemResult r = solveProblem(s, arm_pairs, i);
         {
           std::lock_guard lock(mutex);
@@ -360,6 +363,10 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
       stop = true;
       ready.notify_all();
     }
+    // Stopped with no result to wake the inserter: it must see the stop.
+    // Locked first, so that the wake cannot fall between its check and its wait.
+    { std::lock_guard lock(mutex); }
+    ready.notify_all();
   };
   std::vector<std::jthread> workers;
   for (int t = 0; t < std::min<int>(s.threads, s.count); ++t) workers.emplace_back(worker);
@@ -389,8 +396,14 @@ BuildReport buildDatabase(ExperienceStore& store, const BuildSettings& requested
       ProblemResult r;
       {
         std::unique_lock lock(mutex);
-        ready.wait(lock, [&] { return results[i].has_value() || failure; });
+        auto abandoned = [&] { return stopSet(s.stop) && i >= next.load(); };
+        ready.wait(lock, [&] { return results[i].has_value() || failure || abandoned(); });
         if (failure) break;
+        if (!results[i]) {
+          report.stopped = true;
+          report.problems = static_cast<int>(i);
+          break;
+        }
         r = std::move(*results[i]);
         results[i].reset();
       }

@@ -25,11 +25,7 @@ done
 grep -q "building Lightning database" out err || fail "no Lightning build started"
 sleep 0.5
 kill -INT $pid
-for _ in $(seq 1 300); do
-  kill -0 $pid 2>/dev/null || break
-  sleep 0.1
-done
-kill -0 $pid 2>/dev/null && { kill -KILL $pid; fail "the run did not stop within 30 s of SIGINT"; }
+endsWithin $pid 30 "the run, after SIGINT,"
 wait $pid
 status=$?
 [ $status -ne 0 ] || fail "an interrupted run exited 0"

@@ -38,6 +38,17 @@ refusedInOneLine() {
 # after a command that must change nothing (a reader of a WAL database may
 # leave an empty -wal and -shm beside it: those are left out).
 dirSnapshot() { find . -mindepth 1 -printf '%p %s %T@\n' | grep -Ev -- '-(wal|shm) ' | sort; }
+# endsWithin PID SECONDS WHAT: waits up to SECONDS for process PID to end;
+# else kills it (SIGKILL) and FAILs saying WHAT did not stop in time.
+endsWithin() {
+  local _
+  for _ in $(seq 1 $(($2 * 10))); do
+    kill -0 "$1" 2> /dev/null || return 0
+    sleep 0.1
+  done
+  kill -KILL "$1"
+  fail "$3 did not stop within $2 s"
+}
 # FAIL unless every program named is built in $BUILD.
 needBuilt() {
   local p

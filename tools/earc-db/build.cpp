@@ -2,7 +2,7 @@
 // [--shape box|disc --size LxW --radius R] [--seed S] [--threads T]
 // [--time-per-problem S] [--report FILE]: fills a database with solved
 // random subproblems (paper, "Database Construction"); see
-// earc/methods/builder.hpp.
+// earc/methods/builder.hpp. SIGINT/SIGTERM keep what was built, exit 130/143.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -15,6 +15,7 @@
 #include <iostream>
 #include <set>
 
+#include "earc/cli/stop_signals.hpp"
 #include "earc/cli/subcommands.hpp"
 #include "earc/experience/keys.hpp"
 #include "earc/experience/maintenance.hpp"
@@ -137,8 +138,12 @@ earc::RobotKind kindToBuild(const BuildOptions& opt, const earc::Scenario* scena
   return arms > 0 ? earc::RobotKind::Manipulator : earc::RobotKind::Mobile;
 }
 
-void runBuild(const BuildOptions& opt, std::ostream& out) {
+int runBuild(const BuildOptions& opt, std::ostream& out) {
+  // Ctrl-C (or SIGTERM) ends the build between problems: the rows built
+  // so far are committed and kept (see the interrupted line below).
+  earc::cli::StopSignals signals;
   earc::exp::BuildSettings s;
+  s.stop = &signals.flag();
   s.count = opt.count;
   s.seed = opt.seed;
   s.threads = opt.threads;
@@ -193,6 +198,12 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     earc::Progress progress("build", static_cast<std::size_t>(count), !opt.quiet);
     return earc::exp::buildDatabase(store, s, &progress);
   });
+  if (report.stopped) {
+    std::cerr << "earc-db build: interrupted (" << signals.signalName() << "): kept " << report.inserted
+              << " entries from the first " << report.problems << " of " << count << " problems in " << opt.db
+              << "\n";
+    return signals.exitCode();
+  }
   // A footprint too large for the builder's small queries (starts 0.25-0.9
   // from the conflict point) places no problem at all: said, not "built 0".
   // A file this build made holds nothing then: it goes too.
@@ -205,7 +216,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
                                " problems could be made: no random query of these robots conflicts without "
                                "their starts or goals touching (too large a footprint?)");
   }
-  if (opt.quiet) return;
+  if (opt.quiet) return 0;
   char line[256];
   std::snprintf(line, sizeof line,
                 "built %s: %d entries from %d problems in %.2f s (%d solved, %d unsolved in %.2g s, %d without a "
@@ -227,6 +238,7 @@ void runBuild(const BuildOptions& opt, std::ostream& out) {
     out << "  " << rest << " more in " << classes.size() - kListedClasses << " smaller classes (earc-db inspect lists them)\n";
   }
   if (!left_out.empty()) out << left_out << "\n";
+  return 0;
 }
 
 void setupBuild(CLI::App& app) {
@@ -259,7 +271,7 @@ void setupBuild(CLI::App& app) {
   sub->add_option("--report", opt->report,
                   "Append a line with the ids of each committed insert transaction to FILE (fsync'd)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success (no progress bar, no summary)");
-  sub->callback([opt] { runBuild(*opt, std::cout); });
+  sub->callback([opt] { earc::cli::setExitCode(runBuild(*opt, std::cout)); });
 }
 
 }  // namespace

@@ -6,8 +6,6 @@
 // so a benchmark killed with SIGKILL leaves no planner behind.
 #pragma once
 
-#include <signal.h>
-
 #include <atomic>
 #include <cstddef>
 #include <optional>
@@ -41,29 +39,14 @@ struct ChildOutcome {
   std::string error;
 };
 
-// Runs the child to its end. Polls `cancel` (when given) and kills the child
-// as soon as it turns true. Safe to call from several threads at once.
+// Runs the child to its end. Polls `cancel` (when given; the programs pass
+// cli::stopFlag()) and kills the child once it is set. Thread-safe.
 ChildOutcome runChild(const ChildSpec& spec, const std::atomic<bool>* cancel = nullptr);
 
 // The last non-empty line of a text file (at most max_chars), "" when none.
 std::string lastLine(const std::string& path, std::size_t max_chars = 300);
 // The first non-empty line.
 std::string firstLine(const std::string& path, std::size_t max_chars = 300);
-
-// While alive, SIGINT and SIGTERM set interruptFlag() instead of ending the
-// process (pass &interruptFlag() as runChild's cancel); clears the flag when
-// made, restores the previous handlers when it ends.
-class InterruptGuard {
- public:
-  InterruptGuard();
-  ~InterruptGuard();
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  struct sigaction old_int_{}, old_term_{};
-};
-std::atomic<bool>& interruptFlag();
 
 // "SIGSEGV", "SIGKILL", ... ("signal" for the rest).
 const char* signalName(int sig);

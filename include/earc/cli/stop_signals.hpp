@@ -8,12 +8,13 @@
 
 namespace earc::cli {
 
-// While alive, the first SIGINT or SIGTERM sets flag() and is remembered;
-// a second one of the same kind ends the process as usual. Restores the
-// previous handlers when it ends. One at a time per process.
+// While alive, SIGINT and SIGTERM set stopFlag() (cleared when made) and
+// the first is remembered; a second of the same kind ends the process
+// unless `repeats` is Caught. Restores the previous handlers. One at a time.
 class StopSignals {
  public:
-  StopSignals();
+  enum class Repeats { EndProcess, Caught };
+  explicit StopSignals(Repeats repeats = Repeats::EndProcess);
   ~StopSignals();
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
@@ -29,5 +30,9 @@ class StopSignals {
  private:
   struct sigaction old_int_{}, old_term_{};
 };
+
+// The flag StopSignals sets, which a program may also set (or clear) to
+// stop its own work, as earc-bench does on an error. Thread-safe.
+StopFlag& stopFlag();
 
 }  // namespace earc::cli

@@ -25,6 +25,7 @@
 #include "earc/experience/sampling.hpp"
 #include "earc/experience/store.hpp"
 #include "earc/scene/scenario.hpp"
+#include "earc/util/deadline.hpp"
 #include "earc/util/progress.hpp"
 
 namespace earc::exp {
@@ -62,10 +63,14 @@ struct BuildSettings {
   // Called after each insert transaction commits, with the ids it stored
   // (duplicates left out); `earc-db build --report` logs them.
   std::function<void(const std::vector<std::int64_t>& ids)> on_commit;
+  // Once set (a signal handler may), no new problem starts and the rows of
+  // the problems before the first not started are kept. Null: never.
+  const StopFlag* stop = nullptr;
 };
 
 struct BuildReport {
-  int problems = 0;
+  int problems = 0;          // all asked for, or those handled before a stop
+  bool stopped = false;      // settings.stop ended the build early
   int solved = 0;
   int inserted = 0;
   int duplicates = 0;

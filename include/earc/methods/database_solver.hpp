@@ -69,6 +69,8 @@ class DatabaseSolver : public SubproblemSolver {
   static constexpr std::size_t kMaxRobots = 4;
 
  private:
+  // One lookup (database_query.cpp): an answer, or why there is none.
+  struct QueryState;
   SolverOutcome query(SolverContext& ctx);
   // The store's usage counters for row id, when learning.
   void recordUse(std::int64_t id, bool success);
@@ -109,6 +111,8 @@ class DatabaseSolver : public SubproblemSolver {
     int ends_blocked = 0, invalid = 0, crowded = 0, unusable = 0;
     std::size_t too_long = 0;  // the steps of an answer refused for max_stretch
     std::string why;
+    // why with its numbers taken out, so that reasons of queries add up.
+    std::string general() const;
   } tally_;
   struct Shadow {
     int queries = 0, database = 0, decoupled = 0, both = 0;
