@@ -32,9 +32,9 @@ constexpr std::chrono::seconds kPgRetryUnreachableAfter{5};
 // Rows per INSERT statement (14 parameters each; a statement takes 65,535).
 constexpr std::size_t kPgInsertRows = 256;
 
-// The part of the row cache's bound a background copy may take (packed
-// rows take a few times less memory than decoded ones); the rest stays the
-// decoded rows'.
+// The part of the row cache's bound a background copy may take (a packed
+// row takes less memory than a decoded one); the rest stays the decoded
+// rows'.
 constexpr std::size_t kPgWarmShareNum = 3, kPgWarmShareDen = 4;
 
 constexpr const char* kTailSql =

@@ -48,7 +48,7 @@ std::string pgSelectTailWithDeletionsSql();
 Experience readPgExperience(const PgResult& r, int row);
 
 // One row of such a result copied compactly: its columns' bytes as the
-// server sent them, not decoded (a fraction of the decoded row's memory).
+// server sent them, not decoded (less memory than the decoded row).
 struct PgPackedRow {
   std::int64_t id = 0;
   std::vector<unsigned char> bytes;                   // the columns, one after another

@@ -76,8 +76,8 @@ struct StoreOptions {
   // and served from memory when retrieved again; 0 turns the cache off.
   std::size_t row_cache_bytes = kDefaultRowCacheBytes;
   // PostgreSQL: a store too large to be read whole at open is read after
-  // it in the background and kept packed within the same bound (the row
-  // cache takes the rest); a retrieval then decodes rows it lacks from it.
+  // it in the background, kept packed if it fits 3/4 of the bound (the row
+  // cache keeps the rest), and retrievals decode the rows they lack from it.
   bool warm_rows = true;
   ConnectionSettings connection;
 };
