@@ -6,7 +6,9 @@
 #   tools/pg-retrieval-bench.sh BUILD_DIR uniform [ENTRIES] [QUERIES] [REPEATS]
 #     earc-db bench-retrieval: ENTRIES synthetic rows in each of 4 classes
 #     (default 25000), QUERIES uniformly random queries per class (1000),
-#     the row cache on (its default bound) and off.
+#     the row cache on (its default bound) and off. ENGINES (default
+#     "sqlite socket tcp"; socket-cold and tcp-cold: --no-warm-rows, no
+#     background copy) and CACHES (default "64 0", MiB) choose the runs.
 #   tools/pg-retrieval-bench.sh BUILD_DIR stream [REPEATS]
 #     the queries of real plans: a store learned from E-ARC plans of
 #     mobile-obst 32 scenarios (seeds 2-4), copied exactly into PostgreSQL
@@ -38,13 +40,16 @@ case $mode in
     queries=${4:-1000}
     repeats=${5:-3}
     for r in $(seq 1 "$repeats"); do
-      for cache in 64 0; do
-        for engine in sqlite socket tcp; do
+      for cache in ${CACHES:-64 0}; do
+        for engine in ${ENGINES:-sqlite socket tcp}; do
           name=$(newDb)
           case $engine in
             sqlite) db=() ;;
             socket) db=(--db "$(at "$socket" "$name")") ;;
             tcp) db=(--db "$(at "$tcp" "$name")") ;;
+            socket-cold) db=(--db "$(at "$socket" "$name")" --no-warm-rows) ;;
+            tcp-cold) db=(--db "$(at "$tcp" "$name")" --no-warm-rows) ;;
+            *) echo "$0: unknown engine $engine" >&2; exit 2 ;;
           esac
           out="$work/uniform-$engine-cache$cache-$r.txt"
           "$build/earc-db" bench-retrieval --entries "$entries" --queries "$queries" --row-cache-mb "$cache" \
@@ -54,12 +59,12 @@ case $mode in
         done
       done
     done
-    /usr/bin/python3 - "$work" "$repeats" <<'PY'
+    /usr/bin/python3 - "$work" "$repeats" "${ENGINES:-sqlite socket tcp}" "${CACHES:-64 0}" <<'PY'
 import glob, os, re, statistics, sys
-work, repeats = sys.argv[1], int(sys.argv[2])
+work, repeats, engines, caches = sys.argv[1], int(sys.argv[2]), sys.argv[3].split(), sys.argv[4].split()
 rows = {}  # (engine, cache, class) -> list of (median, cpu, hit, again)
 for f in glob.glob(os.path.join(work, "uniform-*.txt")):
-    engine, cache = re.match(r"uniform-(\w+)-cache(\d+)-\d+\.txt", os.path.basename(f)).groups()
+    engine, cache = re.match(r"uniform-([\w-]+)-cache(\d+)-\d+\.txt", os.path.basename(f)).groups()
     for line in open(f):
         m = re.match(r"^((?:mobile|manipulator) [^0-9]*\S*(?: facing)?)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)", line)
         if m:
@@ -67,18 +72,19 @@ for f in glob.glob(os.path.join(work, "uniform-*.txt")):
                 (float(m.group(4)), float(m.group(6)), float(m.group(7)), float(m.group(8))))
 classes = sorted({k[2] for k in rows}, key=lambda c: (c.startswith("manip"), c))
 print("\nmedians over %d runs, us (first pass | asked again); ratio to SQLite with the same cache setting" % repeats)
-for cache in ("64", "0"):
+pg = [e for e in engines if e != "sqlite"]
+for cache in caches:
     print("\nrow cache %s MiB" % cache)
-    print("%-22s %16s %26s %26s %6s" % ("class", "SQLite", "PG socket", "PG TCP", "hit %"))
+    print("%-22s %16s" % ("class", "sqlite") + "".join(" %26s" % e for e in pg) + "".join(" %6s" % ("hit% " + e[:6]) for e in pg))
     for c in classes:
         def med(engine, i):
             v = rows.get((engine, cache, c))
             return statistics.median(x[i] for x in v) if v else float("nan")
         s, s2 = med("sqlite", 0), med("sqlite", 3)
         cells = ["%7.0f | %6.0f" % (s, s2)]
-        for e in ("socket", "tcp"):
+        for e in pg:
             cells.append("%7.0f (%.2fx) | %5.0f (%.2fx)" % (med(e, 0), med(e, 0) / s, med(e, 3), med(e, 3) / s2))
-        print("%-22s %16s %26s %26s %6.1f" % (c, cells[0], cells[1], cells[2], med("socket", 2)))
+        print("%-22s %16s" % (c, cells[0]) + "".join(" %26s" % x for x in cells[1:]) + "".join(" %6.1f" % med(e, 2) for e in pg))
 PY
     ;;
   stream)

@@ -9,11 +9,16 @@
 // already seen. LISTEN/NOTIFY would save the polls but needs a connection
 // kept listening and still a scan after a lost connection; the poll is
 // one indexed range query that returns nothing when nothing changed.
+//
+// Rows a retrieval lacks: from the row cache; for a store read whole at
+// open, there; otherwise from the packed copy a background read fills
+// (PgWarmRows), and the rest from the server, in one round trip.
 #include <algorithm>
 #include <cstdio>
 
 #include "earc/experience/pg_connection.hpp"
 #include "earc/experience/pg_schema.hpp"
+#include "pg_warm_rows.hpp"
 #include "store_backend.hpp"
 
 namespace earc::exp {
@@ -26,6 +31,11 @@ constexpr std::chrono::seconds kPgRetryUnreachableAfter{5};
 
 // Rows per INSERT statement (14 parameters each; a statement takes 65,535).
 constexpr std::size_t kPgInsertRows = 256;
+
+// The part of the row cache's bound a background copy may take (a packed
+// row takes less memory than a decoded one); the rest stays the decoded
+// rows'.
+constexpr std::size_t kPgWarmShareNum = 3, kPgWarmShareDen = 4;
 
 constexpr const char* kTailSql =
     "SELECT d.value, e.id, e.kind, e.robot_count, e.signature, e.base_class, e.key "
@@ -54,6 +64,7 @@ class PgBackend final : public StoreBackend {
   StoredIds insert(const std::vector<Experience>& rows, double eps, SessionStamp stamp) override;
   void writeUses(const std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>>& uses) override;
   HistoryTail readHistory(int limit) override { return pgReadHistory(pg_, limit); }
+  std::size_t awaitWarmRows() override;
   PgConnection* pgConnection() override { return &pg_; }
 
  private:
@@ -62,12 +73,16 @@ class PgBackend final : public StoreBackend {
   void preloadRow(const PgResult& r, int row);
   // A row this open stored, into the row cache while preloading.
   void cacheStored(std::shared_ptr<const Experience> e);
+  // Ends the background copy (stopped, or too large); the cache takes its
+  // memory back.
+  void dropWarmRows();
 
   PgConnection pg_;
   std::chrono::steady_clock::time_point polled_{};
   std::chrono::steady_clock::time_point down_until_{};  // retrievals skip the server till then
   std::int64_t rows_added_ = 0;  // on this open's history line
   bool preload_ = false;         // every row read into the row cache
+  std::unique_ptr<PgWarmRows> warm_;  // the background copy, if any
 };
 
 }  // namespace
@@ -95,6 +110,13 @@ PgBackend::PgBackend(StoreCore& core) : StoreBackend(core), pg_(core.path) {
   // the server; a large one fetches the k rows a retrieval misses.
   preload_ = core_.version > 0 && pgStoreFitsRowCache(pg_, core_.options.row_cache_bytes);
   refresh(true);
+  // A larger one is read packed in the background while planning starts.
+  const std::size_t bound = core_.options.row_cache_bytes;
+  if (!preload_ && core_.version > 0 && core_.options.warm_rows && bound > 0) {
+    const std::size_t warm_bytes = bound / kPgWarmShareDen * kPgWarmShareNum;
+    core_.row_cache.setMaxBytes(bound - warm_bytes);
+    warm_ = std::make_unique<PgWarmRows>(core_.path, warm_bytes);
+  }
 }
 
 void PgBackend::refresh(bool force) {
@@ -110,6 +132,7 @@ void PgBackend::refresh(bool force) {
     if (deletions != core_.loaded_deletions && (core_.max_loaded > 0 || core_.index.size() > 0)) {
       // Rows were deleted somewhere: the index may point at them; reload all.
       core_.forgetRows();
+      if (warm_) dropWarmRows();  // its rows may be gone too
       core_.loaded_deletions = deletions;
       continue;
     }
@@ -155,12 +178,40 @@ std::vector<Match> PgBackend::retrieve(const std::function<std::vector<Match>()>
   }
 }
 
+void PgBackend::dropWarmRows() {
+  warm_->clear();
+  warm_.reset();
+  core_.row_cache.setMaxBytes(core_.options.row_cache_bytes);
+}
+
+std::size_t PgBackend::awaitWarmRows() {
+  if (!warm_) return 0;
+  const std::size_t held = warm_->awaitRead();
+  if (warm_->overflowed()) dropWarmRows();
+  return held;
+}
+
 SharedRows PgBackend::readRows(const std::vector<std::int64_t>& ids) {
-  // The rows the cache lacks in one round trip; one deleted since the
-  // index was loaded is not there.
-  PgResult r = pg_.retryLost(
-      [&] { return pg_.query(pgSelectExperiencesSql() + " WHERE id = ANY($1)", PgParams().addIds(ids)); });
+  if (warm_ && warm_->overflowed()) dropWarmRows();
+  // The background copy's rows decoded here, the others in one round trip;
+  // one deleted since the index was loaded is not there.
   SharedRows rows;
+  std::vector<std::int64_t> ask;
+  for (const std::int64_t id : ids) {
+    if (!warm_ || !warm_->has(id)) {
+      ask.push_back(id);
+      continue;
+    }
+    ++core_.warm_hits;
+    try {
+      rows.push_back(std::make_shared<const Experience>(warm_->decode(id)));
+    } catch (const CorruptRowError& e) {
+      core_.warnSkipped(id, e.reason());
+    }
+  }
+  if (ask.empty()) return rows;
+  PgResult r = pg_.retryLost(
+      [&] { return pg_.query(pgSelectExperiencesSql() + " WHERE id = ANY($1)", PgParams().addIds(ask)); });
   for (int i = 0; i < r.rows(); ++i) {
     try {
       rows.push_back(std::make_shared<const Experience>(readPgExperience(r, i)));

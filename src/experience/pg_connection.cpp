@@ -70,6 +70,24 @@ std::string maskedLocation(std::string_view location) {
   return s;
 }
 
+std::int64_t pgBinaryInt(std::span<const unsigned char> value) {
+  const char* p = reinterpret_cast<const char*>(value.data());
+  switch (value.size()) {
+    case 2: return static_cast<std::int16_t>(readBigEndian(p, 2));
+    case 4: return static_cast<std::int32_t>(readBigEndian(p, 4));
+    case 8: return static_cast<std::int64_t>(readBigEndian(p, 8));
+    default: throw StoreError("an integer of " + std::to_string(value.size()) + " bytes");
+  }
+}
+
+double pgBinaryDouble(std::span<const unsigned char> value) {
+  if (value.size() != 8) throw StoreError("a float8 of " + std::to_string(value.size()) + " bytes");
+  const std::uint64_t bits = readBigEndian(reinterpret_cast<const char*>(value.data()), 8);
+  double v;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
+
 // --- PgResult ---
 
 void PgResult::Clear::operator()(pg_result* r) const { PQclear(r); }

@@ -1,19 +1,12 @@
 // Whole experience rows in the PostgreSQL store: the same checks as
 // rows.cpp's SQLite reader (kind and source names, blob headers and
-// lengths, findProblem), on a binary result.
+// lengths, findProblem: decodeRowColumns), on a binary result or a
+// packed copy of one.
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/pg_schema.hpp"
+#include "row_columns.hpp"
 
 namespace earc::exp {
-
-namespace {
-
-enum PgColumn {
-  kPgId, kPgKind, kPgRobotCount, kPgSignature, kPgBaseClass, kPgKey, kPgPaths, kPgCost, kPgSource, kPgCreatedAt,
-  kPgSolveTime, kPgRetrieved, kPgSucceeded, kPgCreatedSession, kPgMadeBy
-};
-
-}  // namespace
 
 constexpr const char* kPgColumnList =
     "id, kind, robot_count, signature, base_class, key, paths, cost, source, created_at, solve_time_s, "
@@ -27,31 +20,55 @@ std::string pgSelectTailWithDeletionsSql() {
          "LEFT JOIN earc.experiences e ON e.id > $1 ORDER BY e.id";
 }
 
-Experience readPgExperience(const PgResult& r, int row) {
-  Experience e;
-  e.id = r.int64At(row, kPgId);
-  const std::string kind_text = r.textAt(row, kPgKind);
-  auto kind = kindFromName(kind_text);
-  if (!kind) throw CorruptRowError(e.id, "unknown kind \"" + kind_text + "\"");
-  const std::string source_text = r.textAt(row, kPgSource);
-  auto source = sourceFromName(source_text);
-  if (!source) throw CorruptRowError(e.id, "unknown source \"" + source_text + "\"");
-  const std::int64_t count = r.int64At(row, kPgRobotCount);
-  if (count < 1 || count > kMaxBlobRobots)
-    throw CorruptRowError(e.id, "robot_count " + std::to_string(count) + " out of range");
-  e.cls = {*kind, static_cast<int>(count), r.textAt(row, kPgSignature), r.textAt(row, kPgBaseClass)};
-  e.key = decodeKey(r.bytesAt(row, kPgKey), e.id);
-  e.paths = decodePaths(r.bytesAt(row, kPgPaths), e.id);
-  e.cost = r.doubleAt(row, kPgCost);
-  e.source = *source;
-  e.created_at = r.int64At(row, kPgCreatedAt);
-  e.solve_time_s = r.doubleAt(row, kPgSolveTime);
-  e.retrieved = r.int64At(row, kPgRetrieved);
-  e.succeeded = r.int64At(row, kPgSucceeded);
-  e.created_session = r.int64At(row, kPgCreatedSession);
-  e.made_by = r.textAt(row, kPgMadeBy);
-  if (auto problem = findProblem(e)) throw CorruptRowError(e.id, *problem);
-  return e;
+namespace {
+
+// A result's row and a packed row, for decodeRowColumns.
+struct PgResultRowView {
+  const PgResult& r;
+  int row;
+  std::int64_t int64(int c) const { return r.int64At(row, c); }
+  double real(int c) const { return r.doubleAt(row, c); }
+  std::string text(int c) const { return r.textAt(row, c); }
+  std::span<const unsigned char> bytes(int c) const { return r.bytesAt(row, c); }
+};
+
+struct PgPackedRowView {
+  const PgPackedRow& p;
+  std::span<const unsigned char> bytes(int c) const {
+    return std::span<const unsigned char>(p.bytes).subspan(p.at[static_cast<std::size_t>(c)],
+                                                            p.at[static_cast<std::size_t>(c) + 1] - p.at[static_cast<std::size_t>(c)]);
+  }
+  std::int64_t int64(int c) const { return pgBinaryInt(bytes(c)); }
+  double real(int c) const { return pgBinaryDouble(bytes(c)); }
+  std::string text(int c) const {
+    const auto b = bytes(c);
+    return std::string(b.begin(), b.end());
+  }
+};
+
+}  // namespace
+
+Experience readPgExperience(const PgResult& r, int row) { return decodeRowColumns(PgResultRowView{r, row}); }
+
+Experience readPgExperience(const PgPackedRow& p) { return decodeRowColumns(PgPackedRowView{p}); }
+
+PgPackedRow packPgRow(const PgResult& r, int row) {
+  PgPackedRow p;
+  p.id = r.int64At(row, kColId);
+  std::size_t total = 0;
+  for (int c = 0; c < kPgRowColumns; ++c) total += r.bytesAt(row, c).size();
+  p.bytes.reserve(total);
+  for (int c = 0; c < kPgRowColumns; ++c) {
+    const auto b = r.bytesAt(row, c);
+    p.bytes.insert(p.bytes.end(), b.begin(), b.end());
+    p.at[static_cast<std::size_t>(c) + 1] = static_cast<std::uint32_t>(p.bytes.size());
+  }
+  return p;
+}
+
+std::size_t packedPgRowBytes(const PgPackedRow& p) {
+  // The row and its buffer, plus a hash map node (about 32 bytes).
+  return sizeof(PgPackedRow) + 32 + p.bytes.capacity();
 }
 
 std::string pgInsertExperiencesSql(std::size_t rows) {

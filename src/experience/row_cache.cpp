@@ -42,6 +42,11 @@ void RowCache::eraseEntry(std::list<Entry>::iterator it) {
   lru_.erase(it);
 }
 
+void RowCache::setMaxBytes(std::size_t max_bytes) {
+  max_bytes_ = max_bytes;
+  while (bytes_ > max_bytes_) eraseEntry(std::prev(lru_.end()));
+}
+
 void RowCache::clear() {
   lru_.clear();
   by_id_.clear();

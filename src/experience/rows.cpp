@@ -1,6 +1,7 @@
 #include "earc/experience/rows.hpp"
 
 #include "earc/experience/path_blob.hpp"
+#include "row_columns.hpp"
 
 namespace earc::exp {
 
@@ -27,6 +28,15 @@ void expectType(const Statement& s, std::int64_t row, int col, int type, const c
   if (t == type || (type == SQLITE_FLOAT && t == SQLITE_INTEGER)) return;
   throw CorruptRowError(row, std::string(name) + " is " + typeName(t) + ", expected " + typeName(type));
 }
+
+// A statement's row, for decodeRowColumns.
+struct SqliteRowView {
+  const Statement& s;
+  std::int64_t int64(int c) const { return s.int64At(c); }
+  double real(int c) const { return s.doubleAt(c); }
+  std::string text(int c) const { return s.textAt(c); }
+  std::span<const unsigned char> bytes(int c) const { return s.blobAt(c); }
+};
 
 }  // namespace
 
@@ -56,25 +66,7 @@ Experience readExperience(const Statement& s) {
   expectType(s, e.id, kSucceeded, SQLITE_INTEGER, "succeeded_count");
   expectType(s, e.id, kCreatedSession, SQLITE_INTEGER, "created_session");
   expectType(s, e.id, kMadeBy, SQLITE_TEXT, "made_by");
-  auto kind = kindFromName(s.textAt(kKind));
-  if (!kind) throw CorruptRowError(e.id, "unknown kind \"" + s.textAt(kKind) + "\"");
-  auto source = sourceFromName(s.textAt(kSource));
-  if (!source) throw CorruptRowError(e.id, "unknown source \"" + s.textAt(kSource) + "\"");
-  const std::int64_t count = s.int64At(kRobotCount);
-  if (count < 1 || count > kMaxBlobRobots) throw CorruptRowError(e.id, "robot_count " + std::to_string(count) + " out of range");
-  e.cls = {*kind, static_cast<int>(count), s.textAt(kSignature), s.textAt(kBaseClass)};
-  e.key = decodeKey(s.blobAt(kKey), e.id);
-  e.paths = decodePaths(s.blobAt(kPaths), e.id);
-  e.cost = s.doubleAt(kCost);
-  e.source = *source;
-  e.created_at = s.int64At(kCreatedAt);
-  e.solve_time_s = s.doubleAt(kSolveTime);
-  e.retrieved = s.int64At(kRetrieved);
-  e.succeeded = s.int64At(kSucceeded);
-  e.created_session = s.int64At(kCreatedSession);
-  e.made_by = s.textAt(kMadeBy);
-  if (auto problem = findProblem(e)) throw CorruptRowError(e.id, *problem);
-  return e;
+  return decodeRowColumns(SqliteRowView{s});
 }
 
 std::string insertExperienceSql() {

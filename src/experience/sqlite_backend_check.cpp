@@ -108,11 +108,9 @@ ConnectionSettings SqliteBackend::checkSettings() const {
 void SqliteBackend::startCheck() {
   check_ = std::make_shared<BackgroundCheck>();
   check_->thread = std::thread([check = check_, path = core_.path, settings = checkSettings()] {
-    // Spare cores only: under full load (earc-bench --jobs 2 on two cores)
-    // a normal thread took time from the plans, its own and the others';
-    // E-ARC's plans of 2 and 4 robots on the MovingAI random field took
-    // 1.3x ARC's time instead of 1.0x. An idle-class thread runs when a
-    // core would otherwise idle. On a machine kept busy by other processes
+    // Spare cores only: under full load a normal thread takes time from
+    // the plans, its own and the others' (docs/performance-log.md). An
+    // idle-class thread runs when a core would otherwise idle. On a machine kept busy by other processes
     // it gets no time at all, not even while awaitCheck() waits for it:
     // finishCheck then runs the check itself (see there).
     // Best effort: where the policy is refused, the check runs anyway.
@@ -142,8 +140,8 @@ void SqliteBackend::finishCheck() {
     std::shared_ptr<BackgroundCheck> check = std::move(check_);
     // Waits while the check gets CPU time. One that got almost none over
     // a wait is starved by other processes (its idle class comes after
-    // every busy one): on 2 cores beside 4 busy loops a plan of 0.03 s
-    // waited 8 to 25 s for it. It is stopped, and the check runs here at
+    // every busy one) and could keep a short plan waiting for seconds
+    // (docs/performance-log.md). It is stopped, and the check runs here at
     // this thread's priority (abandonCheck). A stopped check has no
     // verdict, passed or failed.
     constexpr auto kWait = std::chrono::milliseconds(10);

@@ -87,7 +87,14 @@ std::optional<Experience> ExperienceStore::get(std::int64_t id) {
 
 ExperienceStore::RetrievalStats ExperienceStore::retrievalStats() const {
   std::lock_guard lock(mutex_);
-  return {core_->retrievals, core_->rows_returned, core_->row_cache.hits(), core_->row_cache.misses()};
+  return {core_->retrievals, core_->rows_returned, core_->row_cache.hits(), core_->row_cache.misses(),
+          core_->warm_hits};
+}
+
+std::size_t ExperienceStore::awaitWarmRows() {
+  std::lock_guard lock(mutex_);
+  requireOpen();
+  return backend_->awaitWarmRows();
 }
 
 std::pair<std::size_t, std::size_t> ExperienceStore::rowCacheSize() const {

@@ -38,6 +38,7 @@ struct StoreCore {
   std::int64_t loaded_deletions = -1;  // store_meta 'deletions' when loaded
   std::uint64_t retrievals = 0;
   std::uint64_t rows_returned = 0;
+  std::uint64_t warm_hits = 0;
   std::map<std::int64_t, std::pair<std::int64_t, std::int64_t>> pending_uses;  // id -> (retrieved, succeeded)
   HistoryWriter history;
   bool history_described = false;  // else "learn", "planning session N"
@@ -105,6 +106,8 @@ class StoreBackend {
   // After close flushed (a writable store).
   virtual void closeWritable() {}
   virtual HistoryTail readHistory(int limit) = 0;
+  // Waits for a background read of the rows; the rows it holds (0: none).
+  virtual std::size_t awaitWarmRows() { return 0; }
   // The engine's connection, or null for the other engine.
   virtual Connection* sqliteConnection() { return nullptr; }
   virtual PgConnection* pgConnection() { return nullptr; }

@@ -34,6 +34,7 @@ inline void checkRowCacheFollowsStore(const std::string& location) {
   const exp::Experience e = exp::straightLineExperience(two, exp::sampleMobileQuery(2, rng), 8);
   exp::StoreOptions four;
   four.row_cache_bytes = 4 * exp::cachedRowBytes(e) + exp::cachedRowBytes(e) / 2;
+  four.warm_rows = false;  // the decoded rows alone (PostgreSQL's copy: test_pg_store.cpp)
   exp::ExperienceStore writer(location);
   const std::int64_t first = *writer.insert(e, -1);
   const std::int64_t second = *writer.insert(e, -1);

@@ -71,7 +71,8 @@ std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const 
 void addRowCacheOption(CLI::App& cmd, std::optional<std::size_t>& mib) {
   cmd.add_option("--db-row-cache-mb", mib,
                  "E-ARC: keep up to this many MiB of retrieved experiences decoded in memory, and a PostgreSQL "
-                 "store that fits in half of it whole from the open (0: off; default " +
+                 "store that fits in half of it whole from the open, a larger one packed in the background when "
+                 "it fits (0: off; default " +
                      std::to_string(exp::kDefaultRowCacheBytes >> 20) + ")")
       ->check(cli::wholeNumberIn(0, 65536));
 }

@@ -63,6 +63,11 @@ class PgResult {
   std::unique_ptr<pg_result, Clear> result_;
 };
 
+// A binary int2, int4 or int8 value (told apart by its length), and a
+// float8. Throw StoreError for any other length.
+std::int64_t pgBinaryInt(std::span<const unsigned char> value);
+double pgBinaryDouble(std::span<const unsigned char> value);
+
 // Parameters of one query, each sent in binary ($1, $2, ... in order).
 class PgParams {
  public:

@@ -32,6 +32,8 @@ class RowCache {
   // recently used until within the bound. A row alone over it is not kept.
   void put(std::shared_ptr<const Experience> row);
   void clear();
+  // A new bound; the least recently used rows go until within it.
+  void setMaxBytes(std::size_t max_bytes);
 
   std::size_t size() const { return by_id_.size(); }
   std::size_t bytes() const { return bytes_; }

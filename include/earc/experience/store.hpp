@@ -75,6 +75,10 @@ struct StoreOptions {
   // Rows nearest() read are kept decoded, up to this many bytes (RowCache),
   // and served from memory when retrieved again; 0 turns the cache off.
   std::size_t row_cache_bytes = kDefaultRowCacheBytes;
+  // PostgreSQL: a store too large to be read whole at open is read after
+  // it in the background, kept packed if it fits 3/4 of the bound (the row
+  // cache keeps the rest), and retrievals decode the rows they lack from it.
+  bool warm_rows = true;
   ConnectionSettings connection;
 };
 
@@ -85,6 +89,7 @@ inline StoreOptions wholeFileStoreOptions(bool read_only) {
   o.read_only = read_only;
   o.new_session = false;
   o.warn_skipped = false;
+  o.warm_rows = false;
   return o;
 }
 
@@ -156,10 +161,14 @@ class ExperienceStore {
     std::uint64_t rows = 0;
     std::uint64_t cache_hits = 0;
     std::uint64_t cache_misses = 0;
+    std::uint64_t warm_hits = 0;  // misses decoded from the background copy (warm_rows)
   };
   RetrievalStats retrievalStats() const;
   // The row cache's size now: rows and their bytes. Thread-safe.
   std::pair<std::size_t, std::size_t> rowCacheSize() const;
+  // Waits until the background read of StoreOptions::warm_rows has ended
+  // (other calls wait meanwhile); the rows it holds then (0 without one).
+  std::size_t awaitWarmRows();
 
   // Stores e unless its class holds a key within near_duplicate_eps (< 0: no
   // check), checked in the write transaction. Returns the new id, or nothing
