@@ -238,14 +238,9 @@ void ArcRun::leaveOutGroupWaits(const Subproblem& sub, const LocalSolution& loca
   std::vector<char> focus(paths_.size(), 0);
   for (std::size_t i = 0; i < sub.robots.size(); ++i) {
     if (!models_[static_cast<std::size_t>(sub.robots[i])]->isMobile()) continue;
-    const Path& lp = local.paths[i];
-    std::size_t a = len - 1;
-    const auto same = [&](std::size_t x, std::size_t y) {
-      for (int d = 0; d < lp.dim(); ++d)
-        if (lp.at(x)[d] != lp.at(y)[d]) return false;
-      return true;
-    };
-    while (a > 0 && same(a - 1, len - 1)) --a;
+    Path arrived = local.paths[i];
+    arrived.dropTrailingWaits();
+    const std::size_t a = arrived.size() - 1;  // the step it reaches its window goal
     if (a + 1 >= len) continue;
     const auto r = static_cast<std::size_t>(sub.robots[i]);
     Path cand = paths_[r].slice(0, sub.t_start + a + 1);
