@@ -145,6 +145,7 @@ class ArcRun {
   double lattice_s_ = 0.0;
   Stopwatch plan_clock_;
   std::int64_t waits_left_out_ = 0;
+  std::int64_t window_retimed_ = 0;
 };
 
 // A jam: ARC's local solvers failed on a conflict's subproblem through
@@ -393,6 +394,7 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
+      window_retimed_ += retimeLocalSolution(sub, *out.solution, models_, paths_, world_, deadline_);
       splice(paths_, sub, *out.solution);
       leaveOutGroupWaits(sub, *out.solution);
       spans_.push_back({sub.robots, sub.t_start, sub.t_start + out.solution->length() - 1});
@@ -491,6 +493,7 @@ PlanResult ArcRun::run() {
   st.solver_time_s = solver_time_;
   st.window_expansions = expansions_;
   st.waits_left_out = waits_left_out_;
+  st.window_retimed = window_retimed_;
   st.solver_budgets = settings_.work_budgets ? "work" : "seconds";
   st.robots_merged = merged_;
   st.merge_cap_raised = cap_raised_;

@@ -324,8 +324,17 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 
 }  // namespace
 
+// Every robot of the plan retimed.
+CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                          const CollisionWorld* world, const Deadline& deadline, int max_passes,
+                          std::size_t states_per_position) {
+  std::vector<std::size_t> all(paths.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  return compactRobots(models, paths, all, world, deadline, max_passes, states_per_position);
+}
+
 // Retimes `paths` (one per robot, each ending at its goal, trailing waits
-// dropped) in place. Each pass takes the robots latest arrival first; a
+// dropped) in place. Each pass takes the listed robots latest arrival first; a
 // pass that saves nothing ends it, as does `max_passes`. A robot's search
 // tries at most `states_per_position` (route position, step) pairs per
 // position of its route: a search that finds nothing tries every pair in
@@ -333,16 +342,15 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 // With a world, a robot's route also goes at full speed where it went
 // slower along a straight motion, the new steps checked against the world;
 // without one, only waits are left out.
-CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
-                          const CollisionWorld* world, const Deadline& deadline, int max_passes,
-                          std::size_t states_per_position) {
+CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                            const std::vector<std::size_t>& which, const CollisionWorld* world,
+                            const Deadline& deadline, int max_passes, std::size_t states_per_position) {
   CompactReport rep;
   Compactor compactor(models, paths, world, deadline, states_per_position);
   for (int pass = 0; pass < max_passes; ++pass) {
     if (compactor.expired()) break;
     ++rep.passes;
-    std::vector<std::size_t> order(paths.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::vector<std::size_t> order = which;
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return paths[a].size() > paths[b].size(); });
     std::int64_t saved = 0;

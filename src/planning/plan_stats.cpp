@@ -21,6 +21,7 @@ template <class F> void statsFields(ArcStats& s, F&& f) {
   f("solver_time_s", s.solver_time_s);
   f("window_expansions", s.window_expansions);
   f("waits_left_out", s.waits_left_out);
+  f("window_retimed", s.window_retimed);
   f("solver_budgets", s.solver_budgets);
   f("robots_merged", s.robots_merged);
   f("merge_cap_raised", s.merge_cap_raised);

@@ -9,6 +9,7 @@
 #include "earc/collision/collision_world.hpp"
 #include "earc/gen/generators.hpp"
 #include "earc/methods/plan.hpp"
+#include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
 #include "earc/planning/conflict.hpp"
 #include "earc/planning/planner.hpp"
@@ -198,4 +199,38 @@ TEST_CASE("Compacted ARC plans keep every route, arrive no later and validate, o
     for (std::size_t r = 0; r < s.robots.size(); ++r)
       CHECK(routeOf(paths[r]) == routeOf(plain.solution.paths[r]));
   }
+}
+
+TEST_CASE("A local solution's robots are retimed inside their window against the robots outside it") {
+  // a and b, one group, answered over 321 steps: a at half speed, b at
+  // full speed then waiting. c, outside the group, stands on a's route at
+  // (1, 5) until step 100, then steps aside to (2, 5) by step 120.
+  CompactCase c({compactDisc("a", {1, 1, 0}, {1, 9, 0}), compactDisc("b", {9, 1, 0}, {9, 9, 0}),
+                 compactDisc("c", {1, 5, 0}, {2, 5, 0})});
+  const CollisionWorld world(c.scenario);
+  Path c_path = waitFirst(test::line({1, 5, 0}, {2, 5, 0}, 21), 100);
+  Subproblem sub;
+  sub.robots = {0, 1};
+  sub.t_start = 0;
+  sub.t_end = 320;
+  LocalSolution local;
+  local.paths = {test::line({1, 1, 0}, {1, 9, 0}, 321), test::line({9, 1, 0}, {9, 9, 0}, 161)};
+  while (local.paths[1].size() < 321) local.paths[1].push(local.paths[1].back());
+  std::vector<Path> paths{local.paths[0], local.paths[1], c_path};
+  REQUIRE(c.valid(paths));
+  const LocalSolution before = local;
+  const std::int64_t saved = retimeLocalSolution(sub, local, c.models.raw, paths, world, Deadline());
+  REQUIRE(local.length() == 321);
+  CHECK(local.paths[1] == before.paths[1]);  // b had nothing to save
+  // a arrives sooner than at half speed, but no sooner than c lets it:
+  // it must wait below (1, 5) until c has left.
+  Path a = local.paths[0];
+  a.dropTrailingWaits();
+  CHECK(saved == static_cast<std::int64_t>(320 - (a.size() - 1)));
+  CHECK(a.size() < 321);
+  CHECK(a.size() > 161 + 30);
+  CHECK(routeOf(a) != routeOf(before.paths[0]));  // at full speed where it moves
+  CHECK(a.back()[1] == 9.0);
+  paths[0] = local.paths[0];
+  CHECK(c.valid(paths));
 }

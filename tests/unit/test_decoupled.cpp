@@ -304,3 +304,29 @@ TEST_CASE("Told to ignore the robots outside, the decoupled solver plans through
   const std::vector<MovingObstacle> b{{f.m.raw[1], &paths[1], sub.t_start, 1}};
   CHECK_FALSE(clearOfMoving(*f.m.raw[0], ignoring.solution->paths[0], b));
 }
+
+TEST_CASE("A robot standing at its goal keeps it while the robot that meets it goes around") {
+  // b arrived at (5, 5) before the window; a's straight line runs through
+  // it. Planned in the listed order, a would go straight through b's spot
+  // and push b off its goal and back.
+  Scenario sc = openScenario(10);
+  sc.robots = {disc("a", 0.2, {2, 5, 0}, {8, 5, 0}), disc("b", 0.2, {5, 5, 0}, {5, 5, 0})};
+  RobotModels m(sc);
+  CollisionWorld world(sc);
+  Path parked(3);
+  parked.push(sc.robots[1].start.data());
+  std::vector<Path> paths{line({2, 5, 0}, {8, 5, 0}, 121), parked};
+  ConflictDetector detector(m.raw);
+  const auto c = detector.first(pathPointers(paths));
+  REQUIRE(c.has_value());
+  PlannerSettings settings;
+  const Subproblem sub = createSubproblem(*c, {0, 1}, 1, m.raw, paths, world, settings);
+  RoadmapSet roadmaps(world, m.raw, 300, 10, 1);
+  SolverContext ctx{world, m.raw, roadmaps, paths, sub, Deadline(10), 7};
+  const SolverOutcome out = DecoupledSolver().solve(ctx);
+  REQUIRE(out.solution.has_value());
+  const Path& b = out.solution->paths[1];
+  for (std::size_t t = 0; t < b.size(); ++t) CHECK(std::equal(b.at(t), b.at(t) + 3, sc.robots[1].start.data()));
+  const Path& a = out.solution->paths[0];
+  CHECK(std::equal(a.back(), a.back() + 3, sub.goals[0].data()));
+}

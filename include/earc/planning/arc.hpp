@@ -34,6 +34,13 @@ Subproblem createSubproblem(const Conflict& conflict, const std::vector<int>& ro
                             const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
                             const CollisionWorld& world, const PlannerSettings& settings);
 
+// Retimes each mobile robot of `local` (a solution of `sub`) along its own
+// route inside the window, against the group and the robots outside it as
+// `paths` has them; its length stays. Returns the steps of arrival saved.
+std::int64_t retimeLocalSolution(const Subproblem& sub, LocalSolution& local,
+                                 const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
+                                 const CollisionWorld& world, const Deadline& deadline);
+
 // UpdateSolution: replaces steps [t_start, t_end] of each subproblem robot's
 // path by its local path; the rest of the path follows (shifted in time when
 // the local path is longer than the span it replaces).

@@ -38,4 +38,10 @@ CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vec
                           const CollisionWorld* world, const Deadline& deadline, int max_passes = 4,
                           std::size_t states_per_position = 64);
 
+// As compactPlan, but retimes only the robots listed in `which` (indices
+// into `paths`, each a path of its own); the others are held as they are.
+CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                            const std::vector<std::size_t>& which, const CollisionWorld* world,
+                            const Deadline& deadline, int max_passes = 4, std::size_t states_per_position = 64);
+
 }  // namespace earc

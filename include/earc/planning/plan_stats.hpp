@@ -33,6 +33,8 @@ struct ArcStats {
   double roadmap_build_s = 0.0;
   // Steps a group's robots no longer wait at their window goals (ARC's splice).
   std::optional<std::int64_t> waits_left_out;
+  // Steps of arrival its robots saved, retimed inside their windows.
+  std::optional<std::int64_t> window_retimed;
 };
 
 // E-ARC's database solver (top-level keys db_*; db_hits is PlanStats's).
