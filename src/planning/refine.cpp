@@ -10,6 +10,7 @@
 
 #include "earc/planning/compact.hpp"
 #include "earc/planning/conflict.hpp"
+#include "earc/planning/path_bound.hpp"
 #include "earc/planning/roadmap.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/util/random.hpp"
@@ -33,11 +34,9 @@ class Refiner {
           std::vector<Path>& paths, const RefineSettings& settings, const Deadline& deadline)
       : scenario_(scenario), world_(world), models_(models), paths_(paths), settings_(settings),
         budget_(deadline.capped(settings.seconds)), poll_(budget_, kWorkPerClockRead),
-        occ_(models, paths, world.workspace()), rng_(splitSeed(settings.seed, 0x4ef1)) {
-    for (std::size_t r = 0; r < paths_.size(); ++r) {
-      const Path& p = paths_[r];
-      lb_.push_back(p.empty() ? 0 : static_cast<std::size_t>(models_[r]->stepsBetween(p.at(0), p.back())));
-    }
+        occ_(models, paths, world.workspace()), rng_(splitSeed(settings.seed, 0x4ef1)),
+        lb_(ownPathLowerBounds(scenario, models)) {
+    for (std::size_t b : straightLineBounds(scenario, models)) report_.straight_line_bound += b;
   }
 
   RefineReport run();
