@@ -128,6 +128,7 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   j.final_s = rep.history.empty() ? last_s : start + rep.final_s;
   j.budget_s = settings.post.refine_s;
   j.lower_bound = count(rep.lower_bound);
+  j.straight_line_bound = count(rep.straight_line_bound);
   j.retimed_steps = count(rep.retimed_steps);
   j.iterations = count(rep.iterations);
   j.shortcut_tries = count(rep.shortcut_tries);

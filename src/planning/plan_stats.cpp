@@ -98,6 +98,7 @@ template <class F> void statsFields(RefineStats& s, F&& f) {
   f("final_s", s.final_s);
   f("budget_s", s.budget_s);
   f("lower_bound", s.lower_bound);
+  f("straight_line_bound", s.straight_line_bound);
   f("retimed_steps", s.retimed_steps);
   f("iterations", s.iterations);
   f("shortcut_tries", s.shortcut_tries);

@@ -10,10 +10,12 @@
 
 #include "earc/planning/compact.hpp"
 #include "earc/planning/conflict.hpp"
+#include "earc/planning/path_bound.hpp"
 #include "earc/planning/roadmap.hpp"
 #include "earc/planning/solver.hpp"
 #include "earc/util/random.hpp"
 #include "refine_index.hpp"
+#include "refine_retime.hpp"
 
 namespace earc {
 
@@ -33,11 +35,9 @@ class Refiner {
           std::vector<Path>& paths, const RefineSettings& settings, const Deadline& deadline)
       : scenario_(scenario), world_(world), models_(models), paths_(paths), settings_(settings),
         budget_(deadline.capped(settings.seconds)), poll_(budget_, kWorkPerClockRead),
-        occ_(models, paths, world.workspace()), rng_(splitSeed(settings.seed, 0x4ef1)) {
-    for (std::size_t r = 0; r < paths_.size(); ++r) {
-      const Path& p = paths_[r];
-      lb_.push_back(p.empty() ? 0 : static_cast<std::size_t>(models_[r]->stepsBetween(p.at(0), p.back())));
-    }
+        occ_(models, paths, world.workspace()), rng_(splitSeed(settings.seed, 0x4ef1)),
+        lb_(ownPathLowerBounds(scenario, models)) {
+    for (std::size_t b : straightLineBounds(scenario, models)) report_.straight_line_bound += b;
   }
 
   RefineReport run();
@@ -69,10 +69,15 @@ class Refiner {
   // One try at shortening robot r's path by a straight motion over a
   // stretch of it; whether it was kept.
   bool shortcut(std::size_t r);
-  // The new path for robot r from a straight motion over steps [t0, t1]
-  // followed by `waits` waits, the rest moved earlier; checked and kept
-  // when clear. Whether it was kept.
-  bool tryShortcut(std::size_t r, std::size_t t0, std::size_t t1, std::size_t waits);
+  // Robot r's states strictly after step t0 of a straight motion from its
+  // state at t0 to its state at t1, at full speed, appended to out.
+  void appendStraight(std::size_t r, std::size_t t0, std::size_t t1, Path& out);
+  // The new path for robot r from a straight motion over steps [t0, t1],
+  // the rest moved earlier; checked and kept when clear. Whether it was kept.
+  bool tryShortcut(std::size_t r, std::size_t t0, std::size_t t1);
+  // The stretch [t0, t1] made straight and the rest of robot r's route
+  // timed anew (waiting where needed); whether it was kept.
+  bool retimeShortcut(std::size_t r, std::size_t t0, std::size_t t1);
   // One large-neighbourhood step of the given kind; whether it was kept.
   bool lns(Op kind, std::size_t size);
   std::vector<std::size_t> neighbourhood(Op kind, std::size_t size);
@@ -127,28 +132,53 @@ bool Refiner::shortcut(std::size_t r) {
   // those of the n steps made below.
   poll_.expired((n + 1) * static_cast<std::size_t>(m.dim()));
   if (n > 0 && !world_.motionValid(m, p.at(t0), p.at(t1))) return false;
-  if (tryShortcut(r, t0, t1, 0)) return true;
-  // Moved earlier the rest may meet someone: a few waits first may not.
-  const std::size_t gain = span - n;
-  if (gain >= 2 && !outOfBudget()) return tryShortcut(r, t0, t1, 1 + uniformIndex(rng_, gain - 1));
-  return false;
+  if (tryShortcut(r, t0, t1)) return true;
+  // Moved earlier the rest may meet someone: the earliest timing along
+  // the shortened route, waiting where someone is in the way.
+  return !outOfBudget() && retimeShortcut(r, t0, t1);
 }
 
-bool Refiner::tryShortcut(std::size_t r, std::size_t t0, std::size_t t1, std::size_t waits) {
+bool Refiner::retimeShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
   const Path& p = paths_[r];
   const RobotModel& m = *models_[r];
   const std::size_t len = p.size() - 1;
+  // The route: the straight motion, then the old path without its waits.
+  Path route(m.dim());
+  route.push(p.at(t0));
+  appendStraight(r, t0, t1, route);
+  for (std::size_t t = t1 + 1; t <= len; ++t)
+    if (m.stepsBetween(p.at(t), route.back()) > 0) route.push(p.at(t));
+  // Each position tried at a few steps on average.
+  std::optional<Path> cand =
+      refine::retimeAlong(occ_, m, r, p, t0, route, len, makespan_, poll_, 8 * route.size() + 64);
+  if (!cand || cand->size() >= p.size()) return false;
+  if (occ_.clear(r, *cand, 2 * t0 + 1, 2 * std::max(len, makespan_), poll_) != Check::Clear) return false;
+  occ_.remove(r);
+  paths_[r] = std::move(*cand);
+  occ_.insert(r);
+  return true;
+}
+
+void Refiner::appendStraight(std::size_t r, std::size_t t0, std::size_t t1, Path& out) {
+  const Path& p = paths_[r];
+  const RobotModel& m = *models_[r];
   const std::size_t n = static_cast<std::size_t>(m.stepsBetween(p.at(t0), p.at(t1)));
-  Path cand(m.dim());
-  cand.reserve(len + 1);
-  for (std::size_t t = 0; t <= t0; ++t) cand.push(p.at(t));
   q_.resize(static_cast<std::size_t>(m.dim()));
   for (std::size_t k = 1; k < n; ++k) {
     m.interpolate(p.at(t0), p.at(t1), static_cast<double>(k) / static_cast<double>(n), q_.data());
-    cand.push(q_.data());
+    out.push(q_.data());
   }
-  if (n > 0) cand.push(p.at(t1));
-  for (std::size_t w = 0; w < waits; ++w) cand.push(cand.back());
+  if (n > 0) out.push(p.at(t1));
+}
+
+bool Refiner::tryShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
+  const Path& p = paths_[r];
+  const RobotModel& m = *models_[r];
+  const std::size_t len = p.size() - 1;
+  Path cand(m.dim());
+  cand.reserve(len + 1);
+  for (std::size_t t = 0; t <= t0; ++t) cand.push(p.at(t));
+  appendStraight(r, t0, t1, cand);
   for (std::size_t t = t1 + 1; t <= len; ++t) cand.push(p.at(t));
   cand.dropTrailingWaits();
   if (cand.size() >= p.size()) return false;
@@ -358,11 +388,15 @@ RefineReport Refiner::run() {
   for (std::size_t k = 2; k <= std::max<std::size_t>(2, settings_.neighbourhood); k *= 2)
     sizes.push_back(std::min(k, settings_.neighbourhood));
   std::vector<double> size_score(sizes.size(), std::numeric_limits<double>::infinity());
-  auto choose = [&](const auto& scores, const std::vector<std::size_t>& among) {
+  // Equal yields (none has saved anything yet) go to the cheaper choice:
+  // a failing neighbourhood may cost a hundred failing shortcuts.
+  std::array<double, kOps> op_work{};
+  std::vector<double> size_work(sizes.size(), 0.0);
+  auto choose = [&](const auto& scores, const auto& works, const std::vector<std::size_t>& among) {
     std::size_t pick = among[uniformIndex(rng_, among.size())];
     if (uniformIndex(rng_, 6) != 0)
       for (std::size_t o : among)
-        if (scores[o] > scores[pick]) pick = o;
+        if (scores[o] > scores[pick] || (scores[o] == scores[pick] && works[o] < works[pick])) pick = o;
     return pick;
   };
   auto update = [](double& s, double value) { s = std::isinf(s) ? value : 0.8 * s + 0.2 * value; };
@@ -371,7 +405,7 @@ RefineReport Refiner::run() {
   for (std::size_t o = 0; o < kOps; ++o)
     if (on[o]) ops.push_back(o);
   while (!ops.empty() && !stop() && soc_ > report_.lower_bound) {
-    const std::size_t op = choose(score, ops);
+    const std::size_t op = choose(score, op_work, ops);
     ++report_.iterations;
     const std::uint64_t work0 = t_work_done;
     const std::size_t before = soc_, makespan_before = makespan_;
@@ -383,7 +417,7 @@ RefineReport Refiner::run() {
       kept = shortcut(r);
       if (kept) ++report_.shortcut_improvements;
     } else {
-      si = choose(size_score, size_index);
+      si = choose(size_score, size_work, size_index);
       kept = lns(static_cast<Op>(op), sizes[si]);
       if (kept) ++report_.lns_improvements;
     }
@@ -392,7 +426,11 @@ RefineReport Refiner::run() {
     const double gain = static_cast<double>(before) - static_cast<double>(soc_) +
                         0.5 * (static_cast<double>(makespan_before) - static_cast<double>(makespan_));
     update(score[op], gain / work);
-    if (op != kShortcut) update(size_score[si], gain / work);
+    op_work[op] = op_work[op] == 0.0 ? work : 0.8 * op_work[op] + 0.2 * work;
+    if (op != kShortcut) {
+      update(size_score[si], gain / work);
+      size_work[si] = size_work[si] == 0.0 ? work : 0.8 * size_work[si] + 0.2 * work;
+    }
   }
   report_.final_sum_of_costs = soc_;
   report_.final_makespan = makespan_;

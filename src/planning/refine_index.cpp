@@ -77,58 +77,78 @@ void Occupancy::remove(std::size_t r) {
   });
 }
 
+std::size_t Occupancy::gatherNear(std::size_t r, std::size_t c, const geo::Aabb& box) {
+  near_.clear();
+  std::size_t tests = 1;
+  if (c < chunks_.size()) {
+    tests += chunks_[c].size();
+    for (const auto& e : chunks_[c])
+      if (e.robot != r && e.box.overlaps(box)) near_.push_back({e.robot, false});
+  }
+  ++tick_;
+  forCells(box, [&](std::vector<std::uint32_t>& cell) {
+    for (std::uint32_t o : cell) {
+      ++tests;
+      if (o == r || stamp_[o] == tick_ || len_[o] > c * kChunkSteps) continue;
+      stamp_[o] = tick_;
+      if (goal_[o].overlaps(box)) near_.push_back({o, true});
+    }
+  });
+  return tests;
+}
+
 Check Occupancy::clear(std::size_t r, const Path& p, std::size_t k0, std::size_t k1, DeadlinePoll& poll) {
   const RobotModel& m = *models_[r];
   q_.resize(static_cast<std::size_t>(m.dim()));
   for (std::size_t c = k0 / kChunkInstants; c <= k1 / kChunkInstants; ++c) {
     const std::size_t ia = std::max(k0, c * kChunkInstants), ib = std::min(k1, c * kChunkInstants + kChunkInstants - 1);
     const geo::Aabb box = boundsOverSteps(m, p, ia / 2, (ib + 1) / 2);
-    near_.clear();
-    std::size_t tests = 1;
-    if (c < chunks_.size()) {
-      tests += chunks_[c].size();
-      for (const auto& e : chunks_[c])
-        if (e.robot != r && e.box.overlaps(box)) near_.push_back({e.robot, false});
-    }
-    ++tick_;
-    forCells(box, [&](std::vector<std::uint32_t>& cell) {
-      for (std::uint32_t o : cell) {
-        ++tests;
-        if (o == r || stamp_[o] == tick_ || len_[o] > c * kChunkSteps) continue;
-        stamp_[o] = tick_;
-        if (goal_[o].overlaps(box)) near_.push_back({o, true});
-      }
-    });
+    const std::size_t tests = gatherNear(r, c, box);
     if (poll.expired(tests / 8 + 1)) return Check::OutOfTime;
     if (near_.empty()) continue;
     for (std::size_t k = ia; k <= ib; ++k) {
       stateAtInstant(m, p, k, q_.data());
-      const geo::Vec2 cr = m.boundingCenter(q_.data());
-      bool placed = false;
-      for (const Near& n : near_) {
-        const RobotModel& mo = *models_[n.robot];
-        const double* qo = paths_[n.robot].back();
-        if (!n.parked) {
-          qo_.resize(static_cast<std::size_t>(mo.dim()));
-          stateAtInstant(mo, paths_[n.robot], k, qo_.data());
-          qo = qo_.data();
-        }
-        const geo::Vec2 co = mo.boundingCenter(qo);
-        const double reach = m.boundingRadius() + mo.boundingRadius();
-        const double dx = cr.x - co.x, dy = cr.y - co.y;
-        if (dx * dx + dy * dy > reach * reach) continue;
-        if (!placed) {
-          mine_.place(m, q_.data());
-          placed = true;
-        }
-        theirs_.place(mo, qo);
-        if (bodiesTouch(mine_, theirs_)) return Check::Contact;
-        if (poll.expired(static_cast<std::size_t>(m.dim() + mo.dim()))) return Check::OutOfTime;
-      }
-      if (poll.expired(near_.size() / 8 + 1)) return Check::OutOfTime;
+      if (const Check hit = touchesNear(r, q_.data(), k, poll); hit != Check::Clear) return hit;
     }
   }
   return Check::Clear;
+}
+
+Check Occupancy::touchesNear(std::size_t r, const double* q, std::size_t k, DeadlinePoll& poll) {
+  const RobotModel& m = *models_[r];
+  const geo::Vec2 cr = m.boundingCenter(q);
+  bool placed = false;
+  for (const Near& n : near_) {
+    const RobotModel& mo = *models_[n.robot];
+    const double* qo = paths_[n.robot].back();
+    if (!n.parked) {
+      qo_.resize(static_cast<std::size_t>(mo.dim()));
+      stateAtInstant(mo, paths_[n.robot], k, qo_.data());
+      qo = qo_.data();
+    }
+    const geo::Vec2 co = mo.boundingCenter(qo);
+    const double reach = m.boundingRadius() + mo.boundingRadius();
+    const double dx = cr.x - co.x, dy = cr.y - co.y;
+    if (dx * dx + dy * dy > reach * reach) continue;
+    if (!placed) {
+      mine_.place(m, q);
+      placed = true;
+    }
+    theirs_.place(mo, qo);
+    if (bodiesTouch(mine_, theirs_)) return Check::Contact;
+    if (poll.expired(static_cast<std::size_t>(m.dim() + mo.dim()))) return Check::OutOfTime;
+  }
+  return poll.expired(near_.size() / 8 + 1) ? Check::OutOfTime : Check::Clear;
+}
+
+Check Occupancy::clearAt(std::size_t r, const double* q, std::size_t k, DeadlinePoll& poll) {
+  const RobotModel& m = *models_[r];
+  const std::size_t c = k / kChunkInstants;
+  const geo::Vec2 centre = m.boundingCenter(q);
+  const geo::Aabb box = geo::Aabb{centre, centre}.inflated(m.boundingRadius());
+  const std::size_t tests = gatherNear(r, c, box);
+  if (poll.expired(tests / 8 + 1)) return Check::OutOfTime;
+  return near_.empty() ? Check::Clear : touchesNear(r, q, k, poll);
 }
 
 void Occupancy::robotsNear(std::size_t r, std::size_t c, const geo::Aabb& box, std::vector<std::size_t>& out) {

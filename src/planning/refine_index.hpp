@@ -41,6 +41,9 @@ class Occupancy {
   // instants k0..k1 (half steps, as stateAtInstant counts them); each test
   // counts as work on `poll`, which can end the check (OutOfTime).
   Check clear(std::size_t r, const Path& p, std::size_t k0, std::size_t k1, DeadlinePoll& poll);
+  // Whether robot r at q touches no other robot in the index at instant k
+  // (as clear does for one state).
+  Check clearAt(std::size_t r, const double* q, std::size_t k, DeadlinePoll& poll);
   // The robots other than r whose boxes meet `box` during chunk c (or
   // parked there then), appended to out (unsorted, may repeat).
   void robotsNear(std::size_t r, std::size_t c, const geo::Aabb& box, std::vector<std::size_t>& out);
@@ -54,6 +57,11 @@ class Occupancy {
     std::uint32_t robot;
     bool parked;
   };
+  // near_ := the robots other than r that may meet `box` during chunk c;
+  // returns the entries looked at.
+  std::size_t gatherNear(std::size_t r, std::size_t c, const geo::Aabb& box);
+  // Robot r at q against near_ at instant k.
+  Check touchesNear(std::size_t r, const double* q, std::size_t k, DeadlinePoll& poll);
   template <class Visit>
   void forCells(const geo::Aabb& box, Visit&& visit);
 

@@ -67,6 +67,15 @@ TEST_CASE("refine stats are read when a solution has them") {
   CHECK(t.refine_first_sum_of_costs == 120);
   CHECK(t.refine_final_sum_of_costs == 90);
   CHECK(t.refine_final_makespan == 40);
+  CHECK_FALSE(t.lower_bound);
+  // A suite without a bound of its own takes refinement's; a crowd
+  // suite's grid bound stays.
+  const auto with_bound = nlohmann::json::parse(R"({"refine": {"final_sum_of_costs": 90, "lower_bound": 70}})");
+  readRefineStats(with_bound, t);
+  CHECK(t.lower_bound == 70);
+  t.lower_bound = 80;
+  readRefineStats(with_bound, t);
+  CHECK(t.lower_bound == 80);
   TrialRecord u;
   readRefineStats(nlohmann::json::parse(R"({"refine": {"first_s": -1, "final_sum_of_costs": 2.5}})"), u);
   CHECK_FALSE(u.refine_first_time_s);

@@ -1,6 +1,7 @@
 // Anytime refinement: shortcuts and large-neighbourhood search never make a
 // valid plan invalid or costlier, make a wasteful one shorter, and give the
-// same plan for the same seed when their budgets count work.
+// same plan for the same seed when their budgets count work; a shortcut
+// waits for a robot crossing it; the own-path bound bounds valid paths.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "earc/gen/generators.hpp"
 #include "earc/io/json_io.hpp"
 #include "earc/methods/plan.hpp"
+#include "earc/planning/path_bound.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/planning/refine.hpp"
 #include "earc/service/service.hpp"
@@ -234,4 +236,63 @@ TEST_CASE("serve protocol: \"refine\" refines a request's plan, and a bad value 
   const Scenario scenario = loadScenario(file);
   CHECK(validateSolution(scenario, solutionFromJson(r["solution"], &scenario, "response")).valid);
   svc.close();
+}
+
+TEST_CASE("A robot's own shortest way around a wall bounds its plans, and is the straight line without obstacles") {
+  Scenario s;
+  s.name = "bound-wall";
+  s.workspace = {{0, 0}, {12, 12}};
+  s.obstacles = {Obstacle::makeBox({6, 6}, {1, 8})};  // x 5.5..6.5, y 2..10
+  s.robots = {refineDisc("a", {2, 6, 0}, {10, 6, 0}), refineDisc("b", {2, 11, 0}, {10, 11, 0})};
+  const RobotModels models(s);
+  const std::vector<std::size_t> straight = straightLineBounds(s, models.raw);
+  const std::vector<std::size_t> own = ownPathLowerBounds(s, models.raw);
+  CHECK(straight == std::vector<std::size_t>{160, 160});
+  // a goes round an end of the wall: at least to y = 10 and back, about 11 m.
+  CHECK(own[0] > 210);
+  CHECK(own[1] == 160);  // b's straight way passes the wall's end
+  // A valid way round it is no shorter than the bound.
+  const Path around = refinePolyline({{2, 6, 0}, {5.15, 10.35, 0}, {6.85, 10.35, 0}, {10, 6, 0}});
+  Scenario one = s;
+  one.robots = {s.robots[0]};
+  REQUIRE(refineValid(one, {around}));
+  CHECK(own[0] <= around.size() - 1);
+  CHECK(own[0] + 40 > around.size() - 1);  // and not far below it
+  // Beyond max_obstacles, and with no obstacles: the straight line.
+  CHECK(ownPathLowerBounds(s, models.raw, 0) == straight);
+  s.obstacles.clear();
+  CHECK(ownPathLowerBounds(s, models.raw) == straight);
+}
+
+TEST_CASE("A shortcut across a robot's way is kept with waits until the robot has passed") {
+  Scenario s;
+  s.name = "refine-crossing";
+  s.workspace = {{0, 0}, {12, 12}};
+  // b crosses a's straight way just when a would get there at full speed;
+  // a's plan goes round below, behind b.
+  s.robots = {refineDisc("a", {1, 6, 0}, {11, 6, 0}), refineDisc("b", {6, 1, 0}, {6, 11, 0})};
+  std::vector<Path> paths{refinePolyline({{1, 6, 0}, {1, 2.5, 0}, {11, 2.5, 0}, {11, 6, 0}}),
+                          refinePolyline({{6, 1, 0}, {6, 11, 0}})};
+  REQUIRE(refineValid(s, paths));
+  const std::size_t before = paths[0].size() - 1;
+  const CollisionWorld world(s);
+  const RobotModels models(s);
+  RefineSettings rs;
+  rs.lns = false;
+  rs.seed = 3;
+  rs.seconds = 1000;  // of work: never reached here
+  rs.max_iterations = 300;
+  const RefineReport rep = refinePlan(s, world, models.raw, paths, rs, Deadline().withWorkBudgets(true));
+  CHECK(refineValid(s, paths));
+  CHECK(rep.final_sum_of_costs == paths[0].size() - 1 + paths[1].size() - 1);
+  CHECK(paths[1].size() - 1 == 200);  // b was on its straight way already
+  // a goes nearly straight (200 steps), waiting a little for b.
+  CHECK(paths[0].size() - 1 < before);
+  CHECK(paths[0].size() - 1 <= 240);
+  std::size_t waits = 0;
+  for (std::size_t t = 0; t + 1 < paths[0].size(); ++t)
+    waits += std::equal(paths[0].at(t), paths[0].at(t) + 3, paths[0].at(t + 1)) ? 1 : 0;
+  CHECK(waits > 0);  // it let b pass
+  CHECK(rep.lower_bound == 400);
+  CHECK(rep.straight_line_bound == 400);
 }

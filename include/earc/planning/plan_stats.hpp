@@ -91,6 +91,7 @@ struct RefineStats {
   std::int64_t lower_bound = 0, retimed_steps = 0, iterations = 0;
   std::int64_t shortcut_tries = 0, shortcut_improvements = 0, lns_tries = 0, lns_improvements = 0, lns_failed = 0;
   std::vector<RefinePoint> history;
+  std::optional<std::int64_t> straight_line_bound;  // lower_bound is the robots' own shortest ways
   std::optional<double> lattice_s;
   std::optional<std::string> rejected;
 };

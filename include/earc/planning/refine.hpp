@@ -43,7 +43,8 @@ struct RefineSettings {
 struct RefineReport {
   std::size_t first_sum_of_costs = 0, first_makespan = 0;
   std::size_t final_sum_of_costs = 0, final_makespan = 0;
-  std::size_t lower_bound = 0;       // summed straight-line steps from start to goal
+  std::size_t lower_bound = 0;       // summed own shortest ways, others ignored (ownPathLowerBounds)
+  std::size_t straight_line_bound = 0;  // summed straight-line steps from start to goal
   double final_s = 0.0;              // seconds into refinement when the best plan was found
   double seconds_spent = 0.0;
   std::size_t retimed_steps = 0;      // saved by first retiming every robot along its route (compactPlan)

@@ -1,0 +1,25 @@
+// One robot's earliest timing along a given route among the others' fixed
+// timed paths: the search behind refinement's shortcuts (refine.cpp).
+// Internal to src/planning.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "earc/scene/path.hpp"
+#include "earc/scene/robot_model.hpp"
+#include "earc/util/deadline.hpp"
+#include "refine_index.hpp"
+
+namespace earc::refine {
+
+// Robot r's `path` up to step t0, then along `route` (route[0] = path's
+// state at t0, each next state at most one step on) waiting where needed,
+// arriving before step `before` and able to stay at the route's end until
+// step `horizon`; nothing when no such timing exists within `max_states`
+// (position, step) pairs or the poll's time. Not thread-safe.
+std::optional<Path> retimeAlong(Occupancy& occ, const RobotModel& m, std::size_t r, const Path& path, std::size_t t0,
+                                const Path& route, std::size_t before, std::size_t horizon, DeadlinePoll& poll,
+                                std::size_t max_states);
+
+}  // namespace earc::refine
