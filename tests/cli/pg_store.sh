@@ -17,7 +17,7 @@ needBuilt earc-db earc-plan earc-scenario tests/earc-unit-tests
 
 EARC_TEST_PG_URI=$PG_URI "$BUILD/tests/earc-unit-tests" -tc='PostgreSQL:*' --no-skip > "$WORK/out" 2>&1 ||
   fail "the store's unit tests against the server failed"
-grep -q "test cases: *12 | *12 passed" "$WORK/out" || fail "not all 12 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
+grep -q "test cases: *14 | *14 passed" "$WORK/out" || fail "not all 14 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
 
 db=$(pgNewDatabase cli)
 "$BUILD/earc-db" build --db "$db" --kind mobile --count 60 --seed 1 -q > "$WORK/out" 2> "$WORK/err" || fail "build into $db"

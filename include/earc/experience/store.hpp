@@ -76,8 +76,9 @@ struct StoreOptions {
   // and served from memory when retrieved again; 0 turns the cache off.
   std::size_t row_cache_bytes = kDefaultRowCacheBytes;
   // PostgreSQL: a store too large to be read whole at open is read after
-  // it in the background, kept packed if it fits 3/4 of the bound (the row
-  // cache keeps the rest), and retrievals decode the rows they lack from it.
+  // it in the background, kept packed if it fits row_cache_bytes (a bound
+  // of its own; estimated before reading), and retrievals decode the rows
+  // they lack from it.
   bool warm_rows = true;
   ConnectionSettings connection;
 };
