@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "earc/experience/maintenance.hpp"
+#include "earc/experience/path_blob.hpp"
 #include "earc/experience/pg_connection.hpp"
 #include "earc/experience/pg_schema.hpp"
 #include "earc/experience/sampling.hpp"
@@ -429,7 +430,7 @@ TEST_CASE("PostgreSQL: the background copy packs rows exactly, damaged ones to f
   key[0] += 5e-7;
   admin.query("UPDATE earc.experiences SET key = $1 WHERE id = $2",
               PgParams().addBytes(encodeKey(key)).add(first + 1));
-  admin.query("UPDATE earc.experiences SET kind = 'hovercraft' WHERE id = $1", PgParams().add(first + 2));
+  admin.query("UPDATE earc.experiences SET key = '\\x000102' WHERE id = $1", PgParams().add(first + 2));
   admin.query("UPDATE earc.experiences SET paths = '\\x00' WHERE id = $1", PgParams().add(first + 3));
   admin.query("UPDATE earc.experiences SET cost = cost + 1 WHERE id = $1", PgParams().add(first + 4));
 
