@@ -114,7 +114,11 @@ PgBackend::PgBackend(StoreCore& core) : StoreBackend(core), pg_(core.path) {
     // retrievals slower: docs/performance-log.md). Estimated
     // first from a sample of its pages: a store that cannot fit costs the
     // server no whole-table read.
-    if (estimatePgWarmBytes(pg_, core_.index.size()) <= bound) warm_ = std::make_unique<PgWarmRows>(core_.path, bound);
+    // The copy is optional: a failed estimate only leaves it out.
+    try {
+      if (estimatePgWarmBytes(pg_, core_.index.size()) <= bound) warm_ = std::make_unique<PgWarmRows>(core_.path, bound);
+    } catch (const StoreError&) {
+    }
   }
 }
 
