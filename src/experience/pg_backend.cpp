@@ -18,6 +18,7 @@
 
 #include "earc/experience/pg_connection.hpp"
 #include "earc/experience/pg_schema.hpp"
+#include "pg_warm_pack.hpp"
 #include "pg_warm_rows.hpp"
 #include "store_backend.hpp"
 
@@ -31,11 +32,6 @@ constexpr std::chrono::seconds kPgRetryUnreachableAfter{5};
 
 // Rows per INSERT statement (14 parameters each; a statement takes 65,535).
 constexpr std::size_t kPgInsertRows = 256;
-
-// The part of the row cache's bound a background copy may take (a packed
-// row takes less memory than a decoded one); the rest stays the decoded
-// rows'.
-constexpr std::size_t kPgWarmShareNum = 3, kPgWarmShareDen = 4;
 
 constexpr const char* kTailSql =
     "SELECT d.value, e.id, e.kind, e.robot_count, e.signature, e.base_class, e.key "
@@ -73,8 +69,7 @@ class PgBackend final : public StoreBackend {
   void preloadRow(const PgResult& r, int row);
   // A row this open stored, into the row cache while preloading.
   void cacheStored(std::shared_ptr<const Experience> e);
-  // Ends the background copy (stopped, or too large); the cache takes its
-  // memory back.
+  // Ends the background copy (stopped, or too large).
   void dropWarmRows();
 
   PgConnection pg_;
@@ -113,9 +108,17 @@ PgBackend::PgBackend(StoreCore& core) : StoreBackend(core), pg_(core.path) {
   // A larger one is read packed in the background while planning starts.
   const std::size_t bound = core_.options.row_cache_bytes;
   if (!preload_ && core_.version > 0 && core_.options.warm_rows && bound > 0) {
-    const std::size_t warm_bytes = bound / kPgWarmShareDen * kPgWarmShareNum;
-    core_.row_cache.setMaxBytes(bound - warm_bytes);
-    warm_ = std::make_unique<PgWarmRows>(core_.path, warm_bytes);
+    // The copy has a bound of its own, the row cache's: it stands where
+    // the file's engine has the operating system's cache of the file, and
+    // the decoded rows keep their whole bound (a quarter of it made
+    // retrievals slower: docs/performance-log.md). Estimated
+    // first from a sample of its pages: a store that cannot fit costs the
+    // server no whole-table read.
+    // The copy is optional: a failed estimate only leaves it out.
+    try {
+      if (estimatePgWarmBytes(pg_, core_.index.size()) <= bound) warm_ = std::make_unique<PgWarmRows>(core_.path, bound);
+    } catch (const StoreError&) {
+    }
   }
 }
 
@@ -181,7 +184,6 @@ std::vector<Match> PgBackend::retrieve(const std::function<std::vector<Match>()>
 void PgBackend::dropWarmRows() {
   warm_->clear();
   warm_.reset();
-  core_.row_cache.setMaxBytes(core_.options.row_cache_bytes);
 }
 
 std::size_t PgBackend::awaitWarmRows() {

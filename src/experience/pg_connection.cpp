@@ -224,6 +224,20 @@ void PgConnection::reconnect() {
   connect();
 }
 
+// --- PgCanceller ---
+
+PgCanceller::~PgCanceller() { PQfreeCancel(handle_); }
+
+bool PgCanceller::cancel() const {
+  char error[256];
+  return handle_ && PQcancel(handle_, error, sizeof error) == 1;
+}
+
+std::unique_ptr<PgCanceller> PgConnection::canceller() const {
+  if (!conn_) throw PgConnectionLostError(masked_ + ": not connected");
+  return std::make_unique<PgCanceller>(PQgetCancel(conn_));
+}
+
 bool PgConnection::inTransaction() const {
   return conn_ && PQtransactionStatus(conn_) != PQTRANS_IDLE && PQtransactionStatus(conn_) != PQTRANS_UNKNOWN;
 }

@@ -1,7 +1,6 @@
 // Whole experience rows in the PostgreSQL store: the same checks as
 // rows.cpp's SQLite reader (kind and source names, blob headers and
-// lengths, findProblem: decodeRowColumns), on a binary result or a
-// packed copy of one.
+// lengths, findProblem: decodeRowColumns), on a binary result.
 #include "earc/experience/path_blob.hpp"
 #include "earc/experience/pg_schema.hpp"
 #include "row_columns.hpp"
@@ -22,7 +21,7 @@ std::string pgSelectTailWithDeletionsSql() {
 
 namespace {
 
-// A result's row and a packed row, for decodeRowColumns.
+// A result's row, for decodeRowColumns.
 struct PgResultRowView {
   const PgResult& r;
   int row;
@@ -32,44 +31,9 @@ struct PgResultRowView {
   std::span<const unsigned char> bytes(int c) const { return r.bytesAt(row, c); }
 };
 
-struct PgPackedRowView {
-  const PgPackedRow& p;
-  std::span<const unsigned char> bytes(int c) const {
-    return std::span<const unsigned char>(p.bytes).subspan(p.at[static_cast<std::size_t>(c)],
-                                                            p.at[static_cast<std::size_t>(c) + 1] - p.at[static_cast<std::size_t>(c)]);
-  }
-  std::int64_t int64(int c) const { return pgBinaryInt(bytes(c)); }
-  double real(int c) const { return pgBinaryDouble(bytes(c)); }
-  std::string text(int c) const {
-    const auto b = bytes(c);
-    return std::string(b.begin(), b.end());
-  }
-};
-
 }  // namespace
 
 Experience readPgExperience(const PgResult& r, int row) { return decodeRowColumns(PgResultRowView{r, row}); }
-
-Experience readPgExperience(const PgPackedRow& p) { return decodeRowColumns(PgPackedRowView{p}); }
-
-PgPackedRow packPgRow(const PgResult& r, int row) {
-  PgPackedRow p;
-  p.id = r.int64At(row, kColId);
-  std::size_t total = 0;
-  for (int c = 0; c < kPgRowColumns; ++c) total += r.bytesAt(row, c).size();
-  p.bytes.reserve(total);
-  for (int c = 0; c < kPgRowColumns; ++c) {
-    const auto b = r.bytesAt(row, c);
-    p.bytes.insert(p.bytes.end(), b.begin(), b.end());
-    p.at[static_cast<std::size_t>(c) + 1] = static_cast<std::uint32_t>(p.bytes.size());
-  }
-  return p;
-}
-
-std::size_t packedPgRowBytes(const PgPackedRow& p) {
-  // The row and its buffer, plus a hash map node (about 32 bytes).
-  return sizeof(PgPackedRow) + 32 + p.bytes.capacity();
-}
 
 std::string pgInsertExperiencesSql(std::size_t rows) {
   std::string sql =

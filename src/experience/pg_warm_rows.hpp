@@ -1,6 +1,6 @@
 // A PostgreSQL store's rows read after the open, in the background, and
-// kept packed (as the server sent them): a retrieval decodes a row from
-// memory instead of asking the server for it. Not a public header.
+// kept packed (pg_warm_pack.hpp): a retrieval decodes a row from memory
+// instead of asking the server for it. Not a public header.
 #pragma once
 
 #include <atomic>
@@ -10,11 +10,10 @@
 #include <mutex>
 #include <string>
 #include <thread>
-#include <unordered_map>
 #include <vector>
 
 #include "earc/experience/experience.hpp"
-#include "earc/experience/pg_schema.hpp"
+#include "earc/experience/pg_connection.hpp"
 
 namespace earc::exp {
 
@@ -24,10 +23,10 @@ namespace earc::exp {
 // reading thread hands rows over under its own lock.
 class PgWarmRows {
  public:
-  // Starts reading the store at `location`, within max_bytes
-  // (packedPgRowBytes). A failure only ends the reading early.
+  // Starts reading the store at `location`, within max_bytes. A failure
+  // only ends the reading early.
   PgWarmRows(std::string location, std::size_t max_bytes);
-  // Stops the reading (after the batch under way) and waits for it.
+  // Stops the reading (cancelling the statement under way) and waits for it.
   ~PgWarmRows();
   PgWarmRows(const PgWarmRows&) = delete;
   PgWarmRows& operator=(const PgWarmRows&) = delete;
@@ -43,20 +42,42 @@ class PgWarmRows {
   std::size_t awaitRead();
   // Whether the store did not fit: nothing is held, nothing will be.
   bool overflowed();
+  // The memory the rows held take, bookkeeping included, approximately.
+  std::size_t bytes();
 
  private:
+  // Rows read in one batch: their packed bytes, each row's id and offset,
+  // and the strings numbered first in it.
+  struct Batch {
+    std::vector<unsigned char> bytes;
+    std::vector<std::pair<std::int64_t, std::uint32_t>> rows;
+    std::vector<std::string> strings;
+  };
+  // Where a held row is: batch, offset.
+  struct Slot {
+    std::int64_t id;
+    std::uint32_t batch;
+    std::uint32_t offset;
+  };
   void read();
   void takeStaged();
+  void stop();
+  const Slot* find(std::int64_t id) const;
 
   std::string location_;
   std::size_t max_bytes_;
   std::atomic<bool> stop_{false};
-  std::mutex mutex_;  // guards staged_ and done_
+  std::mutex mutex_;  // guards staged_, done_, overflowed_, canceller_, bytes_
   std::condition_variable done_cv_;
-  std::vector<PgPackedRow> staged_;  // read, not yet taken by find
+  std::vector<Batch> staged_;  // read, not yet taken
   bool done_ = false;
-  bool overflowed_ = false;  // guarded by mutex_
-  std::unordered_map<std::int64_t, PgPackedRow> held_;  // the store's thread only
+  bool overflowed_ = false;
+  std::size_t bytes_ = 0;
+  std::unique_ptr<PgCanceller> canceller_;  // the reading connection's, while it reads
+  // The store's thread only: rows by id, their batches' bytes, the strings.
+  std::vector<Slot> slots_;
+  std::vector<std::vector<unsigned char>> batches_;
+  std::vector<std::string> strings_;
   std::thread thread_;
 };
 

@@ -122,6 +122,7 @@ void DatabaseSolver::finish(PlanStats& stats) {
   db.db_retrieval_time_s = retrieval_s_;
   db.db_row_cache_hits = static_cast<std::int64_t>(now.cache_hits - retrieval_at_start_.cache_hits);
   db.db_row_cache_misses = static_cast<std::int64_t>(now.cache_misses - retrieval_at_start_.cache_misses);
+  db.db_warm_copy_hits = static_cast<std::int64_t>(now.warm_hits - retrieval_at_start_.warm_hits);
   if (settings_.shadow_decoupled) {
     const Shadow& s = shadow_;
     db.db_shadow_decoupled = nlohmann::json{{"queries", s.queries},

@@ -47,6 +47,7 @@ template <class F> void statsFields(DatabaseStats& s, F&& f) {
   f("db_retrieval_time_s", s.db_retrieval_time_s);
   f("db_row_cache_hits", s.db_row_cache_hits);
   f("db_row_cache_misses", s.db_row_cache_misses);
+  f("db_warm_copy_hits", s.db_warm_copy_hits);
   f("db_hit_rate", s.db_hit_rate);
   f("db_shadow_decoupled", s.db_shadow_decoupled);
 }

@@ -17,7 +17,7 @@ needBuilt earc-db earc-plan earc-scenario tests/earc-unit-tests
 
 EARC_TEST_PG_URI=$PG_URI "$BUILD/tests/earc-unit-tests" -tc='PostgreSQL:*' --no-skip > "$WORK/out" 2>&1 ||
   fail "the store's unit tests against the server failed"
-grep -q "test cases: *12 | *12 passed" "$WORK/out" || fail "not all 12 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
+grep -q "test cases: *14 | *14 passed" "$WORK/out" || fail "not all 14 PostgreSQL test cases ran: $(tail -n 3 "$WORK/out")"
 
 db=$(pgNewDatabase cli)
 "$BUILD/earc-db" build --db "$db" --kind mobile --count 60 --seed 1 -q > "$WORK/out" 2> "$WORK/err" || fail "build into $db"
@@ -50,7 +50,9 @@ after=$(pgValue "$db" "SELECT count(*) FROM earc.experiences")
 "$BUILD/earc-db" verify --db "$db" > "$WORK/out" 2> "$WORK/err" || fail "verify after curate"
 
 # A plan learning into the store: every id it reports is there.
-"$BUILD/earc-scenario" generate -n 12 --workspace 6 --obstacles 3 --seed 3 -o "$WORK/s.json" > /dev/null || fail "generate"
+# Eight robots: short plans that still query the store (twelve left the
+# test waiting on coupled planning, most of all under the sanitizers).
+"$BUILD/earc-scenario" generate -n 8 --workspace 6 --obstacles 3 --seed 3 -o "$WORK/s.json" > /dev/null || fail "generate"
 "$BUILD/earc-plan" plan "$WORK/s.json" -o "$WORK/s.sol.json" --method earc --db "$db" -q > "$WORK/out" 2> "$WORK/err"
 [ $? -le 1 ] || fail "plan with --db $db"
 [ -s "$WORK/s.sol.json" ] || fail "no solution written"

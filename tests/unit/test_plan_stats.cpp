@@ -59,6 +59,7 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
     "db_skipped_unusable": 0, "db_learned": 1, "db_learned_ids": [12], "db_learn_candidates": 2,
     "db_learn_unstorable": 0, "db_learn_time_s": 0.01, "db_hit_rate": 0.5,
     "db_retrieval_time_s": 0.002, "db_row_cache_hits": 3, "db_row_cache_misses": 1,
+    "db_warm_copy_hits": 1,
     "lacam": {"roadmap_vertices": 64, "lattice_spacing": 1.0, "grid_lattice": true, "bounding_radius": 0.4,
               "roadmap_s": 0.01, "search_s": 0.02, "configurations": 30, "expansions": 29,
               "spread_meetings": 0, "roadmap_steps": 12, "first_solution_s": 0.03,
@@ -81,6 +82,7 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
   CHECK(s.arc->crowd_handovers.at(0).robots == 5);
   CHECK(s.db->db_learned_ids == std::vector<std::int64_t>{12});
   CHECK(s.db->db_row_cache_hits == 3);
+  CHECK(s.db->db_warm_copy_hits == 1);
   CHECK(s.lacam->lattice_refine->at("rounds") == 3);
   CHECK(s.compact->rejected == "x");
   CHECK(s.refine->history.at(1).makespan == 40);

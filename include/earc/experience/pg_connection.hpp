@@ -21,6 +21,7 @@
 
 struct pg_conn;
 struct pg_result;
+struct pg_cancel;
 
 namespace earc::exp {
 
@@ -105,6 +106,22 @@ struct PgSettings {
   int connect_timeout_s = 10;
 };
 
+// Cancels the statement one connection runs, from another thread
+// (libpq's PQcancel); made by PgConnection::canceller. Thread-safe.
+class PgCanceller {
+ public:
+  explicit PgCanceller(pg_cancel* handle) : handle_(handle) {}
+  ~PgCanceller();
+  PgCanceller(const PgCanceller&) = delete;
+  PgCanceller& operator=(const PgCanceller&) = delete;
+  // Asks the server to cancel what the connection runs now (nothing when
+  // idle); false when the request could not be sent.
+  bool cancel() const;
+
+ private:
+  pg_cancel* handle_;
+};
+
 class PgConnection {
  public:
   // Connects. Throws StoreError naming the masked location: a password in
@@ -127,6 +144,9 @@ class PgConnection {
   // Drops the connection and connects again; throws PgConnectionLostError.
   void reconnect();
   bool inTransaction() const;
+  // A canceller of this connection's statements (valid until it reconnects
+  // or closes). Throws PgConnectionLostError when not connected.
+  std::unique_ptr<PgCanceller> canceller() const;
 
   // Runs body() in one transaction, again after a retryable error or a lost
   // connection (at most settings.write_attempts times; committed() settles a

@@ -4,7 +4,6 @@
 // history lines. Everything lives in the database's schema "earc".
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -47,20 +46,6 @@ std::string pgSelectTailWithDeletionsSql();
 // CorruptRowError.
 Experience readPgExperience(const PgResult& r, int row);
 
-// One row of such a result copied compactly: its columns' bytes as the
-// server sent them, not decoded (less memory than the decoded row).
-struct PgPackedRow {
-  std::int64_t id = 0;
-  std::vector<unsigned char> bytes;                   // the columns, one after another
-  std::array<std::uint32_t, kPgRowColumns + 1> at{};  // column c is bytes[at[c], at[c + 1])
-};
-// Row `row` of a result read with pgSelectExperiencesSql. Throws StoreError
-// for a NULL id.
-PgPackedRow packPgRow(const PgResult& r, int row);
-// The memory a packed row takes, bookkeeping included, approximately.
-std::size_t packedPgRowBytes(const PgPackedRow& p);
-// The row decoded and checked as readPgExperience does. Throws CorruptRowError.
-Experience readPgExperience(const PgPackedRow& p);
 // "INSERT ... VALUES (...), ... RETURNING id" for `rows` rows, and one
 // row's parameters (every column but id), appended in row order.
 inline constexpr int kPgInsertColumns = 14;

@@ -75,9 +75,9 @@ struct StoreOptions {
   // Rows nearest() read are kept decoded, up to this many bytes (RowCache),
   // and served from memory when retrieved again; 0 turns the cache off.
   std::size_t row_cache_bytes = kDefaultRowCacheBytes;
-  // PostgreSQL: a store too large to be read whole at open is read after
-  // it in the background, kept packed if it fits 3/4 of the bound (the row
-  // cache keeps the rest), and retrievals decode the rows they lack from it.
+  // PostgreSQL: a store too large to be read whole at open is read in the
+  // background and kept packed if it fits row_cache_bytes (a bound of its
+  // own, estimated first); retrievals decode the rows they lack from it.
   bool warm_rows = true;
   ConnectionSettings connection;
 };

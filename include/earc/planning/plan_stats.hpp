@@ -43,9 +43,10 @@ struct DatabaseStats {
   std::int64_t db_skipped_unusable = 0, db_learned = 0, db_learn_candidates = 0, db_learn_unstorable = 0;
   std::vector<std::int64_t> db_learned_ids;
   double db_learn_time_s = 0.0;
-  // Time in the store's nearest-row queries, the store's row cache while the plan ran.
+  // Time in the store's nearest-row queries, the store's row cache while the plan ran,
+  // and of its misses those decoded from a PostgreSQL store's background copy.
   std::optional<double> db_retrieval_time_s;
-  std::optional<std::int64_t> db_row_cache_hits, db_row_cache_misses;
+  std::optional<std::int64_t> db_row_cache_hits, db_row_cache_misses, db_warm_copy_hits;
   std::optional<double> db_hit_rate;                 // retrieved or repaired over solved
   std::optional<nlohmann::json> db_shadow_decoupled;  // with DatabaseSettings::shadow_decoupled
 };
