@@ -22,6 +22,8 @@ echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # -O1 and line tables only (-g1): what the sanitizers' reports need, at
 # half the compile time of -O2 -g (18.7 -> 8.9 s for src/planning/arc.cpp).
 # Both builds are unity builds (tools/build.sh), which halves them again.
+# The tests' own code, and there the programs', is compiled at -O0
+# (tests/CMakeLists.txt, CMakeLists.txt); the libraries keep these flags.
 # No Python module there: its tests and the package's are not run under
 # the sanitizers (labels python and package).
 bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
