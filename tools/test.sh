@@ -20,7 +20,7 @@ bash "$src/tools/build.sh" "$src/build"
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # -O1 and line tables only (-g1): what the sanitizers' reports need, at
-# half the compile time of -O2 -g (18.7 -> 8.9 s for src/planning/arc.cpp).
+# about half the compile time of -O2 -g (docs/performance-log.md).
 # Both builds are unity builds (tools/build.sh), which halves them again.
 # The tests' own code, and there the programs', is compiled at -O0
 # (tests/CMakeLists.txt, CMakeLists.txt); the libraries keep these flags.
