@@ -3,10 +3,9 @@
 #   tools/build.sh [BUILD_DIR] [extra cmake args...]
 # A unity build: CMake compiles each target's sources in batches of 8, so
 # the heavy header-only libraries (CLI11, nlohmann::json) are compiled once
-# per batch, not once per file. From a clean tree on 2 cores: Release
-# 2:53 and the sanitizer build 4:57, against about 6:30 and 9:25 file by
-# file. For a tree rebuilt after small edits, file by file is quicker:
-# pass -DCMAKE_UNITY_BUILD=OFF.
+# per batch, not once per file: about half the time of a clean build
+# (docs/performance-log.md). For a tree rebuilt after small edits, file by
+# file is quicker: pass -DCMAKE_UNITY_BUILD=OFF.
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build}

@@ -14,18 +14,28 @@ if [[ "${EARC_TEST_SLOW:-0}" != "1" ]]; then
   label_args=(-LE slow)
 fi
 
+# took PHASE: says how long PHASE took since the last call.
+since=$SECONDS
+took() { echo "-- $1: $((SECONDS - since)) s"; since=$SECONDS; }
+took setup
+
 echo "== Release build and tests"
 bash "$src/tools/build.sh" "$src/build"
+took "Release build"
 (cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
+took "Release tests"
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # -O1 and line tables only (-g1): what the sanitizers' reports need, at
-# half the compile time of -O2 -g (18.7 -> 8.9 s for src/planning/arc.cpp).
+# about half the compile time of -O2 -g (docs/performance-log.md).
 # Both builds are unity builds (tools/build.sh), which halves them again.
+# The tests' own code, and there the programs', is compiled at -O0
+# (tests/CMakeLists.txt, CMakeLists.txt); the libraries keep these flags.
 # No Python module there: its tests and the package's are not run under
 # the sanitizers (labels python and package).
 bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+took "sanitizer build"
 # The unit tests (one per source file there, tests/CMakeLists.txt) and the
 # command-line tests that run C++ (label unsanitized: those that do not).
 # The stress, crash and damaged-file loops run the same code paths as in
@@ -36,3 +46,4 @@ bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OF
    EARC_STRESS_SECONDS=${EARC_STRESS_SECONDS:-15} EARC_CRASH_KILLS=${EARC_CRASH_KILLS:-20} \
    EARC_HOSTILE_FLIPS=${EARC_HOSTILE_FLIPS:-5} \
    ctest -j"$jobs" --output-on-failure -L "unit|cli" -LE "slow|browser|bench|package|python|unsanitized")
+took "sanitizer tests"

@@ -17,7 +17,7 @@ for tool in jq sqlite3; do command -v $tool > /dev/null || { echo "skipped: no $
 "$BUILD/earc-scenario" generate -n 40 --workspace 8 --seed 1 -o "$WORK/long.json" > /dev/null || fail "generate long"
 "$BUILD/earc-scenario" generate -n 24 --workspace 8 --obstacles 4 --seed 2 -o "$WORK/short.json" > /dev/null ||
   fail "generate short"
-"$BUILD/earc-db" build --db "$WORK/s.db" --kind mobile --seed 1 -q || fail "build"
+"$BUILD/earc-db" build --db "$WORK/s.db" --kind mobile --count 1000 --seed 1 -q || fail "build"
 
 # (--no-crowd: handed to the crowd solver, the long plan's jam would end
 # it within a second, before any short plan had run.)

@@ -7,7 +7,13 @@
 PG_SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 ls /usr/lib/postgresql/*/bin/initdb > /dev/null 2>&1 ||
   { echo "skipped: no PostgreSQL server programs (tools/setup.sh --tests installs them)"; exit 77; }
-PG_DIR=$(mktemp -u /tmp/earc-pg-test.XXXXXX)
+# The cluster in memory (/dev/shm) when there is room for it there: its
+# files are written and removed often, which costs a disk much more.
+PG_PARENT=/tmp
+if [ -w /dev/shm ] && [ "$(df -Pk /dev/shm 2> /dev/null | awk 'NR == 2 {print $4}')" -ge 1048576 ] 2> /dev/null; then
+  PG_PARENT=/dev/shm
+fi
+PG_DIR=$(mktemp -u "$PG_PARENT/earc-pg-test.XXXXXX")
 trap 'bash "$PG_SRC/tools/postgres-dev.sh" stop "$PG_DIR"; rm -rf "$WORK"' EXIT
 EARC_PG_OPTIONS="-c fsync=off" bash "$PG_SRC/tools/postgres-dev.sh" start "$PG_DIR" > "$WORK/pg-start.out" 2>&1 ||
   { echo "FAIL: the test's PostgreSQL server did not start: $(tail -n 3 "$WORK/pg-start.out")"; exit 1; }

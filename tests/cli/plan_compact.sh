@@ -1,9 +1,10 @@
 #!/bin/bash
-# earc-plan plan --compact: a crowded ARC plan (16 discs of radius 0.5
-# among obstacles in a 12 x 12 square, many waits) comes out with a smaller
-# sum of costs, the same routes (the same distance travelled), valid by earc-plan validate and by the
-# independent checker when ../shared is there; the plan before compaction
-# is the one planned without the option (--deterministic).
+# earc-plan plan --compact: a crowded ARC plan (10 discs of radius 0.5
+# among obstacles in a 10 x 10 square, many waits) comes out with a smaller
+# sum of costs, the same routes (the same distance travelled), valid by
+# earc-plan validate and by the independent checker when ../shared is
+# there; the plan before compaction is the one planned without the option
+# (--deterministic).
 set -u
 BUILD=$1
 SRC=$2
@@ -15,7 +16,7 @@ command -v jq > /dev/null || { echo "skipped: no jq"; exit 77; }
 PLAN="$BUILD/earc-plan"
 cd "$WORK" || exit 1
 
-"$BUILD/earc-scenario" generate -n 16 --obstacles --shape disc --radius 0.5 --workspace 12 --seed 1 -o s.json \
+"$BUILD/earc-scenario" generate -n 10 --obstacles --shape disc --radius 0.5 --workspace 10 --seed 2 -o s.json \
   > out 2> err || fail "generate"
 "$PLAN" plan s.json -o plain.json --method arc --deterministic -q > out 2> err || fail "plain plan (exit $?)"
 "$PLAN" plan s.json -o compact.json --method arc --deterministic --compact > out 2> err ||
