@@ -12,7 +12,7 @@
 # MAPF-LNS2: github.com/Jiaoyang-Li/MAPF-LNS2, needs Boost (program_options,
 # system, filesystem) and Eigen 3: cmake -B build -DCMAKE_BUILD_TYPE=RELEASE
 # && make -C build; binary build/lns. Its -t does not count its heuristic
-# tables (about 0.1 s here); earc's and LaCAM3's times do. BALANCE (Phan et
+# tables; earc's and LaCAM3's times do. BALANCE (Phan et
 # al. 2024, github.com/thomyphan/anytime-mapf, binary build/balance) takes
 # the same command line and writes the same CSV.
 set -euo pipefail

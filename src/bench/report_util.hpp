@@ -28,13 +28,10 @@ inline int methodRank(const std::string& m) {
   return static_cast<int>(it - all.begin());
 }
 
-inline // What tables and OMPL logs call each method of the trials: its name,
-// followed by the planner arguments its trials ran with (run
-// --method-arg) where there are any: "earc --db-k=5". A results file
-// holds one set per method (ResultsDb); trials given otherwise that mix
-// several are named "earc (several sets of planner arguments)" rather
-// than after one of them.
-std::map<std::string, std::string> methodLabels(const std::vector<TrialRecord>& trials) {
+// What tables and OMPL logs call each method of the trials: its name and its
+// planner arguments, if any ("earc --db-k=5"); "earc (several sets of planner
+// arguments)" when its trials mix several, as no results file does.
+inline std::map<std::string, std::string> methodLabels(const std::vector<TrialRecord>& trials) {
   std::map<std::string, const std::vector<std::string>*> args;
   std::map<std::string, std::string> labels;
   for (const TrialRecord& t : trials) {

@@ -32,12 +32,9 @@ std::string resultValueText(const Statement& s, int c);
 // "2026-11-24T01:02:03Z", as utcNow() writes it.
 bool isUtcTimeText(std::string_view t);
 
-// One row of a results table as read back: each value checked, as it is
-// read, against what addTrial and addDatabase write (results_rows.cpp). A
-// value no run writes throws InputError naming the file, the table, the
-// row's id (column 0 of every select) and the column (SQLite's name of
-// it). Columns an older schema lacks are selected as NULL and read as
-// optional, so they never fail.
+// One row of a results table as read back, each value checked against what
+// addTrial and addDatabase write: InputError naming file, table, row id
+// (column 0) and column. Columns an older schema lacks read as optional.
 class CheckedResultRow {
  public:
   CheckedResultRow(const Statement& s, const std::string& path, std::string_view table)

@@ -61,11 +61,9 @@ class JsonReader {
   // The warnings (and a line counting those beyond kMostWarnings) to
   // deliverWarnings, once the input has been read whole.
   void deliverWarnings(std::vector<InputWarning>* sink) const;
-  // Warns of each key of obj (the object at path) that is not in `known`:
-  // the contract ignores unknown keys, but a misspelt optional field would
-  // silently become its default. A key of `others` is said to belong to
-  // that other kind, not to this `kind` ("a manipulator"); an unknown one
-  // near a known key is suggested as it.
+  // Warns of each key of obj (at path) not in `known`, lest a misspelt field
+  // silently take its default: a key of `others` belongs to that other kind,
+  // not this `kind` ("a manipulator"); a near miss of a known key is suggested.
   void unknownKeys(const json& obj, const std::string& path, std::initializer_list<const char*> known,
                    std::initializer_list<OtherKindKey> others = {}, const char* kind = "") const;
 

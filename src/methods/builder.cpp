@@ -105,9 +105,8 @@ std::optional<Problem> mobileProblem(const BuildSettings& s, std::vector<RobotSp
   const double pad = radius + s.region_margin;
   // The start and goal distances were chosen for the default footprint
   // (the 0.6 x 0.4 box); a larger robot meets others farther from the
-  // conflict point, and at those distances its starts would overlap: a
-  // 0.8-radius disc found a conflicting query in 2% of problems. Scaled
-  // with the footprint's bounding radius.
+  // conflict point, and at those distances its starts would overlap.
+  // Scaled with the footprint's bounding radius.
   QuerySampling sampling = s.sampling;
   // At most 8 times: paths then run to hundreds of steps at the default
   // resolution, and a footprint beyond it finds no query, as before.

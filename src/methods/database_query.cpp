@@ -23,14 +23,9 @@ namespace {
 // Random shortcut attempts on a retrieved (or repaired) solution joined to
 // the subproblem's start and goal.
 constexpr int kConnectShortcuts = 100;
-// For arms, after the ends are shortcut (shortcutEnds). 100 attempts alone
-// were about 40% of a 16-arm database hit's time; on 60 scenarios the end
-// shortcuts and 30 attempts gave about the same median makespan (122
-// against 121.5) and sum of costs (1193 against 1196.5), and E-ARC's time
-// fell by 7% (paired). For mobile robots the same measured no faster
-// (paired 0.96 [0.89, 1.00] at 32 with obstacles) and its sums of costs
-// went 2.5% up on one set of 60 scenarios and 4% down on another: left
-// as it was.
+// For arms, after the ends are shortcut (shortcutEnds): fewer attempts
+// gave plans as short in less time (docs/performance-log.md). Mobile
+// robots keep kConnectShortcuts.
 constexpr int kArmShortcuts = 30;
 
 // Why a query failed when no candidate was both valid and clear.
@@ -38,11 +33,8 @@ constexpr std::string_view kNoneToRepair = "none to repair";
 
 // Valid candidates that ran into robots outside the subproblem before the
 // query gives up: the region is busy with other robots at this time, and
-// more candidates, or a repaired one, run into them too (measured on 20
-// plans of 32 mobile robots with obstacles: of 82 repairs tried after 3
-// or more such candidates, 4 came out clear; stopping there cut the time
-// of the queries that fail by 40%). The decoupled solver, which plans
-// around those robots, takes over.
+// more candidates, or a repaired one, nearly always run into them too.
+// The decoupled solver, which plans around those robots, takes over.
 constexpr int kCrowdedGiveUp = 3;
 constexpr std::string_view kBusy = "region busy with other robots";
 
@@ -174,10 +166,9 @@ bool DatabaseSolver::QueryState::retrieve() {
   return true;
 }
 
-// An answer may come out far longer than the subproblem needs: at 16
-// arms one in five joined answers took 3.7 to 9 times the steps of the
-// slowest arm's straight motion, where the decoupled solver's answers
-// to the same subproblems took at most 3.1 (--db-max-stretch).
+// An answer may come out far longer than the subproblem needs, longer
+// than the decoupled solver's answer to the same subproblem would be:
+// at most max_stretch times the slowest robot's straight motion.
 void DatabaseSolver::QueryState::boundLength() {
   if (db.settings_.max_stretch <= 0) return;
   for (std::size_t r = 0; r < robots.size(); ++r)
@@ -324,9 +315,8 @@ bool DatabaseSolver::QueryState::tryCandidate(std::size_t i) {
 // An arm pair's key holds only the joints nearest the bases
 // (kArmKeyJoints), so the nearest keys need not be the nearest states:
 // the next ones, ordered by joined length like the first, often hold one
-// that connects. (At 16 arms, 60 scenarios: hits 104 of 121 subproblems
-// against 92. Mobile keys hold whole positions: there the next candidates
-// are blocked too, and reading them made E-ARC slower.)
+// that connects. Mobile keys hold whole positions: there the next
+// candidates are blocked too, and reading them only costs time.
 bool DatabaseSolver::QueryState::worthWidening() const {
   const Tally& t = db.tally_;
   return allArms(robots) && db.settings_.widen_k > db.settings_.k && t.candidates >= db.settings_.k &&
@@ -356,11 +346,8 @@ void DatabaseSolver::QueryState::widen() {
 
 // A repair keeps the candidate's steps before its first invalid run: when,
 // joined to this start, they already run into the robots outside, so
-// would nearly every repaired answer. (At 32 mobile robots with obstacles
-// a third of the failed queries repaired an answer only to find it
-// crowded, 0.25 s in 20 plans; with this check the same plans used 75
-// repaired answers, against 76.) Joined to the start as connect() joins
-// the candidate as stored.
+// would nearly every repaired answer, and the repair is skipped. Joined
+// to the start as connect() joins the candidate as stored.
 bool DatabaseSolver::QueryState::headClear(const exp::Candidate& c) {
   const CompositeState first = stateAt(c.paths, 0);
   std::vector<Path> head = sameUpToRounding(first, sub.starts) ? timeStampComposite(robots, {sub.starts}).paths
@@ -406,23 +393,70 @@ SolverOutcome DatabaseSolver::QueryState::repair() {
   return {std::move(*sol), "repair", c.id};
 }
 
+namespace {
+
+// A candidate's states joined to the subproblem's start and goal: a join
+// is added where an end differs from them (beyond rounding), else the end
+// becomes the start or goal itself.
+struct JoinedWaypoints {
+  std::vector<CompositeState> states;
+  bool joined_start = false;
+  bool joined_goal = false;
+};
+
+JoinedWaypoints joinAtEnds(const Subproblem& sub, const std::vector<Path>& middle) {
+  JoinedWaypoints w;
+  const std::size_t last = middle.front().size() - 1;
+  for (std::size_t t = 0; t <= last; ++t) w.states.push_back(stateAt(middle, t));
+  w.joined_start = !sameUpToRounding(w.states.front(), sub.starts);
+  w.joined_goal = !sameUpToRounding(w.states.back(), sub.goals);
+  if (w.joined_start)
+    w.states.insert(w.states.begin(), sub.starts);
+  else
+    w.states.front() = sub.starts;
+  if (w.joined_goal)
+    w.states.push_back(sub.goals);
+  else
+    w.states.back() = sub.goals;
+  return w;
+}
+
+// The candidate's own steps as stored (`steps` of them), joined at its
+// ends. Time-stamped as waypoints, its states would lose the steps on
+// which every robot waits (stepsBetween two equal states is 0): a
+// decoupled answer's robots may wait together for the robots outside.
+LocalSolution stampAsStored(const std::vector<const RobotModel*>& robots, const JoinedWaypoints& w,
+                            std::size_t steps) {
+  const auto& states = w.states;
+  const auto first = static_cast<std::ptrdiff_t>(w.joined_start);  // the candidate's first state in states
+  LocalSolution out = timeStampComposite(robots, {states.begin(), states.begin() + first + 1});
+  for (std::size_t t = 1; t <= steps; ++t)
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      out.paths[r].push(states[static_cast<std::size_t>(first) + t][r].data());
+  if (w.joined_goal) {
+    const LocalSolution tail = timeStampComposite(robots, {states[states.size() - 2], states.back()});
+    for (std::size_t t = 1; t < tail.length(); ++t)
+      for (std::size_t r = 0; r < robots.size(); ++r) out.paths[r].push(tail.paths[r].at(t));
+  }
+  return out;
+}
+
+// Holds every path at its goal through the subproblem's window, as the
+// other solvers do, and to the longest path's end (retimed paths end at
+// different steps).
+void holdAtGoals(const Subproblem& sub, std::vector<Path>& paths) {
+  std::size_t len = sub.t_end - sub.t_start + 1;
+  for (const auto& p : paths) len = std::max(len, p.size());
+  for (auto& p : paths)
+    while (p.size() < len) p.push(p.back());
+}
+
+}  // namespace
+
 LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const SolverContext& ctx,
                                       const std::vector<const RobotModel*>& robots,
                                       const std::vector<Path>& middle, bool shortcut) const {
-  const Subproblem& sub = ctx.sub;
-  const std::size_t last = middle.front().size() - 1;
-  std::vector<CompositeState> waypoints;
-  for (std::size_t t = 0; t <= last; ++t) waypoints.push_back(stateAt(middle, t));
-  const bool joined_start = !sameUpToRounding(waypoints.front(), sub.starts);
-  const bool joined_goal = !sameUpToRounding(waypoints.back(), sub.goals);
-  if (joined_start)
-    waypoints.insert(waypoints.begin(), sub.starts);
-  else
-    waypoints.front() = sub.starts;
-  if (joined_goal)
-    waypoints.push_back(sub.goals);
-  else
-    waypoints.back() = sub.goals;
+  JoinedWaypoints w = joinAtEnds(ctx.sub, middle);
   // A stored solution answered a nearby query, not this one: joined to
   // this start and goal it can double back, and every extra step shifts
   // the rest of the robots' paths in time and breeds new conflicts. Every
@@ -431,45 +465,20 @@ LocalSolution DatabaseSolver::connect(const CompositeChecker& checker, const Sol
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdb));
   const bool arms = allArms(robots);
   if (shortcut && arms) {
-    shortcutEnds(checker, waypoints);
-    shortcutComposite(checker, waypoints, kArmShortcuts, rng, ctx.deadline);
+    shortcutEnds(checker, w.states);
+    shortcutComposite(checker, w.states, kArmShortcuts, rng, ctx.deadline);
   } else if (shortcut) {
-    shortcutComposite(checker, waypoints, kConnectShortcuts, rng, ctx.deadline);
+    shortcutComposite(checker, w.states, kConnectShortcuts, rng, ctx.deadline);
   }
-  LocalSolution out;
-  if (shortcut) {
-    out = timeStampComposite(robots, waypoints);
-  } else {
-    // The candidate's own steps as stored, joined at its ends. Time-stamped
-    // as waypoints, its states would lose the steps on which every robot
-    // waits (stepsBetween two equal states is 0): a decoupled answer's
-    // robots may wait together for the robots outside to pass.
-    const auto first = static_cast<std::ptrdiff_t>(joined_start);  // the candidate's first state in waypoints
-    out = timeStampComposite(robots, {waypoints.begin(), waypoints.begin() + first + 1});
-    for (std::size_t t = 1; t <= last; ++t)
-      for (std::size_t r = 0; r < robots.size(); ++r)
-        out.paths[r].push(waypoints[static_cast<std::size_t>(first) + t][r].data());
-    if (joined_goal) {
-      const LocalSolution tail = timeStampComposite(robots, {waypoints[waypoints.size() - 2], waypoints.back()});
-      for (std::size_t t = 1; t < tail.length(); ++t)
-        for (std::size_t r = 0; r < robots.size(); ++r) out.paths[r].push(tail.paths[r].at(t));
-    }
-  }
-  // An answer for two arms comes out long: the stored pair's ends are far
-  // from this start and goal in ten joint dimensions, and the composite
+  LocalSolution out =
+      shortcut ? timeStampComposite(robots, w.states) : stampAsStored(robots, w, middle.front().size() - 1);
+  // Two arms' answers come out long: the stored pair's ends are far from
+  // this start and goal in ten joint dimensions, and the composite
   // shortcut moves both arms together, so one arm's detour holds up the
-  // other (median 68 steps for a window of 18 at 16 arms). Retiming each
-  // arm on its own, 100 attempts, made them 22% shorter (53 steps). A
-  // mobile robot's answer is closer to its window (40 steps for 23 at 32
-  // robots with obstacles); there retiming cost about 10% of E-ARC's
-  // planning time and saved about 1% of the steps.
+  // other. Each arm is retimed on its own; a mobile robot's answer lies
+  // closer to its window, where retiming costs more than it saves.
   if (shortcut && arms) retimeShortcut(checker, out.paths, settings_.retime_iterations, rng, ctx.deadline);
-  // Hold at the goals through the window, as the other solvers do (the
-  // retimed paths end at different steps).
-  std::size_t len = sub.t_end - sub.t_start + 1;
-  for (const auto& p : out.paths) len = std::max(len, p.size());
-  for (auto& p : out.paths)
-    while (p.size() < len) p.push(p.back());
+  holdAtGoals(ctx.sub, out.paths);
   return out;
 }
 

@@ -31,9 +31,8 @@ std::optional<Path> individualPath(const CollisionWorld& world, RoadmapSet& road
   // When no valid edges join the start's part of the roadmap to the
   // goal's, the roadmap grows in the box around the part with the smaller
   // box: a pocket behind a narrow way out (or everywhere, doubling, when
-  // that box is everything). Nine of 20 plans of 32 robots on den520d
-  // had a robot in one such pocket (67 of 20,000 vertices), and doubling
-  // the roadmap twice, to 80,000 vertices, joined it up.
+  // that box is everything): on a large map a few doublings join such a
+  // pocket up.
   std::optional<ConfigBox> where;
   auto configsOf = [&](const QueryGraph& graph, const std::vector<int>& vertices) {
     std::vector<double> out;

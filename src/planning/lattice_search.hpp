@@ -56,10 +56,9 @@ class Occupancy {
   std::vector<Threat> threats_;
 };
 
-// Space-time A* for robot i (not in occ) from its start to its goal, its
-// heuristic times `weight` (1: shortest), arriving for good by step max_cost;
-// nothing when there is none, after max_expansions or past the deadline.
-// Reuses its buffers; not thread-safe.
+// Space-time A* for robot i (not in occ) to its goal, heuristic times `weight`
+// (1: shortest), arriving for good by step max_cost; nothing when there is
+// none, after max_expansions or past the deadline. Not thread-safe.
 class StepSearch {
  public:
   explicit StepSearch(const CrowdRoadmap& rm) : rm_(rm) {}

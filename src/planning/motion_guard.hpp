@@ -1,5 +1,17 @@
 // MotionGuard: one robot checked against moving obstacles at local instants,
 // for the space-time search (space_time_search.cpp). Internal to src/planning.
+//
+// Each obstacle's bounding-disc centre is tabulated once per search, with
+// boxes over chunks of instants, so that a motion far from an obstacle
+// costs a few box tests instead of one interpolation and test per instant.
+// Where an arm takes part, whose bounding disc is centred on its fixed base
+// and so always meets a neighbour's, the obstacle's bodies are also bounded
+// over each chunk (RobotModel::boundsWithin), and tested against the
+// robot's bodies over the part of its motion in that chunk. A search tries
+// one edge at many start steps, and a motion's states and bodies are the
+// same whatever the step: they are kept for the whole search (motionFree's
+// `edge`), as are the obstacles' bodies at each instant (freeOf), which the
+// search meets again and again.
 #pragma once
 
 #include <algorithm>
@@ -23,14 +35,8 @@ inline geo::Aabb spanOf(geo::Vec2 a, geo::Vec2 b) {
   return {{std::min(a.x, b.x), std::min(a.y, b.y)}, {std::max(a.x, b.x), std::max(a.y, b.y)}};
 }
 
-// Checks a robot against moving obstacles at local instants. Each
-// obstacle's bounding-disc centre is tabulated once per search, with boxes
-// over chunks of instants, so that a motion far from an obstacle costs a
-// few box tests instead of one interpolation and test per instant. Where
-// an arm takes part, whose bounding disc is centred on its fixed base and
-// so always meets a neighbour's, the obstacle's bodies are also bounded
-// over each chunk (RobotModel::boundsWithin), and tested against the
-// robot's bodies over the part of its motion in that chunk.
+// Checks a robot against moving obstacles at local instants, through boxes
+// over chunks of instants (see the file's opening comment). Not thread-safe.
 class MotionGuard {
  public:
   // With a poll, the robot is not free anywhere once its deadline has
@@ -93,9 +99,8 @@ class MotionGuard {
   static constexpr std::uint64_t kOnce = ~std::uint64_t{0};
 
   // The first local step from which no obstacle that could touch a robot
-  // centred in `where` moves any more: from then on the world the robot
-  // searches in stands still. An obstacle may still move far from
-  // `where` (every motion between its steps stays out of reach).
+  // centred in `where` moves any more (one may still move out of reach):
+  // from then on the world the robot searches in stands still.
   std::size_t stillFrom(const geo::Aabb& where) const {
     std::size_t from = 0;
     for (const MovingObstacle& o : obstacles_) {
@@ -116,11 +121,7 @@ class MotionGuard {
 
   // The robot moving straight a -> b over `steps` steps from local step tau
   // is free at instants 2 tau + 1 .. 2 tau + 2 steps. `edge` names the
-  // motion (the search's directed pair of vertices): its states and bodies
-  // are the same whatever tau, and the search tries one edge at many
-  // (ARC at 32 mobile robots with obstacles: 17 million states made for
-  // 0.7 million distinct ones), so they are kept for the whole search, up
-  // to kKeptInstants of them. kOnce: a motion met once.
+  // motion (the search's directed vertex pair), kept for the search; kOnce: met once.
   bool motionFree(const double* a, const double* b, int steps, std::size_t tau, std::uint64_t edge = kOnce) {
     return only_mobile_ ? motionFreeOf<true>(a, b, steps, tau, edge) : motionFreeOf<false>(a, b, steps, tau, edge);
   }
@@ -247,8 +248,7 @@ class MotionGuard {
 
   // The robot, centred at c with bodies own() (which lie in `within` when
   // given), is free of obstacle i at local instant k. The obstacle's
-  // bodies at an instant are placed once per search: the search meets
-  // each instant again and again.
+  // bodies at an instant are placed once per search.
   template <class Own>
   bool freeOf(std::size_t i, geo::Vec2 c, std::size_t k, Own&& own, const geo::Aabb* within = nullptr) {
     const MovingObstacle& o = obstacles_[i];
@@ -297,11 +297,9 @@ class MotionGuard {
     std::vector<unsigned char> state;  // 0 nothing, 1 state, 2 state and bodies
     std::vector<PlacedBodies> bodies;
   };
-  // Kept motions' instants at most, per search (about 30 MB for a box
-  // robot, 90 MB for a 5-link arm): a search over a whole large map (the
-  // prioritized baseline on den520d) would otherwise keep hundreds of
-  // megabytes. ARC's searches on 20 plans of 32 mobile robots with
-  // obstacles kept 56,000 at most.
+  // Kept motions' instants at most, per search: a search over a whole
+  // large map (the prioritized baseline on den520d) would otherwise keep
+  // hundreds of megabytes.
   static constexpr std::size_t kKeptInstants = std::size_t{1} << 17;
   Motion once_;
   std::unordered_map<std::uint64_t, Motion> motions_;

@@ -34,12 +34,11 @@ inline constexpr double kFadedOpacity = 0.35;  // the start pose when a later st
 inline constexpr double kAheadOpacity = 0.5;   // a path's part still to go at a step
 
 // The sizes of text, marks and lines, in pixels: an 800-pixel panel's,
-// scaled with the panel's width so that a picture reads alike at any
-// --width (fixed sizes made the text of a 4000-pixel picture a speck seen
-// whole, and crowded a 400-pixel one). The scale stays within 0.85 and 5,
-// and no text is smaller than 8 pixels, about the least that reads on a
-// screen.
+// scaled with the panel's width (within 0.85 and 5) so that a picture reads
+// alike at any --width; no text is smaller than 8 pixels.
 struct Style {
+  // Fixed sizes made the text of a 4000-pixel picture a speck seen whole,
+  // and crowded a 400-pixel one; 8 pixels is about the least that reads.
   explicit Style(double panel_width_px) : u(std::clamp(panel_width_px / 800.0, 0.85, 5.0)) {}
   double u;  // the scale
   double px(double at_800) const { return at_800 * u; }
@@ -59,10 +58,9 @@ struct Style {
   double halo() const { return 2.5 * font() / 11.0; }  // the white edge around a label
   std::string dashes() const { return num(px(3)) + "," + num(px(2)); }
   std::string aheadDashes() const { return num(px(5)) + "," + num(px(3.5)); }  // a path's part to go
-  // The least a robot is drawn, in whole pixels, so that robots do not
-  // vanish on a large map (on den520d at 800 pixels a 0.6 x 0.4 box is
-  // 2 pixels long): a mobile robot this wide across its bounding circle,
-  // an arm's links this thick. Larger ones are drawn true to scale.
+  // The least a robot is drawn across its bounding circle, and an arm's
+  // links thick, in whole pixels, so that robots do not vanish on a large
+  // map (a 0.6 x 0.4 box on den520d); larger ones are drawn true to scale.
   double minRobotAcross() const { return std::round(px(9.0)); }
   double minLinkWidth() const { return std::max(1.0, std::round(px(2.0))); }
 };

@@ -135,8 +135,11 @@ void requireKnownKeys(const json& request, const std::set<std::string>& known) {
 
 }  // namespace
 
-Service::Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings)
-    : store_(std::move(store)), settings_(std::move(settings)), started_(std::chrono::steady_clock::now()) {
+Service::Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings, StopFlag* stop)
+    : store_(std::move(store)),
+      settings_(std::move(settings)),
+      started_(std::chrono::steady_clock::now()),
+      stop_(stop ? stop : &own_stop_) {
   methodFromName(settings_.method);  // throws std::invalid_argument for a bad default
   if (settings_.roadmap_cache_mib > 0)
     roadmaps_ = std::make_unique<RoadmapCache>(settings_.roadmap_cache_mib * (std::size_t{1} << 20));
@@ -204,7 +207,7 @@ json Service::plan(const json& request) {
   const PlannerSettings s = settingsFrom(request, settings_);
   PlanContext context;
   context.roadmap_cache = roadmaps_.get();
-  context.stop = &stop_;
+  context.stop = stop_;
   if (s.method == Method::Earc && !store_)
     throw badField("method", "method earc needs the service to have an experience database");
   // Rows other processes committed since the last request.
@@ -224,7 +227,7 @@ json Service::plan(const json& request) {
   ++counters_.plans;
   Stopwatch clock;
   PlanResult r = earc::plan(scenario, s, s.method == Method::Earc ? store_.get() : nullptr, context);
-  const bool interrupted = stopSet(&stop_);
+  const bool interrupted = stopSet(stop_);
   if (r.stats.db) counters_.learned += r.stats.db->db_learned;
   if (s.method == Method::Earc) {
     counters_.db += databaseAnswers(r.stats);

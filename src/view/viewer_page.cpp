@@ -50,7 +50,9 @@ std::string viewerHtml(const nlohmann::json& data) {
   std::vector<Slot> slots = {{"/*@EARC_CSS@*/", std::string(asset("viewer.css"))},
                              {"/*@EARC_SELFTEST_JS@*/", std::string(asset("selftest.js"))},
                              {"@EARC_DATA@", scriptSafeJson(data)},
-                             {"/*@EARC_VIEWER_JS@*/", std::string(asset("viewer.js"))}};
+                             {"/*@EARC_VIEWER_JS@*/", std::string(asset("viewer.js"))},
+                             {"/*@EARC_VIEWER_DRAW_JS@*/", std::string(asset("viewer_draw.js"))},
+                             {"/*@EARC_VIEWER_UI_JS@*/", std::string(asset("viewer_ui.js"))}};
   // One pass over the template in order: text put in never gets searched.
   const std::string_view tpl = asset("viewer.html");
   std::string out;

@@ -1,7 +1,8 @@
 #!/bin/bash
 # label: unsanitized
 # House style: a declaration's comment in every public header (include/)
-# is at most three lines (tools/check_header_comments.py).
+# and the programs' and the Python module's headers (tools/, python/) is
+# at most three lines (tools/check_header_comments.py).
 # The checker itself flags a long comment above a declaration and passes
 # one inside an inline function's body.
 set -u
@@ -34,5 +35,5 @@ HPP
 "$PY" "$CHECK" "$WORK/t.hpp" > "$WORK/out" && fail "a four-line comment above int f() passed"
 [ "$(wc -l < "$WORK/out")" -eq 1 ] && grep -q "t.hpp:7: 4 comment lines above a declaration" "$WORK/out" ||
   fail "not the one block expected: $(cat "$WORK/out")"
-"$PY" "$CHECK" "$SRC/include" > "$WORK/out" || fail "$(cat "$WORK/out")"
+"$PY" "$CHECK" "$SRC/include" "$SRC/tools" "$SRC/python" > "$WORK/out" || fail "$(cat "$WORK/out")"
 echo "ok"

@@ -3,7 +3,9 @@
 # refused; bad lines on the socket get one-line errors and the service goes
 # on; SIGINT during a long planning request cuts it short (answered as
 # interrupted, in seconds, not at its 60 s limit), what it learned is in
-# the file, the socket file is removed and the exit status is 0.
+# the file, the socket file is removed and the exit status is 0. An idle
+# service, and one blocked writing to a stdout nobody reads, end cleanly
+# on SIGINT (two at once) and SIGTERM.
 # Skipped (77) without /usr/bin/python3.
 set -u
 BUILD=$1
@@ -108,6 +110,47 @@ elif '"interrupted":true' not in line:
     fail("lightning request not answered as interrupted: %r" % line[:300])
 else:
     print("SIGTERM during a Lightning request: answered and exited in %.2f s" % took)
+def stops(svc, what, sig, twice=False):
+    """Sends sig (twice: two at once) and checks a clean exit 0 within 10 s and the closing line naming it."""
+    svc.send_signal(sig)
+    if twice:
+        svc.send_signal(sig)
+    try:
+        svc.stdin.close()
+    except BrokenPipeError:
+        pass
+    try:
+        code = svc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        svc.kill(); code = "hung"
+    err = svc.stderr.read()
+    name = "SIGINT" if sig == signal.SIGINT else "SIGTERM"
+    if code != 0:
+        fail("%s: exit %s after %s: %r" % (what, code, name, err[-300:]))
+    elif ("earc-plan serve: %s:" % name) not in err:
+        fail("%s: the closing line does not name %s: %r" % (what, name, err[-300:]))
+
+# Idle, waiting for requests on the socket and stdin: two SIGINTs at once
+# (every one is caught) end it cleanly, the socket file removed.
+svc = subprocess.Popen([plan_bin, "serve", "--method", "arc", "--socket", sock_path], stdin=subprocess.PIPE,
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+for _ in range(600):
+    if os.path.exists(sock_path):
+        break
+    time.sleep(0.05)
+stops(svc, "idle service", signal.SIGINT, twice=True)
+if os.path.exists(sock_path):
+    fail("idle service: socket file left behind")
+
+# Writing answers to a stdout nobody reads (the pipe full): SIGTERM still
+# ends it, the blocked write interrupted.
+svc = subprocess.Popen([plan_bin, "serve", "--method", "arc"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True)
+svc.stdin.write('{"id": "a long id to fill the pipe sooner", "op": "ping"}\n' * 1500)  # 85 kB: the pipe to it holds what it leaves unread
+svc.stdin.flush()
+time.sleep(1.0)
+stops(svc, "service blocked on stdout", signal.SIGTERM)
+print("idle and blocked-on-stdout services: clean exits on SIGINT and SIGTERM")
 for m in failures:
     print("FAIL:", m)
 sys.exit(1 if failures else 0)

@@ -246,7 +246,7 @@ TEST_CASE("a results database records each lightning trial's Lightning settings,
   // no trial with settings; migrated when opened for writing, and a
   // lightning trial of any settings added beside the old ones, which
   // hold it to nothing.
-  LightningSettings twenty;
+  bench::LightningSettings twenty;
   twenty.problems = 20;
   twenty.problem_time_limit_s = 2.5;
   const auto all = readOldThenMigrate(
@@ -258,10 +258,10 @@ TEST_CASE("a results database records each lightning trial's Lightning settings,
 }
 
 TEST_CASE("Lightning settings differ in the first option that says so, each value as a run gives it") {
-  LightningSettings twenty;
+  bench::LightningSettings twenty;
   twenty.problems = 20;
   twenty.problem_time_limit_s = 10;
-  const auto says = [](const LightningSettings& a, const LightningSettings& b) {
+  const auto says = [](const bench::LightningSettings& a, const bench::LightningSettings& b) {
     const auto d = lightningSettingDifference(a, b);
     return d ? d->option + ": " + d->stored + " / " + d->given : std::string("same");
   };
@@ -276,7 +276,7 @@ TEST_CASE("Lightning settings differ in the first option that says so, each valu
   CHECK(says(perRobotLightning(4, 1e-7), perRobotLightning(4, 0.1)) == "--lightning-problem-time-limit: 1e-07 / 0.1");
   CHECK(says(perRobotLightning(4, 10), twenty) == "--lightning-problems: none (4 per robot) / 20");
   CHECK(says(twenty, perRobotLightning(4, 10)) == "--lightning-problems: 20 / none (4 per robot)");
-  LightningSettings eight = twenty;
+  bench::LightningSettings eight = twenty;
   eight.problems = 8;
   CHECK(says(twenty, eight) == "--lightning-problems: 20 / 8");
   eight.problems = 20;
@@ -293,7 +293,7 @@ TEST_CASE("a results file keeps one Lightning setting: a lightning trial run wit
                                     "a trial run with 2 is not added: a results file holds one Lightning setting")
                            .c_str(),
                        InputError);
-  LightningSettings twenty;
+  bench::LightningSettings twenty;
   twenty.problems = 20;
   twenty.problem_time_limit_s = 10;
   CHECK_THROWS_AS(db.addTrial(lightningTrial(1, twenty)), InputError);
@@ -364,7 +364,7 @@ TEST_CASE("the CSV has the Lightning settings, --learn and the E-ARC database af
   TrialRecord earc = earcTrial(0, false, "w/e, mobile.sqlite", -5);
   TrialRecord lightning = lightningTrial(0, perRobotLightning(4, 2.5));
   lightning.learn = true;
-  LightningSettings twenty;
+  bench::LightningSettings twenty;
   twenty.problems = 20;
   twenty.problem_time_limit_s = 1.0000001;
   const std::vector<TrialRecord> all = {trial("arc", 0, true, 1.5), earc, lightning, lightningTrial(1, twenty),

@@ -85,7 +85,7 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
   {
     LightningDatabase db(s);
     CHECK(db.entries() == 0);
-    PlanResult r = db.plan(s, settings(1), LightningSettings{});
+    PlanResult r = db.plan(s, settings(1), earc::LightningSettings{});
     REQUIRE(r.solution.solved);
     CHECK(db.entries() == 1);
     CHECK(r.stats.lightning->lightning_db_added == 1);
@@ -111,7 +111,7 @@ TEST_CASE("a Lightning database grows by the first solution, survives a save and
 TEST_CASE("planning without learning leaves a Lightning database as it was") {
   const Scenario s = twoMobile(11);
   LightningDatabase db(s);
-  LightningSettings ls;
+  earc::LightningSettings ls;
   ls.learn = false;
   PlanResult r = db.plan(s, settings(1), ls);
   REQUIRE(r.solution.solved);
@@ -124,7 +124,7 @@ TEST_CASE("a Lightning database of another state space is refused with a message
   const Scenario mobile = twoMobile(13);
   {
     LightningDatabase db(mobile);
-    REQUIRE(db.plan(mobile, settings(1), LightningSettings{}).solution.solved);
+    REQUIRE(db.plan(mobile, settings(1), earc::LightningSettings{}).solution.solved);
     db.save(file.path);
   }
   LightningDatabase arms(twoArms(2));

@@ -304,3 +304,20 @@ TEST_CASE("serve protocol: a second request on the same world plans on the first
   CHECK_FALSE(fresh["stats"].contains("roadmaps_reused"));
   CHECK_FALSE(reply(plain, R"({"op": "stats"})")["stats"].contains("roadmap_cache"));
 }
+
+TEST_CASE("serve protocol: a service given a stop flag watches it, and its stop requests set it") {
+  exp::ScratchDirectory dir("service-given-stop");
+  auto store = std::make_shared<exp::ExperienceStore>(dir.file("s.db"));
+  StopFlag stop{true};
+  service::Service svc(store, {}, &stop);
+  json r = reply(svc, json{{"id", 1}, {"scenario", scenarioToJson(serviceScenario())}, {"time_limit", 30}}.dump());
+  CHECK(r["interrupted"] == true);
+  CHECK(r["solved"] == false);
+  svc.clearStop();
+  CHECK(!stop.load());
+  r = reply(svc, json{{"id", 2}, {"scenario", scenarioToJson(serviceScenario())}, {"method", "arc"}}.dump());
+  CHECK(r["interrupted"] == false);
+  CHECK(r["solved"] == true);
+  svc.requestStop();
+  CHECK(stop.load());
+}

@@ -73,7 +73,7 @@ TEST_CASE("viewer assets embedded in the build match tools/viewer (run tools/vie
     INFO(entry.path().filename().string() << " is in tools/viewer but not embedded (add it to embed.sh)");
     CHECK(embedded);
   }
-  CHECK(checked == 4);
+  CHECK(checked == 6);
 }
 
 TEST_CASE("viewer page is self-contained: no external script, style, font or link, and no network allowed") {

@@ -12,7 +12,7 @@ namespace earc {
 namespace {
 
 // The store; with full_disk, a disk too full for the open's writes falls
-// back as openStoreForPlanning says.
+// back as said above openStoreForPlanning.
 std::shared_ptr<exp::ExperienceStore> openStore(const std::string& db, const exp::StoreOptions& options,
                                                 std::string* full_disk) {
   try {
@@ -54,6 +54,13 @@ void requireDatabaseFor(Method method, const std::string& db) {
     throw InputError("", "--db", "method earc needs an experience database file (earc-db build makes one; a new file name starts empty)");
 }
 
+// Without learn the file stays as it was, byte for byte (no session count,
+// no usage counters), and must exist. Its quick_check runs in the
+// background (StoreOptions::check_in_background). With full_disk, a disk
+// too full for the open's writes (creating the file, migrating it,
+// counting the session) is no error: the store is the file opened
+// read-only, or, when the file could not be created, an empty one in
+// memory, and *full_disk says so in a line naming the file.
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
                                                            std::size_t row_cache_bytes, std::string* full_disk) {
   if (method != Method::Earc) return nullptr;

@@ -21,16 +21,9 @@ namespace earc {
 // too).
 void requireDatabaseFor(Method method, const std::string& db);
 
-// The store for method earc (an InputError when --db is missing or the file
-// is refused); nullptr for every other method. Without learn it is opened
-// read-only: the file stays as it was, byte for byte (no session count, no
-// usage counters), and must exist. Its quick_check runs in the background
-// (StoreOptions::check_in_background): call awaitCheck() before using the
-// plan. With full_disk, a disk too full for the open's writes (creating
-// the file, migrating it, counting the session) is no error: the store is
-// the file opened read-only, or, when the file could not be created, an
-// empty one in memory, and *full_disk says so in a line naming the file.
-// row_cache_bytes bounds the store's cache of retrieved rows (0: off).
+// The store for method earc (InputError when --db is missing or the file is
+// refused), else nullptr; read-only without learn; row_cache_bytes bounds its
+// row cache (0: off). Call awaitCheck() before using the plan. full_disk: .cpp.
 std::shared_ptr<exp::ExperienceStore> openStoreForPlanning(Method method, const std::string& db, bool learn,
                                                            std::size_t row_cache_bytes,
                                                            std::string* full_disk = nullptr);

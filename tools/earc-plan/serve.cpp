@@ -9,7 +9,6 @@
 // "interrupted"), commits what was learned, closes the database and exits
 // 0. Without --socket the service also ends at the end of stdin; with
 // one, it keeps serving the socket.
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
@@ -17,14 +16,13 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstring>
 #include <iostream>
 #include <deque>
 #include <list>
 
+#include "earc/cli/stop_signals.hpp"
 #include "earc/cli/subcommands.hpp"
 #include "earc/experience/maintenance.hpp"
 #include "earc/experience/store.hpp"
@@ -46,26 +44,6 @@ struct ServeOptions {
   std::size_t roadmap_cache_mib = service::ServiceSettings{}.roadmap_cache_mib;
   std::optional<std::size_t> db_row_cache_mb;
 };
-
-// Written by the signal handler only: the signal's number, and a byte into
-// a pipe that the poll loop watches, so that a signal between two polls is
-// never missed.
-volatile std::sig_atomic_t g_signal = 0;
-int g_wake_fd = -1;
-// The service being run, whose plans a stop signal stops; null before and after.
-std::atomic<service::Service*> g_service{nullptr};
-static_assert(std::atomic<service::Service*>::is_always_lock_free);
-
-extern "C" void onStopSignal(int signo) {
-  g_signal = signo;
-  if (service::Service* s = g_service.load()) s->requestStop();  // its plan's deadlines now read as expired
-  const int saved = errno;
-  if (g_wake_fd >= 0) {
-    const char byte = 1;
-    [[maybe_unused]] ssize_t n = ::write(g_wake_fd, &byte, 1);
-  }
-  errno = saved;
-}
 
 class Fd {
  public:
@@ -97,13 +75,13 @@ std::runtime_error systemError(const std::string& what) {
 // Writes all of text to a blocking descriptor (stdout); false when the
 // reader has gone (EPIPE and the like) or a stop signal came while the
 // write waited for a reader that does not read.
-bool writeAll(int fd, const std::string& text) {
+bool writeAll(int fd, const std::string& text, const StopFlag& stop) {
   const char* p = text.data();
   std::size_t left = text.size();
   while (left > 0) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0) {
-      if (errno == EINTR && !g_signal) continue;
+      if (errno == EINTR && !stopSet(&stop)) continue;
       return false;
     }
     p += n;
@@ -206,7 +184,9 @@ struct Client {
 
 class Server {
  public:
-  Server(service::Service& service, Fd listener) : service_(service), listener_(std::move(listener)) {}
+  // The stop signals must interrupt blocking calls (Blocking::Interrupt).
+  Server(service::Service& service, Fd listener, const cli::StopSignals& signals)
+      : service_(service), listener_(std::move(listener)), signals_(signals) {}
 
   // Serves until a stop signal, or the end of stdin when there is no socket.
   // Requests are answered one at a time, taking the clients in turn (one
@@ -219,12 +199,8 @@ class Server {
     Client stdio;
     stdio.in = STDIN_FILENO;
     stdio.out = STDOUT_FILENO;
-    int wake[2];
-    if (::pipe2(wake, O_CLOEXEC | O_NONBLOCK) != 0) throw systemError("pipe");
-    Fd wake_read(wake[0]), wake_write(wake[1]);
-    g_wake_fd = wake_write.get();
-    while (!g_signal) {
-      std::vector<pollfd> fds{{wake_read.get(), POLLIN, 0}};
+    while (!stopping()) {
+      std::vector<pollfd> fds{{signals_.wakeFd(), POLLIN, 0}};
       bool work = stdio.open && !stdio.queued.empty();
       if (stdio.open) fds.push_back({stdio.in, static_cast<short>(stdio.reading && stdio.queued.empty() ? POLLIN : 0), 0});
       if (listener_.get() >= 0) fds.push_back({listener_.get(), POLLIN, 0});
@@ -260,10 +236,11 @@ class Server {
         it = it->open ? std::next(it) : connections_.erase(it);
       }
     }
-    g_wake_fd = -1;
   }
 
  private:
+  bool stopping() const { return stopSet(&signals_.flag()); }
+
   void accept() {
     const int fd = ::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0) return;  // the client gave up already, or EINTR: poll again
@@ -286,13 +263,13 @@ class Server {
   // Answers the client's oldest request: on stdout as it is (blocking), to
   // a connection through its queue, written as far as the client takes it.
   void answerNext(Client& c) {
-    if (g_signal) return;  // not started: left unanswered
+    if (stopping()) return;  // not started: left unanswered
     const service::LineSplitter::Line line = std::move(c.queued.front());
     c.queued.pop_front();
     std::string response = line.too_long ? service_.tooLongResponse() : service_.handleLine(line.text);
     response += '\n';
     if (!c.connection()) {
-      if (!writeAll(c.out, response)) c.open = false;
+      if (!writeAll(c.out, response, signals_.flag())) c.open = false;
       return;
     }
     c.pending += response;
@@ -305,7 +282,7 @@ class Server {
     while (written < c.pending.size()) {
       const ssize_t n = ::write(c.out, c.pending.data() + written, c.pending.size() - written);
       if (n < 0) {
-        if (errno == EINTR && !g_signal) continue;
+        if (errno == EINTR && !stopping()) continue;
         if (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK) break;
         c.open = false;  // the client has gone: its answers with it
         break;
@@ -317,17 +294,12 @@ class Server {
 
   service::Service& service_;
   Fd listener_;
+  const cli::StopSignals& signals_;
   std::list<Client> connections_;
 };
 
-void installSignals() {
-  struct sigaction sa {};
-  sa.sa_handler = onStopSignal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: poll and read return EINTR
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  // A client that hangs up must not kill the service.
+// A client that hangs up must not kill the service.
+void ignoreBrokenPipes() {
   struct sigaction ignore {};
   ignore.sa_handler = SIG_IGN;
   sigaction(SIGPIPE, &ignore, nullptr);
@@ -346,7 +318,10 @@ int runServe(const ServeOptions& o) {
   settings.seed = o.seed;
   settings.deterministic = o.deterministic;
   settings.roadmap_cache_mib = o.roadmap_cache_mib;
-  installSignals();
+  // Every stop signal is caught (the service finishes the request in
+  // flight as interrupted); blocking calls return EINTR, poll wakes.
+  cli::StopSignals signals(cli::StopSignals::Repeats::Caught, cli::StopSignals::Blocking::Interrupt);
+  ignoreBrokenPipes();
   // A database given serves E-ARC requests whatever the default method.
   // Without one the service plans every method but E-ARC, and answers an
   // E-ARC request with an error; E-ARC as the default is refused here, as
@@ -369,22 +344,15 @@ int runServe(const ServeOptions& o) {
     if (!o.socket.empty()) ::unlink(o.socket.c_str());
     throw;
   }
-  service::Service service(store, settings);
-  // Stop signals reach the service's plans while it runs; one that came
-  // before it existed stops it at once.
-  struct ActiveService {
-    explicit ActiveService(service::Service& s) {
-      g_service.store(&s);
-      if (g_signal) s.requestStop();
-    }
-    ~ActiveService() { g_service.store(nullptr); }
-  } active(service);
+  // Its plans watch the signals' stop flag: one that came before now
+  // stops it at once.
+  service::Service service(store, settings, &cli::stopFlag());
   std::cerr << "earc-plan serve: "
             << (store ? o.db + " (" + std::to_string(store->size()) + " experiences)"
                       : std::string("no experience database (method earc refused)"))
             << ", requests on stdin" << (o.socket.empty() ? "" : " and " + o.socket) << "\n";
   try {
-    Server(service, std::move(listener)).run();
+    Server(service, std::move(listener), signals).run();
   } catch (...) {
     if (!o.socket.empty()) ::unlink(o.socket.c_str());
     throw;
@@ -392,7 +360,7 @@ int runServe(const ServeOptions& o) {
   if (!o.socket.empty()) ::unlink(o.socket.c_str());
   service.close();  // learned rows are committed already; counters, checkpoint
   const auto& n = service.counters();
-  std::cerr << "earc-plan serve: " << (g_signal ? (g_signal == SIGINT ? "SIGINT" : "SIGTERM") : "end of input")
+  std::cerr << "earc-plan serve: " << (signals.signal() ? signals.signalName() : "end of input")
             << ": " << n.requests << " requests, " << n.solved << " solved, " << n.errors << " errors, " << n.learned
             << " experiences learned";
   if (n.db.solved > 0) std::cerr << ", database answered " << n.db.answered() << " of " << n.db.solved << " solved subproblems";

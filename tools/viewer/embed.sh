@@ -7,7 +7,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 out="$(cd "$here/../.." && pwd)/src/view/viewer_assets.inc"
-files=(viewer.html viewer.css viewer.js selftest.js)
+files=(viewer.html viewer.css viewer.js viewer_draw.js viewer_ui.js selftest.js)
 delim=earc_asset
 
 tmp=$(mktemp "$out.XXXXXX")

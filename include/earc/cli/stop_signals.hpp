@@ -14,7 +14,11 @@ namespace earc::cli {
 class StopSignals {
  public:
   enum class Repeats { EndProcess, Caught };
-  explicit StopSignals(Repeats repeats = Repeats::EndProcess);
+  // What a stop signal does to a blocking system call: Restart it, or
+  // Interrupt it (EINTR) and make wakeFd() readable, for a poll loop.
+  enum class Blocking { Restart, Interrupt };
+  // Throws std::runtime_error when the wake pipe cannot be made.
+  explicit StopSignals(Repeats repeats = Repeats::EndProcess, Blocking blocking = Blocking::Restart);
   ~StopSignals();
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
@@ -26,9 +30,13 @@ class StopSignals {
   const char* signalName() const;
   // The conventional exit status after the signal: 128 + its number.
   int exitCode() const { return 128 + signal(); }
+  // With Blocking::Interrupt, a non-blocking descriptor that turns readable
+  // once a stop signal came (never drained); else -1.
+  int wakeFd() const { return wake_read_; }
 
  private:
   struct sigaction old_int_{}, old_term_{};
+  int wake_read_ = -1;
 };
 
 // The flag StopSignals sets, which a program may also set (or clear) to

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "earc/methods/database_solver.hpp"
+#include "earc/util/deadline.hpp"
 
 namespace earc::exp { class ExperienceStore; }
 
@@ -70,8 +71,9 @@ struct ServiceCounters {
 
 class Service {
  public:
-  // store may be null (then method earc is refused per request).
-  Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings);
+  // store may be null (then method earc is refused per request). stop: the
+  // stop request its plans watch (PlanContext::stop), its own when null.
+  Service(std::shared_ptr<exp::ExperienceStore> store, ServiceSettings settings, StopFlag* stop = nullptr);
   ~Service();
   Service(const Service&) = delete;
   Service& operator=(const Service&) = delete;
@@ -87,8 +89,8 @@ class Service {
   const ServiceCounters& counters() const { return counters_; }
   // Stops the plan in flight and every later one (answered "interrupted")
   // until clearStop(). Both thread-safe and async-signal-safe.
-  void requestStop() noexcept { stop_.store(true, std::memory_order_relaxed); }
-  void clearStop() noexcept { stop_.store(false, std::memory_order_relaxed); }
+  void requestStop() noexcept { stop_->store(true, std::memory_order_relaxed); }
+  void clearStop() noexcept { stop_->store(false, std::memory_order_relaxed); }
   // Writes pending usage counters, checkpoints and closes the store.
   // Throws when the store cannot be closed cleanly.
   void close();
@@ -103,7 +105,8 @@ class Service {
   std::unique_ptr<RoadmapCache> roadmaps_;  // null: none kept
   ServiceCounters counters_;
   std::chrono::steady_clock::time_point started_;
-  StopFlag stop_{false};
+  StopFlag own_stop_{false};
+  StopFlag* stop_;  // own_stop_ or the one given
 };
 
 // Splits a byte stream into lines ('\n', a trailing '\r' dropped, blank
