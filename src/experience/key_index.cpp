@@ -10,7 +10,7 @@ namespace earc::exp {
 
 namespace {
 
-// Leaf size: nanoflann's default; 8..20 measured within a few percent.
+// Leaf size: nanoflann's default (docs/performance-log.md: others no better).
 constexpr std::size_t kLeafSize = 10;
 
 double squaredDistance(const double* a, const double* b, std::size_t dim) {
@@ -94,10 +94,8 @@ void ClassIndex::rebuild() {
   // The tree reaches its keys through a permutation (vAcc), a run of it per
   // leaf. Stored in that order, a leaf's keys lie side by side in memory
   // instead of a cache line each anywhere in the class, and the permutation
-  // becomes the identity; the tree itself does not change. Measured on
-  // 100,000 keys per class (earc-db bench-retrieval, five runs): the search
-  // alone went from 35 to 24 us with 8-number keys, 210 to 99 with 12 and
-  // 638 to 229 with 16.
+  // becomes the identity; the tree itself does not change
+  // (docs/performance-log.md, "figures moved out of code comments").
   auto& order = tree_->tree.vAcc;
   std::vector<double> keys(keys_.size());
   std::vector<std::int64_t> ids(ids_.size());

@@ -136,6 +136,9 @@ std::vector<std::string> PgWarmStringNumbers::takeAdded() {
   return out;
 }
 
+// The key and cost take a byte a value, usually; the path blob is kept as
+// stored. A row that would not decode is kept column by column, so that it
+// fails as readPgExperience fails.
 void packPgWarmRow(const PgResult& r, int row, PgWarmStringNumbers& strings, std::vector<unsigned char>& out) {
   for (int c = 0; c < kPgRowColumns; ++c)
     if (r.isNull(row, c)) throw StoreError("row " + std::to_string(row) + " of the copy: column " + std::to_string(c) + " is NULL");

@@ -28,10 +28,8 @@ class PgWarmStringNumbers {
 };
 
 // Appends row `row` of a result with pgSelectExperiencesSql's columns to
-// `out`: integers as varints, strings by number, the key and cost as their
-// differences from the paths' (a byte a value, usually), the path blob as
-// stored. A row that would not decode is kept column by column, to fail
-// as readPgExperience fails. Throws StoreError for a NULL column.
+// `out`, packed (varints, numbered strings, key and cost as differences
+// from the paths'). Throws StoreError for a NULL column.
 void packPgWarmRow(const PgResult& r, int row, PgWarmStringNumbers& strings, std::vector<unsigned char>& out);
 // The row with this id packed at `at`, decoded and checked as
 // readPgExperience checks (strings[n] is string n). Throws CorruptRowError.

@@ -17,10 +17,9 @@
 
 namespace earc::exp {
 
-// Reads every row of a store on a connection and a thread of its own (one
-// snapshot, in batches) and keeps them all, or none once their packed bytes
-// pass the bound. Methods: one thread at a time (the store's mutex); the
-// reading thread hands rows over under its own lock.
+// Reads every row of a store on its own connection and thread, keeping all
+// of them packed, or none once they pass the bound. Methods: one thread at
+// a time (the store's mutex); the reader hands rows over under its own lock.
 class PgWarmRows {
  public:
   // Starts reading the store at `location`, within max_bytes. A failure

@@ -27,6 +27,9 @@ void Occupancy::forCells(const geo::Aabb& box, Visit&& visit) {
     for (long x = x0; x <= x1; ++x) visit(grid_[static_cast<std::size_t>(y * nx_ + x)]);
 }
 
+// The index: per chunk of steps, the robots still on their way then with
+// the box their bodies stay in; and a grid of the goals where the robots
+// that have arrived stand.
 Occupancy::Occupancy(const std::vector<const RobotModel*>& models, const std::vector<Path>& paths, const geo::Aabb& workspace)
     : models_(models), paths_(paths), len_(paths.size(), 0), in_(paths.size(), 0), goal_(paths.size()),
       stamp_(paths.size(), 0) {

@@ -25,12 +25,9 @@ geo::Aabb boundsOverSteps(const RobotModel& m, const Path& path, std::size_t s0,
 
 enum class Check { Clear, Contact, OutOfTime };
 
-// Every robot's timed path indexed for "does this new path of robot r
-// touch anyone": per chunk of steps, the robots still on their way then
-// with the box their bodies stay in; and a grid of the goals where the
-// robots that have arrived stand. Reads `paths` (which must outlive it)
-// when asked; a robot's entry is taken out before its path changes and
-// put back after. Not thread-safe.
+// Every robot's timed path indexed for "does this new path of robot r touch
+// anyone"; reads `paths` (which must outlive it), a robot's entry taken out
+// before its path changes and put back after. Not thread-safe.
 class Occupancy {
  public:
   Occupancy(const std::vector<const RobotModel*>& models, const std::vector<Path>& paths, const geo::Aabb& workspace);

@@ -31,6 +31,7 @@ long long lastContactAt(Occupancy& occ, const RobotModel& m, std::size_t r, cons
 
 }  // namespace
 
+// Searches (route position, step) pairs; the poll's time also ends it.
 std::optional<Path> retimeAlong(Occupancy& occ, const RobotModel& m, std::size_t r, const Path& path, std::size_t t0,
                                 const Path& route, std::size_t before, std::size_t horizon, DeadlinePoll& poll,
                                 std::size_t max_states) {

@@ -13,11 +13,9 @@
 
 namespace earc::refine {
 
-// Robot r's `path` up to step t0, then along `route` (route[0] = path's
-// state at t0, each next state at most one step on) waiting where needed,
-// arriving before step `before` and able to stay at the route's end until
-// step `horizon`; nothing when no such timing exists within `max_states`
-// (position, step) pairs or the poll's time. Not thread-safe.
+// Robot r's `path` to step t0, then along `route` (from that state, a step
+// apart) waiting where needed, arriving before `before` and able to stay at
+// its end until `horizon`; nothing if none within `max_states`. Not thread-safe.
 std::optional<Path> retimeAlong(Occupancy& occ, const RobotModel& m, std::size_t r, const Path& path, std::size_t t0,
                                 const Path& route, std::size_t before, std::size_t horizon, DeadlinePoll& poll,
                                 std::size_t max_states);

@@ -35,5 +35,5 @@ HPP
 "$PY" "$CHECK" "$WORK/t.hpp" > "$WORK/out" && fail "a four-line comment above int f() passed"
 [ "$(wc -l < "$WORK/out")" -eq 1 ] && grep -q "t.hpp:7: 4 comment lines above a declaration" "$WORK/out" ||
   fail "not the one block expected: $(cat "$WORK/out")"
-"$PY" "$CHECK" "$SRC/include" "$SRC/tools" "$SRC/python" > "$WORK/out" || fail "$(cat "$WORK/out")"
+"$PY" "$CHECK" "$SRC/include" "$SRC/src" "$SRC/tools" "$SRC/python" > "$WORK/out" || fail "$(cat "$WORK/out")"
 echo "ok"
