@@ -163,6 +163,8 @@ std::vector<std::size_t> straightLineBounds(const Scenario& scenario, const std:
   return out;
 }
 
+// A mobile robot's way is its inscribed disc's: any path of the body
+// carries that disc, so the disc's shortest way bounds the body's.
 std::vector<std::size_t> ownPathLowerBounds(const Scenario& scenario, const std::vector<const RobotModel*>& models,
                                             std::size_t max_obstacles) {
   std::vector<std::size_t> out = straightLineBounds(scenario, models);

@@ -10,10 +10,9 @@
 
 namespace earc {
 
-// Per robot, steps that no valid path of its own can undercut: a mobile
-// robot's shortest way for its inscribed disc around the obstacles (their
-// straight-line steps when the scenario has more than max_obstacles), an
-// arm's straight-line steps; never below the straight-line steps. Thread-safe.
+// Per robot, steps no valid path of its own can undercut: a mobile robot's
+// shortest way around the obstacles (straight-line past max_obstacles), an
+// arm's straight-line steps; never below the straight line. Thread-safe.
 std::vector<std::size_t> ownPathLowerBounds(const Scenario& scenario, const std::vector<const RobotModel*>& models,
                                             std::size_t max_obstacles = 64);
 
