@@ -230,7 +230,7 @@ void bindPlanning(py::module_& m) {
       [](const Scenario& scenario, const std::string& method, std::uint64_t seed, double time_limit, double refine,
          std::optional<py::object> db, bool learn, bool deterministic, std::optional<int> window, bool crowd,
          bool compact, bool trace, bool shadow_decoupled, std::optional<int> db_k, std::optional<int> db_repair_max,
-         std::optional<double> db_max_stretch) {
+         std::optional<double> db_max_stretch, bool retime_windows) {
         MethodOptions o;
         o.method = method;
         o.seed = seed;
@@ -242,6 +242,7 @@ void bindPlanning(py::module_& m) {
         o.window = window;
         o.crowd = crowd;
         o.compact = compact;
+        o.retime_windows = retime_windows;
         o.trace = trace;
         o.shadow_decoupled = shadow_decoupled;
         o.db_k = db_k;
@@ -254,6 +255,7 @@ void bindPlanning(py::module_& m) {
       py::arg("deterministic") = false, py::arg("window") = py::none(), py::arg("crowd") = true,
       py::arg("compact") = false, py::arg("trace") = false, py::arg("shadow_decoupled") = false,
       py::arg("db_k") = py::none(), py::arg("db_repair_max") = py::none(), py::arg("db_max_stretch") = py::none(),
+      py::arg("retime_windows") = false,
       "Plans the scenario as `earc-plan plan` does with the same options (--no-learn is learn=False, --no-crowd "
       "crowd=False); the same seed gives the same paths. The GIL is released while planning; Ctrl-C (SIGINT) "
       "stops the plan and raises KeyboardInterrupt.");

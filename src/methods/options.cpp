@@ -35,6 +35,7 @@ PlannerSettings plannerSettingsFor(const MethodOptions& o, OptionStyle style) {
   s.work_budgets = o.deterministic;
   s.post.compact = o.compact;
   s.arc.crowd_fallback = o.crowd;
+  s.arc.retime_windows = o.retime_windows;
   s.post.refine_s = o.refine;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "shadow_decoupled"}, std::pair{o.db_k.has_value(), "db_k"},

@@ -394,7 +394,8 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
-      window_retimed_ += retimeLocalSolution(sub, *out.solution, models_, paths_, world_, deadline_);
+      if (settings_.arc.retime_windows)
+        window_retimed_ += retimeLocalSolution(sub, *out.solution, models_, paths_, world_, deadline_);
       splice(paths_, sub, *out.solution);
       leaveOutGroupWaits(sub, *out.solution);
       spans_.push_back({sub.robots, sub.t_start, sub.t_start + out.solution->length() - 1});
@@ -493,7 +494,7 @@ PlanResult ArcRun::run() {
   st.solver_time_s = solver_time_;
   st.window_expansions = expansions_;
   st.waits_left_out = waits_left_out_;
-  st.window_retimed = window_retimed_;
+  if (settings_.arc.retime_windows) st.window_retimed = window_retimed_;
   st.solver_budgets = settings_.work_budgets ? "work" : "seconds";
   st.robots_merged = merged_;
   st.merge_cap_raised = cap_raised_;

@@ -234,3 +234,23 @@ TEST_CASE("A local solution's robots are retimed inside their window against the
   paths[0] = local.paths[0];
   CHECK(c.valid(paths));
 }
+
+TEST_CASE("ARC retimes its answers inside their windows only when asked, and the plan validates") {
+  gen::MobileSettings ms;
+  ms.robots = 16;
+  ms.obstacles = 12;
+  ms.seed = 3;
+  const Scenario s = gen::generateMobile(ms);
+  PlannerSettings settings;
+  settings.work_budgets = true;
+  settings.time_limit_s = 60;
+  const PlanResult plain = plan(s, settings);
+  REQUIRE(plain.solution.solved);
+  REQUIRE(plain.stats.arc);
+  CHECK_FALSE(plain.stats.arc->window_retimed.has_value());
+  settings.arc.retime_windows = true;
+  const PlanResult retimed = plan(s, settings);
+  REQUIRE(retimed.solution.solved);  // plan() validates it
+  REQUIRE(retimed.stats.arc->window_retimed.has_value());
+  CHECK(*retimed.stats.arc->window_retimed > 0);
+}

@@ -45,6 +45,7 @@ struct PlanOptions {
   bool deterministic = false;
   bool compact = false;
   bool no_crowd = false;
+  bool retime_windows = false;
   double refine = 0.0;
   std::optional<int> db_k, db_repair_max;
   std::optional<double> db_max_stretch;
@@ -201,6 +202,7 @@ int runPlan(const PlanOptions& o) {
   m.deterministic = o.deterministic;
   m.crowd = !o.no_crowd;
   m.compact = o.compact;
+  m.retime_windows = o.retime_windows;
   m.refine = o.refine;
   m.shadow_decoupled = o.shadow_decoupled;
   m.db_k = o.db_k;
@@ -311,6 +313,9 @@ void setupPlan(CLI::App& app) {
                 "time); prioritized and coupled plans are so already; not for lightning");
   cmd->add_flag("--no-crowd", opts->no_crowd,
                 "ARC, E-ARC: never hand a jam to the crowd solver (lacam); the methods as published");
+  cmd->add_flag("--retime-windows", opts->retime_windows,
+                "ARC, E-ARC: retime each mobile robot of a local answer along its route inside its window "
+                "before the splice (shorter plans on some worlds, more time; stats window_retimed)");
   cmd->add_flag("--compact", opts->compact,
                 "After planning, retime every robot along its own route to leave out the waits it does not "
                 "need and go at full speed where it crept (any method; shorter plans, same routes; stats "

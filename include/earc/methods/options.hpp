@@ -22,6 +22,7 @@ struct MethodOptions {
   bool deterministic = false;
   bool crowd = true;
   bool compact = false;
+  bool retime_windows = false;
   double refine = 0.0;
   bool shadow_decoupled = false;
   std::optional<int> db_k, db_repair_max;

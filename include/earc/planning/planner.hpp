@@ -56,6 +56,9 @@ struct ArcSettings {
   // Hand a jam to the crowd solver (lacam.hpp) when the local solvers fail
   // on it; false: never (the methods as published).
   bool crowd_fallback = true;
+  // Retime each mobile robot of a local answer inside its window before the
+  // splice (retimeLocalSolution, arc.hpp); stats "window_retimed".
+  bool retime_windows = false;
 };
 
 // The experience databases: E-ARC's store and Lightning's file.
