@@ -237,6 +237,27 @@ bool boundingDiscsMeet(const RobotModel& a, const double* qa, const RobotModel& 
   return geo::dot(gap, gap) <= reach * reach;
 }
 
+void RobotAgainst::set(const RobotModel& model, const double* q) {
+  model_ = &model;
+  q_ = q;
+  centre_ = model.boundingCenter(q);
+  placed_ = false;
+}
+
+RobotAgainst::Result RobotAgainst::check(const RobotModel& other, const double* q_other) {
+  // Most pairs fail the disc test, so the robot's bodies are placed only
+  // at the first pair that passes it.
+  const double reach = model_->boundingRadius() + other.boundingRadius();
+  const geo::Vec2 gap = centre_ - other.boundingCenter(q_other);
+  if (geo::dot(gap, gap) > reach * reach) return Result::Apart;
+  if (!placed_) {
+    mine_.place(*model_, q_);
+    placed_ = true;
+  }
+  theirs_.place(other, q_other);
+  return bodiesTouch(mine_, theirs_) ? Result::Touch : Result::Clear;
+}
+
 bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb) {
   if (!boundingDiscsMeet(a, qa, b, qb)) return false;
   thread_local PlacedBodies pa;  // per-thread scratch, see stateValid

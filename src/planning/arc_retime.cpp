@@ -7,21 +7,6 @@
 
 namespace earc {
 
-namespace {
-
-// The box robot model m's bounding disc stays in over `p`'s states.
-geo::Aabb reachOf(const RobotModel& m, const Path& p, std::size_t from, std::size_t to) {
-  geo::Aabb box;
-  const double rad = m.boundingRadius();
-  for (std::size_t t = from; t < to && t < p.size(); ++t) {
-    const geo::Vec2 c = m.boundingCenter(p.at(t));
-    box.expand(geo::Aabb{{c.x - rad, c.y - rad}, {c.x + rad, c.y + rad}});
-  }
-  return box;
-}
-
-}  // namespace
-
 std::int64_t retimeLocalSolution(const Subproblem& sub, LocalSolution& local,
                                  const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
                                  const CollisionWorld& world, const Deadline& deadline) {
@@ -44,7 +29,7 @@ std::int64_t retimeLocalSolution(const Subproblem& sub, LocalSolution& local,
     const auto r = static_cast<std::size_t>(sub.robots[i]);
     in_group[r] = 1;
     const RobotModel& m = *models[r];
-    group_box.expand(reachOf(m, local.paths[i], 0, len));
+    group_box.expand(pathReach(m, local.paths[i], 0, len));
     if (m.isMobile()) which.push_back(window_paths.size());
     window_models.push_back(&m);
     Path p = local.paths[i];
@@ -56,7 +41,7 @@ std::int64_t retimeLocalSolution(const Subproblem& sub, LocalSolution& local,
     if (in_group[r] || paths[r].empty()) continue;
     Path p = paths[r].slice(sub.t_start, sub.t_start + len);
     if (p.empty()) p.push(paths[r].back());
-    if (!reachOf(*models[r], p, 0, p.size()).overlaps(group_box)) continue;
+    if (!pathReach(*models[r], p).overlaps(group_box)) continue;
     window_models.push_back(models[r]);
     window_paths.push_back(std::move(p));
   }

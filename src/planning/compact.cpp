@@ -96,16 +96,7 @@ class Compactor {
  private:
   // The box that robot o's bounding disc stays in along its path (a
   // midpoint's centre lies between its steps' centres).
-  geo::Aabb reach(std::size_t o) const {
-    geo::Aabb box;
-    const RobotModel& m = *models_[o];
-    const double rad = m.boundingRadius();
-    for (std::size_t t = 0; t < paths_[o].size(); ++t) {
-      const geo::Vec2 c = m.boundingCenter(paths_[o].at(t));
-      box.expand(geo::Aabb{{c.x - rad, c.y - rad}, {c.x + rad, c.y + rad}});
-    }
-    return box;
-  }
+  geo::Aabb reach(std::size_t o) const { return pathReach(*models_[o], paths_[o]); }
 
   std::int64_t search(std::size_t r);
   // The route at full speed: each run of states along one straight motion
@@ -123,25 +114,9 @@ class Compactor {
   bool free(std::size_t r, const double* q, std::size_t k, const std::vector<std::size_t>& robots) {
     if (poll_.expired(robots.size() + 1)) return false;
     const double* row = states_.row(k);
-    const RobotModel& m = *models_[r];
-    const geo::Vec2 c = m.boundingCenter(q);
-    bool placed = false;
-    for (std::size_t o : robots) {
-      // Bounding discs apart (most pairs): no bodies placed. Else as
-      // robotsTouch, robot r's bodies placed once for all the others.
-      const RobotModel& mo = *models_[o];
-      const double* qo = row + states_.offset(o);
-      const geo::Vec2 co = mo.boundingCenter(qo);
-      const double apart = m.boundingRadius() + mo.boundingRadius();
-      const double dx = c.x - co.x, dy = c.y - co.y;
-      if (dx * dx + dy * dy > apart * apart) continue;
-      if (!placed) {
-        mine_.place(m, q);
-        placed = true;
-      }
-      other_.place(mo, qo);
-      if (bodiesTouch(mine_, other_)) return false;
-    }
+    against_.set(*models_[r], q);
+    for (std::size_t o : robots)
+      if (against_.check(*models_[o], row + states_.offset(o)) == RobotAgainst::Result::Touch) return false;
     return true;
   }
 
@@ -153,7 +128,7 @@ class Compactor {
   DeadlinePoll poll_;
   std::vector<geo::Aabb> reach_;  // per robot
   std::vector<std::size_t> near_;  // the robots whose reach meets the retimed one's
-  PlacedBodies mine_, other_;      // free()'s scratch
+  RobotAgainst against_;           // free()'s scratch
   // A robot's search that found nothing is not repeated until a robot
   // near it has changed: changes_ counts retimings kept; changed_at_ and
   // failed_at_ hold its value after a robot's last change and failure.
@@ -368,6 +343,16 @@ CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::v
   rep.interrupted = compactor.expired();
   rep.states = compactor.states();
   return rep;
+}
+
+geo::Aabb pathReach(const RobotModel& model, const Path& path, std::size_t from, std::size_t to) {
+  geo::Aabb box;
+  const double rad = model.boundingRadius();
+  for (std::size_t t = from; t < to && t < path.size(); ++t) {
+    const geo::Vec2 c = model.boundingCenter(path.at(t));
+    box.expand(geo::Aabb{{c.x - rad, c.y - rad}, {c.x + rad, c.y + rad}});
+  }
+  return box;
 }
 
 }  // namespace earc

@@ -119,8 +119,7 @@ Check Occupancy::clear(std::size_t r, const Path& p, std::size_t k0, std::size_t
 
 Check Occupancy::touchesNear(std::size_t r, const double* q, std::size_t k, DeadlinePoll& poll) {
   const RobotModel& m = *models_[r];
-  const geo::Vec2 cr = m.boundingCenter(q);
-  bool placed = false;
+  against_.set(m, q);
   for (const Near& n : near_) {
     const RobotModel& mo = *models_[n.robot];
     const double* qo = paths_[n.robot].back();
@@ -129,16 +128,9 @@ Check Occupancy::touchesNear(std::size_t r, const double* q, std::size_t k, Dead
       stateAtInstant(mo, paths_[n.robot], k, qo_.data());
       qo = qo_.data();
     }
-    const geo::Vec2 co = mo.boundingCenter(qo);
-    const double reach = m.boundingRadius() + mo.boundingRadius();
-    const double dx = cr.x - co.x, dy = cr.y - co.y;
-    if (dx * dx + dy * dy > reach * reach) continue;
-    if (!placed) {
-      mine_.place(m, q);
-      placed = true;
-    }
-    theirs_.place(mo, qo);
-    if (bodiesTouch(mine_, theirs_)) return Check::Contact;
+    const RobotAgainst::Result hit = against_.check(mo, qo);
+    if (hit == RobotAgainst::Result::Apart) continue;
+    if (hit == RobotAgainst::Result::Touch) return Check::Contact;
     if (poll.expired(static_cast<std::size_t>(m.dim() + mo.dim()))) return Check::OutOfTime;
   }
   return poll.expired(near_.size() / 8 + 1) ? Check::OutOfTime : Check::Clear;

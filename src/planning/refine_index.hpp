@@ -76,7 +76,7 @@ class Occupancy {
   std::uint32_t tick_ = 0;
   std::vector<Near> near_;
   std::vector<double> q_, qo_;
-  PlacedBodies mine_, theirs_;
+  RobotAgainst against_;
 };
 
 }  // namespace earc::refine

@@ -102,6 +102,23 @@ bool bodiesTouch(const PlacedBodies& a, const PlacedBodies& b);
 // robotsTouch, and most pairs of an instant fail it.
 bool boundingDiscsMeet(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);
 
+// One robot at one configuration against others in turn: the bounding-disc
+// test first, its bodies placed at the first pair that passes it, once for
+// all. Not thread-safe (scratch of its own); keeps q, which must outlive it.
+class RobotAgainst {
+ public:
+  enum class Result { Apart, Clear, Touch };  // Apart: bounding discs apart
+  void set(const RobotModel& model, const double* q);
+  Result check(const RobotModel& other, const double* q_other);
+
+ private:
+  const RobotModel* model_ = nullptr;
+  const double* q_ = nullptr;
+  geo::Vec2 centre_{};
+  bool placed_ = false;
+  PlacedBodies mine_, theirs_;
+};
+
 // True when two robots at configurations qa and qb touch (bounding discs
 // first, then the exact test on every pair of body parts).
 bool robotsTouch(const RobotModel& a, const double* qa, const RobotModel& b, const double* qb);

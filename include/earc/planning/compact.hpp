@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"
@@ -43,5 +44,10 @@ CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vec
 CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                             const std::vector<std::size_t>& which, const CollisionWorld* world,
                             const Deadline& deadline, int max_passes = 4, std::size_t states_per_position = 64);
+
+// The box that the model's bounding disc stays in over states [from, to) of
+// the path (to clipped to its size). Thread-safe.
+geo::Aabb pathReach(const RobotModel& model, const Path& path, std::size_t from = 0,
+                    std::size_t to = std::numeric_limits<std::size_t>::max());
 
 }  // namespace earc
