@@ -62,6 +62,13 @@ Experience pgSample(std::mt19937_64& rng, int robots = 2) {
   return straightLineExperience(traits, sampleMobileQuery(robots, rng), 8);
 }
 
+// `count` rows drawn from rng, row i of 2 + i % kinds robots.
+std::vector<Experience> pgSamples(std::mt19937_64& rng, int count, int kinds = 1) {
+  std::vector<Experience> rows;
+  for (int i = 0; i < count; ++i) rows.push_back(pgSample(rng, 2 + i % kinds));
+  return rows;
+}
+
 std::int64_t pgRows(const std::string& uri) {
   PgConnection db(uri);
   return db.query("SELECT count(*) FROM earc.experiences").int64At(0, 0);
@@ -350,8 +357,7 @@ TEST_CASE("PostgreSQL: the row cache follows rows committed and deleted by other
 TEST_CASE("PostgreSQL: a store that fits the row cache is read whole at open and kept so" * doctest::skip()) {
   const std::string uri = freshDatabase();
   std::mt19937_64 rng(31);
-  std::vector<Experience> rows;
-  for (int i = 0; i < 20; ++i) rows.push_back(pgSample(rng));
+  const std::vector<Experience> rows = pgSamples(rng, 20);
   ExperienceStore writer(uri);
   writer.insertAll(rows, -1.0);
   ExperienceStore reader(uri);
@@ -413,8 +419,7 @@ TEST_CASE("PostgreSQL: the background copy packs rows exactly, damaged ones to f
           doctest::skip()) {
   const std::string uri = freshDatabase();
   std::mt19937_64 rng(43);
-  std::vector<Experience> rows;
-  for (int i = 0; i < 120; ++i) rows.push_back(pgSample(rng, 2 + i % 3));
+  const std::vector<Experience> rows = pgSamples(rng, 120, 3);
   {
     ExperienceStore writer(uri);
     writer.insertAll(rows, -1.0);
@@ -479,8 +484,7 @@ TEST_CASE("PostgreSQL: the background copy packs rows exactly, damaged ones to f
 TEST_CASE("PostgreSQL: closing a store stops its background read at once" * doctest::skip()) {
   const std::string uri = freshDatabase();
   std::mt19937_64 rng(47);
-  std::vector<Experience> rows;
-  for (int i = 0; i < 50; ++i) rows.push_back(pgSample(rng));
+  const std::vector<Experience> rows = pgSamples(rng, 50);
   ExperienceStore(uri).insertAll(rows, -1.0);
   // The reading waits for a lock held for 30 s; stopping it cancels the
   // statement, whenever it comes.
@@ -508,8 +512,7 @@ TEST_CASE("PostgreSQL: a store larger than half the row cache is read in the bac
           doctest::skip()) {
   const std::string uri = freshDatabase();
   std::mt19937_64 rng(41);
-  std::vector<Experience> rows;
-  for (int i = 0; i < 200; ++i) rows.push_back(pgSample(rng, 2 + i % 2));
+  const std::vector<Experience> rows = pgSamples(rng, 200, 2);
   std::vector<std::int64_t> ids;
   {
     ExperienceStore writer(uri);
