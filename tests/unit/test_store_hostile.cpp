@@ -484,7 +484,7 @@ TEST_CASE("on a machine with no spare core a planner's open checks the file itse
   // background in 0.14 s); two loops on its only core leave it none.
   ScratchDirectory dir("hostile");
   const std::string path = dir.file("busy.db");
-  damagedWalDatabase(path, 3000);
+  damagedWalDatabase(path, 1000);
   cpu_set_t cpus, one;
   REQUIRE(sched_getaffinity(0, sizeof cpus, &cpus) == 0);
   CPU_ZERO(&one);
