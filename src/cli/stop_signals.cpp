@@ -37,7 +37,7 @@ void onStopSignal(int signo) {
 }
 }  // namespace
 
-StopSignals::StopSignals(Repeats repeats, Blocking blocking) {
+StopSignals::StopSignals(Repeats repeats, Blocking blocking) : repeats_(repeats) {
   g_stop.store(false);
   g_stop_signal = 0;
   if (blocking == Blocking::Interrupt) {
@@ -55,8 +55,19 @@ StopSignals::StopSignals(Repeats repeats, Blocking blocking) {
 }
 
 StopSignals::~StopSignals() {
-  sigaction(SIGINT, &old_int_, nullptr);
-  sigaction(SIGTERM, &old_term_, nullptr);
+  // A program that catches every repeat is ending after a stop: a repeat
+  // sent a moment late (two Ctrl-C, a supervisor's second SIGTERM) must
+  // not kill it in its last destructors, so both stay ignored.
+  if (repeats_ == Repeats::Caught && g_stop_signal) {
+    struct sigaction ignore{};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGINT, &ignore, nullptr);
+    sigaction(SIGTERM, &ignore, nullptr);
+  } else {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
   if (const int fd = g_wake_write.exchange(-1); fd >= 0) ::close(fd);
   if (wake_read_ >= 0) ::close(wake_read_);
 }

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <string>
 #include <cerrno>
+#include <csignal>
 #include <chrono>
 #include <thread>
 
@@ -57,6 +58,18 @@ TEST_CASE("stop signals: a signal sets the flag, the first is remembered, handle
     CHECK(signals.exitCode() == 128 + SIGTERM);
     REQUIRE(::raise(SIGINT) == 0);  // caught too; the first stays the one remembered
     CHECK(signals.signal() == SIGTERM);
+  }
+  // After a stop, a late repeat must not end the program in its last steps.
+  CHECK((currentHandler(SIGTERM) == SIG_IGN));
+  CHECK((currentHandler(SIGINT) == SIG_IGN));
+  REQUIRE(::raise(SIGINT) == 0);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, before);
+  // Without a stop, the handlers are put back.
+  cli::stopFlag().store(false);
+  {
+    cli::StopSignals quiet(cli::StopSignals::Repeats::Caught);
+    CHECK((currentHandler(SIGTERM) != before));
   }
   CHECK((currentHandler(SIGTERM) == before));
   // A new one starts clear.

@@ -8,9 +8,9 @@
 
 namespace earc::cli {
 
-// While alive, SIGINT and SIGTERM set stopFlag() (cleared when made) and
-// the first is remembered; a second of the same kind ends the process
-// unless `repeats` is Caught. Restores the previous handlers. One at a time.
+// While alive, SIGINT and SIGTERM set stopFlag() (cleared when made), the
+// first remembered; a repeat ends the process unless `repeats` is Caught.
+// Then restores the handlers (Caught, after a stop: ignores both). One at a time.
 class StopSignals {
  public:
   enum class Repeats { EndProcess, Caught };
@@ -36,6 +36,7 @@ class StopSignals {
 
  private:
   struct sigaction old_int_{}, old_term_{};
+  Repeats repeats_;
   int wake_read_ = -1;
 };
 
