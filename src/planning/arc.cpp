@@ -394,7 +394,9 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
-      if (settings_.arc.retime_windows)
+      // A decoupled answer is each robot's earliest arrival over roadmap
+      // edges taken at full speed: retiming it finds nothing to save.
+      if (settings_.arc.retime_windows && how != "decoupled")
         window_retimed_ += retimeLocalSolution(sub, *out.solution, models_, paths_, world_, deadline_);
       splice(paths_, sub, *out.solution);
       leaveOutGroupWaits(sub, *out.solution);
