@@ -92,13 +92,16 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   // The crowd solver spent part of the budget shortening its plan on its
   // roadmap: that part and the plan before it enter the record.
   const std::optional<LacamStats>& lacam = result.stats.lacam;
-  double lattice_s = 0.0;
-  if (lacam && lacam->lattice_refine) lattice_s = lacam->lattice_refine->value("s", 0.0);
+  double lattice_s = 0.0, lattice_budget_s = 0.0;
+  if (lacam && lacam->lattice_refine) {
+    lattice_s = lacam->lattice_refine->value("s", 0.0);
+    lattice_budget_s = lacam->lattice_refine->value("work_s", lattice_s);
+  }
   RefineSettings rs;
   // The refined plan is validated again within the budget: about as long
   // as the first plan's validation took (seconds on a crowd of hundreds).
   // Not with work budgets, whose refined plan may not depend on the clock.
-  rs.seconds = std::max(0.0, settings.post.refine_s - lattice_s - (settings.work_budgets ? 0.0 : validation_s));
+  rs.seconds = std::max(0.0, settings.post.refine_s - lattice_budget_s - (settings.work_budgets ? 0.0 : validation_s));
   rs.seed = splitSeed(settings.seed, 0x7ef1e);
   rs.roadmap_samples = settings.roadmap.samples;
   rs.roadmap_neighbors = settings.roadmap.neighbors;

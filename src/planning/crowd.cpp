@@ -131,9 +131,13 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
       out.stats.first_makespan = static_cast<std::int64_t>(makespan);
     }
     Stopwatch lns;
-    nlohmann::json& lattice = out.stats.lattice_refine.emplace(
-        refineOnLattice(rm, configs, (options.refine_deadline ? *options.refine_deadline : deadline).capped(lattice_refine_s), seed));
+    const Deadline& within = options.refine_deadline ? *options.refine_deadline : deadline;
+    const std::uint64_t work0 = t_work_done;
+    nlohmann::json& lattice =
+        out.stats.lattice_refine.emplace(refineOnLattice(rm, configs, within.capped(lattice_refine_s), seed));
     lattice["s"] = lns.seconds();
+    // Budgets that count work take the lattice's share as work too.
+    if (within.countsWork()) lattice["work_s"] = static_cast<double>(t_work_done - work0) / kWorkPerBudgetSecond;
   }
   const int per_step = rm.stepsPerEdge();
   out.stats.steps_per_roadmap_step = per_step;

@@ -32,6 +32,9 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   const double setup_s = clock.seconds();
   CrowdOptions options;
   options.refine_s = settings.post.refine_s;
+  // Its share counts work with --deterministic, as refinePlan's does.
+  const Deadline refine_deadline = deadline.withWorkBudgets(settings.work_budgets);
+  options.refine_deadline = &refine_deadline;
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed, options);
   result.stats.lacam = out.stats;
   if (out.paths) {

@@ -64,7 +64,7 @@ class LatticeLns {
       if (rounds++ >= max_rounds || deadline.expired()) break;
       if (delay(i) > 0) replan({i}, deadline, kWeights.back());
     }
-    last_ = std::chrono::steady_clock::now();  // the first step's gain is per its own time
+    last_ = now(deadline);  // the first step's gain is per its own time
   }
 
   // One drawn neighbourhood, replanned; updates the draw's weight.
@@ -73,14 +73,21 @@ class LatticeLns {
     std::vector<int> group =
         drawGroup(kDraws[arm / kWeights.size()], std::min<std::size_t>(kGroupSize, static_cast<std::size_t>(n_)));
     const long long gain = replan(group, deadline, kWeights[arm % kWeights.size()]);
-    const auto now = std::chrono::steady_clock::now();
-    const double per = 1e-3 * static_cast<double>(gain) / std::max(1e-9, std::chrono::duration<double>(now - last_).count());
-    last_ = now;
+    const double t = now(deadline);
+    const double per = 1e-3 * static_cast<double>(gain) / std::max(1e-9, t - last_);
+    last_ = t;
     constexpr double kReaction = 0.05;
     weights_[arm] = (1 - kReaction) * weights_[arm] + kReaction * std::max(0.01, per);
   }
 
  private:
+  // Seconds on the budget's clock: of work done when the budget counts
+  // work (so that a run is the same run however loaded the machine).
+  double now(const Deadline& deadline) const {
+    if (deadline.countsWork()) return static_cast<double>(t_work_done) / kWorkPerBudgetSecond;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+  }
+
   long long delay(int i) const {
     return pathCost(paths_[static_cast<std::size_t>(i)]) - rm_.distanceToGoal(i, rm_.start(i));
   }
@@ -232,7 +239,8 @@ class LatticeLns {
   long long soc_ = 0;
   int tried_ = 0, kept_ = 0;
   int last_delayed_ = -1;
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+  double last_ = 0.0;
   std::vector<int> junctions_;
   std::vector<int> rank_;  // throughJunction's area, per vertex
   std::array<double, kDraws.size() * kWeights.size()> weights_{};

@@ -54,6 +54,7 @@ void Occupancy::count(int v, std::size_t t, int delta) {
 void Occupancy::put(int i) {
   const VertexPath& p = paths_[static_cast<std::size_t>(i)];
   grow(p.size());
+  countWork(rows_);
   for (std::size_t t = 0; t < rows_; ++t) {
     const int v = vertexAt(p, t);
     occ_[t * nv_ + static_cast<std::size_t>(v)] = i;
@@ -64,6 +65,7 @@ void Occupancy::put(int i) {
 
 void Occupancy::remove(int i) {
   const VertexPath& p = paths_[static_cast<std::size_t>(i)];
+  countWork(rows_);
   for (std::size_t t = 0; t < rows_; ++t) {
     const int v = vertexAt(p, t);
     int& o = occ_[t * nv_ + static_cast<std::size_t>(v)];
@@ -154,6 +156,7 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
       free_after = static_cast<long long>(t);
       break;
     }
+  countWork(occ.horizon() - static_cast<std::size_t>(free_after + 1));
   auto h = [&](int v, long long t) { return std::max<long long>(rm_.distanceToGoal(i, v), free_after + 1 - t); };
   if (h(rm_.start(i), 0) > max_cost) return std::nullopt;
   nodes_.push_back({rm_.start(i), 0, -1});
@@ -168,6 +171,7 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
     closed_[key] = stamp_;
     if (++expanded > max_expansions || ((expanded & 255) == 0 && deadline.expired())) return std::nullopt;
     ++expansions_;
+    countWork(1 + rm_.neighbours(n.v).size());
     if (n.v == goal && n.t > free_after) {
       VertexPath p;
       for (int x = k; x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)

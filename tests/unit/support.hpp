@@ -19,6 +19,7 @@
 #include "earc/experience/store.hpp"
 #include "earc/scene/path.hpp"
 #include "earc/scene/robot_model.hpp"
+#include "earc/scene/scenario.hpp"
 
 namespace earc::test {
 
@@ -94,5 +95,27 @@ struct TempDb {
   ~TempDb() { std::filesystem::remove_all(dir); }
   std::string file(const std::string& name = "exp.db") const { return (dir / name).string(); }
 };
+
+// A grid world of `rows` (row 0 on top, '#' blocked) as a scenario, one
+// box per blocked cell, and robots between the given cells.
+inline Scenario gridScenario(const std::vector<std::string>& rows,
+                             const std::vector<std::pair<geo::Vec2, geo::Vec2>>& moves, RobotSpec shape) {
+  Scenario sc;
+  sc.name = "grid";
+  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.front().size());
+  sc.workspace = {{0, 0}, {static_cast<double>(w), static_cast<double>(h)}};
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      if (rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] == '#')
+        sc.obstacles.push_back(Obstacle::makeBox({c + 0.5, h - 1 - r + 0.5}, {1, 1}));
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    RobotSpec s = shape;
+    s.name = "m" + std::to_string(i);
+    s.start = {moves[i].first.x, moves[i].first.y, 0.0};
+    s.goal = {moves[i].second.x, moves[i].second.y, 0.0};
+    sc.robots.push_back(s);
+  }
+  return sc;
+}
 
 }  // namespace earc::test

@@ -22,27 +22,7 @@
 namespace earc {
 namespace {
 
-// A grid world of `rows` (row 0 on top, '#' blocked) as a scenario, one
-// box per blocked cell, and robots between the given cells.
-Scenario gridScenario(const std::vector<std::string>& rows, const std::vector<std::pair<geo::Vec2, geo::Vec2>>& moves,
-                      RobotSpec shape) {
-  Scenario sc;
-  sc.name = "grid";
-  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.front().size());
-  sc.workspace = {{0, 0}, {static_cast<double>(w), static_cast<double>(h)}};
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c)
-      if (rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] == '#')
-        sc.obstacles.push_back(Obstacle::makeBox({c + 0.5, h - 1 - r + 0.5}, {1, 1}));
-  for (std::size_t i = 0; i < moves.size(); ++i) {
-    RobotSpec s = shape;
-    s.name = "m" + std::to_string(i);
-    s.start = {moves[i].first.x, moves[i].first.y, 0.0};
-    s.goal = {moves[i].second.x, moves[i].second.y, 0.0};
-    sc.robots.push_back(s);
-  }
-  return sc;
-}
+using test::gridScenario;
 
 // The validator's verdict on two robots stepping a -> b and c -> d over
 // `steps` time steps (steps and midpoints, the contract's instants).
