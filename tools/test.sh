@@ -22,11 +22,10 @@ took setup
 echo "== Release build and tests"
 bash "$src/tools/build.sh" "$src/build"
 took "Release build"
+(cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
+took "Release tests"
 
-# The sanitizer build runs beside the Release tests in the idle class
-# (SCHED_IDLE, where chrt exists; else at nice 19): the tests leave part
-# of the two cores idle (waits on servers, pipes and child processes),
-# which the build takes. At nice 19 alone it slowed the tests by 60%.
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # -O1 and line tables only (-g1): what the sanitizers' reports need, at
 # about half the compile time of -O2 -g (docs/performance-log.md).
 # Both builds are unity builds (tools/build.sh), which halves them again.
@@ -34,28 +33,9 @@ took "Release build"
 # (tests/CMakeLists.txt, CMakeLists.txt); the libraries keep these flags.
 # No Python module there: its tests and the package's are not run under
 # the sanitizers (labels python and package).
-mkdir -p "$src/build-asan"
-asan_log="$src/build-asan/build.log"
-idle=(nice -n 19)
-if chrt --idle 0 true 2> /dev/null; then idle=(chrt --idle 0 nice -n 19); fi
-setsid "${idle[@]}" bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OFF \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" > "$asan_log" 2>&1 &
-asan_build=$!
-# stopAsanBuild: ends the sanitizer build and everything it started.
-stopAsanBuild() { kill -- -"$asan_build" 2> /dev/null || true; wait "$asan_build" 2> /dev/null || true; }
-trap stopAsanBuild EXIT
-(cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
-took "Release tests"
-
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
-if ! wait "$asan_build"; then
-  cat "$asan_log"
-  echo "tools/test.sh: the sanitizer build failed (log above, $asan_log)" >&2
-  exit 1
-fi
-trap - EXIT
-cat "$asan_log"
-took "sanitizer build (what the Release tests left)"
+bash "$src/tools/build.sh" "$src/build-asan" -DEARC_SANITIZE=ON -DEARC_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+took "sanitizer build"
 # The unit tests (one per source file there, tests/CMakeLists.txt) and the
 # command-line tests that run C++ (label unsanitized: those that do not).
 # The stress, crash and damaged-file loops run the same code paths as in
