@@ -94,8 +94,8 @@ void refineResult(const Scenario& scenario, const PlannerSettings& settings, con
   const std::optional<LacamStats>& lacam = result.stats.lacam;
   double lattice_s = 0.0, lattice_budget_s = 0.0;
   if (lacam && lacam->lattice_refine) {
-    lattice_s = lacam->lattice_refine->value("s", 0.0);
-    lattice_budget_s = lacam->lattice_refine->value("work_s", lattice_s);
+    lattice_s = lacam->lattice_refine->s.value_or(0.0);
+    lattice_budget_s = lacam->lattice_refine->work_s.value_or(lattice_s);
   }
   RefineSettings rs;
   // The refined plan is validated again within the budget: about as long

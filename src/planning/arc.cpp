@@ -197,7 +197,7 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
                                splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())),
                                options);
-  const double lattice_s = out.stats.lattice_refine ? out.stats.lattice_refine->value("s", 0.0) : 0.0;
+  const double lattice_s = out.stats.lattice_refine ? out.stats.lattice_refine->s.value_or(0.0) : 0.0;
   if (out.paths && lattice_s > 0) {
     whole_crowd_ = out.stats;
     lattice_s_ += lattice_s;

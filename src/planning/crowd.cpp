@@ -132,12 +132,12 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     }
     Stopwatch lns;
     const Deadline& within = options.refine_deadline ? *options.refine_deadline : deadline;
-    const std::uint64_t work0 = t_work_done;
-    nlohmann::json& lattice =
+    const double work0 = workSecondsDone();
+    LatticeRefineStats& lattice =
         out.stats.lattice_refine.emplace(refineOnLattice(rm, configs, within.capped(lattice_refine_s), seed));
-    lattice["s"] = lns.seconds();
+    lattice.s = lns.seconds();
     // Budgets that count work take the lattice's share as work too.
-    if (within.countsWork()) lattice["work_s"] = static_cast<double>(t_work_done - work0) / kWorkPerBudgetSecond;
+    if (within.countsWork()) lattice.work_s = workSecondsDone() - work0;
   }
   const int per_step = rm.stepsPerEdge();
   out.stats.steps_per_roadmap_step = per_step;

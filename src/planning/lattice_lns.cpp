@@ -84,7 +84,7 @@ class LatticeLns {
   // Seconds on the budget's clock: of work done when the budget counts
   // work (so that a run is the same run however loaded the machine).
   double now(const Deadline& deadline) const {
-    if (deadline.countsWork()) return static_cast<double>(t_work_done) / kWorkPerBudgetSecond;
+    if (deadline.countsWork()) return workSecondsDone();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
   }
 
@@ -259,8 +259,8 @@ long long latticeSumOfCosts(const CrowdRoadmap& rm, const std::vector<std::vecto
   return soc;
 }
 
-nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<int>>& configs, const Deadline& deadline,
-                               std::uint64_t seed, int max_rounds) {
+LatticeRefineStats refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<int>>& configs,
+                                   const Deadline& deadline, std::uint64_t seed, int max_rounds) {
   const int n = rm.robotCount();
   std::vector<lattice::VertexPath> paths(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
@@ -278,11 +278,13 @@ nlohmann::json refineOnLattice(const CrowdRoadmap& rm, std::vector<std::vector<i
   for (std::size_t t = 0; t < h; ++t)
     for (int i = 0; i < n; ++i)
       configs[t][static_cast<std::size_t>(i)] = lattice::vertexAt(paths[static_cast<std::size_t>(i)], t);
-  return {{"sum_of_costs_before", first},
-          {"sum_of_costs_after", lns.sumOfCosts()},
-          {"neighbourhoods", lns.tried()},
-          {"kept", lns.kept()},
-          {"expansions", lns.expansions()}};
+  LatticeRefineStats stats;
+  stats.sum_of_costs_before = first;
+  stats.sum_of_costs_after = lns.sumOfCosts();
+  stats.neighbourhoods = lns.tried();
+  stats.kept = lns.kept();
+  stats.expansions = lns.expansions();
+  return stats;
 }
 
 }  // namespace earc

@@ -59,6 +59,16 @@ template <class F> void statsFields(LightningStats& s, F&& f) {
   f("lightning_source", s.lightning_source);
 }
 
+template <class F> void statsFields(LatticeRefineStats& s, F&& f) {
+  f("sum_of_costs_before", s.sum_of_costs_before);
+  f("sum_of_costs_after", s.sum_of_costs_after);
+  f("neighbourhoods", s.neighbourhoods);
+  f("kept", s.kept);
+  f("expansions", s.expansions);
+  f("s", s.s);
+  f("work_s", s.work_s);
+}
+
 template <class F> void statsFields(LacamStats& s, F&& f) {
   f("roadmap_vertices", s.roadmap_vertices);
   f("lattice_spacing", s.lattice_spacing);
@@ -135,6 +145,10 @@ template <class F> void statsFields(PlanStats& s, F&& f) {
   f("roadmaps_reused", s.roadmaps_reused);
   f("db_hits", s.db_hits);
 }
+
+// A group inside a group: read and written whole (defined below).
+bool readStat(const json& v, LatticeRefineStats& out);
+json statJson(const LatticeRefineStats& s);
 
 // Reading one value: false when v is not of the field's type. Counts are
 // whole numbers of 0 and more that fit an int64.
@@ -255,6 +269,21 @@ template <class G> std::optional<G> takeNestedStats(json& rest, const char* key)
   if (!group || !inner.empty()) return std::nullopt;
   rest.erase(key);
   return group;
+}
+
+bool readStat(const json& v, LatticeRefineStats& out) {
+  if (!v.is_object()) return false;
+  json inner = v;
+  std::optional<LatticeRefineStats> group = takeStats<LatticeRefineStats>(inner);
+  if (!group || !inner.empty()) return false;
+  out = *group;
+  return true;
+}
+
+json statJson(const LatticeRefineStats& s) {
+  json out = json::object();
+  writeStats(s, out);
+  return out;
 }
 
 }  // namespace

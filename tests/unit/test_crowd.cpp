@@ -255,7 +255,7 @@ TEST_CASE("ARC with --refine shortens a jam of every robot on the crowd solver's
   REQUIRE(r.stats.lacam.has_value());
   REQUIRE(r.stats.lacam->lattice_refine.has_value());
   const auto& lattice = *r.stats.lacam->lattice_refine;
-  CHECK(lattice.at("sum_of_costs_after").get<long long>() <= lattice.at("sum_of_costs_before").get<long long>());
+  CHECK(lattice.sum_of_costs_after <= lattice.sum_of_costs_before);
   REQUIRE(r.stats.refine.has_value());
   CHECK(r.stats.refine->final_sum_of_costs <= r.stats.refine->first_sum_of_costs);
   CHECK(r.stats.refine->first_sum_of_costs == *r.stats.lacam->first_sum_of_costs);
@@ -263,7 +263,8 @@ TEST_CASE("ARC with --refine shortens a jam of every robot on the crowd solver's
   // starts at the first plan and counts the lattice run as refinement.
   CHECK(r.stats.refine->history.front().s == *r.stats.planning_time_s);
   REQUIRE(r.stats.refine->lattice_s.has_value());
-  CHECK(*r.stats.refine->lattice_s == lattice.at("s").get<double>());
+  REQUIRE(lattice.s.has_value());
+  CHECK(*r.stats.refine->lattice_s == *lattice.s);
   CHECK(r.stats.refine->seconds_spent >= *r.stats.refine->lattice_s);
 }
 
@@ -312,9 +313,9 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
   long long last = before;
   for (int rounds : {1, 10, 200}) {
     std::vector<std::vector<int>> configs = first.configs;
-    const nlohmann::json st = refineOnLattice(rm, configs, Deadline(), 3, rounds);
+    const LatticeRefineStats st = refineOnLattice(rm, configs, Deadline(), 3, rounds);
     const long long after = latticeSumOfCosts(rm, configs);
-    CHECK(st["sum_of_costs_after"] == after);
+    CHECK(st.sum_of_costs_after == after);
     CHECK(after <= last);
     last = after;
     CHECK(conflictFree(configs));

@@ -179,15 +179,15 @@ TEST_CASE("With counted budgets the lattice refinement is the same run twice, an
   REQUIRE(b.solution.solved);
   CHECK(validateSolution(w.sc, a.solution).valid);
   REQUIRE(a.stats.lacam->lattice_refine.has_value());
-  const nlohmann::json& la = *a.stats.lacam->lattice_refine;
-  const nlohmann::json& lb = *b.stats.lacam->lattice_refine;
-  CHECK(la.at("neighbourhoods").get<int>() > 100);
-  CHECK(la.at("neighbourhoods") == lb.at("neighbourhoods"));
-  CHECK(la.at("expansions") == lb.at("expansions"));
+  const LatticeRefineStats& la = *a.stats.lacam->lattice_refine;
+  const LatticeRefineStats& lb = *b.stats.lacam->lattice_refine;
+  CHECK(la.neighbourhoods > 100);
+  CHECK(la.neighbourhoods == lb.neighbourhoods);
+  CHECK(la.expansions == lb.expansions);
   // The lattice's share of the budget, counted as work (95% on a grid).
-  REQUIRE(la.contains("work_s"));
-  CHECK(la.at("work_s").get<double>() >= 0.95 * 0.4);
-  CHECK(la.at("work_s").get<double>() < 0.95 * 0.4 + 0.01);
+  REQUIRE(la.work_s.has_value());
+  CHECK(*la.work_s >= 0.95 * 0.4);
+  CHECK(*la.work_s < 0.95 * 0.4 + 0.01);
   CHECK(*a.stats.sum_of_costs == *b.stats.sum_of_costs);
   REQUIRE(a.solution.paths.size() == b.solution.paths.size());
   for (std::size_t r = 0; r < a.solution.paths.size(); ++r) CHECK(a.solution.paths[r] == b.solution.paths[r]);

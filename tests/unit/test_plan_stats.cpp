@@ -63,7 +63,8 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
     "lacam": {"roadmap_vertices": 64, "lattice_spacing": 1.0, "grid_lattice": true, "bounding_radius": 0.4,
               "roadmap_s": 0.01, "search_s": 0.02, "configurations": 30, "expansions": 29,
               "spread_meetings": 0, "roadmap_steps": 12, "first_solution_s": 0.03,
-              "lattice_refine": {"rounds": 3, "s": 0.5}, "steps_per_roadmap_step": 10},
+              "lattice_refine": {"sum_of_costs_before": 120, "sum_of_costs_after": 100, "neighbourhoods": 3,
+                                 "kept": 1, "expansions": 40, "s": 0.5}, "steps_per_roadmap_step": 10},
     "compact": {"s": 0.01, "passes": 2, "robots_retimed": 1, "steps_saved": 4, "states": 80,
                 "interrupted": false, "makespan_before": 44, "sum_of_costs_before": 94, "rejected": "x"},
     "refine": {"first_sum_of_costs": 94, "first_makespan": 44, "first_s": 1.5, "final_sum_of_costs": 90,
@@ -83,7 +84,9 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
   CHECK(s.db->db_learned_ids == std::vector<std::int64_t>{12});
   CHECK(s.db->db_row_cache_hits == 3);
   CHECK(s.db->db_warm_copy_hits == 1);
-  CHECK(s.lacam->lattice_refine->at("rounds") == 3);
+  CHECK(s.lacam->lattice_refine->neighbourhoods == 3);
+  CHECK(s.lacam->lattice_refine->s == 0.5);
+  CHECK_FALSE(s.lacam->lattice_refine->work_s);
   CHECK(s.compact->rejected == "x");
   CHECK(s.refine->history.at(1).makespan == 40);
   CHECK(s.db_learn_error == "disk full");
@@ -112,4 +115,11 @@ TEST_CASE("mistyped or partial stats are kept as they are, not read into the fie
   CHECK(s.failure == std::vector<std::string>{"time_limit"});
   CHECK(s.extra.size() == 6);
   CHECK(PlanStats::fromJson(json::array()).toJson() == json::object());
+
+  // A group inside a group that does not read keeps its whole group out.
+  const json lacam = json::parse(R"({"lacam": {"roadmap_vertices": 4, "lattice_spacing": 1.0,
+    "grid_lattice": true, "bounding_radius": 0.3, "roadmap_s": 0.0, "search_s": 0.0, "configurations": 2,
+    "expansions": 1, "spread_meetings": 0, "lattice_refine": {"rounds": 3, "s": 0.5}}})");
+  checkRoundTrip(lacam);
+  CHECK_FALSE(PlanStats::fromJson(lacam).lacam);
 }

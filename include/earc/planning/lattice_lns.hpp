@@ -5,10 +5,10 @@
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "earc/planning/crowd_roadmap.hpp"
+#include "earc/planning/plan_stats.hpp"
 #include "earc/util/deadline.hpp"
 
 namespace earc {
@@ -19,7 +19,7 @@ long long latticeSumOfCosts(const CrowdRoadmap& roadmap, const std::vector<std::
 // Shortens configs (conflict-free steps, starts to goals) until the deadline or
 // max_rounds; the result is again such steps, never costlier. Returns stats
 // (sums of costs, neighbourhoods tried and kept). Deterministic per seed and rounds.
-nlohmann::json refineOnLattice(const CrowdRoadmap& roadmap, std::vector<std::vector<int>>& configs,
-                               const Deadline& deadline, std::uint64_t seed, int max_rounds = 1 << 30);
+LatticeRefineStats refineOnLattice(const CrowdRoadmap& roadmap, std::vector<std::vector<int>>& configs,
+                                   const Deadline& deadline, std::uint64_t seed, int max_rounds = 1 << 30);
 
 }  // namespace earc

@@ -58,6 +58,13 @@ struct LightningStats {
   std::optional<std::string> lightning_source;  // "recall" or "scratch"
 };
 
+// A refinement on the crowd solver's roadmap (refineOnLattice); s and
+// work_s, its wall-clock and counted-work seconds, once timed by the caller.
+struct LatticeRefineStats {
+  std::int64_t sum_of_costs_before = 0, sum_of_costs_after = 0, neighbourhoods = 0, kept = 0, expansions = 0;
+  std::optional<double> s, work_s;
+};
+
 // The crowd solver's run (key "lacam"); the optional fields once it solved.
 struct LacamStats {
   std::int64_t roadmap_vertices = 0;
@@ -66,8 +73,8 @@ struct LacamStats {
   std::int64_t configurations = 0, expansions = 0, spread_meetings = 0;
   std::optional<std::int64_t> roadmap_steps, steps_per_roadmap_step, first_sum_of_costs, first_makespan;
   std::optional<double> first_solution_s;
-  std::optional<nlohmann::json> polish;          // CrowdOptions::polish: refineOnLattice's figures
-  std::optional<nlohmann::json> lattice_refine;  // refineOnLattice's figures and "s"
+  std::optional<LatticeRefineStats> polish;          // CrowdOptions::polish
+  std::optional<LatticeRefineStats> lattice_refine;  // with CrowdOptions::refine_s
 };
 
 // compactPlan's run (key "compact").

@@ -27,6 +27,9 @@ inline void countWork(std::size_t units) noexcept { t_work_done += units; }
 // about what one core of the machine the defaults were tuned on did.
 inline constexpr double kWorkPerBudgetSecond = 2.0e7;
 
+// The work done on this thread so far, in budget seconds. Per thread.
+inline double workSecondsDone() noexcept { return static_cast<double>(t_work_done) / kWorkPerBudgetSecond; }
+
 class Deadline {
  public:
   using Clock = std::chrono::steady_clock;
