@@ -1,8 +1,11 @@
 # Shared by the command-line tests (not a test itself: CTest runs *.sh).
-# Sourced right after `BUILD=$1`: sets PY, a default fail, a scratch
-# directory $WORK removed on exit (a test that sets its own EXIT trap
-# removes it there), and the checks below.
+# Sourced right after `BUILD=$1` (and `SRC=$2`): makes them absolute, so
+# that a test run as `tests/cli/T.sh build .` works too; sets PY, a default
+# fail, a scratch directory $WORK removed on exit (a test that sets its own
+# EXIT trap removes it there), and the checks below.
 PY=/usr/bin/python3
+BUILD=$(cd "$BUILD" && pwd) || { echo "FAIL: no build directory $1"; exit 1; }
+if [ -n "${SRC:-}" ]; then SRC=$(cd "$SRC" && pwd) || { echo "FAIL: no source directory $SRC"; exit 1; }; fi
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
