@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -548,6 +550,49 @@ std::string requireOutputExtension(const NamedPath& output, const std::vector<st
     names += (names.empty() ? "" : " or ") + e;
   }
   throw InputError(output.path, output.name, "must end in " + names + ": the extension says the file's format");
+}
+
+void appendJsonDouble(std::string& out, double v) {
+  if (!std::isfinite(v)) {
+    out += "null";
+    return;
+  }
+  // std::to_chars gives the shortest digits that read back exactly, as
+  // d.ddde+XX; they are then placed as nlohmann::json places them: plain
+  // from 1e-5 up to 1e15 (a whole number with ".0"), otherwise with an
+  // exponent of at least two digits. Writing a plan of millions of numbers
+  // this way skips building them into a JSON document first.
+  char sci[40];
+  const auto res = std::to_chars(sci, sci + sizeof sci, v, std::chars_format::scientific);
+  const char* p = sci;
+  if (*p == '-') {
+    out += '-';
+    ++p;
+  }
+  const char* e = std::find(p, static_cast<const char*>(res.ptr), 'e');
+  char digits[24];
+  int k = 0;
+  for (const char* c = p; c < e; ++c)
+    if (*c != '.') digits[k++] = *c;
+  int exp10 = 0;
+  std::from_chars(e + (e[1] == '+' ? 2 : 1), res.ptr, exp10);
+  const int n = exp10 + 1;  // the decimal point's place after the first digit
+  const std::string_view d(digits, static_cast<std::size_t>(k));
+  if (k <= n && n <= 15) {
+    out.append(d).append(static_cast<std::size_t>(n - k), '0').append(".0");
+  } else if (0 < n && n <= 15) {
+    out.append(d.substr(0, static_cast<std::size_t>(n))).append(".").append(d.substr(static_cast<std::size_t>(n)));
+  } else if (-4 < n && n <= 0) {
+    out.append("0.").append(static_cast<std::size_t>(-n), '0').append(d);
+  } else {
+    out += d[0];
+    if (k > 1) out.append(".").append(d.substr(1));
+    const int x = n - 1;
+    out += x < 0 ? "e-" : "e+";
+    const int a = x < 0 ? -x : x;
+    if (a < 10) out += '0';
+    out += std::to_string(a);
+  }
 }
 
 }  // namespace earc

@@ -33,6 +33,14 @@ Path readStates(const JsonReader& r, const json& states, int dim, const std::str
   return path;
 }
 
+// Throws std::invalid_argument unless every path has its robot's name.
+void requireRobotNames(const Solution& s, const char* who) {
+  if (s.robot_names.size() != s.paths.size())
+    throw std::invalid_argument(std::string(who) + ": robot_names must name every path (" +
+                                std::to_string(s.robot_names.size()) + " names, " +
+                                std::to_string(s.paths.size()) + " paths); call Solution::nameRobots");
+}
+
 }  // namespace
 
 Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::string& file,
@@ -85,10 +93,7 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
 }
 
 json solutionToJson(const Solution& s) {
-  if (s.robot_names.size() != s.paths.size())
-    throw std::invalid_argument("solutionToJson: robot_names must name every path (" +
-                                std::to_string(s.robot_names.size()) + " names, " +
-                                std::to_string(s.paths.size()) + " paths); call Solution::nameRobots");
+  requireRobotNames(s, "solutionToJson");
   json doc = json::object();
   doc["format"] = kSolutionFormat;
   doc["scenario"] = s.scenario;
@@ -114,24 +119,39 @@ Solution loadSolution(const std::string& path, const Scenario* scenario, InputWa
 }
 
 void saveSolution(const std::string& path, const Solution& s) {
+  requireRobotNames(s, "saveSolution");
   // One state per line: readable and diffable, yet compact for long paths.
-  // nlohmann prints doubles with the shortest text that reads back exactly.
-  const json doc = solutionToJson(s);
+  // Written straight from the paths: a plan of many robots holds millions
+  // of numbers, and a JSON document of them took longer than the plan.
   // Planner-made stats could hold invalid UTF-8: replaced, not thrown on.
   auto dump = [](const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); };
   std::string text = "{\n";
-  for (const char* key : {"format", "scenario", "method", "solved", "stats"})
-    text += "  " + json(key).dump() + ": " + dump(doc[key]) + ",\n";
+  const std::pair<const char*, json> head[] = {{"format", kSolutionFormat},
+                                                {"scenario", s.scenario},
+                                                {"method", s.method},
+                                                {"solved", s.solved}};
+  for (const auto& [key, value] : head) text += "  " + json(key).dump() + ": " + dump(value) + ",\n";
+  text += "  \"stats\": " + dump(s.stats) + ",\n";
   text += "  \"paths\": [";
-  const json& paths = doc["paths"];
-  for (std::size_t i = 0; i < paths.size(); ++i) {
+  std::size_t numbers = 0;
+  for (const Path& p : s.paths) numbers += p.size() * static_cast<std::size_t>(std::max(0, p.dim()));
+  text.reserve(text.size() + 24 * numbers + 64 * s.paths.size());
+  for (std::size_t i = 0; i < s.paths.size(); ++i) {
     text += i ? ",\n" : "\n";
-    text += "    {\"robot\": " + dump(paths[i]["robot"]) + ", \"states\": [";
-    const json& states = paths[i]["states"];
-    for (std::size_t t = 0; t < states.size(); ++t) text += (t ? ",\n      " : "\n      ") + states[t].dump();
-    text += states.empty() ? "]}" : "\n    ]}";
+    text += "    {\"robot\": " + dump(s.robot_names[i]) + ", \"states\": [";
+    const Path& path = s.paths[i];
+    for (std::size_t t = 0; t < path.size(); ++t) {
+      text += t ? ",\n      [" : "\n      [";
+      const auto q = path.state(t);
+      for (std::size_t j = 0; j < q.size(); ++j) {
+        if (j) text += ',';
+        appendJsonDouble(text, q[j]);
+      }
+      text += ']';
+    }
+    text += path.size() == 0 ? "]}" : "\n    ]}";
   }
-  text += paths.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  text += s.paths.empty() ? "]\n}\n" : "\n  ]\n}\n";
   writeTextFileAtomic(path, text);
 }
 

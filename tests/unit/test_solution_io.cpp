@@ -3,6 +3,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -68,6 +70,55 @@ TEST_CASE("a solution round-trips through JSON and through a file exactly") {
   CHECK(c.paths == s.paths);
   CHECK(c.stats == s.stats);
   CHECK(c.robot_names == s.robot_names);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("numbers are written with the fewest digits that read back, laid out as nlohmann prints them") {
+  const auto text = [](double v) {
+    std::string out;
+    earc::appendJsonDouble(out, v);
+    return out;
+  };
+  for (double v : {0.0, -0.0, 2.0, -3.0, 0.05, 12.5, -1.25, 0.1 + 0.2, 1.0 / 3.0, 1e-4, 1e-5, 1e-7, 123.456e-9, 1e15,
+                   1e16, 123456789012345.0, 1e21, 1.5e300, -2.5e-300, 5e-324, std::numbers::pi})
+    CHECK_MESSAGE(text(v) == json(v).dump(), v);
+  CHECK(text(std::nan("")) == "null");
+  CHECK(text(-HUGE_VAL) == "null");
+  // Any bit pattern reads back bitwise, never longer than nlohmann's text.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> near(-100.0, 100.0);
+  for (int i = 0; i < 200000; ++i) {
+    std::uint64_t bits = rng();
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    if (i % 2) v = near(rng);
+    if (!std::isfinite(v)) continue;
+    const std::string t = text(v);
+    const double back = json::parse(t).get<double>();
+    REQUIRE_MESSAGE(std::memcmp(&back, &v, sizeof v) == 0, t);
+    REQUIRE(t.size() <= json(v).dump().size());
+  }
+}
+
+TEST_CASE("a saved solution's states are laid out one per line") {
+  earc::Solution s;
+  s.scenario = "t";
+  s.solved = true;
+  earc::Path p(3);
+  const double q0[] = {0.0, 2.5, -1.25};
+  const double q1[] = {1e-7, 12.0, 0.05};
+  p.push(q0);
+  p.push(q1);
+  s.paths = {p, earc::Path(2)};
+  s.robot_names = {"m0", "a0"};
+  const std::string dir = tempDir();
+  earc::saveSolution(dir + "/sol.json", s);
+  const std::string t = earc::readTextFile(dir + "/sol.json");
+  CHECK(t.find("\"states\": [\n      [0.0,2.5,-1.25],\n      [1e-07,12.0,0.05]\n    ]}") != std::string::npos);
+  CHECK(t.find("{\"robot\": \"a0\", \"states\": []}") != std::string::npos);
+  CHECK(json::parse(t) == earc::solutionToJson(s));
+  s.robot_names.pop_back();
+  CHECK_THROWS_AS(earc::saveSolution(dir + "/sol.json", s), std::invalid_argument);
   std::filesystem::remove_all(dir);
 }
 

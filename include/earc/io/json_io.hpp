@@ -28,6 +28,10 @@ inline constexpr std::size_t kMaxTextFileBytes = std::size_t{256} << 20;
 // A whole file's bytes. Throws InputError naming the file when it cannot be
 // opened or read, is a directory, or holds more than kMaxTextFileBytes.
 std::string readTextFile(const std::string& path);
+// Appends v as JSON text: the fewest digits that read back to v, laid out as
+// nlohmann::json prints a double ("2.0", "0.05", "1e-07"); "null" when not
+// finite. Thread-safe.
+void appendJsonDouble(std::string& out, double v);
 // Writes atomically (temporary file, fsync, rename), through a symbolic link,
 // directly to a device or FIFO. Throws InputError naming the file on failure.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
