@@ -73,13 +73,20 @@ void InstantChecker::checkJointLimits(int robot, const double* q, double t, std:
 // obstacle and one SelfCollision violation; then one RobotRobot per
 // touching pair (robots ascending).
 void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const double* const> q, double t,
-                                   std::vector<Violation>& out) const {
+                                   std::vector<Violation>& out, std::span<const char> clean) const {
   thread_local Scratch s;
   const std::size_t n = robots.size();
   auto model = [&](std::size_t pos) -> const RobotModel& { return *impl_->models[static_cast<std::size_t>(robots[pos])]; };
   auto name = [&](std::size_t pos) -> const std::string& { return scenario_.robots[static_cast<std::size_t>(robots[pos])].name; };
   if (s.parts.size() < n) s.parts.resize(n);
-  for (std::size_t pos = 0; pos < n; ++pos) model(pos).bodies(q[pos], s.parts[pos]);
+  // A robot known clean has no parts to check alone: the checks below
+  // find nothing in an empty list.
+  for (std::size_t pos = 0; pos < n; ++pos) {
+    if (pos < clean.size() && clean[pos])
+      s.parts[pos].clear();
+    else
+      model(pos).bodies(q[pos], s.parts[pos]);
+  }
 
   // Workspace: the part sticking out most.
   for (std::size_t pos = 0; pos < n; ++pos) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
@@ -249,11 +250,25 @@ ValidationReport validateSolution(const Scenario& sc, const Solution& sol, const
   std::atomic<std::size_t> next{0};
   const InstantChecker checker(sc);
 
+  // Where each present robot's configuration lies in a thread's buffer.
+  std::vector<std::size_t> offset(present.size() + 1, 0);
+  std::vector<std::size_t> position(sc.robots.size(), 0);
+  for (std::size_t i = 0; i < present.size(); ++i) {
+    const auto r = static_cast<std::size_t>(present[i]);
+    offset[i + 1] = offset[i] + static_cast<std::size_t>(sc.robots[r].dim());
+    position[r] = i;
+  }
   auto checkBlocks = [&] {
-    std::vector<double> qbuf;
+    std::vector<double> qbuf, before;
     std::vector<const double*> q(present.size());
     std::vector<Violation> found;
     std::vector<Record> recs;
+    // A robot standing where it stood at the instant before, which met no
+    // obstacle, workspace bound or itself there, meets none now either:
+    // in a crowd's plan most robots wait or have arrived at most instants.
+    std::vector<char> clean(present.size(), 0), known(present.size(), 0);
+    std::size_t last_k = 0;
+    bool have_last = false;
     for (std::size_t blk; (blk = next.fetch_add(1)) < blocks;) {
       BlockResult& out = results[blk];
       const std::size_t k1 = std::min(K, (blk + 1) * kInstantsPerBlock);
@@ -269,14 +284,24 @@ ValidationReport validateSolution(const Scenario& sc, const Solution& sol, const
           if (k % 2 == 0 && s < p.size()) checker.checkJointLimits(r, p.at(s), static_cast<double>(s), found);
           qbuf.resize(qbuf.size() + static_cast<std::size_t>(spec.dim()));
         }
-        std::size_t off = 0;
+        const bool follows = have_last && last_k + 1 == k;
         for (std::size_t i = 0; i < present.size(); ++i) {
           const std::size_t r = static_cast<std::size_t>(present[i]);
-          configurationAt(sc.robots[r], *map.of[r], k, qbuf.data() + off);
-          q[i] = qbuf.data() + off;
-          off += static_cast<std::size_t>(sc.robots[r].dim());
+          double* qi = qbuf.data() + offset[i];
+          configurationAt(sc.robots[r], *map.of[r], k, qi);
+          q[i] = qi;
+          known[i] = follows && clean[i] &&
+                     std::memcmp(qi, before.data() + offset[i], (offset[i + 1] - offset[i]) * sizeof(double)) == 0;
         }
-        checker.checkGeometry(present, q, static_cast<double>(k) / 2.0, found);
+        const std::size_t found_before = found.size();
+        checker.checkGeometry(present, q, static_cast<double>(k) / 2.0, found, known);
+        std::fill(clean.begin(), clean.end(), 1);
+        for (std::size_t v = found_before; v < found.size(); ++v)
+          if (found[v].type != Type::RobotRobot)
+            clean[position[static_cast<std::size_t>(found[v].robots.front())]] = 0;
+        before.swap(qbuf);
+        last_k = k;
+        have_last = true;
         for (Violation& v : found) {
           const int code = codeOf(v);
           const int b = code == kJointLimit ? v.joint : code == kObstacle ? v.obstacle

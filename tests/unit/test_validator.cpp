@@ -277,3 +277,27 @@ TEST_CASE("violation type names match the independent checker's") {
   CHECK(std::string(earc::violationTypeName(Type::NotSolved)) == "not-solved");
   CHECK(std::string(earc::violationTypeName(Type::ScenarioName)) == "scenario-name");
 }
+
+TEST_CASE("a robot standing still is checked again at every instant it stands in an obstacle") {
+  // d0 waits clear, drives into a circle, waits in it, waits clear again;
+  // d1 waits outside the workspace the whole time. Instants k = 0 .. 20.
+  earc::Scenario sc = discs(2, 4.0);  // d0 at (1, 1), d1 at (5, 1)
+  sc.workspace = {{0, 0}, {5.1, 10}};
+  sc.obstacles = {earc::Obstacle::makeCircle({3, 1}, 0.5)};
+  earc::Solution s;
+  s.solved = true;
+  s.paths = {path(3, {{1, 1, 0}, {1, 1, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}, {3, 1, 0}, {3, 1, 0}, {3, 1, 0},
+                      {2, 1, 0}, {1, 1, 0}, {1, 1, 0}}),
+             path(3, {{5, 1, 0}})};
+  sc.robots[0].goal = {1, 1, 0};
+  const earc::ValidationReport r = earc::validateSolution(sc, s, {.max_listed = 1000});
+  // In the circle (centres 0.8 or less apart) from t = 3.5 to 7.5: 9 instants.
+  std::size_t obstacle = 0, workspace = 0;
+  for (const Violation& v : r.violations) {
+    obstacle += v.type == Type::Obstacle;
+    workspace += v.type == Type::Workspace;
+  }
+  CHECK(obstacle == 9);
+  CHECK(workspace == 21);
+  CHECK(r.violation_count == obstacle + workspace);
+}

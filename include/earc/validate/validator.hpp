@@ -57,10 +57,10 @@ class InstantChecker {
   InstantChecker& operator=(const InstantChecker&) = delete;
 
   // robots[i] (scenario indices, ascending) at q[i]: appends, with time t,
-  // each robot's Workspace, Obstacle and SelfCollision violations, then one
-  // RobotRobot per touching pair.
+  // each robot's Workspace, Obstacle and SelfCollision violations (none where
+  // clean[i] says q[i] is known free of them), then RobotRobot per touching pair.
   void checkGeometry(std::span<const int> robots, std::span<const double* const> q, double t,
-                     std::vector<Violation>& out) const;
+                     std::vector<Violation>& out, std::span<const char> clean = {}) const;
   // Appends one JointLimit violation per joint of an arm outside its limits.
   void checkJointLimits(int robot, const double* q, double t, std::vector<Violation>& out) const;
 
