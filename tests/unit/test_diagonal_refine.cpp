@@ -31,19 +31,9 @@ struct TickWorld {
   CollisionWorld world;
   RobotModels models;
   CrowdRoadmap rm;
-  static std::vector<int> all(const Scenario& sc) {
-    std::vector<int> g(sc.robots.size());
-    for (std::size_t i = 0; i < g.size(); ++i) g[i] = static_cast<int>(i);
-    return g;
-  }
-  static std::vector<std::vector<double>> ends(const Scenario& sc, bool starts) {
-    std::vector<std::vector<double>> out;
-    for (const auto& r : sc.robots) out.push_back(starts ? r.start : r.goal);
-    return out;
-  }
   TickWorld(const std::vector<std::string>& rows, const std::vector<std::pair<geo::Vec2, geo::Vec2>>& moves)
       : sc(test::gridScenario(rows, moves, RobotSpec::mobileDisc("", 0.3))), world(sc), models(sc),
-        rm(world, models.raw, all(sc), ends(sc, true), ends(sc, false)) {}
+        rm(world, models.raw, test::allRobots(sc), test::robotEnds(sc, true), test::robotEnds(sc, false)) {}
 };
 
 int vertexOf(const CrowdRoadmap& rm, double x, double y) {
@@ -107,7 +97,7 @@ ticks::TickPath oneMove(const ticks::Lattice& lat, int u, int a) {
 }
 
 std::vector<Path> firstPaths(const TickWorld& tw, const std::vector<std::vector<int>>& configs) {
-  return *crowdPaths(tw.rm, configs, tw.rm.stepsPerEdge(), TickWorld::ends(tw.sc, true), TickWorld::ends(tw.sc, false));
+  return *crowdPaths(tw.rm, configs, tw.rm.stepsPerEdge(), test::robotEnds(tw.sc, true), test::robotEnds(tw.sc, false));
 }
 
 Solution solutionOf(const Scenario& sc, std::vector<Path> paths) {
@@ -221,17 +211,7 @@ TEST_CASE("Refinement with diagonals never returns an invalid or costlier plan, 
   std::vector<std::string> rows(8, "........");
   rows[2] = "..##.#..";
   rows[5] = ".#..##..";
-  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
-  std::mt19937_64 rng(5);
-  std::vector<geo::Vec2> cells;
-  for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 8; ++c)
-      if (rows[static_cast<std::size_t>(7 - r)][static_cast<std::size_t>(c)] == '.') cells.push_back({c + 0.5, r + 0.5});
-  std::vector<geo::Vec2> goals = cells;
-  std::shuffle(cells.begin(), cells.end(), rng);
-  std::shuffle(goals.begin(), goals.end(), rng);
-  for (int i = 0; i < 24; ++i) moves.push_back({cells[static_cast<std::size_t>(i)], goals[static_cast<std::size_t>(i)]});
-  const TickWorld tw(rows, moves);
+  const TickWorld tw(rows, test::shuffledMoves(rows, 24, 5));
   const LacamResult first = solveLacam(tw.rm, Deadline(10), 3);
   REQUIRE(first.solved);
   auto costOf = [](std::vector<Path> paths) {
@@ -249,8 +229,8 @@ TEST_CASE("Refinement with diagonals never returns an invalid or costlier plan, 
   for (int rounds : {1, 10, 300}) {
     CAPTURE(rounds);
     nlohmann::json st;
-    const auto paths = refineWithDiagonals(tw.rm, first.configs, Deadline(), 3, TickWorld::ends(tw.sc, true),
-                                           TickWorld::ends(tw.sc, false), st, rounds);
+    const auto paths = refineWithDiagonals(tw.rm, first.configs, Deadline(), 3, test::robotEnds(tw.sc, true),
+                                           test::robotEnds(tw.sc, false), st, rounds);
     REQUIRE(paths.has_value());
     const ValidationReport rep = validateSolution(tw.sc, solutionOf(tw.sc, *paths));
     CHECK(rep.valid);
