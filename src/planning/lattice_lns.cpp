@@ -180,8 +180,8 @@ class LatticeLns {
           if (rm_.usableBy(r, w) && static_cast<long long>(t) + d + space_.distance(r, w) < cost) ok.emplace_back(w, d);
         });
         if (ok.empty()) break;
-        const auto [w, d] = ok[uniformIndex(rng_, ok.size())];
-        v = w;
+        const auto [next, d] = ok[uniformIndex(rng_, ok.size())];
+        v = next;
         t += static_cast<std::size_t>(d);
         for (int w : rm_.near(v)) g.add(occ_.at(w, t));
       }
