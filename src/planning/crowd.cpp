@@ -133,11 +133,19 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
     Stopwatch lns;
     const Deadline& within = options.refine_deadline ? *options.refine_deadline : deadline;
     const double work0 = workSecondsDone();
-    LatticeRefineStats& lattice =
-        out.stats.lattice_refine.emplace(refineOnLattice(rm, configs, within.capped(lattice_refine_s), seed));
+    const Deadline lattice_deadline = within.capped(lattice_refine_s);
+    LatticeRefineStats stats;
+    // On a grid map's cells the refinement takes diagonal steps too.
+    out.paths = refineWithDiagonals(rm, configs, lattice_deadline, seed, starts, goals, stats);
+    if (!out.paths) stats = refineOnLattice(rm, configs, lattice_deadline, seed);
+    LatticeRefineStats& lattice = out.stats.lattice_refine.emplace(std::move(stats));
     lattice.s = lns.seconds();
     // Budgets that count work take the lattice's share as work too.
     if (within.countsWork()) lattice.work_s = workSecondsDone() - work0;
+    if (out.paths) {
+      out.stats.steps_per_roadmap_step = rm.stepsPerEdge();
+      return out;
+    }
   }
   const int per_step = rm.stepsPerEdge();
   out.stats.steps_per_roadmap_step = per_step;

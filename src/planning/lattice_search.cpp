@@ -1,6 +1,7 @@
 #include "lattice_search.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace earc::lattice {
 
@@ -32,17 +33,9 @@ void Occupancy::grow(std::size_t h) {
     rows_ = 1;
   }
   if (h <= rows_) return;
-  occ_.resize(h * nv_);
-  nearby_.resize(h * nv_);
-  step_.resize(h * nv_);
-  for (std::size_t t = rows_; t < h; ++t) {
-    std::copy_n(occ_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
-                occ_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
-    std::copy_n(nearby_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
-                nearby_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
-    std::copy_n(step_.begin() + static_cast<std::ptrdiff_t>((rows_ - 1) * nv_), nv_,
-                step_.begin() + static_cast<std::ptrdiff_t>(t * nv_));
-  }
+  repeatLastRow(occ_, nv_, h);
+  repeatLastRow(nearby_, nv_, h);
+  repeatLastRow(step_, nv_, h);
   rows_ = h;
 }
 
@@ -109,32 +102,31 @@ bool Occupancy::blocked(int i, int u, int v, std::size_t t) const {
   return false;
 }
 
+void BucketQueue::clear() {
+  for (auto& b : buckets_) b.clear();
+  lowest_ = std::numeric_limits<std::size_t>::max();
+  count_ = 0;
+}
+
+void BucketQueue::push(std::size_t f, int node) {
+  if (f >= buckets_.size()) buckets_.resize(f + 1);
+  buckets_[f].push_back(node);
+  lowest_ = std::min(lowest_, f);
+  ++count_;
+}
+
+int BucketQueue::pop() {
+  while (buckets_[lowest_].empty()) ++lowest_;
+  const int k = buckets_[lowest_].back();
+  buckets_[lowest_].pop_back();
+  --count_;
+  return k;
+}
+
 std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
                                              std::size_t max_expansions, double weight) {
-  // Open nodes in buckets by f, last in first out within one: among equally
-  // good nodes the deeper one, so that a search among equally good ways
-  // follows one of them to the goal.
   nodes_.clear();
-  std::size_t lowest = 0, open_count = 0;
-  auto push = [&](std::size_t f, int node) {
-    if (f >= buckets_.size()) buckets_.resize(f + 1);
-    buckets_[f].push_back(node);
-    lowest = std::min(lowest, f);
-    ++open_count;
-  };
-  auto pop = [&]() {
-    while (buckets_[lowest].empty()) ++lowest;
-    const int k = buckets_[lowest].back();
-    buckets_[lowest].pop_back();
-    --open_count;
-    return k;
-  };
-  struct Emptied {  // every bucket empty again, whichever way the search ends
-    std::vector<std::vector<int>>& b;
-    ~Emptied() {
-      for (auto& x : b) x.clear();
-    }
-  } emptied{buckets_};
+  open_.clear();
   const auto nv = static_cast<std::size_t>(rm_.vertexCount());
   const int goal = rm_.goal(i);
   // Beyond the horizon everyone stands still: a way much longer than the
@@ -160,11 +152,10 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
   auto h = [&](int v, long long t) { return std::max<long long>(rm_.distanceToGoal(i, v), free_after + 1 - t); };
   if (h(rm_.start(i), 0) > max_cost) return std::nullopt;
   nodes_.push_back({rm_.start(i), 0, -1});
-  lowest = static_cast<std::size_t>(h(rm_.start(i), 0));
-  push(lowest, 0);
+  open_.push(static_cast<std::size_t>(h(rm_.start(i), 0)), 0);
   std::size_t expanded = 0;
-  while (open_count > 0) {
-    const int k = pop();
+  while (!open_.empty()) {
+    const int k = open_.pop();
     const Node n = nodes_[static_cast<std::size_t>(k)];
     const std::size_t key = static_cast<std::size_t>(n.t) * nv + static_cast<std::size_t>(n.v);
     if (closed_[key] == stamp_) continue;
@@ -187,7 +178,7 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
       if (occ.blocked(i, n.v, v, static_cast<std::size_t>(n.t))) return;
       nodes_.push_back({v, n.t + 1, k});
       const long long hv = h(v, n.t + 1);
-      push(static_cast<std::size_t>(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv)))),
+      open_.push(static_cast<std::size_t>(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv)))),
            static_cast<int>(nodes_.size()) - 1);
     };
     consider(n.v);

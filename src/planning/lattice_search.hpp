@@ -3,6 +3,7 @@
 // the lattice refinement (lattice_lns.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -16,6 +17,16 @@ namespace earc::lattice {
 using VertexPath = std::vector<int>;  // a vertex per roadmap step; then the last, for ever
 
 inline int vertexAt(const VertexPath& p, std::size_t t) { return t < p.size() ? p[t] : p.back(); }
+
+// Grows `rows` of `width` entries to h rows, each new row a copy of the last.
+template <class T>
+void repeatLastRow(std::vector<T>& rows, std::size_t width, std::size_t h) {
+  const std::size_t old = rows.size() / width;
+  rows.resize(h * width);
+  for (std::size_t t = old; t < h; ++t)
+    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>((old - 1) * width), width,
+                rows.begin() + static_cast<std::ptrdiff_t>(t * width));
+}
 
 // Who stands where at every step, for the robots whose paths are in, with
 // per vertex and step the number of robots near it (a quick all-clear).
@@ -56,6 +67,21 @@ class Occupancy {
   std::vector<Threat> threats_;
 };
 
+// The searches' open list: node indices in buckets by f, lowest f first,
+// last in first out within one (the deeper of equally good nodes, so that a
+// search among equally good ways follows one to the goal). Not thread-safe.
+class BucketQueue {
+ public:
+  void clear();
+  void push(std::size_t f, int node);
+  int pop();  // not when empty
+  bool empty() const { return count_ == 0; }
+
+ private:
+  std::vector<std::vector<int>> buckets_;
+  std::size_t lowest_ = 0, count_ = 0;
+};
+
 // Space-time A* for robot i (not in occ) to its goal, heuristic times `weight`
 // (1: shortest), arriving for good by step max_cost; nothing when there is
 // none, after max_expansions or past the deadline. Not thread-safe.
@@ -75,7 +101,7 @@ class StepSearch {
     int parent;
   };
   std::vector<Node> nodes_;
-  std::vector<std::vector<int>> buckets_;  // open nodes by f
+  BucketQueue open_;
   std::uint32_t stamp_ = 0;
   long long expansions_ = 0;
 };

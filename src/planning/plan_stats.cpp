@@ -59,12 +59,18 @@ template <class F> void statsFields(LightningStats& s, F&& f) {
   f("lightning_source", s.lightning_source);
 }
 
-template <class F> void statsFields(LatticeRefineStats& s, F&& f) {
+template <class F> void statsFields(LatticePhaseStats& s, F&& f) {
   f("sum_of_costs_before", s.sum_of_costs_before);
   f("sum_of_costs_after", s.sum_of_costs_after);
   f("neighbourhoods", s.neighbourhoods);
   f("kept", s.kept);
   f("expansions", s.expansions);
+}
+
+template <class F> void statsFields(LatticeRefineStats& s, F&& f) {
+  statsFields(static_cast<LatticePhaseStats&>(s), f);
+  f("axis", s.axis);
+  f("steps_per_tick", s.steps_per_tick);
   f("s", s.s);
   f("work_s", s.work_s);
 }
@@ -146,8 +152,10 @@ template <class F> void statsFields(PlanStats& s, F&& f) {
   f("db_hits", s.db_hits);
 }
 
-// A group inside a group: read and written whole (defined below).
+// Groups inside a group: read and written whole (defined below).
+bool readStat(const json& v, LatticePhaseStats& out);
 bool readStat(const json& v, LatticeRefineStats& out);
+json statJson(const LatticePhaseStats& s);
 json statJson(const LatticeRefineStats& s);
 
 // Reading one value: false when v is not of the field's type. Counts are
@@ -271,20 +279,24 @@ template <class G> std::optional<G> takeNestedStats(json& rest, const char* key)
   return group;
 }
 
-bool readStat(const json& v, LatticeRefineStats& out) {
+template <class G> bool readGroup(const json& v, G& out) {
   if (!v.is_object()) return false;
   json inner = v;
-  std::optional<LatticeRefineStats> group = takeStats<LatticeRefineStats>(inner);
+  std::optional<G> group = takeStats<G>(inner);
   if (!group || !inner.empty()) return false;
   out = *group;
   return true;
 }
+bool readStat(const json& v, LatticePhaseStats& out) { return readGroup(v, out); }
+bool readStat(const json& v, LatticeRefineStats& out) { return readGroup(v, out); }
 
-json statJson(const LatticeRefineStats& s) {
+template <class G> json groupJson(const G& group) {
   json out = json::object();
-  writeStats(s, out);
+  writeStats(group, out);
   return out;
 }
+json statJson(const LatticePhaseStats& s) { return groupJson(s); }
+json statJson(const LatticeRefineStats& s) { return groupJson(s); }
 
 }  // namespace
 

@@ -7,10 +7,13 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -116,6 +119,36 @@ inline Scenario gridScenario(const std::vector<std::string>& rows,
     sc.robots.push_back(s);
   }
   return sc;
+}
+
+// Every robot's index in a scenario, and every robot's start (or goal).
+inline std::vector<int> allRobots(const Scenario& sc) {
+  std::vector<int> g(sc.robots.size());
+  for (std::size_t i = 0; i < g.size(); ++i) g[i] = static_cast<int>(i);
+  return g;
+}
+inline std::vector<std::vector<double>> robotEnds(const Scenario& sc, bool starts) {
+  std::vector<std::vector<double>> out;
+  for (const auto& r : sc.robots) out.push_back(starts ? r.start : r.goal);
+  return out;
+}
+
+// `n` robots between the free cells of `rows` (as gridScenario), starts and
+// goals each a random permutation of the cells by `seed`.
+inline std::vector<std::pair<geo::Vec2, geo::Vec2>> shuffledMoves(const std::vector<std::string>& rows, int n,
+                                                                  std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.front().size());
+  std::vector<geo::Vec2> cells;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      if (rows[static_cast<std::size_t>(h - 1 - r)][static_cast<std::size_t>(c)] == '.') cells.push_back({c + 0.5, r + 0.5});
+  std::vector<geo::Vec2> goals = cells;
+  std::shuffle(cells.begin(), cells.end(), rng);
+  std::shuffle(goals.begin(), goals.end(), rng);
+  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
+  for (int i = 0; i < n; ++i) moves.push_back({cells[static_cast<std::size_t>(i)], goals[static_cast<std::size_t>(i)]});
+  return moves;
 }
 
 }  // namespace earc::test

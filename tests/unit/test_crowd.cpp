@@ -276,17 +276,7 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
   std::vector<std::string> rows(8, "........");
   rows[2] = "..##.#..";
   rows[5] = ".#..##..";
-  std::vector<std::pair<geo::Vec2, geo::Vec2>> moves;
-  std::mt19937_64 rng(7);
-  std::vector<geo::Vec2> cells;
-  for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 8; ++c)
-      if (rows[static_cast<std::size_t>(7 - r)][static_cast<std::size_t>(c)] == '.') cells.push_back({c + 0.5, r + 0.5});
-  std::vector<geo::Vec2> goals = cells;
-  std::shuffle(cells.begin(), cells.end(), rng);
-  std::shuffle(goals.begin(), goals.end(), rng);
-  for (int i = 0; i < 24; ++i) moves.push_back({cells[static_cast<std::size_t>(i)], goals[static_cast<std::size_t>(i)]});
-  const Scenario sc = gridScenario(rows, moves, RobotSpec::mobileDisc("", 0.3));
+  const Scenario sc = gridScenario(rows, test::shuffledMoves(rows, 24, 7), RobotSpec::mobileDisc("", 0.3));
   const CollisionWorld world(sc);
   const RobotModels models(sc);
   std::vector<int> group;

@@ -36,20 +36,10 @@ struct OccupancyWorld {
     sc.robots.front().start[0] += offset;
     return sc;
   }
-  static std::vector<int> all(const Scenario& sc) {
-    std::vector<int> g(sc.robots.size());
-    for (std::size_t i = 0; i < g.size(); ++i) g[i] = static_cast<int>(i);
-    return g;
-  }
-  static std::vector<std::vector<double>> ends(const Scenario& sc, bool starts) {
-    std::vector<std::vector<double>> out;
-    for (const auto& r : sc.robots) out.push_back(starts ? r.start : r.goal);
-    return out;
-  }
   OccupancyWorld(const std::vector<std::string>& rows, const std::vector<std::pair<geo::Vec2, geo::Vec2>>& moves,
                  double offset)
       : sc(make(rows, moves, offset)), world(sc), models(sc),
-        rm(world, models.raw, all(sc), ends(sc, true), ends(sc, false)) {}
+        rm(world, models.raw, test::allRobots(sc), test::robotEnds(sc, true), test::robotEnds(sc, false)) {}
 };
 
 // Random walks with no two robots on one vertex at one step, each robot

@@ -30,8 +30,9 @@ struct CrowdOptions {
   // Each robot that waits or detours is replanned once alone on the
   // roadmap, as part of the first plan (ARC's jams).
   bool polish = false;
-  // Then the plan is shortened on the roadmap for most of refine_s seconds,
-  // within refine_deadline if given, else the plan's deadline.
+  // Then the plan is shortened on the roadmap for most of refine_s seconds
+  // (with diagonal steps on a grid map's cells), within refine_deadline if
+  // given, else the plan's deadline.
   double refine_s = 0.0;
   const Deadline* refine_deadline = nullptr;
 };

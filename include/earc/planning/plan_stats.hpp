@@ -58,10 +58,17 @@ struct LightningStats {
   std::optional<std::string> lightning_source;  // "recall" or "scratch"
 };
 
-// A refinement on the crowd solver's roadmap (refineOnLattice); s and
-// work_s, its wall-clock and counted-work seconds, once timed by the caller.
-struct LatticeRefineStats {
+// One phase of a refinement on the crowd solver's roadmap (refineOnLattice).
+struct LatticePhaseStats {
   std::int64_t sum_of_costs_before = 0, sum_of_costs_after = 0, neighbourhoods = 0, kept = 0, expansions = 0;
+};
+
+// A refinement on the crowd solver's roadmap: its last phase; with diagonal
+// steps, sums in ticks of steps_per_tick and the step phase under axis. s and
+// work_s: its wall-clock and counted-work seconds, set by the caller.
+struct LatticeRefineStats : LatticePhaseStats {
+  std::optional<LatticePhaseStats> axis;
+  std::optional<std::int64_t> steps_per_tick;
   std::optional<double> s, work_s;
 };
 
