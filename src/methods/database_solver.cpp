@@ -149,7 +149,7 @@ PlanResult planEarc(const Scenario& scenario, const PlannerSettings& settings, e
   ds.shadow_decoupled = settings.db.shadow_decoupled;
   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy;
   hierarchy.push_back(std::make_unique<DatabaseSolver>(*store, ds));
-  for (auto& s : arcHierarchy()) hierarchy.push_back(std::move(s));
+  for (auto& s : arcHierarchy(settings.arc)) hierarchy.push_back(std::move(s));
   PlanResult r = runArc(scenario, settings, context, std::move(hierarchy));
   // The hit rate: subproblems solved from the database (as retrieved or
   // repaired) over all subproblems solved.

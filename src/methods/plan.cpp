@@ -173,7 +173,7 @@ PlanResult plan(const Scenario& scenario, const PlannerSettings& settings, exp::
   }
   if (!refuseTooLarge(scenario, settings, result)) {
     switch (settings.method) {
-      case Method::Arc: result = runArc(scenario, settings, context, arcHierarchy()); break;
+      case Method::Arc: result = runArc(scenario, settings, context, arcHierarchy(settings.arc)); break;
       case Method::Earc: result = planEarc(scenario, settings, store, context); break;
       case Method::Prioritized: result = planPrioritized(scenario, settings, context); break;
       case Method::Coupled: result = planCoupled(scenario, settings, context); break;

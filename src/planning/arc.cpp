@@ -146,6 +146,7 @@ class ArcRun {
   Stopwatch plan_clock_;
   std::int64_t waits_left_out_ = 0;
   std::int64_t window_retimed_ = 0;
+  std::int64_t restamped_ = 0, restamped_around_ = 0, lockstep_ = 0, restamped_steps_ = 0;
 };
 
 // A jam: ARC's local solvers failed on a conflict's subproblem through
@@ -394,6 +395,12 @@ bool ArcRun::resolve(const Conflict& c, std::size_t max_robots) {
       for (auto& s : hierarchy_) s->accepted(ctx, *out.solution, out);
       ++by_solver_[how];
       ++by_size_[std::to_string(sub.robots.size())];
+      if (settings_.arc.restamp_coupled && how == "coupled") {
+        const RestampReport rs = restampLocalSolution(sub, *out.solution, models_, paths_, world_, deadline_);
+        (rs.restamped ? restamped_ : lockstep_) += 1;
+        restamped_around_ += rs.around_outside ? 1 : 0;
+        restamped_steps_ += rs.steps_saved;
+      }
       // A decoupled answer is each robot's earliest arrival over roadmap
       // edges taken at full speed: retiming it finds nothing to save.
       if (settings_.arc.retime_windows && how != "decoupled")
@@ -497,6 +504,12 @@ PlanResult ArcRun::run() {
   st.window_expansions = expansions_;
   st.waits_left_out = waits_left_out_;
   if (settings_.arc.retime_windows) st.window_retimed = window_retimed_;
+  if (settings_.arc.restamp_coupled) {
+    st.coupled_restamped = restamped_;
+    st.coupled_restamped_around = restamped_around_;
+    st.coupled_lockstep = lockstep_;
+    st.restamped_steps = restamped_steps_;
+  }
   st.solver_budgets = settings_.work_budgets ? "work" : "seconds";
   st.robots_merged = merged_;
   st.merge_cap_raised = cap_raised_;

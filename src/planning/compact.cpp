@@ -99,11 +99,6 @@ class Compactor {
   geo::Aabb reach(std::size_t o) const { return pathReach(*models_[o], paths_[o]); }
 
   std::int64_t search(std::size_t r);
-  // The route at full speed: each run of states along one straight motion
-  // slower than the resolution allows (a robot held back by a composite
-  // motion's slowest robot) made again in the fewest steps, where the
-  // obstacles allow at those steps. Nothing when no run got shorter.
-  std::optional<Path> atFullSpeed(std::size_t r, const Path& route);
   // The route timed to arrive before `arrival`, staying at its goal after
   // instant last_block: nothing when no such timing was found.
   std::optional<Path> timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival);
@@ -150,17 +145,15 @@ std::int64_t Compactor::search(std::size_t r) {
     return 0;
 
   const RobotModel& model = *models_[r];
-  const auto dim = static_cast<std::size_t>(model.dim());
-  // The robot's route: its path without repeated states.
-  Path route(model.dim());
-  route.push(path.at(0));
-  for (std::size_t t = 1; t < path.size(); ++t)
-    if (!std::equal(path.at(t), path.at(t) + dim, route.back())) route.push(path.at(t));
+  const Path route = routeOf(path);
   const std::size_t arrival = path.size() - 1;
   std::optional<Path> faster;
   if (world_ != nullptr) {
-    faster = atFullSpeed(r, route);
-    if (poll_.seenExpired()) return 0;
+    faster = routeAtFullSpeed(model, route, *world_, deadline_);
+    if (!faster && deadline_.expired()) {
+      poll_.expired(kWorkPerClockRead);  // so that the callers see it
+      return 0;
+    }
   }
   if (route.size() - 1 >= arrival && !faster) return 0;  // it moves on at every step, as fast as it can
   // The last instant at which another robot touches it standing at its
@@ -191,55 +184,6 @@ std::int64_t Compactor::search(std::size_t r) {
   paths_[r] = std::move(*timed);
   states_.refresh(r);
   return saved;
-}
-
-namespace {
-
-// Whether state c - 1 of `route` lies on the straight motion from state a
-// to state c, strictly between them (to rounding): extended state by
-// state, this keeps every state of a run on the run's one motion.
-bool onMotion(const RobotModel& model, const Path& route, std::size_t a, std::size_t c, std::vector<double>& q) {
-  const double whole = model.distance(route.at(a), route.at(c));
-  const double part = model.distance(route.at(a), route.at(c - 1));
-  if (!(part > 0 && part < whole)) return false;
-  model.interpolate(route.at(a), route.at(c), part / whole, q.data());
-  const double off = model.distance(q.data(), route.at(c - 1));
-  return off <= 1e-9 * std::max(1.0, whole);
-}
-
-}  // namespace
-
-std::optional<Path> Compactor::atFullSpeed(std::size_t r, const Path& route) {
-  const RobotModel& model = *models_[r];
-  const std::size_t last = route.size() - 1;
-  const CompositeChecker checker(*world_, {&model}, deadline_);
-  std::vector<double> q(static_cast<std::size_t>(model.dim()));
-  Path out(model.dim());
-  out.push(route.at(0));
-  bool shorter = false;
-  for (std::size_t a = 0; a < last;) {
-    std::size_t b = a + 1;
-    while (b < last && onMotion(model, route, a, b + 1, q)) ++b;
-    const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(a), route.at(b)));
-    const auto state = [&](std::size_t i) { return std::vector<double>(route.at(i), route.at(i) + model.dim()); };
-    if (n < b - a && checker.motionValid({state(a)}, {state(b)}, {.start = true, .end = true})) {
-      for (std::size_t k = 1; k < n; ++k) {
-        model.interpolate(route.at(a), route.at(b), static_cast<double>(k) / static_cast<double>(n), q.data());
-        out.push(q.data());
-      }
-      out.push(route.at(b));
-      shorter = true;
-    } else {
-      for (std::size_t k = a + 1; k <= b; ++k) out.push(route.at(k));
-    }
-    if (checker.outOfTime()) {
-      poll_.expired(kWorkPerClockRead);  // so that the caller sees it
-      return std::nullopt;
-    }
-    a = b;
-  }
-  if (!shorter) return std::nullopt;
-  return out;
 }
 
 std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival) {
@@ -343,6 +287,66 @@ CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::v
   rep.interrupted = compactor.expired();
   rep.states = compactor.states();
   return rep;
+}
+
+Path routeOf(const Path& path) {
+  const auto dim = static_cast<std::size_t>(path.dim());
+  Path route(path.dim());
+  if (path.empty()) return route;
+  route.push(path.at(0));
+  for (std::size_t t = 1; t < path.size(); ++t)
+    if (!std::equal(path.at(t), path.at(t) + dim, route.back())) route.push(path.at(t));
+  return route;
+}
+
+namespace {
+
+// Whether state c - 1 of `route` lies on the straight motion from state a
+// to state c, strictly between them (to rounding): extended state by
+// state, this keeps every state of a run on the run's one motion.
+bool onMotion(const RobotModel& model, const Path& route, std::size_t a, std::size_t c, std::vector<double>& q) {
+  const double whole = model.distance(route.at(a), route.at(c));
+  const double part = model.distance(route.at(a), route.at(c - 1));
+  if (!(part > 0 && part < whole)) return false;
+  model.interpolate(route.at(a), route.at(c), part / whole, q.data());
+  const double off = model.distance(q.data(), route.at(c - 1));
+  return off <= 1e-9 * std::max(1.0, whole);
+}
+
+}  // namespace
+
+// A robot held back by a composite motion's slowest robot moves along one
+// straight motion in more steps than the resolution needs; each such run is
+// made again in the fewest steps, checked against the world at those steps.
+std::optional<Path> routeAtFullSpeed(const RobotModel& model, const Path& route, const CollisionWorld& world,
+                                     const Deadline& deadline) {
+  if (route.size() < 3) return std::nullopt;
+  const std::size_t last = route.size() - 1;
+  const CompositeChecker checker(world, {&model}, deadline);
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  Path out(model.dim());
+  out.push(route.at(0));
+  bool shorter = false;
+  for (std::size_t a = 0; a < last;) {
+    std::size_t b = a + 1;
+    while (b < last && onMotion(model, route, a, b + 1, q)) ++b;
+    const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(a), route.at(b)));
+    const auto state = [&](std::size_t i) { return std::vector<double>(route.at(i), route.at(i) + model.dim()); };
+    if (n < b - a && checker.motionValid({state(a)}, {state(b)}, {.start = true, .end = true})) {
+      for (std::size_t k = 1; k < n; ++k) {
+        model.interpolate(route.at(a), route.at(b), static_cast<double>(k) / static_cast<double>(n), q.data());
+        out.push(q.data());
+      }
+      out.push(route.at(b));
+      shorter = true;
+    } else {
+      for (std::size_t k = a + 1; k <= b; ++k) out.push(route.at(k));
+    }
+    if (checker.outOfTime()) return std::nullopt;
+    a = b;
+  }
+  if (!shorter) return std::nullopt;
+  return out;
 }
 
 geo::Aabb pathReach(const RobotModel& model, const Path& path, std::size_t from, std::size_t to) {

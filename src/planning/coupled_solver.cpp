@@ -64,6 +64,31 @@ void turnSteadily(const CompositeChecker& checker, std::vector<CompositeState>& 
 // The stream of the planner's sampler (splitSeed of the solve's seed).
 constexpr std::uint64_t kSamplerStream = 0x5eed;
 
+// The share of the coupled solver's budget spent first on the robots that
+// are not parked, the parked ones held as obstacles.
+constexpr double kParkedHeldShare = 0.25;
+
+// The world's workspace and obstacles with `bodies` as obstacles too;
+// nothing when one has a shape no obstacle takes (a capsule, a rounded box).
+std::optional<Scenario> sceneWith(const CollisionWorld& world, const std::vector<geo::Body>& bodies) {
+  Scenario s;
+  s.workspace = world.workspace();
+  auto add = [&s](const geo::Body& b) {
+    if (b.kind == geo::CoreKind::Point)
+      s.obstacles.push_back(Obstacle::makeCircle(b.p0, b.radius));
+    else if (b.kind == geo::CoreKind::Rect && b.radius == 0.0)
+      s.obstacles.push_back(Obstacle::makeBox(b.p0, b.half * 2.0, std::atan2(b.axis.y, b.axis.x)));
+    else
+      return false;
+    return true;
+  };
+  for (std::size_t i = 0; i < world.obstacleCount(); ++i)
+    if (!add(world.obstacle(i))) return std::nullopt;
+  for (const geo::Body& b : bodies)
+    if (!add(b)) return std::nullopt;
+  return s;
+}
+
 }  // namespace
 
 LocalSolution timeStampComposite(const std::vector<const RobotModel*>& robots,
@@ -218,6 +243,20 @@ std::optional<LocalSolution> solveCoupled(const CollisionWorld& world, const Cou
 
 SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
   const Subproblem& sub = ctx.sub;
+  if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
+  const std::size_t window = sub.t_end - sub.t_start + 1;
+  auto padded = [&](LocalSolution sol, const char* detail) {
+    const std::size_t len = std::max(sol.length(), window);
+    for (auto& p : sol.paths)
+      while (p.size() < len) p.push(p.back());
+    return SolverOutcome{std::move(sol), name(), -1, 0.0, detail};
+  };
+  // Robots parked at their final goals are held as obstacles first: moved
+  // aside and back, one costs every step since it arrived.
+  if (settings_.parked_held) {
+    if (auto held = solveAroundParked(ctx)) return padded(std::move(*held), "around the parked robots");
+    if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
+  }
   CoupledQuery q;
   for (int r : sub.robots) q.robots.push_back(ctx.models[static_cast<std::size_t>(r)]);
   q.starts = sub.starts;
@@ -227,13 +266,56 @@ SolverOutcome CoupledSubproblemSolver::solve(SolverContext& ctx) {
   cs.time_limit_s = settings_.time_budget_s * ctx.budget_scale;
   cs.within = ctx.deadline;
   cs.polish = true;
-  if (ctx.deadline.expired()) return {std::nullopt, name(), -1};
   auto sol = solveCoupled(ctx.world, q, cs, ctx.seed);
   if (!sol) return {std::nullopt, name(), -1};
-  const std::size_t len = std::max(sol->length(), sub.t_end - sub.t_start + 1);
-  for (auto& p : sol->paths)
-    while (p.size() < len) p.push(p.back());
-  return {std::move(sol), name(), -1};
+  return padded(std::move(*sol), "");
+}
+
+std::optional<LocalSolution> CoupledSubproblemSolver::solveAroundParked(const SolverContext& ctx) const {
+  const Subproblem& sub = ctx.sub;
+  std::vector<std::size_t> moving;
+  std::vector<geo::Body> held;
+  std::vector<geo::Body> bodies;
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) {
+    const auto r = static_cast<std::size_t>(sub.robots[i]);
+    const RobotModel& m = *ctx.models[r];
+    if (m.isMobile() && ctx.paths[r].size() <= sub.t_start + 1) {
+      m.bodies(sub.starts[i].data(), bodies);
+      held.insert(held.end(), bodies.begin(), bodies.end());
+    } else {
+      moving.push_back(i);
+    }
+  }
+  if (held.empty() || moving.empty()) return std::nullopt;
+  const std::optional<Scenario> scene = sceneWith(ctx.world, held);
+  if (!scene) return std::nullopt;
+  const CollisionWorld world(*scene);
+  CoupledQuery q;
+  for (std::size_t i : moving) {
+    q.robots.push_back(ctx.models[static_cast<std::size_t>(sub.robots[i])]);
+    q.starts.push_back(sub.starts[i]);
+    q.goals.push_back(sub.goals[i]);
+    q.region.push_back(sub.region[i]);
+  }
+  CoupledSettings cs;
+  cs.time_limit_s = settings_.time_budget_s * ctx.budget_scale * kParkedHeldShare;
+  cs.within = ctx.deadline;
+  cs.polish = true;
+  auto part = solveCoupled(world, q, cs, splitSeed(ctx.seed, 0x9a2c));
+  if (!part) return std::nullopt;
+  const std::size_t len = part->length();
+  LocalSolution sol;
+  for (std::size_t i = 0; i < sub.robots.size(); ++i) {
+    const auto at = std::find(moving.begin(), moving.end(), i);
+    if (at != moving.end()) {
+      sol.paths.push_back(std::move(part->paths[static_cast<std::size_t>(at - moving.begin())]));
+      continue;
+    }
+    Path still(static_cast<int>(sub.starts[i].size()));
+    for (std::size_t t = 0; t < len; ++t) still.push(sub.starts[i].data());
+    sol.paths.push_back(std::move(still));
+  }
+  return sol;
 }
 
 }  // namespace earc

@@ -2,6 +2,7 @@
 // the robots around a subproblem, priority orders, and the solver itself.
 #include <algorithm>
 #include <numeric>
+#include <tuple>
 
 #include "earc/planning/solver.hpp"
 #include "earc/util/random.hpp"
@@ -100,9 +101,9 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   // aside and back costs every step since it arrived, where the robot
   // that meets it can often pass around it (a parked robot planned second
   // was pushed off its goal for hundreds of steps).
-  std::stable_partition(ord.begin(), ord.end(), [&](std::size_t i) {
-    return ctx.paths[static_cast<std::size_t>(sub.robots[i])].size() <= sub.t_start + 1;
-  });
+  std::vector<char> parked(n, 0);
+  for (std::size_t i = 0; i < n; ++i) parked[i] = ctx.paths[static_cast<std::size_t>(sub.robots[i])].size() <= sub.t_start + 1;
+  std::stable_partition(ord.begin(), ord.end(), [&](std::size_t i) { return parked[i] != 0; });
   std::mt19937_64 rng(splitSeed(ctx.seed, 0xdec0));
 
   // A robot planned first meets only the robots outside the group. If it
@@ -115,16 +116,19 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
   std::size_t last_place = 0;
   SearchEnd last_end = SearchEnd::Found;
   auto hopeless = [&] { return last_end == SearchEnd::NoWay && last_place == 0; };
-  while (static_cast<int>(tried_orders.size()) < max_orders && !ord.empty()) {
-    if (deadline.expired() || hopeless()) break;
-    tried_orders.push_back(ord);
-    std::vector<Path> local(n);
-    std::vector<MovingObstacle> obstacles = others;
+  // One order's attempt: each robot's search in turn, against the robots
+  // outside and those planned before it. `whole`: the moving robots over
+  // their whole roadmaps, among every robot outside the group.
+  std::vector<MovingObstacle> everyone;
+  bool whole_tried = false;
+  auto attempt = [&](const std::vector<std::size_t>& order, bool whole, std::vector<Path>& local) {
+    const std::vector<MovingObstacle>& around = whole ? everyone : others;
+    std::vector<MovingObstacle> obstacles = around;
     std::size_t hold = window;
-    bool ok = true;
-    for (std::size_t i : ord) {
+    for (std::size_t i : order) {
       const int robot = sub.robots[i];
-      QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)], &sub.region[i]);
+      QueryGraph graph(ctx.roadmaps.forRobot(robot), *ctx.models[static_cast<std::size_t>(robot)],
+                       whole && !parked[i] ? nullptr : &sub.region[i]);
       int s = graph.addVertex(sub.starts[i].data(), settings_.connect_neighbors);
       int g = graph.addVertex(sub.goals[i].data(), settings_.connect_neighbors);
       SearchEnd end = SearchEnd::Found;
@@ -132,26 +136,62 @@ SolverOutcome DecoupledSolver::solve(SolverContext& ctx) {
                                settings_.graph_heuristic, &end);
       if (!p) {
         last_robot = robot;
-        last_place = obstacles.size() - others.size();
+        last_place = obstacles.size() - around.size();
         last_end = end;
-        ok = false;
-        break;
+        return false;
       }
       local[i] = std::move(*p);
       hold = std::max(hold, local[i].size() - 1);
       obstacles.push_back({ctx.models[static_cast<std::size_t>(robot)], &local[i], 0, robot});
     }
-    if (!ok) {
-      ord = nextPriorityOrder(tried_orders, ord[last_place], rng);  // the robot that failed
-      continue;
+    return true;
+  };
+  // Whether `order` plans a robot that is not parked before one that is.
+  auto movesParked = [&](const std::vector<std::size_t>& order) {
+    bool moving_before = false;
+    for (std::size_t i : order) {
+      if (parked[i] && moving_before) return true;
+      moving_before = moving_before || !parked[i];
     }
+    return false;
+  };
+  auto answer = [&](std::vector<Path> local) {
     LocalSolution sol;
     sol.paths = std::move(local);
     std::size_t len = window + 1;
     for (const auto& p : sol.paths) len = std::max(len, p.size());
     for (auto& p : sol.paths)
       while (p.size() < len) p.push(p.back());
-    return {std::move(sol), name(), -1};
+    return SolverOutcome{std::move(sol), name(), -1};
+  };
+  while (static_cast<int>(tried_orders.size()) < max_orders && !ord.empty()) {
+    if (deadline.expired() || hopeless()) break;
+    // Before an order that may push a parked robot off its goal (which
+    // costs every step since it arrived), the others once more with the
+    // parked robots first, around them over the whole workspace.
+    if (!whole_tried && settings_.parked_detour && movesParked(ord)) {
+      whole_tried = true;
+      if (!ctx.ignore_others)
+        for (std::size_t r = 0; r < ctx.models.size(); ++r)
+          if (!std::binary_search(sub.robots.begin(), sub.robots.end(), static_cast<int>(r)) && !ctx.paths[r].empty())
+            everyone.push_back({ctx.models[r], &ctx.paths[r], sub.t_start, static_cast<int>(r)});
+      std::vector<Path> local(n);
+      const auto before = std::tuple(last_robot, last_place, last_end);  // what the orders' failures said
+      if (attempt(tried_orders.empty() ? ord : tried_orders.front(), true, local)) {
+        SolverOutcome out = answer(std::move(local));
+        out.detail = "around the parked robots";
+        return out;
+      }
+      std::tie(last_robot, last_place, last_end) = before;
+      if (deadline.expired()) break;
+    }
+    tried_orders.push_back(ord);
+    std::vector<Path> local(n);
+    if (!attempt(ord, false, local)) {
+      ord = nextPriorityOrder(tried_orders, ord[last_place], rng);  // the robot that failed
+      continue;
+    }
+    return answer(std::move(local));
   }
   SolverOutcome failed{std::nullopt, name(), -1};
   if (hopeless())

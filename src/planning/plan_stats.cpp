@@ -22,6 +22,10 @@ template <class F> void statsFields(ArcStats& s, F&& f) {
   f("window_expansions", s.window_expansions);
   f("waits_left_out", s.waits_left_out);
   f("window_retimed", s.window_retimed);
+  f("coupled_restamped", s.coupled_restamped);
+  f("coupled_restamped_around", s.coupled_restamped_around);
+  f("coupled_lockstep", s.coupled_lockstep);
+  f("restamped_steps", s.restamped_steps);
   f("solver_budgets", s.solver_budgets);
   f("robots_merged", s.robots_merged);
   f("merge_cap_raised", s.merge_cap_raised);

@@ -48,10 +48,14 @@ const char* failureCauseName(FailureCause c) {
   return "?";
 }
 
-std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy() {
+std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy(const ArcSettings& arc) {
   std::vector<std::unique_ptr<SubproblemSolver>> h;
-  h.push_back(std::make_unique<DecoupledSolver>());
-  h.push_back(std::make_unique<CoupledSubproblemSolver>());
+  DecoupledSettings ds;
+  ds.parked_detour = arc.hold_parked;
+  CoupledSolverSettings cs;
+  cs.parked_held = arc.hold_parked;
+  h.push_back(std::make_unique<DecoupledSolver>(ds));
+  h.push_back(std::make_unique<CoupledSubproblemSolver>(cs));
   return h;
 }
 

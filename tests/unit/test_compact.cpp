@@ -1,6 +1,7 @@
 // Plan compaction: robots retimed along their own routes, leaving out the
 // waits nothing needs, keeping the ones that let others pass, and never
-// arriving at a goal that someone crosses later.
+// arriving at a goal that someone crosses later; ARC's coupled answers
+// time-stamped robot by robot.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
 #include "earc/planning/conflict.hpp"
+#include "earc/planning/coupled_solver.hpp"
 #include "earc/planning/planner.hpp"
 #include "earc/validate/validator.hpp"
 #include "support.hpp"
@@ -32,14 +34,6 @@ Path waitFirst(const Path& p, int waits) {
   Path out(p.dim());
   for (int k = 0; k < waits; ++k) out.push(p.at(0));
   out.append(p);
-  return out;
-}
-
-// A path without its repeated states: the route it follows.
-Path routeOf(const Path& p) {
-  Path out(p.dim());
-  for (std::size_t t = 0; t < p.size(); ++t)
-    if (out.empty() || !std::equal(p.at(t), p.at(t) + p.dim(), out.back())) out.push(p.at(t));
   return out;
 }
 
@@ -235,15 +229,31 @@ TEST_CASE("A local solution's robots are retimed inside their window against the
   CHECK(c.valid(paths));
 }
 
-TEST_CASE("ARC retimes its answers inside their windows only when asked, and the plan validates") {
+namespace {
+
+// 16 mobile robots among 12 obstacles (generated, seed 3).
+Scenario sixteenRobots() {
   gen::MobileSettings ms;
   ms.robots = 16;
   ms.obstacles = 12;
   ms.seed = 3;
-  const Scenario s = gen::generateMobile(ms);
+  return gen::generateMobile(ms);
+}
+
+// The same plan every time, under sanitizers too.
+PlannerSettings repeatable() {
   PlannerSettings settings;
   settings.work_budgets = true;
   settings.time_limit_s = 60;
+  return settings;
+}
+
+}  // namespace
+
+TEST_CASE("ARC retimes its answers inside their windows only when asked, and the plan validates") {
+  const Scenario s = sixteenRobots();
+  PlannerSettings settings = repeatable();
+  settings.arc.restamp_coupled = false;  // it would take what retiming saves
   const PlanResult plain = plan(s, settings);
   REQUIRE(plain.solution.solved);
   REQUIRE(plain.stats.arc);
@@ -253,4 +263,111 @@ TEST_CASE("ARC retimes its answers inside their windows only when asked, and the
   REQUIRE(retimed.solution.solved);  // plan() validates it
   REQUIRE(retimed.stats.arc->window_retimed.has_value());
   CHECK(*retimed.stats.arc->window_retimed > 0);
+}
+
+namespace {
+
+std::size_t arrivalStep(Path p) {
+  p.dropTrailingWaits();
+  return p.size() - 1;
+}
+
+// a creeps 0.8 from (4.2, 5) towards b's start while b drives 4 up and out
+// of its way, then a drives 4 along y = 5 while b waits: in lockstep a
+// arrives at step 160, b at 80.
+LocalSolution lockstepAnswer(const std::vector<const RobotModel*>& ab) {
+  const std::vector<std::vector<std::vector<double>>> waypoints{
+      {{4.2, 5, 0}, {5, 5, 0}}, {{5, 5, 0}, {5, 9, 0}}, {{9, 5, 0}, {5, 9, 0}}};
+  return timeStampComposite(ab, waypoints);
+}
+
+Subproblem wholeSpan(std::size_t robots, std::size_t length) {
+  Subproblem sub;
+  for (std::size_t r = 0; r < robots; ++r) sub.robots.push_back(static_cast<int>(r));
+  sub.t_start = 0;
+  sub.t_end = length - 1;
+  return sub;
+}
+
+}  // namespace
+
+TEST_CASE("A coupled answer time-stamped robot by robot stays valid and no robot arrives later") {
+  CompactCase c({compactDisc("a", {4.2, 5, 0}, {9, 5, 0}), compactDisc("b", {5, 5, 0}, {5, 9, 0})});
+  const CollisionWorld world(c.scenario);
+  LocalSolution local = lockstepAnswer(c.models.raw);
+  REQUIRE(local.length() == 161);
+  // (Interpolating between b's equal states in the second motion can move
+  // it by rounding, which counts as steps of arrival.)
+  const std::size_t a_lockstep = arrivalStep(local.paths[0]), b_lockstep = arrivalStep(local.paths[1]);
+  REQUIRE(a_lockstep == 160);
+  REQUIRE(b_lockstep >= 80);
+  REQUIRE(c.valid(local.paths));
+  const LocalSolution before = local;
+  const Subproblem sub = wholeSpan(2, local.length());
+  const std::vector<Path> plan = local.paths;
+  const RestampReport rep = restampLocalSolution(sub, local, c.models.raw, plan, world, Deadline());
+  REQUIRE(rep.restamped);
+  CHECK(c.valid(local.paths));
+  CHECK(local.length() <= before.length());
+  const std::size_t a = arrivalStep(local.paths[0]), b = arrivalStep(local.paths[1]);
+  CHECK(b <= b_lockstep);
+  // a at full speed needs 96 steps for its 4.8; b, which drives at full
+  // speed already, keeps it from starting at once (a first, b would have
+  // met it leaving its start: the order with b first is what was kept).
+  CHECK(a < 160);
+  CHECK(a > 96);
+  CHECK(b == 80);
+  CHECK(rep.steps_saved == static_cast<std::int64_t>(160 - a + b_lockstep - b));
+}
+
+TEST_CASE("A coupled answer stays in lockstep when its robots find no timing in time") {
+  CompactCase c({compactDisc("a", {4.2, 5, 0}, {9, 5, 0}), compactDisc("b", {5, 5, 0}, {5, 9, 0})});
+  const CollisionWorld world(c.scenario);
+  LocalSolution local = lockstepAnswer(c.models.raw);
+  const std::vector<Path> plan = local.paths;
+  const LocalSolution before = local;
+  const RestampReport rep =
+      restampLocalSolution(wholeSpan(2, local.length()), local, c.models.raw, plan, world, Deadline(0.0));
+  CHECK_FALSE(rep.restamped);
+  CHECK(rep.steps_saved == 0);
+  CHECK(local.paths == before.paths);
+}
+
+TEST_CASE("A coupled answer keeps its robots clear of the robots outside when it can") {
+  // c, outside the group, crosses y = 5 at x = 7 going up over steps
+  // 20-60: a at full speed would meet it; the answer avoids it.
+  CompactCase c({compactDisc("a", {4.2, 5, 0}, {9, 5, 0}), compactDisc("b", {5, 5, 0}, {5, 9, 0}),
+                 compactDisc("c", {7, 3, 0}, {7, 7, 0})});
+  const CollisionWorld world(c.scenario);
+  RobotModels group(compactScenario({c.scenario.robots[0], c.scenario.robots[1]}));
+  LocalSolution local = lockstepAnswer(group.raw);
+  Path c_path(3);
+  for (int k = 0; k < 20; ++k) c_path.push(std::vector<double>{7, 3, 0}.data());
+  c_path.append(test::line({7, 3, 0}, {7, 7, 0}, 81));
+  std::vector<Path> paths{local.paths[0], local.paths[1], c_path};
+  const RestampReport rep =
+      restampLocalSolution(wholeSpan(2, local.length()), local, c.models.raw, paths, world, Deadline());
+  REQUIRE(rep.restamped);
+  CHECK(rep.around_outside);
+  paths[0] = local.paths[0];
+  paths[1] = local.paths[1];
+  CHECK(c.valid(paths));
+  CHECK(arrivalStep(local.paths[0]) < 160);
+}
+
+TEST_CASE("ARC with coupled answers time-stamped robot by robot plans valid plans") {
+  const Scenario s = sixteenRobots();
+  PlannerSettings settings = repeatable();
+  settings.arc.restamp_coupled = false;
+  const PlanResult lockstep = plan(s, settings);
+  REQUIRE(lockstep.solution.solved);
+  CHECK_FALSE(lockstep.stats.arc->coupled_restamped.has_value());
+  settings.arc.restamp_coupled = true;
+  const PlanResult restamped = plan(s, settings);
+  REQUIRE(restamped.solution.solved);  // plan() validates it
+  const ArcStats& st = *restamped.stats.arc;
+  REQUIRE(st.coupled_restamped.has_value());
+  CHECK(*st.coupled_restamped > 0);
+  CHECK(*st.restamped_steps > 0);
+  CHECK(*st.coupled_restamped + *st.coupled_lockstep == st.subproblems_by_solver.at("coupled"));
 }

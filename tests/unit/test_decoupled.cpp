@@ -330,3 +330,65 @@ TEST_CASE("A robot standing at its goal keeps it while the robot that meets it g
   const Path& a = out.solution->paths[0];
   CHECK(std::equal(a.back(), a.back() + 3, sub.goals[0].data()));
 }
+
+namespace {
+
+// Disc m drives along y = 5 through (5, 5), where disc p stands parked at
+// its goal for good: their conflict's subproblem, with regions `margin`
+// around the robots' window paths.
+struct ParkedInTheWay {
+  Scenario s;
+  RobotModels m;
+  CollisionWorld world;
+  std::vector<Path> paths{line({3, 5, 0}, {7, 5, 0}, 81), line({{5, 5, 0}})};
+  Subproblem sub;
+  explicit ParkedInTheWay(double margin)
+      : s(scenario()), m(s), world(s) {
+    auto conflict = ConflictDetector(m.raw).first(pathPointers(paths));
+    REQUIRE(conflict.has_value());
+    PlannerSettings settings;
+    settings.arc.region_margin = margin;
+    sub = createSubproblem(*conflict, {0, 1}, 0, m.raw, paths, world, settings);
+  }
+  static Scenario scenario() {
+    Scenario s = openScenario(10);
+    s.robots = {disc("m", 0.2, {3, 5, 0}, {7, 5, 0}), disc("p", 0.2, {5, 5, 0}, {5, 5, 0})};
+    return s;
+  }
+  // The answer went around the parked robot, which stayed still, and its
+  // splice leaves no conflict.
+  void checkAroundParked(const SolverOutcome& out) const {
+    REQUIRE(out.solution.has_value());
+    CHECK(out.detail == "around the parked robots");
+    const LocalSolution& sol = *out.solution;
+    for (std::size_t t = 0; t < sol.length(); ++t)
+      CHECK(std::equal(sol.paths[1].at(t), sol.paths[1].at(t) + 3, sub.starts[1].data()));
+    std::vector<Path> plan = paths;
+    splice(plan, sub, sol);
+    CHECK_FALSE(ConflictDetector(m.raw).first(pathPointers(plan)).has_value());
+  }
+};
+
+}  // namespace
+
+TEST_CASE("The decoupled solver takes a robot around a parked one over the whole workspace before moving it") {
+  // In regions too narrow to pass, m cannot get by p, and p cannot step
+  // aside far enough: no order answers. Over the whole workspace m goes
+  // around p, which stays where it is.
+  ParkedInTheWay f(0.2);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, f.sub, Deadline(10), 7};
+  CHECK_FALSE(DecoupledSolver().solve(ctx).solution.has_value());  // the default
+  DecoupledSettings around;
+  around.parked_detour = true;
+  f.checkAroundParked(DecoupledSolver(around).solve(ctx));
+}
+
+TEST_CASE("The coupled solver first plans the robots that are not parked, the parked ones held still") {
+  ParkedInTheWay f(1.0);
+  RoadmapSet roadmaps(f.world, f.m.raw, 300, 10, 1);
+  SolverContext ctx{f.world, f.m.raw, roadmaps, f.paths, f.sub, Deadline(10), 7};
+  CoupledSolverSettings held;
+  held.parked_held = true;
+  f.checkAroundParked(CoupledSubproblemSolver(held).solve(ctx));
+}

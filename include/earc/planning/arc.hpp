@@ -41,6 +41,21 @@ std::int64_t retimeLocalSolution(const Subproblem& sub, LocalSolution& local,
                                  const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
                                  const CollisionWorld& world, const Deadline& deadline);
 
+// What restampLocalSolution did: whether it re-stamped the answer (else it
+// is left in lockstep), and then whether around the robots outside too.
+struct RestampReport {
+  bool restamped = false;
+  bool around_outside = false;
+  std::int64_t steps_saved = 0;  // summed over the robots' arrivals
+};
+
+// Time-stamps the composite answer `local` of mobile robots robot by robot,
+// each along its route at full speed after those before it, none arriving
+// later; leaves it in lockstep when some robot finds no timing.
+RestampReport restampLocalSolution(const Subproblem& sub, LocalSolution& local,
+                                   const std::vector<const RobotModel*>& models, const std::vector<Path>& paths,
+                                   const CollisionWorld& world, const Deadline& deadline);
+
 // UpdateSolution: replaces steps [t_start, t_end] of each subproblem robot's
 // path by its local path; the rest of the path follows (shifted in time when
 // the local path is longer than the span it replaces).

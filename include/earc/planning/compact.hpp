@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "earc/collision/collision_world.hpp"
@@ -44,6 +45,15 @@ CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vec
 CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                             const std::vector<std::size_t>& which, const CollisionWorld* world,
                             const Deadline& deadline, int max_passes = 4, std::size_t states_per_position = 64);
+
+// The path without repeated states (consecutive equal ones kept once).
+Path routeOf(const Path& path);
+
+// `route` with each run of states along one straight motion, slower than the
+// resolution allows, made again in the fewest steps where the world allows;
+// nothing when no run got shorter or the deadline expired. Thread-safe.
+std::optional<Path> routeAtFullSpeed(const RobotModel& model, const Path& route, const CollisionWorld& world,
+                                     const Deadline& deadline);
 
 // The box that the model's bounding disc stays in over states [from, to) of
 // the path (to clipped to its size). Thread-safe.

@@ -10,8 +10,9 @@
 
 namespace earc {
 
-// ARC's hierarchy: decoupled (prioritized space-time) first, then coupled.
-std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy();
+// ARC's hierarchy: decoupled (prioritized space-time) first, then coupled,
+// both holding parked robots first when `arc` says so.
+std::vector<std::unique_ptr<SubproblemSolver>> arcHierarchy(const ArcSettings& arc = {});
 
 // Whole-problem prioritized planning in space-time over the roadmaps.
 PlanResult planPrioritized(const Scenario& scenario, const PlannerSettings& settings,

@@ -35,6 +35,9 @@ struct ArcStats {
   std::optional<std::int64_t> waits_left_out;
   // Steps of arrival its robots saved, retimed inside their windows.
   std::optional<std::int64_t> window_retimed;
+  // Coupled answers time-stamped robot by robot (of them, around the robots
+  // outside the group too), left in lockstep, and the arrival steps saved.
+  std::optional<std::int64_t> coupled_restamped, coupled_restamped_around, coupled_lockstep, restamped_steps;
 };
 
 // E-ARC's database solver (top-level keys db_*; db_hits is PlanStats's).

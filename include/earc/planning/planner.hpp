@@ -59,6 +59,12 @@ struct ArcSettings {
   // Retime each mobile robot of a local answer inside its window before the
   // splice (retimeLocalSolution, arc.hpp); stats "window_retimed".
   bool retime_windows = false;
+  // Time-stamp each coupled answer robot by robot, not in lockstep
+  // (restampLocalSolution, arc.hpp); stats "coupled_restamped".
+  bool restamp_coupled = true;
+  // Local solvers hold robots parked at their goals first (DecoupledSettings::
+  // parked_detour, CoupledSolverSettings::parked_held).
+  bool hold_parked = false;
 };
 
 // The experience databases: E-ARC's store and Lightning's file.

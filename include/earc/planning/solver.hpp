@@ -150,6 +150,9 @@ struct DecoupledSettings {
   // The space-time search's heuristic: each vertex's distance to the goal
   // over the roadmap (see spaceTimeSearch) instead of in a straight line.
   bool graph_heuristic = true;
+  // Before an order that may push a robot parked at its goal, plan the
+  // others around the parked robots over their whole roadmaps, once.
+  bool parked_detour = false;
 };
 
 // Prioritized planning in space-time over the robots' roadmaps, waiting
@@ -173,6 +176,9 @@ std::vector<std::size_t> nextPriorityOrder(const std::vector<std::vector<std::si
 
 struct CoupledSolverSettings {
   double time_budget_s = 0.5;
+  // First plan the robots not parked at their goals, the parked ones held
+  // as obstacles, on a quarter of the budget.
+  bool parked_held = false;
 };
 
 // OMPL RRT-Connect in the composite space of the subproblem's robots,
@@ -184,6 +190,9 @@ class CoupledSubproblemSolver : public SubproblemSolver {
   SolverOutcome solve(SolverContext& ctx) override;
 
  private:
+  // The answer with the mobile robots parked at their goals kept there;
+  // nothing when there are none, or no other robots, or none was found.
+  std::optional<LocalSolution> solveAroundParked(const SolverContext& ctx) const;
   CoupledSolverSettings settings_;
 };
 
