@@ -352,7 +352,7 @@ struct ParkedInTheWay {
   }
   static Scenario scenario() {
     Scenario s = openScenario(10);
-    s.robots = {disc("m", 0.2, {3, 5, 0}, {7, 5, 0}), disc("p", 0.2, {5, 5, 0}, {5, 5, 0})};
+    s.robots = {arc_test::disc("m", 0.2, {3, 5, 0}, {7, 5, 0}), arc_test::disc("p", 0.2, {5, 5, 0}, {5, 5, 0})};
     return s;
   }
   // The answer went around the parked robot, which stayed still, and its
