@@ -61,7 +61,7 @@ struct ArcSettings {
   bool retime_windows = false;
   // Time-stamp each coupled answer robot by robot, not in lockstep
   // (restampLocalSolution, arc.hpp); stats "coupled_restamped".
-  bool restamp_coupled = true;
+  bool restamp_coupled = false;
   // Local solvers hold robots parked at their goals first (DecoupledSettings::
   // parked_detour, CoupledSolverSettings::parked_held).
   bool hold_parked = false;
