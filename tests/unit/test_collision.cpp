@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "../../src/collision/obstacle_cells.hpp"
 #include "earc/collision/collision_world.hpp"
 #include "support.hpp"
 
@@ -251,6 +252,66 @@ TEST_CASE("the FCL tree and the plain loop find the same touched obstacles") {
     touching += !from_tree.empty();
   }
   CHECK(touching > 100);  // the comparison saw real contacts
+}
+
+TEST_CASE("the obstacle-cell table says no only for boxes that meet no bound") {
+  // Unit cells on a lattice (as a MovingAI map's), some flush against each
+  // other, and queries on, between and exactly at the cells' edges.
+  std::mt19937 rng(5);
+  std::vector<geo::Aabb> bounds;
+  std::uniform_int_distribution<int> cellPick(0, 39);
+  for (int i = 0; i < 300; ++i) {
+    const double x = cellPick(rng), y = cellPick(rng) * 0.5;
+    bounds.push_back({{x, y}, {x + 1.0, y + 1.0}});
+  }
+  const earc::ObstacleCells cells(bounds, std::size_t{1} << 14);
+  REQUIRE(cells.columns() > 0);
+  std::uniform_real_distribution<double> pos(-2.0, 43.0), size(0.0, 1.5);
+  std::uniform_int_distribution<int> quarter(-8, 172);
+  int no = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    geo::Aabb q;
+    if (trial % 2) {
+      q.lo = {pos(rng), pos(rng) * 0.5};
+      q.hi = q.lo + geo::Vec2{size(rng), size(rng)};
+    } else {  // corners on quarter cells: many boxes touch a bound's edge exactly
+      q.lo = {quarter(rng) * 0.25, quarter(rng) * 0.125};
+      q.hi = q.lo + geo::Vec2{0.25 * (trial % 5), 0.125 * (trial % 3)};
+    }
+    const bool meets = std::any_of(bounds.begin(), bounds.end(), [&](const geo::Aabb& b) { return b.overlaps(q); });
+    if (!cells.mayMeet(q)) {
+      ++no;
+      CHECK_FALSE(meets);
+    }
+  }
+  CHECK(no > 2000);  // the table does answer no, not only maybe
+  CHECK(cells.mayMeet({{std::nan(""), 0.0}, {1.0, 1.0}}));
+  CHECK_FALSE(earc::ObstacleCells({}, 100).mayMeet({{0, 0}, {1, 1}}));
+}
+
+TEST_CASE("the tree with its cell table and the plain loop agree on a grid map's aisles") {
+  // Walls of unit cells with one-cell aisles between them; discs at cell
+  // centres and half way between, flush with and 1e-6 into a wall.
+  std::vector<Obstacle> obs;
+  for (int x = 0; x < 40; x += 2)
+    for (int y = 1; y < 39; ++y) obs.push_back(boxObstacle({x + 0.5, y + 0.5}, {1.0, 1.0}));
+  const Scenario s = world(std::move(obs), {{0, 0}, {40, 40}});
+  const CollisionWorld tree(s, CollisionWorld::BroadphaseMode::Tree);
+  const CollisionWorld loop(s, CollisionWorld::BroadphaseMode::Loop);
+  int touching = 0, clear = 0;
+  for (int x = 0; x < 80; ++x)
+    for (int y = 0; y < 80; ++y)
+      for (const double r : {0.3, 0.5, 0.5 + 2e-6, 0.7}) {
+        const geo::Body b = geo::Body::disc({x * 0.5 + 0.5, y * 0.5}, r);
+        std::vector<int> from_tree, from_loop;
+        tree.touchedObstacles(b, from_tree);
+        loop.touchedObstacles(b, from_loop);
+        CHECK(from_tree == from_loop);
+        CHECK(tree.bodyFree(b) == loop.bodyFree(b));
+        (from_tree.empty() ? clear : touching) += 1;
+      }
+  CHECK(touching > 1000);
+  CHECK(clear > 1000);
 }
 
 TEST_CASE("the automatic broad phase switches to the tree for large obstacle counts") {

@@ -23,6 +23,7 @@
 namespace earc {
 
 struct PlacedBodies;
+class ObstacleCells;
 
 // Checks that poll a deadline read the clock once per this many units of
 // work, a unit being one coordinate of a robot placed.
@@ -83,6 +84,7 @@ class CollisionWorld {
   std::vector<geo::Body> obstacles_;
   std::vector<geo::Aabb> obstacle_bounds_;
   std::unique_ptr<Broadphase> broadphase_;
+  std::unique_ptr<ObstacleCells> cells_;  // with the tree only
 };
 
 // A robot's bodies at one configuration with their bounds: placed once and
