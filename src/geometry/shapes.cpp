@@ -29,7 +29,7 @@ double distPointSegment(Vec2 p, Vec2 a, Vec2 b) {
 double sdfCentredBox(Vec2 q, Vec2 h) {
   const double lx = std::abs(q.x) - h.x;
   const double ly = std::abs(q.y) - h.y;
-  const double outside = std::hypot(std::max(lx, 0.0), std::max(ly, 0.0));
+  const double outside = norm({std::max(lx, 0.0), std::max(ly, 0.0)});
   const double inside = std::min(std::max(lx, ly), 0.0);
   return outside + inside;
 }

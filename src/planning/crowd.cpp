@@ -173,10 +173,10 @@ std::vector<int> jamGroup(const std::vector<Path>& paths, std::vector<int> robot
     const std::size_t n = paths[r].size();
     for (std::size_t t = 0; t < n; t += 4) {
       const double* q = paths[r].at(t);
-      best = std::min(best, std::hypot(q[0] - place.x, q[1] - place.y));
+      best = std::min(best, geo::norm({q[0] - place.x, q[1] - place.y}));
     }
     const double* q = paths[r].back();
-    best = std::min(best, std::hypot(q[0] - place.x, q[1] - place.y));
+    best = std::min(best, geo::norm({q[0] - place.x, q[1] - place.y}));
     others.emplace_back(best, static_cast<int>(r));
   }
   std::sort(others.begin(), others.end());

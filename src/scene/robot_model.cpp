@@ -82,7 +82,7 @@ class MobileRobot final : public RobotModel {
   int dim() const override { return 3; }
 
   double distance(const double* a, const double* b) const override {
-    const double translation = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const double translation = geo::norm({b[0] - a[0], b[1] - a[1]});
     const double rotation = std::abs(geo::angleDiff(a[2], b[2]));
     return std::max(translation / resolution_.translation, rotation / resolution_.rotation);
   }

@@ -39,8 +39,27 @@ struct Scratch {
     std::size_t pos;
   };
   std::vector<Disc> discs;
+  std::vector<std::size_t> order;  // the discs' order by lo at the last call
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
 };
+
+// Sorts discs by lo. They come in the order of the thread's last instant,
+// where most robots were where they are now or one step away: insertion
+// sort does that in about linear time; a list far from sorted (a new block
+// of instants) goes to std::sort once the moves pass a few per disc.
+void sortByLo(std::vector<Scratch::Disc>& discs) {
+  std::size_t budget = 8 * discs.size() + 64;
+  for (std::size_t i = 1; i < discs.size(); ++i) {
+    const Scratch::Disc d = discs[i];
+    std::size_t j = i;
+    for (; j > 0 && discs[j - 1].lo > d.lo && budget > 0; --j, --budget) discs[j] = discs[j - 1];
+    discs[j] = d;
+    if (budget == 0) {
+      std::sort(discs.begin(), discs.end(), [](const Scratch::Disc& a, const Scratch::Disc& b) { return a.lo < b.lo; });
+      return;
+    }
+  }
+}
 
 }  // namespace
 
@@ -152,19 +171,27 @@ void InstantChecker::checkGeometry(std::span<const int> robots, std::span<const 
   }
 
   // Robot-robot: sort and sweep the bounding discs along x, then the exact test.
+  if (s.order.size() != n) {
+    s.order.resize(n);
+    for (std::size_t pos = 0; pos < n; ++pos) s.order[pos] = pos;
+  }
   s.discs.clear();
-  for (std::size_t pos = 0; pos < n; ++pos) {
+  for (const std::size_t pos : s.order) {
     const geo::Vec2 c = model(pos).boundingCenter(q[pos]);
     const double r = model(pos).boundingRadius();
     s.discs.push_back({c.x - r, c.x + r, c, r, pos});
   }
-  std::sort(s.discs.begin(), s.discs.end(), [](const Scratch::Disc& a, const Scratch::Disc& b) { return a.lo < b.lo; });
+  sortByLo(s.discs);
+  for (std::size_t i = 0; i < n; ++i) s.order[i] = s.discs[i].pos;
   s.pairs.clear();
   for (std::size_t i = 0; i < s.discs.size(); ++i)
     for (std::size_t j = i + 1; j < s.discs.size() && s.discs[j].lo <= s.discs[i].hi; ++j) {
       const auto& a = s.discs[i];
       const auto& b = s.discs[j];
-      if (geo::norm(a.c - b.c) > a.r + b.r) continue;
+      // Squared: discs this close to meeting touch by no more than rounding,
+      // which robotsTouch's tolerance does not count.
+      const geo::Vec2 d = a.c - b.c;
+      if (geo::dot(d, d) > (a.r + b.r) * (a.r + b.r)) continue;
       const std::size_t pa = std::min(a.pos, b.pos), pb = std::max(a.pos, b.pos);
       if (robotsTouch(model(pa), q[pa], model(pb), q[pb])) s.pairs.emplace_back(pa, pb);
     }

@@ -147,8 +147,10 @@ bool endpointMatches(const RobotSpec& spec, const double* q, const std::vector<d
 void checkStep(const RobotSpec& spec, const Resolution& res, int r, const double* a, const double* b, std::size_t s,
                std::vector<Record>& out) {
   const std::size_t k = 2 * s + 1;
-  const std::string between = " between t=" + std::to_string(s) + " and t=" + std::to_string(s + 1) + ", resolution ";
+  // The message is made only for a violation: this runs for every step of
+  // every robot.
   auto add = [&](int code, const char* quantity, double amount, double limit, int joint) {
+    const std::string between = " between t=" + std::to_string(s) + " and t=" + std::to_string(s + 1) + ", resolution ";
     const std::string j = joint >= 0 ? " (joint " + std::to_string(joint + 1) + ")" : "";
     out.push_back({k, code, r, -1,
                    {Type::Resolution, static_cast<double>(s), {r},
@@ -156,7 +158,7 @@ void checkStep(const RobotSpec& spec, const Resolution& res, int r, const double
                     amount}});
   };
   if (spec.kind == RobotKind::Mobile) {
-    const double tr = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const double tr = geo::norm({b[0] - a[0], b[1] - a[1]});
     const double rot = std::abs(geo::wrapAngle(b[2] - a[2]));
     if (tr > res.translation + geo::kContactTolerance) add(kResTranslation, "translation", tr, res.translation, -1);
     if (rot > res.rotation + geo::kContactTolerance) add(kResRotation, "rotation", rot, res.rotation, -1);
@@ -234,7 +236,7 @@ ValidationReport validateSolution(const Scenario& sc, const Solution& sol, const
       const double* a = p->at(t);
       const double* b = p->at(t + 1);
       if (spec.kind == RobotKind::Mobile) {
-        rep.total_distance += std::hypot(b[0] - a[0], b[1] - a[1]);
+        rep.total_distance += geo::norm({b[0] - a[0], b[1] - a[1]});
       } else {
         for (int j = 0; j < p->dim(); ++j) rep.total_distance += std::abs(b[j] - a[j]);
       }

@@ -27,7 +27,13 @@ struct Vec2 {
 
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+// std::hypot's value, with axis-aligned vectors (a grid robot's steps and
+// waits) exactly |x| or |y| without the library call, as C defines hypot.
+inline double norm(Vec2 a) {
+  if (a.y == 0.0) return std::abs(a.x);
+  if (a.x == 0.0) return std::abs(a.y);
+  return std::hypot(a.x, a.y);
+}
 inline Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
 
 // Axis-aligned box; empty when lo > hi.
