@@ -144,6 +144,7 @@ class ArcRun {
   std::optional<LacamStats> whole_crowd_;
   double lattice_s_ = 0.0;
   Stopwatch plan_clock_;
+  const double plan_work0_ = workSecondsDone();
   std::int64_t waits_left_out_ = 0;
   std::int64_t window_retimed_ = 0;
   std::int64_t restamped_ = 0, restamped_around_ = 0, lockstep_ = 0, restamped_steps_ = 0;
@@ -186,7 +187,9 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // solver answers a jam it can solve in well under that, and one stuck
   // on a lattice that does not suit these robots (a dense few box robots)
   // must not take ARC's time.
-  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, plan_clock_.seconds()));
+  // With --deterministic, "so far" is counted in work too.
+  const double so_far = deadline_.countsWork() ? workSecondsDone() - plan_work0_ : plan_clock_.seconds();
+  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, so_far));
   // Each jam's plan is polished as part of the first plan. A jam of every
   // robot is the whole plan: with --refine it is shortened on the crowd
   // solver's roadmap, as --method lacam does, and that time is

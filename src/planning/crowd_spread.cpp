@@ -56,6 +56,9 @@ class WayTable {
   std::vector<std::vector<int>> ends_;
 };
 
+// Units of work (Deadline::withWorkBudgets) counted per node popped.
+constexpr std::size_t kWorkPerPop = 3;
+
 // Robot i's way of at most its distance + margin steps with the fewest
 // meetings, then the fewest steps; a vertex is entered once (a spatial
 // search whose steps count time, as LaCAM3's). Empty when the deadline ends it.
@@ -76,6 +79,8 @@ std::vector<int> spreadWay(const CrowdRoadmap& rm, const WayTable& table, int i,
     if (parent[static_cast<std::size_t>(v)] != -1) continue;
     parent[static_cast<std::size_t>(v)] = from;
     used.push_back(v);
+    // A pop and its few neighbours: about three bodies placed.
+    countWork(kWorkPerPop);
     if ((++pops & 255) == 0 && deadline.expired()) break;
     if (v == goal) {
       for (int x = v; x >= 0; x = parent[static_cast<std::size_t>(x)]) way.push_back(x);

@@ -10,7 +10,10 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   Stopwatch clock;
   PlanResult result;
   result.solution.scenario = scenario.name;
-  const Deadline deadline = Deadline(settings.time_limit_s).stoppedBy(context.stop);
+  // Budgets within the time limit (the ways' spreading, refinement's
+  // share) count work with --deterministic.
+  const Deadline deadline =
+      Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets).stoppedBy(context.stop);
   const CollisionWorld world(scenario);
   const RobotModels robots(scenario);
   std::vector<int> group;
@@ -32,9 +35,7 @@ PlanResult planLacam(const Scenario& scenario, const PlannerSettings& settings, 
   const double setup_s = clock.seconds();
   CrowdOptions options;
   options.refine_s = settings.post.refine_s;
-  // Its share counts work with --deterministic, as refinePlan's does.
-  const Deadline refine_deadline = deadline.withWorkBudgets(settings.work_budgets);
-  options.refine_deadline = &refine_deadline;
+  options.refine_deadline = &deadline;
   CrowdOutcome out = planCrowd(world, robots.raw, group, starts, goals, deadline, settings.seed, options);
   result.stats.lacam = out.stats;
   if (out.paths) {

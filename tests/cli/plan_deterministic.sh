@@ -2,7 +2,7 @@
 # --deterministic: the same seed gives the same plan, and earc-db build the
 # same rows, on a machine whose clock runs 100 times faster than its work
 # (faketime: every budget in seconds then ends 100 times sooner, as on a
-# machine 100 times slower or busier), for ARC, E-ARC and the builder;
+# machine 100 times slower or busier), for ARC, E-ARC, lacam and the builder;
 # without it the plan changes there, so the slowdown is felt. Requests to
 # earc-plan serve take "deterministic" too. Skipped (77) without faketime
 # (tools/setup.sh --tests installs it).
@@ -45,6 +45,22 @@ fast "$PLAN" plan "$WORK/s.json" -o "$WORK/arc-sec-fast.json" --method arc --see
 [ "$(jq -r .stats.solver_budgets "$WORK/arc-sec-idle.json")" = seconds ] || fail "stats.solver_budgets is not seconds"
 [ "$(paths "$WORK/arc-sec-idle.json")" != "$(paths "$WORK/arc-sec-fast.json")" ] \
   || fail "without --deterministic the faster clock changed nothing: this test shows nothing"
+
+# The crowd solver: its ways' spreading has a budget of seconds (cut short
+# on 300 robots under the fast clock), refinement a share of --refine.
+"$BUILD/earc-scenario" movingai warehouse-10-20-10-2-1 --scen warehouse-10-20-10-2-1-random-1 --robots 300 \
+  -o "$WORK/w.json" > /dev/null || fail "movingai"
+for side in idle fast; do
+  run=(); [ $side = fast ] && run=(faketime -f "+0 x100")
+  "${run[@]}" "$PLAN" plan "$WORK/w.json" -o "$WORK/lacam-$side.json" --method lacam --seed 1 --deterministic -q \
+    "${LIMIT[@]}" || fail "lacam $side exited $?"
+done
+[ "$(paths "$WORK/lacam-idle.json")" = "$(paths "$WORK/lacam-fast.json")" ] \
+  || fail "lacam --deterministic: the paths changed with the clock's speed"
+fast "$PLAN" plan "$WORK/w.json" -o "$WORK/lacam-sec-fast.json" --method lacam --seed 1 -q "${LIMIT[@]}" \
+  || fail "lacam under faketime exited $?"
+[ "$(paths "$WORK/lacam-idle.json")" != "$(paths "$WORK/lacam-sec-fast.json")" ] \
+  || fail "lacam: without --deterministic the faster clock changed nothing: this test shows nothing"
 
 # The builder: budgets per problem of work. Large discs leave problems
 # that use up their budget.
