@@ -1,5 +1,7 @@
 // earc.solution.v1 documents (shared/spec/formats.md, "Solution").
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "earc/io/json_io.hpp"
@@ -92,26 +94,68 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
   return sol;
 }
 
-json solutionToJson(const Solution& s) {
+namespace {
+
+// Planner-made text (stats, names) could hold invalid UTF-8: replaced, not thrown on.
+std::string dumpReplacing(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// One state as a JSON array of numbers, as nlohmann::json prints it.
+void appendState(std::string& out, const Path& path, std::size_t t) {
+  out += '[';
+  const auto q = path.state(t);
+  for (std::size_t j = 0; j < q.size(); ++j) {
+    if (j) out += ',';
+    appendJsonDouble(out, q[j]);
+  }
+  out += ']';
+}
+
+std::size_t numbersIn(const Solution& s) {
+  std::size_t numbers = 0;
+  for (const Path& p : s.paths) numbers += p.size() * static_cast<std::size_t>(std::max(0, p.dim()));
+  return numbers;
+}
+
+}  // namespace
+
+json solutionToJson(const Solution& s, bool with_paths) {
   requireRobotNames(s, "solutionToJson");
   json doc = json::object();
   doc["format"] = kSolutionFormat;
   doc["scenario"] = s.scenario;
   doc["method"] = s.method;
   doc["solved"] = s.solved;
-  json paths = json::array();
-  for (std::size_t i = 0; i < s.paths.size(); ++i) {
-    const Path& path = s.paths[i];
-    json states = json::array();
-    for (std::size_t t = 0; t < path.size(); ++t) {
-      const auto q = path.state(t);
-      states.push_back(json(std::vector<double>(q.begin(), q.end())));
+  if (with_paths) {
+    json paths = json::array();
+    for (std::size_t i = 0; i < s.paths.size(); ++i) {
+      const Path& path = s.paths[i];
+      json states = json::array();
+      for (std::size_t t = 0; t < path.size(); ++t) {
+        const auto q = path.state(t);
+        states.push_back(json(std::vector<double>(q.begin(), q.end())));
+      }
+      paths.push_back({{"robot", s.robot_names[i]}, {"states", std::move(states)}});
     }
-    paths.push_back({{"robot", s.robot_names[i]}, {"states", std::move(states)}});
+    doc["paths"] = std::move(paths);
   }
-  doc["paths"] = std::move(paths);
   doc["stats"] = s.stats;
   return doc;
+}
+
+void appendSolutionPaths(std::string& out, const Solution& s) {
+  requireRobotNames(s, "appendSolutionPaths");
+  out.reserve(out.size() + 24 * numbersIn(s) + 64 * s.paths.size());
+  out += '[';
+  for (std::size_t i = 0; i < s.paths.size(); ++i) {
+    if (i) out += ',';
+    out += "{\"robot\":" + dumpReplacing(s.robot_names[i]) + ",\"states\":[";
+    for (std::size_t t = 0; t < s.paths[i].size(); ++t) {
+      if (t) out += ',';
+      appendState(out, s.paths[i], t);
+    }
+    out += "]}";
+  }
+  out += ']';
 }
 
 Solution loadSolution(const std::string& path, const Scenario* scenario, InputWarnings* warnings) {
@@ -123,8 +167,7 @@ void saveSolution(const std::string& path, const Solution& s) {
   // One state per line: readable and diffable, yet compact for long paths.
   // Written straight from the paths: a plan of many robots holds millions
   // of numbers, and a JSON document of them took longer than the plan.
-  // Planner-made stats could hold invalid UTF-8: replaced, not thrown on.
-  auto dump = [](const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); };
+  const auto dump = dumpReplacing;
   std::string text = "{\n";
   const std::pair<const char*, json> head[] = {{"format", kSolutionFormat},
                                                 {"scenario", s.scenario},
@@ -133,21 +176,14 @@ void saveSolution(const std::string& path, const Solution& s) {
   for (const auto& [key, value] : head) text += "  " + json(key).dump() + ": " + dump(value) + ",\n";
   text += "  \"stats\": " + dump(s.stats) + ",\n";
   text += "  \"paths\": [";
-  std::size_t numbers = 0;
-  for (const Path& p : s.paths) numbers += p.size() * static_cast<std::size_t>(std::max(0, p.dim()));
-  text.reserve(text.size() + 24 * numbers + 64 * s.paths.size());
+  text.reserve(text.size() + 24 * numbersIn(s) + 64 * s.paths.size());
   for (std::size_t i = 0; i < s.paths.size(); ++i) {
     text += i ? ",\n" : "\n";
     text += "    {\"robot\": " + dump(s.robot_names[i]) + ", \"states\": [";
     const Path& path = s.paths[i];
     for (std::size_t t = 0; t < path.size(); ++t) {
-      text += t ? ",\n      [" : "\n      [";
-      const auto q = path.state(t);
-      for (std::size_t j = 0; j < q.size(); ++j) {
-        if (j) text += ',';
-        appendJsonDouble(text, q[j]);
-      }
-      text += ']';
+      text += t ? ",\n      " : "\n      ";
+      appendState(text, path, t);
     }
     text += path.size() == 0 ? "]}" : "\n    ]}";
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -30,10 +31,43 @@ namespace {
 // never let the reply itself fail to encode.
 std::string dumpLine(const json& doc) { return doc.dump(-1, ' ', false, json::error_handler_t::replace); }
 
+// obj printed as dumpLine prints it, with one more member `key` whose
+// value extra(text) appends (nlohmann::json prints members in key order).
+template <class Extra>
+std::string dumpWith(const json& obj, const std::string& key, Extra&& extra) {
+  std::string text = "{";
+  auto member = [&](const std::string& k) {
+    if (text.size() > 1) text += ',';
+    text += dumpLine(json(k)) + ":";
+  };
+  bool added = false;
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    if (!added && it.key() > key) {
+      member(key);
+      extra(text);
+      added = true;
+    }
+    member(it.key());
+    text += dumpLine(it.value());
+  }
+  if (!added) {
+    member(key);
+    extra(text);
+  }
+  return text + "}";
+}
+
 const json& field(const json& request, const char* name) {
   static const json missing;
   auto it = request.find(name);
   return it == request.end() ? missing : *it;
+}
+
+// A whole number >= 0, parsed (unsigned) or built in code (a signed int).
+std::optional<std::uint64_t> wholeNumber(const json& v) {
+  if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+  if (v.is_number_integer() && v.get<std::int64_t>() >= 0) return static_cast<std::uint64_t>(v.get<std::int64_t>());
+  return std::nullopt;
 }
 
 InputError badField(const std::string& name, const std::string& reason) {
@@ -57,8 +91,9 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
   }
   o.seed = defaults.seed;
   if (const json& k = field(request, "seed"); !k.is_null()) {
-    if (!k.is_number_unsigned()) throw badField("seed", "must be a whole number >= 0");
-    o.seed = k.get<std::uint64_t>();
+    const auto seed = wholeNumber(k);
+    if (!seed) throw badField("seed", "must be a whole number >= 0");
+    o.seed = *seed;
   }
   if (const json& l = field(request, "learn"); !l.is_null()) {
     if (!l.is_boolean()) throw badField("learn", "must be true or false");
@@ -80,18 +115,19 @@ PlannerSettings settingsFrom(const json& request, const ServiceSettings& default
     o.refine = r.get<double>();
   }
   if (const json& w = field(request, "window"); !w.is_null()) {
-    if (!w.is_number_unsigned() || w.get<std::uint64_t>() == 0 || w.get<std::uint64_t>() > 1000000)
+    const auto steps = wholeNumber(w);
+    if (!steps || *steps == 0 || *steps > 1000000)
       throw badField("window", "must be a whole number of steps from 1 to 1000000");
-    o.window = static_cast<int>(w.get<std::uint64_t>());
+    o.window = static_cast<int>(*steps);
   }
   // E-ARC's retrieval settings, as earc-plan plan's --db-k, --db-repair-max
   // and --db-max-stretch (for another method refused by plannerSettingsFor).
   for (auto [name, target, least] : {std::tuple{"db_k", &o.db_k, 1}, std::tuple{"db_repair_max", &o.db_repair_max, 0}})
     if (const json& v = field(request, name); !v.is_null()) {
-      if (!v.is_number_unsigned() || v.get<std::uint64_t>() < static_cast<std::uint64_t>(least) ||
-          v.get<std::uint64_t>() > 1000)
+      const auto n = wholeNumber(v);
+      if (!n || *n < static_cast<std::uint64_t>(least) || *n > 1000)
         throw badField(name, "must be a whole number from " + std::to_string(least) + " to 1000");
-      *target = static_cast<int>(v.get<std::uint64_t>());
+      *target = static_cast<int>(*n);
     }
   if (const json& f = field(request, "db_max_stretch"); !f.is_null()) {
     if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0)
@@ -155,7 +191,17 @@ std::string Service::handleLine(std::string_view line) {
     ++counters_.requests;
     return dumpLine(error(nullptr, e.what()));
   }
-  return dumpLine(handle(request));
+  // A crowd's paths are millions of numbers: printed straight from the
+  // plan, not built as a JSON tree first.
+  Solution solution;
+  json out = respond(request, &solution);
+  const auto at = out.find("solution");
+  if (at == out.end()) return dumpLine(out);
+  const json head = std::move(*at);
+  out.erase(at);
+  return dumpWith(out, "solution", [&](std::string& text) {
+    text += dumpWith(head, "paths", [&](std::string& inner) { appendSolutionPaths(inner, solution); });
+  });
 }
 
 std::string Service::tooLongResponse() {
@@ -164,7 +210,9 @@ std::string Service::tooLongResponse() {
                                      " bytes: not read (send a scenario_file instead)"));
 }
 
-json Service::handle(const json& request) {
+json Service::handle(const json& request) { return respond(request, nullptr); }
+
+json Service::respond(const json& request, Solution* paths) {
   ++counters_.requests;
   const json id = request.is_object() ? field(request, "id") : json();
   try {
@@ -176,7 +224,7 @@ json Service::handle(const json& request) {
     if (name == "plan") {
       requireKnownKeys(request, {"id", "op", "scenario", "scenario_file", "method", "time_limit", "seed", "learn",
                                  "deterministic", "compact", "refine", "window", "db_k", "db_repair_max", "db_max_stretch"});
-      response = plan(request);
+      response = plan(request, paths);
     } else if (name == "ping") {
       requireKnownKeys(request, {"id", "op"});
       response = {{"ok", true}, {"protocol", kProtocol}};
@@ -201,7 +249,7 @@ json Service::handle(const json& request) {
   }
 }
 
-json Service::plan(const json& request) {
+json Service::plan(const json& request, Solution* paths) {
   InputWarnings read_warnings;
   Scenario scenario = scenarioFrom(request, read_warnings);
   const PlannerSettings s = settingsFrom(request, settings_);
@@ -243,7 +291,8 @@ json Service::plan(const json& request) {
   if (!warnings.empty()) out["warnings"] = std::move(warnings);
   if (r.solution.solved) {
     ++counters_.solved;
-    out["solution"] = solutionToJson(r.solution);
+    out["solution"] = solutionToJson(r.solution, paths == nullptr);
+    if (paths) *paths = std::move(r.solution);
   }
   out["stats"] = std::move(st);
   return out;

@@ -321,3 +321,34 @@ TEST_CASE("serve protocol: a service given a stop flag watches it, and its stop 
   svc.requestStop();
   CHECK(stop.load());
 }
+
+TEST_CASE("serve protocol: a response line holds the paths handle() gives, bit for bit") {
+  // handleLine prints a plan's paths straight from memory; handle() builds
+  // them as JSON. Two services, one deterministic plan each.
+  service::Service by_line(nullptr, {});
+  service::Service by_tree(nullptr, {});
+  const json request = {{"id", 4}, {"scenario_file", kScenarioFile}, {"method", "arc"}, {"seed", 3}, {"deterministic", true}};
+  const std::string line = by_line.handleLine(request.dump());
+  const json tree = by_tree.handle(request);
+  REQUIRE(tree["solved"] == true);
+  const std::string paths_text = tree["solution"]["paths"].dump(-1, ' ', false, json::error_handler_t::replace);
+  CHECK(paths_text.size() > 1000);
+  // The same numbers (compared below, bit for bit once parsed), in digits
+  // never longer than nlohmann::json's.
+  const auto at = line.find("\"paths\":[");
+  REQUIRE(at != std::string::npos);
+  const auto end = line.find("],\"scenario\":", at);
+  REQUIRE(end != std::string::npos);
+  CHECK(end + 1 - (at + 8) <= paths_text.size());
+  json parsed = json::parse(line);
+  // Only the clock's readings may differ.
+  parsed["stats"] = tree["stats"];
+  parsed["solution"]["stats"] = tree["solution"]["stats"];
+  CHECK(parsed == tree);
+  // A request built in code holds signed integers: 3 was a seed above, -1 is not.
+  json negative = request;
+  negative["seed"] = -1;
+  const json refused = by_tree.handle(negative);
+  CHECK(refused["ok"] == false);
+  CHECK(refused["error"].get<std::string>().find("$.seed: must be a whole number >= 0") != std::string::npos);
+}

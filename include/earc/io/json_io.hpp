@@ -113,7 +113,11 @@ Scenario readScenarioFile(const std::string& path, InputWarnings* warnings = nul
 // Paths must match the scenario's robots (names, dimensions) when one is given.
 Solution solutionFromJson(const nlohmann::json& doc, const Scenario* scenario, const std::string& file,
                           InputWarnings* warnings = nullptr);
-nlohmann::json solutionToJson(const Solution& s);
+// Without paths (with_paths false), the document appendSolutionPaths completes.
+nlohmann::json solutionToJson(const Solution& s, bool with_paths = true);
+// The solution's "paths" array as compact JSON appended to out: the values
+// of solutionToJson(s)["paths"], each double in the shortest digits that read back.
+void appendSolutionPaths(std::string& out, const Solution& s);
 Solution loadSolution(const std::string& path, const Scenario* scenario, InputWarnings* warnings = nullptr);
 void saveSolution(const std::string& path, const Solution& s);
 

@@ -96,7 +96,10 @@ class Service {
   void close();
 
  private:
-  nlohmann::json plan(const nlohmann::json& request);
+  // paths: when given, a solved plan's solution is moved there and the
+  // response's "solution" has no "paths" (handleLine prints them).
+  nlohmann::json respond(const nlohmann::json& request, Solution* paths);
+  nlohmann::json plan(const nlohmann::json& request, Solution* paths);
   nlohmann::json stats();
   nlohmann::json error(const nlohmann::json& id, const std::string& message);
 
