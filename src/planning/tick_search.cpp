@@ -210,7 +210,6 @@ void Occupancy::remove(int i) {
 int Occupancy::at(int v, std::size_t t) const { return occ_[std::min(t, rows_ - 1) * ns_ + lat_.slot(v, 0)]; }
 
 bool Occupancy::blocked(int i, int u, int a, std::size_t t) const {
-  countWork(static_cast<std::size_t>(ticksOf(a)));
   for (int k = 0; k < ticksOf(a); ++k) {
     const int s = Lattice::state(a, k);
     const std::size_t base = std::min(t + static_cast<std::size_t>(k), rows_ - 1) * ns_ + lat_.slot(u, s);
@@ -229,6 +228,8 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
   // As lattice::StepSearch, on ticks: buckets by f, deepest first; a move
   // is checked against the others when its node is taken from the open
   // list, not when it is put there (most nodes put are never taken).
+  // Work is counted as StepSearch counts it, per expansion and move out:
+  // both phases then count at about one rate of CPU time.
   nodes_.clear();
   open_.clear();
   const CrowdRoadmap& rm = lat_.roadmap();
@@ -258,7 +259,6 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
   while (!open_.empty()) {
     const int k = open_.pop();
     const Node n = nodes_[static_cast<std::size_t>(k)];
-    countWork(1);
     const std::size_t key = static_cast<std::size_t>(n.t) * nv + static_cast<std::size_t>(n.v);
     if (closed_[key] == stamp_) continue;
     if (n.parent >= 0) {
