@@ -42,14 +42,6 @@ int Lattice::moveType(int u, int v) const {
   return -1;
 }
 
-std::size_t Lattice::slot(int v, int s) const {
-  const geo::Vec2 p = rm_->position(v);
-  const auto [ox, oy] = slotOffset(s);
-  const int x = 2 * static_cast<int>(std::lround(p.x - origin_.x)) + pad_ + ox;
-  const int y = 2 * static_cast<int>(std::lround(p.y - origin_.y)) + pad_ + oy;
-  return static_cast<std::size_t>(y) * static_cast<std::size_t>(slot_w_) + static_cast<std::size_t>(x);
-}
-
 bool Lattice::meet(int u, int a_state, int w, int b_state) const {
   const geo::Vec2 a0 = rm_->position(u) + tickStart(a_state), b0 = rm_->position(w) + tickStart(b_state);
   return closestApproach(a0, a0 + tickMotion(a_state), b0, b0 + tickMotion(b_state)) < 2.0 * rm_->radius() + 1e-9;
@@ -98,6 +90,16 @@ std::optional<Lattice> Lattice::make(const CrowdRoadmap& rm) {
   lat.slot_w_ = 2 * cols + 2 * lat.pad_;
   lat.slot_h_ = 2 * rows + 2 * lat.pad_;
   const double touch = 2.0 * rm.radius() + 1e-9;
+  for (int v = 0; v < nv; ++v) {
+    const geo::Vec2 p = rm.position(v);
+    const int x = 2 * static_cast<int>(std::lround(p.x - lat.origin_.x)) + lat.pad_;
+    const int y = 2 * static_cast<int>(std::lround(p.y - lat.origin_.y)) + lat.pad_;
+    lat.vslot_.push_back(static_cast<std::size_t>(y) * static_cast<std::size_t>(lat.slot_w_) + static_cast<std::size_t>(x));
+  }
+  for (int s = 0; s < kStates; ++s) {
+    const auto [ox, oy] = slotOffset(s);
+    lat.soff_[static_cast<std::size_t>(s)] = static_cast<std::ptrdiff_t>(oy) * lat.slot_w_ + ox;
+  }
   lat.threats_.assign(kStates, {});
   for (int sa = 0; sa < kStates; ++sa) {
     const auto [ax, ay] = slotOffset(sa);
@@ -110,9 +112,9 @@ std::optional<Lattice> Lattice::make(const CrowdRoadmap& rm) {
           const int vx = ax + dx - bx, vy = ay + dy - by;  // b's vertex, in half cells
           if (vx % 2 != 0 || vy % 2 != 0) continue;
           const geo::Vec2 b0 = geo::Vec2{0.5 * vx, 0.5 * vy} + tickStart(sb);
-          if (closestApproach(a0, a1, b0, b0 + tickMotion(sb)) < touch) mask |= 1u << sb;
+          if (closestApproach(a0, a1, b0, b0 + tickMotion(sb)) < touch) mask |= 2u << sb;
         }
-        if (mask) lat.threats_[static_cast<std::size_t>(sa)].push_back({static_cast<std::ptrdiff_t>(dy) * lat.slot_w_ + dx, mask});
+        if (mask) lat.threats_[static_cast<std::size_t>(sa)].push_back({dy * lat.slot_w_ + dx, mask});
       }
   }
   // Ticks to each distinct goal (Dijkstra on small integer costs, by buckets).
@@ -191,31 +193,32 @@ void Occupancy::put(int i) {
   forEachTick(p, [&](std::size_t t, int u, int s) {
     const std::size_t k = t * ns_ + lat_.slot(u, s);
     occ_[k] = i;
-    state_[k] = static_cast<signed char>(s);
+    state_[k] = static_cast<std::uint8_t>(s + 1);
   });
 }
 
 void Occupancy::remove(int i) {
   countWork(rows_);
   forEachTick(paths_[static_cast<std::size_t>(i)], [&](std::size_t t, int u, int s) {
-    int& o = occ_[t * ns_ + lat_.slot(u, s)];
-    if (o == i) o = -1;
+    const std::size_t k = t * ns_ + lat_.slot(u, s);
+    if (occ_[k] != i) return;
+    occ_[k] = -1;
+    state_[k] = 0;
   });
 }
 
 int Occupancy::at(int v, std::size_t t) const { return occ_[std::min(t, rows_ - 1) * ns_ + lat_.slot(v, 0)]; }
 
 bool Occupancy::blocked(int i, int u, int a, std::size_t t) const {
-  countWork(static_cast<std::size_t>(ticksOf(a)));
   for (int k = 0; k < ticksOf(a); ++k) {
     const int s = Lattice::state(a, k);
     const std::size_t base = std::min(t + static_cast<std::size_t>(k), rows_ - 1) * ns_ + lat_.slot(u, s);
-    const int* occ = occ_.data() + base;
-    const signed char* st = state_.data() + base;
-    for (const Lattice::Threat& th : lat_.threats(s)) {
-      const int j = occ[th.delta];
-      if (j >= 0 && j != i && (th.mask >> st[th.delta] & 1u)) return true;
-    }
+    // The state bytes alone decide but for robot i itself: bit 0 of a
+    // mask is clear, so an empty slot (0) never threatens.
+    const std::uint8_t* st = state_.data() + base;
+    for (const Lattice::Threat& th : lat_.threats(s))
+      if ((th.mask >> st[th.delta] & 1u) && occ_[base + static_cast<std::size_t>(static_cast<std::ptrdiff_t>(th.delta))] != i)
+        return true;
   }
   return false;
 }
@@ -225,6 +228,8 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
   // As lattice::StepSearch, on ticks: buckets by f, deepest first; a move
   // is checked against the others when its node is taken from the open
   // list, not when it is put there (most nodes put are never taken).
+  // Work is counted as StepSearch counts it, per expansion and move out:
+  // both phases then count at about one rate of CPU time.
   nodes_.clear();
   open_.clear();
   const CrowdRoadmap& rm = lat_.roadmap();
@@ -254,7 +259,6 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
   while (!open_.empty()) {
     const int k = open_.pop();
     const Node n = nodes_[static_cast<std::size_t>(k)];
-    countWork(1);
     const std::size_t key = static_cast<std::size_t>(n.t) * nv + static_cast<std::size_t>(n.v);
     if (closed_[key] == stamp_) continue;
     if (n.parent >= 0) {

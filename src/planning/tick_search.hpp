@@ -49,12 +49,15 @@ class Lattice {
   // One tick's state of a robot: a move's type and how many ticks of it are
   // done (21 states); its place in the occupancy's grid of half cells.
   static int state(int a, int phase);
-  std::size_t slot(int v, int state) const;
+  std::size_t slot(int v, int state) const {
+    return vslot_[static_cast<std::size_t>(v)] + static_cast<std::size_t>(soff_[static_cast<std::size_t>(state)]);
+  }
   std::size_t slotCount() const { return static_cast<std::size_t>(slot_w_) * static_cast<std::size_t>(slot_h_); }
-  // Where a robot's tick in state A meets one in state B (bit B of mask)
-  // `delta` slots away, with closest approach under 2R (exact, continuous).
+  // Where a robot's tick in state A meets one in state B (bit B + 1 of
+  // mask; bit 0 clear) `delta` slots away, with closest approach under 2R
+  // (exact, continuous).
   struct Threat {
-    std::ptrdiff_t delta;
+    std::int32_t delta;
     std::uint32_t mask;
   };
   const std::vector<Threat>& threats(int state) const { return threats_[static_cast<std::size_t>(state)]; }
@@ -70,6 +73,8 @@ class Lattice {
   geo::Vec2 origin_;  // the lowest vertex coordinates: slot (pad, pad)
   int slot_w_ = 0, slot_h_ = 0, pad_ = 0;
   std::vector<std::vector<Threat>> threats_;
+  std::vector<std::size_t> vslot_;  // per vertex: its slot in state 0
+  std::array<std::ptrdiff_t, 21> soff_{};  // per state: its slot's offset from the vertex's
 };
 
 // Who is where at every tick, for the robots whose paths are in: at most one
@@ -93,8 +98,8 @@ class Occupancy {
   const Lattice& lat_;
   std::vector<TickPath>& paths_;
   std::size_t ns_ = 0, rows_ = 0;
-  std::vector<int> occ_;            // [t * ns + slot]: robot or -1
-  std::vector<signed char> state_;  // [t * ns + slot]: its state
+  std::vector<int> occ_;             // [t * ns + slot]: robot or -1
+  std::vector<std::uint8_t> state_;  // [t * ns + slot]: its state + 1; 0 for none
 };
 
 // Space-time A* in ticks for robot i (not in occ) to its goal, heuristic

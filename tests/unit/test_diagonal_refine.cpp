@@ -96,6 +96,26 @@ ticks::TickPath oneMove(const ticks::Lattice& lat, int u, int a) {
   return p.back() < 0 ? ticks::TickPath{} : p;
 }
 
+// The vertex robot path p's tick t begins on and the tick's state.
+std::pair<int, int> tickStateAt(const ticks::Lattice& lat, const ticks::TickPath& p, std::size_t t) {
+  if (t + 1 >= p.size()) return {p.back(), 0};
+  std::size_t t0 = t, t1 = t + 1;
+  while (p[t0] < 0) --t0;
+  while (p[t1] < 0) ++t1;
+  return {p[t0], ticks::Lattice::state(lat.moveType(p[t0], p[t1]), static_cast<int>(t - t0))};
+}
+
+// Whether a move of type a from u begun at tick t meets any of `paths`,
+// tick by tick and pair by pair (Lattice::meet, no occupancy).
+bool meetsAnyone(const ticks::Lattice& lat, const std::vector<ticks::TickPath>& paths, int u, int a, std::size_t t) {
+  for (int k = 0; k < ticks::ticksOf(a); ++k)
+    for (const ticks::TickPath& p : paths) {
+      const auto [w, s] = tickStateAt(lat, p, t + static_cast<std::size_t>(k));
+      if (lat.meet(u, ticks::Lattice::state(a, k), w, s)) return true;
+    }
+  return false;
+}
+
 std::vector<Path> firstPaths(const TickWorld& tw, const std::vector<std::vector<int>>& configs) {
   return *crowdPaths(tw.rm, configs, tw.rm.stepsPerEdge(), test::robotEnds(tw.sc, true), test::robotEnds(tw.sc, false));
 }
@@ -205,6 +225,68 @@ TEST_CASE("The tick conflict table agrees with a fine sampling and with the vali
   // ... and beside (4,3)->(4,4), which its disc sweeps past within 0.6.
   CHECK(pairBlocked(x0, 5, x1, 3));
   CHECK(validatorSeesTouch(tw, *lat, x0, 5, x1, 3));
+}
+
+TEST_CASE("The tick occupancy of a crowd answers as the pairwise conflict table, also after removals") {
+  const TickWorld tw({"........", "..#.....", "........", ".....#..", "........", "........", ".#......", "........"},
+                     {{{0.5, 0.5}, {7.5, 7.5}}});
+  const auto lat = ticks::Lattice::make(tw.rm);
+  REQUIRE(lat.has_value());
+  std::mt19937 rng(7);
+  auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  // Random walks of waits and moves, each kept when it meets none of the
+  // walks kept before (so that every slot holds one robot at most).
+  constexpr std::size_t kTicks = 40;
+  std::vector<ticks::TickPath> paths;
+  for (int tries = 0; tries < 400 && paths.size() < 14; ++tries) {
+    ticks::TickPath p = {static_cast<int>(pick(static_cast<std::size_t>(tw.rm.vertexCount())))};
+    while (p.size() < 16) {
+      const auto& moves = lat->moves(p.back());
+      if (moves.empty() || pick(4) == 0) {
+        p.push_back(p.back());
+        continue;
+      }
+      const auto [w, a] = moves[pick(moves.size())];
+      for (int k = 1; k < ticks::ticksOf(a); ++k) p.push_back(-1);
+      p.push_back(w);
+    }
+    bool clear = true;
+    for (std::size_t t = 0; t < kTicks && clear; ++t) {
+      const auto [u, s] = tickStateAt(*lat, p, t);
+      for (const auto& q : paths) {
+        const auto [w, r] = tickStateAt(*lat, q, t);
+        if (lat->meet(u, s, w, r)) clear = false;
+      }
+    }
+    if (clear) paths.push_back(std::move(p));
+  }
+  REQUIRE(paths.size() >= 10);
+  ticks::Occupancy occ(*lat, paths);
+  std::vector<ticks::TickPath> in = paths;
+  int asked = 0, blocked = 0;
+  auto compare = [&]() {
+    for (int q = 0; q < 600; ++q) {
+      const int u = static_cast<int>(pick(static_cast<std::size_t>(tw.rm.vertexCount())));
+      const auto& moves = lat->moves(u);
+      const int a = pick(3) == 0 || moves.empty() ? 0 : moves[pick(moves.size())].second;
+      const std::size_t t = pick(kTicks);
+      CAPTURE(u);
+      CAPTURE(a);
+      CAPTURE(t);
+      const bool b = occ.blocked(-2, u, a, t);
+      CHECK(b == meetsAnyone(*lat, in, u, a, t));
+      ++asked;
+      blocked += b;
+    }
+  };
+  compare();
+  // Half of them out again: their slots must read empty.
+  for (int i = 0; i < static_cast<int>(paths.size()); i += 2) occ.remove(i);
+  in.clear();
+  for (std::size_t i = 1; i < paths.size(); i += 2) in.push_back(paths[i]);
+  compare();
+  CHECK(blocked > asked / 10);
+  CHECK(blocked < asked);
 }
 
 TEST_CASE("Refinement with diagonals never returns an invalid or costlier plan, and shortens a crowded one") {
