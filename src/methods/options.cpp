@@ -36,6 +36,7 @@ PlannerSettings plannerSettingsFor(const MethodOptions& o, OptionStyle style) {
   s.post.compact = o.compact;
   s.arc.crowd_fallback = o.crowd;
   s.arc.retime_windows = o.retime_windows;
+  s.arc.restamp_coupled = o.restamp_coupled;
   s.post.refine_s = o.refine;
   for (const auto& [given, option] :
        {std::pair{o.shadow_decoupled, "shadow_decoupled"}, std::pair{o.db_k.has_value(), "db_k"},

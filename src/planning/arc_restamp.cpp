@@ -2,6 +2,7 @@
 // (restampLocalSolution, declared in arc.hpp).
 #include <algorithm>
 #include <numeric>
+#include <queue>
 
 #include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
@@ -40,29 +41,42 @@ class RouteTimer {
                                const std::vector<const TimedBody*>& others);
 
  private:
-  // The others' states at local instant k, into states_ (one row each).
-  void place(std::size_t k);
-  bool freeAt(const RobotModel& model, const double* q) {
+  // The near robots' states at local instant k (one row, offset_ apart),
+  // placed on first use.
+  const double* row(std::size_t k);
+  bool freeAt(const RobotModel& model, const double* q, std::size_t k) {
     if (poll_.expired(near_.size() + 1)) return false;
+    const double* states = row(k);
     against_.set(model, q);
     for (std::size_t o = 0; o < near_.size(); ++o)
-      if (against_.check(*near_[o]->model, states_[o].data()) == RobotAgainst::Result::Touch) return false;
+      if (against_.check(*near_[o]->model, states + offset_[o]) == RobotAgainst::Result::Touch) return false;
     return true;
   }
 
   DeadlinePoll poll_;
   RobotAgainst against_;
   std::vector<const TimedBody*> near_;
-  std::vector<std::vector<double>> states_;
+  std::vector<std::size_t> offset_;
+  std::size_t width_ = 0;
+  std::vector<double> rows_;
+  std::vector<char> placed_;
+  std::vector<unsigned char> how_;
 };
 
-void RouteTimer::place(std::size_t k) {
-  states_.resize(near_.size());
-  for (std::size_t o = 0; o < near_.size(); ++o) {
-    const TimedBody& b = *near_[o];
-    states_[o].resize(static_cast<std::size_t>(b.model->dim()));
-    stateAtInstant(*b.model, *b.path, 2 * b.offset + std::min(k, b.horizon), states_[o].data());
+const double* RouteTimer::row(std::size_t k) {
+  if (k >= placed_.size()) {
+    placed_.resize(2 * k + 2, 0);
+    rows_.resize(placed_.size() * width_);
   }
+  double* out = rows_.data() + k * width_;
+  if (!placed_[k]) {
+    placed_[k] = 1;
+    for (std::size_t o = 0; o < near_.size(); ++o) {
+      const TimedBody& b = *near_[o];
+      stateAtInstant(*b.model, *b.path, 2 * b.offset + std::min(k, b.horizon), out + offset_[o]);
+    }
+  }
+  return out;
 }
 
 std::optional<Path> RouteTimer::earliest(const RobotModel& model, const Path& route, std::size_t bound,
@@ -71,82 +85,83 @@ std::optional<Path> RouteTimer::earliest(const RobotModel& model, const Path& ro
   if (bound < m) return std::nullopt;
   const geo::Aabb mine = pathReach(model, route);
   near_.clear();
+  offset_.clear();
+  width_ = 0;
   for (const TimedBody* o : others)
-    if (o->reach.overlaps(mine)) near_.push_back(o);
+    if (o->reach.overlaps(mine)) {
+      near_.push_back(o);
+      offset_.push_back(width_);
+      width_ += static_cast<std::size_t>(o->model->dim());
+    }
+  placed_.assign(2 * bound + 3, 0);
+  rows_.resize(placed_.size() * width_);
   // The last instant at which some other robot touches it standing at its
   // end: it may arrive only after that, to stay there.
   std::size_t horizon = 0;
   for (const TimedBody* o : near_) horizon = std::max(horizon, o->horizon);
   long long last_block = -1;
   for (std::size_t k = horizon + 1; k-- > 1;) {
-    place(k);
-    if (!freeAt(model, route.back())) {
+    if (!freeAt(model, route.back(), k)) {
       last_block = static_cast<long long>(k);
       break;
     }
   }
   if (expired()) return std::nullopt;
   const std::size_t slack = bound - m;  // waits it can afford
-  if ((m + 1) * (bound + 1) > kMaxTimingStates) return std::nullopt;
-  // Breadth-first by step: reach[i], route position i reachable at step t;
-  // how[t][i] 1 when entered moving on, 2 waiting. Instant 0 is the
-  // answer's own start, valid as it stands.
-  std::vector<char> reach(m + 1, 0), next(m + 1, 0);
-  std::vector<char> how((bound + 1) * (m + 1), 0);
-  reach[0] = 1;
+  if ((m + 1) * (slack + 1) > kMaxTimingStates) return std::nullopt;
+  // Best first over (waits so far w, route position i), the robot at step
+  // i + w: fewest waits first, so the first arrival found is the earliest,
+  // and among equally many the furthest on. how_[i * (slack + 1) + w]: 1
+  // entered moving on, 2 waiting. Step 0 is the answer's own start.
+  how_.assign((m + 1) * (slack + 1), 0);
+  struct Open {
+    std::size_t w, back;  // waits, m - i
+    unsigned char by;
+    bool operator>(const Open& o) const { return w != o.w ? w > o.w : back > o.back; }
+  };
+  std::priority_queue<Open, std::vector<Open>, std::greater<>> open;
+  open.push({0, m, 1});
   std::vector<double> mid(static_cast<std::size_t>(model.dim()));
-  std::vector<signed char> end_free(m + 1);
-  std::size_t arrival = 0;
-  bool found = m == 0 && last_block < 0;
-  for (std::size_t t = 0; !found && t < bound; ++t) {
-    std::fill(next.begin(), next.end(), 0);
-    const std::size_t lo = t > slack ? t - slack : 0;  // fewer positions cannot arrive by the bound
-    const std::size_t hi = std::min(t, m);
-    // Midpoints first (instant 2t + 1), then the states at step t + 1.
-    place(2 * t + 1);
-    std::vector<char> move_ok(m + 1, 0), wait_ok(m + 1, 0);
-    for (std::size_t i = lo; i <= hi; ++i) {
-      if (!reach[i]) continue;
-      if (i < m) {
-        model.interpolate(route.at(i), route.at(i + 1), 0.5, mid.data());
-        move_ok[i] = freeAt(model, mid.data());
-      }
-      wait_ok[i] = freeAt(model, route.at(i));
-    }
-    place(2 * t + 2);
-    std::fill(end_free.begin(), end_free.end(), -1);
-    auto endFree = [&](std::size_t j) {
-      if (end_free[j] < 0) end_free[j] = freeAt(model, route.at(j)) ? 1 : 0;
-      return end_free[j] == 1;
-    };
-    bool any = false;
-    for (std::size_t i = lo; i <= hi; ++i) {
-      if (!reach[i]) continue;
-      if (move_ok[i] && endFree(i + 1)) {
-        next[i + 1] = 1;
-        how[(t + 1) * (m + 1) + i + 1] = 1;
-        any = true;
-      }
-      if (wait_ok[i] && t + 1 - i <= slack && endFree(i)) {
-        next[i] = 1;
-        if (!how[(t + 1) * (m + 1) + i]) how[(t + 1) * (m + 1) + i] = 2;
-        any = true;
+  std::size_t at_i = 0, at_w = 0;
+  bool found = false;
+  while (!open.empty() && !found) {
+    const Open e = open.top();
+    open.pop();
+    const std::size_t i = m - e.back, w = e.w, t = i + w;
+    unsigned char& seen = how_[i * (slack + 1) + w];
+    if (seen) continue;
+    if (t > 0) {
+      const double* from = e.by == 1 ? route.at(i - 1) : route.at(i);
+      model.interpolate(from, route.at(i), 0.5, mid.data());
+      if (!freeAt(model, mid.data(), 2 * t - 1) || !freeAt(model, route.at(i), 2 * t)) {
+        if (expired()) return std::nullopt;
+        continue;
       }
     }
-    if (expired() || !any) return std::nullopt;
-    reach.swap(next);
-    if (reach[m] && 2 * static_cast<long long>(t + 1) > last_block) {
+    seen = e.by;
+    if (i == m && 2 * static_cast<long long>(t) > last_block) {
       found = true;
-      arrival = t + 1;
+      at_i = i;
+      at_w = w;
+      break;
     }
+    if (w < slack) open.push({w + 1, m - i, 2});
+    if (i < m) open.push({w, m - i - 1, 1});
   }
   if (!found) return std::nullopt;
-  std::vector<std::size_t> at(arrival + 1);
-  at[arrival] = m;
-  for (std::size_t t = arrival; t > 0; --t) at[t - 1] = how[t * (m + 1) + at[t]] == 1 ? at[t] - 1 : at[t];
+  std::vector<std::size_t> at;
+  for (std::size_t i = at_i, w = at_w;;) {
+    at.push_back(i);
+    if (i == 0 && w == 0) break;
+    if (how_[i * (slack + 1) + w] == 1) {
+      --i;
+    } else {
+      --w;
+    }
+  }
   Path timed(model.dim());
-  timed.reserve(arrival + 1);
-  for (std::size_t i : at) timed.push(route.at(i));
+  timed.reserve(at.size());
+  for (std::size_t k = at.size(); k-- > 0;) timed.push(route.at(at[k]));
   return timed;
 }
 

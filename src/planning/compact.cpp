@@ -16,6 +16,11 @@ constexpr std::size_t kNoInstant = static_cast<std::size_t>(-1);
 // Instants whose states are kept: a search goes forward in time and seldom
 // backs up far.
 constexpr std::size_t kSlots = 2048;
+// Steps a chunk spans: each robot's disc is boxed per chunk, and a state is
+// tested only against the robots whose box then meets the searched robot's
+// reach then.
+constexpr std::size_t kBoxSteps = 16;
+constexpr std::size_t kBoxInstants = 2 * kBoxSteps;
 
 // Every robot's configuration at recently asked instants, in a ring of
 // slots keyed by instant, filled on first use.
@@ -75,6 +80,8 @@ class Compactor {
         poll_(deadline, kWorkPerClockRead),
         states_per_position_(states_per_position) {
     for (std::size_t o = 0; o < paths_.size(); ++o) reach_.push_back(reach(o));
+    chunks_.resize(paths_.size());
+    for (std::size_t o = 0; o < paths_.size(); ++o) boxChunks(o);
     changed_at_.assign(paths_.size(), 0);
     failed_at_.assign(paths_.size(), static_cast<std::size_t>(-1));
   }
@@ -97,15 +104,30 @@ class Compactor {
   // The box that robot o's bounding disc stays in along its path (a
   // midpoint's centre lies between its steps' centres).
   geo::Aabb reach(std::size_t o) const { return pathReach(*models_[o], paths_[o]); }
+  // chunks_[o]: robot o's disc boxed over steps [c, c + 1] * kBoxSteps of
+  // its path, the last standing for every later chunk.
+  void boxChunks(std::size_t o) {
+    chunks_[o].clear();
+    const Path& p = paths_[o];
+    if (p.empty()) return;
+    const std::size_t last = p.size() - 1;
+    for (std::size_t c = 0; c * kBoxSteps < last; ++c)
+      chunks_[o].push_back(pathReach(*models_[o], p, c * kBoxSteps, std::min(last, (c + 1) * kBoxSteps) + 1));
+    chunks_[o].push_back(pathReach(*models_[o], p, last));
+  }
+  const geo::Aabb& chunkBox(std::size_t o, std::size_t c) const {
+    return chunks_[o][std::min(c, chunks_[o].size() - 1)];
+  }
+  // The robots of near_ that may meet robot r during chunk c of `route`'s
+  // timing with `slack` waits (window_ holds r's reach per chunk).
+  const std::vector<std::size_t>& nearIn(std::size_t c);
 
   std::int64_t search(std::size_t r);
   // The route timed to arrive before `arrival`, staying at its goal after
   // instant last_block: nothing when no such timing was found.
   std::optional<Path> timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival);
 
-  // Robot r at configuration q touches none of `robots` (near_ unless
-  // given) at instant k.
-  bool free(std::size_t r, const double* q, std::size_t k) { return free(r, q, k, near_); }
+  // Robot r at configuration q touches none of `robots` at instant k.
   bool free(std::size_t r, const double* q, std::size_t k, const std::vector<std::size_t>& robots) {
     if (poll_.expired(robots.size() + 1)) return false;
     const double* row = states_.row(k);
@@ -122,6 +144,12 @@ class Compactor {
   InstantStates states_;
   DeadlinePoll poll_;
   std::vector<geo::Aabb> reach_;  // per robot
+  std::vector<std::vector<geo::Aabb>> chunks_;  // per robot, see boxChunks
+  // Per chunk of the current timing search: the searched robot's reach
+  // then, and the robots of near_ whose box meets it (made when first asked).
+  std::vector<geo::Aabb> window_;
+  std::vector<std::vector<std::size_t>> chunk_near_;
+  std::vector<char> chunk_made_;
   std::vector<std::size_t> near_;  // the robots whose reach meets the retimed one's
   RobotAgainst against_;           // free()'s scratch
   // A robot's search that found nothing is not repeated until a robot
@@ -168,11 +196,17 @@ std::int64_t Compactor::search(std::size_t r) {
   std::size_t horizon = 0;
   for (std::size_t o : near_goal) horizon = std::max(horizon, paths_[o].size() - 1);
   long long last_block = -1;
-  for (std::size_t k = 2 * horizon + 1; k-- > 0;) {
-    if (!free(r, route.back(), k, near_goal)) {
-      last_block = static_cast<long long>(k);
-      break;
-    }
+  std::vector<std::size_t> in_chunk;
+  for (std::size_t c = (2 * horizon + 1) / kBoxInstants + 1; c-- > 0 && last_block < 0;) {
+    in_chunk.clear();
+    for (std::size_t o : near_goal)
+      if (chunkBox(o, c).overlaps(at_goal)) in_chunk.push_back(o);
+    if (in_chunk.empty()) continue;
+    for (std::size_t k = std::min(2 * horizon + 1, c * kBoxInstants + kBoxInstants - 1) + 1; k-- > c * kBoxInstants;)
+      if (!free(r, route.back(), k, in_chunk)) {
+        last_block = static_cast<long long>(k);
+        break;
+      }
   }
   if (poll_.seenExpired()) return 0;
 
@@ -183,7 +217,18 @@ std::int64_t Compactor::search(std::size_t r) {
   const auto saved = static_cast<std::int64_t>(arrival) - static_cast<std::int64_t>(timed->size() - 1);
   paths_[r] = std::move(*timed);
   states_.refresh(r);
+  boxChunks(r);
   return saved;
+}
+
+const std::vector<std::size_t>& Compactor::nearIn(std::size_t c) {
+  c = std::min(c, window_.size() - 1);
+  if (!chunk_made_[c]) {
+    chunk_made_[c] = 1;
+    for (std::size_t o : near_)
+      if (chunkBox(o, c).overlaps(window_[c])) chunk_near_[c].push_back(o);
+  }
+  return chunk_near_[c];
 }
 
 std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival) {
@@ -197,6 +242,17 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
   const std::size_t slack = arrival - 1 - last;
   if (last + 1 > (std::size_t{1} << 30) / (slack + 1)) return std::nullopt;  // a table of 128 MiB or more
   std::vector<bool> seen((last + 1) * (slack + 1), false);
+  // Its reach per chunk: at step t it stands at a route position from
+  // t - slack to t, and past the arrival it is not searched.
+  const std::size_t chunks = (2 * arrival) / kBoxInstants + 1;
+  window_.assign(chunks, geo::Aabb{});
+  chunk_near_.assign(chunks, {});
+  chunk_made_.assign(chunks, 0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t hi = std::min(last, (c + 1) * kBoxSteps);
+    const std::size_t lo = std::min(hi, c * kBoxSteps > slack ? c * kBoxSteps - slack : 0);
+    window_[c] = pathReach(model, route, lo, hi + 1);
+  }
   auto mark = [&](std::size_t i, std::size_t t) {
     const std::size_t at = i * (slack + 1) + (t - i);
     if (seen[at]) return false;
@@ -230,7 +286,9 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
     ++tried_;
     if (++visited > states_per_position_ * (last + 1) || poll_.seenExpired()) return std::nullopt;
     model.interpolate(route.at(f.i), route.at(ni), 0.5, mid.data());
-    if (!free(r, mid.data(), 2 * f.t + 1) || !free(r, route.at(ni), 2 * nt)) continue;
+    if (!free(r, mid.data(), 2 * f.t + 1, nearIn((2 * f.t + 1) / kBoxInstants)) ||
+        !free(r, route.at(ni), 2 * nt, nearIn(2 * nt / kBoxInstants)))
+      continue;
     stack.push_back({ni, nt, 0});
   }
   if (!found) return std::nullopt;

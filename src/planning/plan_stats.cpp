@@ -26,6 +26,8 @@ template <class F> void statsFields(ArcStats& s, F&& f) {
   f("coupled_restamped_around", s.coupled_restamped_around);
   f("coupled_lockstep", s.coupled_lockstep);
   f("restamped_steps", s.restamped_steps);
+  f("compacted_steps", s.compacted_steps);
+  f("compacted_s", s.compacted_s);
   f("solver_budgets", s.solver_budgets);
   f("robots_merged", s.robots_merged);
   f("merge_cap_raised", s.merge_cap_raised);

@@ -46,6 +46,7 @@ struct PlanOptions {
   bool compact = false;
   bool no_crowd = false;
   bool retime_windows = false;
+  bool restamp_coupled = false;
   double refine = 0.0;
   std::optional<int> db_k, db_repair_max;
   std::optional<double> db_max_stretch;
@@ -203,6 +204,7 @@ int runPlan(const PlanOptions& o) {
   m.crowd = !o.no_crowd;
   m.compact = o.compact;
   m.retime_windows = o.retime_windows;
+  m.restamp_coupled = o.restamp_coupled;
   m.refine = o.refine;
   m.shadow_decoupled = o.shadow_decoupled;
   m.db_k = o.db_k;
@@ -316,6 +318,9 @@ void setupPlan(CLI::App& app) {
   cmd->add_flag("--retime-windows", opts->retime_windows,
                 "ARC, E-ARC: retime each mobile robot of a local answer along its route inside its window "
                 "before the splice (shorter plans on some worlds, more time; stats window_retimed)");
+  cmd->add_flag("--restamp-coupled", opts->restamp_coupled,
+                "ARC, E-ARC: time-stamp each coupled answer of mobile robots robot by robot, not in lockstep "
+                "(shorter plans, more time; stats coupled_restamped)");
   cmd->add_flag("--compact", opts->compact,
                 "After planning, retime every robot along its own route to leave out the waits it does not "
                 "need and go at full speed where it crept (any method; shorter plans, same routes; stats "

@@ -23,6 +23,7 @@ struct MethodOptions {
   bool crowd = true;
   bool compact = false;
   bool retime_windows = false;
+  bool restamp_coupled = false;
   double refine = 0.0;
   bool shadow_decoupled = false;
   std::optional<int> db_k, db_repair_max;

@@ -38,6 +38,9 @@ struct ArcStats {
   // Coupled answers time-stamped robot by robot (of them, around the robots
   // outside the group too), left in lockstep, and the arrival steps saved.
   std::optional<std::int64_t> coupled_restamped, coupled_restamped_around, coupled_lockstep, restamped_steps;
+  // The valid plan compacted (ArcSettings::compact_passes): steps saved, seconds.
+  std::optional<std::int64_t> compacted_steps;
+  std::optional<double> compacted_s;
 };
 
 // E-ARC's database solver (top-level keys db_*; db_hits is PlanStats's).

@@ -65,6 +65,10 @@ struct ArcSettings {
   // Local solvers hold robots parked at their goals first (DecoupledSettings::
   // parked_detour, CoupledSolverSettings::parked_held).
   bool hold_parked = false;
+  // The valid plan's mobile robots compacted (compactRobots, compact.hpp):
+  // passes (0: none) and states searched per route position.
+  int compact_passes = 1;
+  int compact_states = 8;
 };
 
 // The experience databases: E-ARC's store and Lightning's file.
