@@ -1,5 +1,7 @@
 #include "earc/planning/arc.hpp"
 
+#include "arc_run.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -81,157 +83,7 @@ double budgetScale(int level, int max_expansions) {
 
 nlohmann::json boxJson(const geo::Aabb& b) { return {{b.lo.x, b.lo.y}, {b.hi.x, b.hi.y}}; }
 
-class ArcRun {
- public:
-  ArcRun(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
-         std::vector<std::unique_ptr<SubproblemSolver>> hierarchy)
-      : scenario_(scenario), settings_(settings), context_(context), hierarchy_(std::move(hierarchy)),
-        world_(scenario), owned_models_(makeRobotModels(scenario)),
-        deadline_(Deadline(settings.time_limit_s).withWorkBudgets(settings.work_budgets).stoppedBy(context.stop)) {
-    for (const auto& m : owned_models_) models_.push_back(m.get());
-  }
-
-  PlanResult run();
-
- private:
-  bool resolve(const Conflict& c, std::size_t max_robots);
-  std::optional<bool> handOverJam(const Conflict& c, const std::vector<int>& robots);
-  std::size_t firstJamSize(std::size_t conflict_robots) const;
-  std::optional<int> conflictsWithResolved(const Subproblem& sub, const LocalSolution& local);
-  void leaveOutGroupWaits(const Subproblem& sub, const LocalSolution& local);
-  void traceEvent(nlohmann::json ev) {
-    if (settings_.trace) events_.push_back(std::move(ev));
-  }
-  void report(std::atomic<int> PlanProgress::*field, int value) {
-    if (context_.progress) (context_.progress->*field).store(value, std::memory_order_relaxed);
-  }
-
-  const Scenario& scenario_;
-  const PlannerSettings& settings_;
-  const PlanContext& context_;
-  std::vector<std::unique_ptr<SubproblemSolver>> hierarchy_;
-  CollisionWorld world_;
-  std::vector<std::shared_ptr<const RobotModel>> owned_models_;
-  std::vector<const RobotModel*> models_;
-  Deadline deadline_;
-  bool whole_problem_failed_ = false;
-  std::vector<Path> paths_;
-  std::vector<ResolvedSpan> spans_;
-  std::unique_ptr<RoadmapSet> roadmaps_;
-  nlohmann::json events_ = nlohmann::json::array();
-  // Statistics.
-  int conflicts_ = 0;
-  int expansions_ = 0;
-  int merged_ = 0;
-  int subproblem_id_ = 0;
-  std::map<std::string, std::int64_t> by_solver_;
-  std::map<std::string, std::int64_t> by_size_;
-  std::map<std::string, double> solver_time_;
-  std::set<FailureCause> failures_;
-  std::size_t last_t_start_ = 0;
-  ConflictRecurrence recurrence_;
-  int cap_raised_ = 0;
-  // Jams handed to the crowd solver (handOverJam).
-  bool crowd_ok_ = false;
-  std::vector<int> jam_group_;
-  std::size_t jam_size_ = 0;
-  int conflicts_at_handover_ = 0;
-  int capped_since_handover_ = 0;
-  std::size_t jam_conflicts_since_handover_ = 0;
-  std::vector<CrowdHandover> handovers_;
-  double crowd_s_ = 0.0;
-  // A jam planned with every robot in it, with --refine: the crowd
-  // solver's run, whose lattice refinement is not part of the first plan.
-  std::optional<LacamStats> whole_crowd_;
-  double lattice_s_ = 0.0;
-  Stopwatch plan_clock_;
-  const double plan_work0_ = workSecondsDone();
-  std::int64_t waits_left_out_ = 0;
-  std::int64_t window_retimed_ = 0;
-  std::int64_t restamped_ = 0, restamped_around_ = 0, lockstep_ = 0, restamped_steps_ = 0;
-};
-
-// A jam: ARC's local solvers failed on a conflict's subproblem through
-// kJamLevel window levels, or since the last jam kJamConflictsPerRobot
-// conflicts a robot came and went, kJamCappedGroups conflicts' groups
-// grew to the merge cap, or a thirty-second of the robots' count of
-// conflicts (at least kJamMinRecurrences) involved the last jam's robots.
-// Its robots, the last jam's and those whose paths pass nearest are
-// planned together by the crowd solver from their starts to their goals,
-// the others left out; what their new paths meet is resolved as any
-// conflict. The first jam takes at least a quarter of the robots, each
-// later one kJamGrowth times the last one's, so a crowd that keeps
-// jamming is planned whole after a few. In a fleet whose first jam would
-// be half of it or more, only a conflict that failed every level is one.
-constexpr int kJamLevel = 1;
-constexpr double kJamConflictsPerRobot = 3.0;
-constexpr int kJamCappedGroups = 8;
-constexpr std::size_t kJamMinRecurrences = 4;
-constexpr std::size_t kFirstJam = 16;
-constexpr std::size_t kJamGrowth = 4;
-constexpr double kJamMinBudgetS = 0.25;
-
-std::size_t ArcRun::firstJamSize(std::size_t conflict_robots) const {
-  return std::min(std::max({kFirstJam, 4 * conflict_robots, paths_.size() / 4}), paths_.size());
-}
-
-std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int>& robots) {
-  Stopwatch sw;
-  jam_size_ = jam_size_ == 0 ? firstJamSize(robots.size()) : std::min(jam_size_ * kJamGrowth, paths_.size());
-  std::vector<int> group = jamGroup(paths_, robots, jam_group_, c.place, jam_size_);
-  std::vector<std::vector<double>> starts, goals;
-  for (int r : group) {
-    starts.push_back(scenario_.robots[static_cast<std::size_t>(r)].start);
-    goals.push_back(scenario_.robots[static_cast<std::size_t>(r)].goal);
-  }
-  // A jam may take as long as the plan has taken so far: the crowd
-  // solver answers a jam it can solve in well under that, and one stuck
-  // on a lattice that does not suit these robots (a dense few box robots)
-  // must not take ARC's time.
-  // With --deterministic, "so far" is counted in work too.
-  const double so_far = deadline_.countsWork() ? workSecondsDone() - plan_work0_ : plan_clock_.seconds();
-  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, so_far));
-  // Each jam's plan is polished as part of the first plan. A jam of every
-  // robot is the whole plan: with --refine it is shortened on the crowd
-  // solver's roadmap, as --method lacam does, and that time is
-  // refinement's (plan.cpp's refineResult reads stats.lacam).
-  CrowdOptions options;
-  options.polish = true;
-  if (group.size() == paths_.size()) options.refine_s = settings_.post.refine_s;
-  options.refine_deadline = &deadline_;
-  CrowdOutcome out = planCrowd(world_, models_, group, starts, goals, budget,
-                               splitSeed(settings_.seed, 5000 + static_cast<std::uint64_t>(handovers_.size())),
-                               options);
-  const double lattice_s = out.stats.lattice_refine ? out.stats.lattice_refine->s.value_or(0.0) : 0.0;
-  if (out.paths && lattice_s > 0) {
-    whole_crowd_ = out.stats;
-    lattice_s_ += lattice_s;
-  }
-  const double jam_s = sw.seconds() - lattice_s;
-  crowd_s_ += jam_s;
-  nlohmann::json ev = {{"type", "jam"}, {"conflict", conflicts_ - 1}, {"robots", group.size()},
-                       {"solved", out.paths.has_value()}, {"time_s", jam_s}};
-  if (!out.why.empty()) ev["detail"] = out.why;
-  handovers_.push_back({static_cast<std::int64_t>(group.size()), out.paths.has_value(), jam_s});
-  traceEvent(ev);
-  if (!out.paths) {
-    if (deadline_.expired()) return false;
-    crowd_ok_ = false;  // the lattice cannot serve these robots: ARC goes on alone
-    return std::nullopt;
-  }
-  for (std::size_t i = 0; i < group.size(); ++i) paths_[static_cast<std::size_t>(group[i])] = std::move((*out.paths)[i]);
-  std::erase_if(spans_, [&](const ResolvedSpan& s) {
-    for (int r : s.robots)
-      if (std::binary_search(group.begin(), group.end(), r)) return true;
-    return false;
-  });
-  jam_group_ = std::move(group);
-  conflicts_at_handover_ = conflicts_;
-  capped_since_handover_ = 0;
-  jam_conflicts_since_handover_ = 0;
-  last_t_start_ = 0;
-  return true;
-}
+}  // namespace
 
 void ArcRun::leaveOutGroupWaits(const Subproblem& sub, const LocalSolution& local) {
   // A local solution's paths share one length, so a robot that reaches its
@@ -546,8 +398,6 @@ PlanResult ArcRun::run() {
   if (settings_.trace) result.trace = {{"format", "earc.trace.v1"}, {"events", events_}};
   return result;
 }
-
-}  // namespace
 
 PlanResult runArc(const Scenario& scenario, const PlannerSettings& settings, const PlanContext& context,
                   std::vector<std::unique_ptr<SubproblemSolver>> hierarchy) {
