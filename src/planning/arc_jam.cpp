@@ -36,9 +36,7 @@ std::optional<bool> ArcRun::handOverJam(const Conflict& c, const std::vector<int
   // solver answers a jam it can solve in well under that, and one stuck
   // on a lattice that does not suit these robots (a dense few box robots)
   // must not take ARC's time.
-  // With --deterministic, "so far" is counted in work too.
-  const double so_far = deadline_.countsWork() ? workSecondsDone() - plan_work0_ : plan_clock_.seconds();
-  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, so_far));
+  const Deadline budget = deadline_.capped(std::max(kJamMinBudgetS, soFar()));
   // Each jam's plan is polished as part of the first plan. A jam of every
   // robot is the whole plan: with --refine it is shortened on the crowd
   // solver's roadmap, as --method lacam does, and that time is

@@ -26,6 +26,8 @@ constexpr std::size_t kJamMinRecurrences = 4;
 constexpr std::size_t kFirstJam = 16;
 constexpr std::size_t kJamGrowth = 4;
 constexpr double kJamMinBudgetS = 0.25;
+// The final compaction pass's share of the plan's time so far, at most.
+constexpr double kCompactShare = 0.25;
 
 // One plan of ARC. Not thread-safe; used once.
 class ArcRun {
@@ -49,6 +51,8 @@ class ArcRun {
   void traceEvent(nlohmann::json ev) {
     if (settings_.trace) events_.push_back(std::move(ev));
   }
+  // The plan's time so far: work done with --deterministic, else seconds.
+  double soFar() const { return deadline_.countsWork() ? workSecondsDone() - plan_work0_ : plan_clock_.seconds(); }
   void report(std::atomic<int> PlanProgress::*field, int value) {
     if (context_.progress) (context_.progress->*field).store(value, std::memory_order_relaxed);
   }

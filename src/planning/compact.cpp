@@ -45,6 +45,7 @@ class InstantStates {
     const std::size_t slot = k % slots_;
     double* out = q_.data() + slot * width_;
     if (tag_[slot] != k) {
+      countWork(models_.size());  // one state of each robot: a cache miss costs all of them
       for (std::size_t r = 0; r < models_.size(); ++r) fill(r, k, out);
       tag_[slot] = k;
     }
@@ -54,6 +55,7 @@ class InstantStates {
 
   // Robot r's path changed: its states in the kept slots again.
   void refresh(std::size_t r) {
+    countWork(slots_);
     for (std::size_t slot = 0; slot < slots_; ++slot)
       if (tag_[slot] != kNoInstant) fill(r, tag_[slot], q_.data() + slot * width_);
   }
@@ -242,8 +244,34 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
   const std::size_t slack = arrival - 1 - last;
   if (last + 1 > (std::size_t{1} << 30) / (slack + 1)) return std::nullopt;  // a table of 128 MiB or more
   std::vector<bool> seen((last + 1) * (slack + 1), false);
+  countWork(seen.size() >> 12);  // the table's clearing, about a body per 4096 bits
   // Its reach per chunk: at step t it stands at a route position from
-  // t - slack to t, and past the arrival it is not searched.
+  // t - slack to t, and past the arrival it is not searched. Each chunk's
+  // window is the union of the route's blocks of kBoxSteps states that
+  // cover those positions (a sparse table of unions: two look-ups), a
+  // box no smaller than the positions' own: with a long route and much
+  // slack, boxing every position per chunk cost more than the search.
+  const std::size_t blocks = last / kBoxSteps + 1;
+  std::vector<std::vector<geo::Aabb>> unions(1);
+  unions[0].reserve(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) unions[0].push_back(pathReach(model, route, b * kBoxSteps, (b + 1) * kBoxSteps));
+  countWork(last + 1);
+  for (std::size_t w = 1; (std::size_t{1} << w) <= blocks; ++w) {
+    const std::vector<geo::Aabb>& below = unions[w - 1];
+    std::vector<geo::Aabb> level(blocks + 1 - (std::size_t{1} << w));
+    for (std::size_t b = 0; b < level.size(); ++b) {
+      level[b] = below[b];
+      level[b].expand(below[b + (std::size_t{1} << (w - 1))]);
+    }
+    unions.push_back(std::move(level));
+  }
+  auto blocksReach = [&](std::size_t b0, std::size_t b1) {  // blocks b0..b1, inclusive
+    std::size_t w = 0;
+    while ((std::size_t{2} << w) <= b1 - b0 + 1) ++w;
+    geo::Aabb box = unions[w][b0];
+    box.expand(unions[w][b1 + 1 - (std::size_t{1} << w)]);
+    return box;
+  };
   const std::size_t chunks = (2 * arrival) / kBoxInstants + 1;
   window_.assign(chunks, geo::Aabb{});
   chunk_near_.assign(chunks, {});
@@ -251,7 +279,7 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t hi = std::min(last, (c + 1) * kBoxSteps);
     const std::size_t lo = std::min(hi, c * kBoxSteps > slack ? c * kBoxSteps - slack : 0);
-    window_[c] = pathReach(model, route, lo, hi + 1);
+    window_[c] = blocksReach(lo / kBoxSteps, hi / kBoxSteps);
   }
   auto mark = [&](std::size_t i, std::size_t t) {
     const std::size_t at = i * (slack + 1) + (t - i);
