@@ -552,6 +552,8 @@ std::string requireOutputExtension(const NamedPath& output, const std::vector<st
   throw InputError(output.path, output.name, "must end in " + names + ": the extension says the file's format");
 }
 
+std::string dumpCompact(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
+
 void appendJsonDouble(std::string& out, double v) {
   if (!std::isfinite(v)) {
     out += "null";

@@ -96,9 +96,6 @@ Solution solutionFromJson(const json& doc, const Scenario* scenario, const std::
 
 namespace {
 
-// Planner-made text (stats, names) could hold invalid UTF-8: replaced, not thrown on.
-std::string dumpReplacing(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
-
 // One state as a JSON array of numbers, as nlohmann::json prints it.
 void appendState(std::string& out, const Path& path, std::size_t t) {
   out += '[';
@@ -148,7 +145,7 @@ void appendSolutionPaths(std::string& out, const Solution& s) {
   out += '[';
   for (std::size_t i = 0; i < s.paths.size(); ++i) {
     if (i) out += ',';
-    out += "{\"robot\":" + dumpReplacing(s.robot_names[i]) + ",\"states\":[";
+    out += "{\"robot\":" + dumpCompact(s.robot_names[i]) + ",\"states\":[";
     for (std::size_t t = 0; t < s.paths[i].size(); ++t) {
       if (t) out += ',';
       appendState(out, s.paths[i], t);
@@ -167,7 +164,8 @@ void saveSolution(const std::string& path, const Solution& s) {
   // One state per line: readable and diffable, yet compact for long paths.
   // Written straight from the paths: a plan of many robots holds millions
   // of numbers, and a JSON document of them took longer than the plan.
-  const auto dump = dumpReplacing;
+  // Planner-made text (stats, names) could hold invalid UTF-8: replaced, not thrown on.
+  const auto dump = dumpCompact;
   std::string text = "{\n";
   const std::pair<const char*, json> head[] = {{"format", kSolutionFormat},
                                                 {"scenario", s.scenario},

@@ -29,7 +29,7 @@ namespace {
 
 // Error messages quote what the client sent, which need not be UTF-8:
 // never let the reply itself fail to encode.
-std::string dumpLine(const json& doc) { return doc.dump(-1, ' ', false, json::error_handler_t::replace); }
+std::string dumpLine(const json& doc) { return dumpCompact(doc); }
 
 // obj printed as dumpLine prints it, with one more member `key` whose
 // value extra(text) appends (nlohmann::json prints members in key order).

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "earc/io/json_io.hpp"
 #include "earc/view/viewer.hpp"
 
 namespace earc::view {
@@ -28,7 +29,7 @@ std::string_view asset(std::string_view name) {
 // occurs inside JSON strings, where \u003c means the same, so no "</script>"
 // or "<!--" in a robot's name can end the element early.
 std::string scriptSafeJson(const nlohmann::json& data) {
-  const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  const std::string text = dumpCompact(data);
   std::string out;
   out.reserve(text.size());
   for (char c : text) {

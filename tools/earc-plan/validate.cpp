@@ -81,7 +81,7 @@ int runValidate(const ValidateOptions& opt, std::ostream& out) {
         warnings.push_back(earc::inputMessage(opt.scenario, "", warning));
       nlohmann::json report = reportToJson(sc, rep);
       report["warnings"] = std::move(warnings);
-      out << report.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+      out << earc::dumpCompact(report) << "\n";
     } else {
       earc::printInputWarnings(read_warnings);
       if (const std::string line = earc::passThroughWarningLine(sc, opt.scenario, "earc-plan"); !line.empty())
@@ -93,9 +93,7 @@ int runValidate(const ValidateOptions& opt, std::ostream& out) {
     // The one-line message goes to stderr (runProgram); --json readers
     // still get a verdict on stdout.
     if (opt.json)
-      out << nlohmann::json{{"valid", false}, {"malformed", true}, {"error", e.what()}}.dump(
-                 -1, ' ', false, nlohmann::json::error_handler_t::replace)
-          << "\n";
+      out << earc::dumpCompact({{"valid", false}, {"malformed", true}, {"error", e.what()}}) << "\n";
     throw;
   }
 }

@@ -32,6 +32,9 @@ std::string readTextFile(const std::string& path);
 // nlohmann::json prints a double ("2.0", "0.05", "1e-07"); "null" when not
 // finite. Thread-safe.
 void appendJsonDouble(std::string& out, double v);
+// v as compact JSON text (nlohmann::json's dump()), invalid UTF-8 in its
+// strings replaced rather than thrown on. Thread-safe.
+std::string dumpCompact(const nlohmann::json& v);
 // Writes atomically (temporary file, fsync, rename), through a symbolic link,
 // directly to a device or FIFO. Throws InputError naming the file on failure.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
