@@ -82,9 +82,23 @@ class LatticeLns {
   int tried() const { return tried_; }
   int kept() const { return kept_; }
   long long expansions() const { return search_.expansions(); }
+  const std::vector<RefinePoint>& history() const { return history_; }
+
+  // A point of the cost history; with `always` false, only once 0.5% was
+  // saved since the last one (a hundred points or so per phase).
+  void record(const Deadline& deadline, bool always) {
+    if (!always && !history_.empty() && 200 * (history_.back().sum_of_costs - soc_) < history_.back().sum_of_costs) return;
+    long long makespan = 0;
+    for (const auto& p : paths_) makespan = std::max(makespan, pathCost(p));
+    history_.push_back({sincePhaseBegan(deadline), soc_, makespan});
+  }
 
   // Each delayed robot alone, most delayed first, by the cheaper search.
   void firstRound(const Deadline& deadline, int& rounds, int max_rounds) {
+    work0_ = t_work_done;
+    began_ = std::chrono::steady_clock::now();
+    record(deadline, true);
+    history_.back().s = 0.0;
     std::vector<int> order(static_cast<std::size_t>(n_));
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delay(a) > delay(b); });
@@ -114,6 +128,13 @@ class LatticeLns {
   double now(const Deadline& deadline) const {
     if (deadline.countsWork()) return workSecondsDone();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+  }
+
+  // Seconds since firstRound began on now()'s clock; counted work as a
+  // difference of counts, so that the same run gives the same figure.
+  double sincePhaseBegan(const Deadline& deadline) const {
+    if (deadline.countsWork()) return static_cast<double>(t_work_done - work0_) / kWorkPerBudgetSecond;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
   }
 
   long long delay(int i) const {
@@ -251,6 +272,7 @@ class LatticeLns {
     if (ok) {
       soc_ += after - before;
       ++kept_;
+      if (after < before) record(deadline, false);
       return before - after;
     }
     for (int i : placed) occ_.remove(i);
@@ -273,6 +295,9 @@ class LatticeLns {
   int last_delayed_ = -1;
   const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
   double last_ = 0.0;
+  std::uint64_t work0_ = 0;  // t_work_done when firstRound began
+  std::chrono::steady_clock::time_point began_;
+  std::vector<RefinePoint> history_;
   std::vector<int> junctions_;
   std::vector<int> rank_;  // throughJunction's area, per vertex
   std::array<double, kDraws.size() * kWeights.size()> weights_{};
@@ -288,7 +313,9 @@ LatticeRefineStats runLns(const Space& space, const CrowdRoadmap& rm, std::vecto
   int rounds = 0;
   lns.firstRound(deadline, rounds, max_rounds);
   while (rounds++ < max_rounds && !deadline.expired() && rm.robotCount() > 1) lns.step(deadline);
+  if (lns.history().back().sum_of_costs != lns.sumOfCosts()) lns.record(deadline, true);
   LatticeRefineStats stats;
+  stats.history = lns.history();
   stats.sum_of_costs_before = first;
   stats.sum_of_costs_after = lns.sumOfCosts();
   stats.neighbourhoods = lns.tried();
