@@ -31,10 +31,18 @@ long long pathCost(const lattice::VertexPath& p) { return static_cast<long long>
 // robot's way, the robots through a junction of the roadmap, or any.
 enum class Draw { kInTheWay, kJunction, kRandom };
 constexpr std::array<Draw, 3> kDraws = {Draw::kInTheWay, Draw::kJunction, Draw::kRandom};
-// How greedily each robot is replanned: shortest ways, or weighted A*,
-// which on maps with many equally short ways (a warehouse's aisles) finds
-// a way as good as the old one in a fraction of the expansions.
-constexpr std::array<double, 2> kWeights = {1.0, 1.5};
+// How each robot is replanned: shortest ways, or weighted A*, which on
+// maps with many equally short ways (a warehouse's aisles) finds a way as
+// good as the old one in a fraction of the expansions. In a dense crowd
+// the shortest ways break ties towards staying off other robots' goals
+// before they arrive: a robot whose goal others cross waits for the last.
+struct SearchKind {
+  double weight;
+  bool avoid_goals;
+};
+constexpr std::array<SearchKind, 2> kSearches = {{{1.0, true}, {1.5, false}}};
+// A crowd is dense from one robot per this many roadmap vertices.
+constexpr int kDenseVertices = 5;
 constexpr std::size_t kGroupSize = 4;
 
 // Where the search runs: the roadmap's synchronous steps, or ticks with
@@ -73,6 +81,7 @@ class LatticeLns {
       : space_(space), rm_(rm), paths_(paths), occ_(space.base(), paths), search_(space.base()), rng_(splitSeed(seed, 11)) {
     n_ = rm.robotCount();
     for (const auto& p : paths_) soc_ += pathCost(p);
+    dense_ = kDenseVertices * n_ >= rm.vertexCount();
     for (int v = 0; v < rm.vertexCount(); ++v)
       if (rm.neighbours(v).size() >= 3) junctions_.push_back(v);
     weights_.fill(1.0);
@@ -104,7 +113,7 @@ class LatticeLns {
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delay(a) > delay(b); });
     for (int i : order) {
       if (rounds++ >= max_rounds || deadline.expired()) break;
-      if (delay(i) > 0) replan({i}, deadline, kWeights.back());
+      if (delay(i) > 0) replan({i}, deadline, kSearches[1]);
     }
     last_ = now(deadline);  // the first step's gain is per its own time
   }
@@ -113,8 +122,8 @@ class LatticeLns {
   void step(const Deadline& deadline) {
     const std::size_t arm = pickArm();
     std::vector<int> group =
-        drawGroup(kDraws[arm / kWeights.size()], std::min<std::size_t>(kGroupSize, static_cast<std::size_t>(n_)));
-    const long long gain = replan(group, deadline, kWeights[arm % kWeights.size()]);
+        drawGroup(kDraws[arm / kSearches.size()], std::min<std::size_t>(kGroupSize, static_cast<std::size_t>(n_)));
+    const long long gain = replan(group, deadline, kSearches[arm % kSearches.size()]);
     const double t = now(deadline);
     const double per = 1e-3 * static_cast<double>(gain) / std::max(1e-9, t - last_);
     last_ = t;
@@ -241,7 +250,7 @@ class LatticeLns {
   // Replans `group` one after another (random order) and keeps the new
   // paths when they cost no more (equal ones let the search move along a
   // plateau); else puts the old ones back. Returns the steps saved.
-  long long replan(const std::vector<int>& group, const Deadline& deadline, double weight) {
+  long long replan(const std::vector<int>& group, const Deadline& deadline, SearchKind kind) {
     std::vector<lattice::VertexPath> old;
     for (int i : group) old.push_back(paths_[static_cast<std::size_t>(i)]);
     ++tried_;
@@ -260,7 +269,7 @@ class LatticeLns {
       // What the robots still to plan need at least: a robot's way may
       // take what the group had, less that.
       rest -= space_.distance(i, rm_.start(i));
-      auto p = search_.search(occ_, i, deadline, before - after - rest, searchCap(rm_), weight);
+      auto p = search_.search(occ_, i, deadline, before - after - rest, searchCap(rm_), kind.weight, kind.avoid_goals && dense_);
       if (!p || (after += pathCost(*p)) > before) {
         ok = false;
         break;
@@ -290,6 +299,7 @@ class LatticeLns {
   typename Space::Search search_;
   std::mt19937_64 rng_;
   int n_ = 0;
+  bool dense_ = false;  // kDenseVertices
   long long soc_ = 0;
   int tried_ = 0, kept_ = 0;
   int last_delayed_ = -1;
@@ -300,7 +310,7 @@ class LatticeLns {
   std::vector<RefinePoint> history_;
   std::vector<int> junctions_;
   std::vector<int> rank_;  // throughJunction's area, per vertex
-  std::array<double, kDraws.size() * kWeights.size()> weights_{};
+  std::array<double, kDraws.size() * kSearches.size()> weights_{};
 };
 
 // The search itself, with the figures refineOnLattice and
