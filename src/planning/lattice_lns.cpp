@@ -31,10 +31,18 @@ long long pathCost(const lattice::VertexPath& p) { return static_cast<long long>
 // robot's way, the robots through a junction of the roadmap, or any.
 enum class Draw { kInTheWay, kJunction, kRandom };
 constexpr std::array<Draw, 3> kDraws = {Draw::kInTheWay, Draw::kJunction, Draw::kRandom};
-// How greedily each robot is replanned: shortest ways, or weighted A*,
-// which on maps with many equally short ways (a warehouse's aisles) finds
-// a way as good as the old one in a fraction of the expansions.
-constexpr std::array<double, 2> kWeights = {1.0, 1.5};
+// How each robot is replanned: shortest ways, or weighted A*, which on
+// maps with many equally short ways (a warehouse's aisles) finds a way as
+// good as the old one in a fraction of the expansions. In a dense crowd
+// the shortest ways break ties towards staying off other robots' goals
+// before they arrive: a robot whose goal others cross waits for the last.
+struct SearchKind {
+  double weight;
+  bool avoid_goals;
+};
+constexpr std::array<SearchKind, 2> kSearches = {{{1.0, true}, {1.5, false}}};
+// A crowd is dense from one robot per this many roadmap vertices.
+constexpr int kDenseVertices = 5;
 constexpr std::size_t kGroupSize = 4;
 
 // Where the search runs: the roadmap's synchronous steps, or ticks with
@@ -73,6 +81,7 @@ class LatticeLns {
       : space_(space), rm_(rm), paths_(paths), occ_(space.base(), paths), search_(space.base()), rng_(splitSeed(seed, 11)) {
     n_ = rm.robotCount();
     for (const auto& p : paths_) soc_ += pathCost(p);
+    dense_ = kDenseVertices * n_ >= rm.vertexCount();
     for (int v = 0; v < rm.vertexCount(); ++v)
       if (rm.neighbours(v).size() >= 3) junctions_.push_back(v);
     weights_.fill(1.0);
@@ -82,15 +91,29 @@ class LatticeLns {
   int tried() const { return tried_; }
   int kept() const { return kept_; }
   long long expansions() const { return search_.expansions(); }
+  const std::vector<RefinePoint>& history() const { return history_; }
+
+  // A point of the cost history; with `always` false, only once 0.5% was
+  // saved since the last one (a hundred points or so per phase).
+  void record(const Deadline& deadline, bool always) {
+    if (!always && !history_.empty() && 200 * (history_.back().sum_of_costs - soc_) < history_.back().sum_of_costs) return;
+    long long makespan = 0;
+    for (const auto& p : paths_) makespan = std::max(makespan, pathCost(p));
+    history_.push_back({sincePhaseBegan(deadline), soc_, makespan});
+  }
 
   // Each delayed robot alone, most delayed first, by the cheaper search.
   void firstRound(const Deadline& deadline, int& rounds, int max_rounds) {
+    work0_ = t_work_done;
+    began_ = std::chrono::steady_clock::now();
+    record(deadline, true);
+    history_.back().s = 0.0;
     std::vector<int> order(static_cast<std::size_t>(n_));
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delay(a) > delay(b); });
     for (int i : order) {
       if (rounds++ >= max_rounds || deadline.expired()) break;
-      if (delay(i) > 0) replan({i}, deadline, kWeights.back());
+      if (delay(i) > 0) replan({i}, deadline, kSearches[1]);
     }
     last_ = now(deadline);  // the first step's gain is per its own time
   }
@@ -99,8 +122,8 @@ class LatticeLns {
   void step(const Deadline& deadline) {
     const std::size_t arm = pickArm();
     std::vector<int> group =
-        drawGroup(kDraws[arm / kWeights.size()], std::min<std::size_t>(kGroupSize, static_cast<std::size_t>(n_)));
-    const long long gain = replan(group, deadline, kWeights[arm % kWeights.size()]);
+        drawGroup(kDraws[arm / kSearches.size()], std::min<std::size_t>(kGroupSize, static_cast<std::size_t>(n_)));
+    const long long gain = replan(group, deadline, kSearches[arm % kSearches.size()]);
     const double t = now(deadline);
     const double per = 1e-3 * static_cast<double>(gain) / std::max(1e-9, t - last_);
     last_ = t;
@@ -114,6 +137,13 @@ class LatticeLns {
   double now(const Deadline& deadline) const {
     if (deadline.countsWork()) return workSecondsDone();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+  }
+
+  // Seconds since firstRound began on now()'s clock; counted work as a
+  // difference of counts, so that the same run gives the same figure.
+  double sincePhaseBegan(const Deadline& deadline) const {
+    if (deadline.countsWork()) return static_cast<double>(t_work_done - work0_) / kWorkPerBudgetSecond;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
   }
 
   long long delay(int i) const {
@@ -220,7 +250,7 @@ class LatticeLns {
   // Replans `group` one after another (random order) and keeps the new
   // paths when they cost no more (equal ones let the search move along a
   // plateau); else puts the old ones back. Returns the steps saved.
-  long long replan(const std::vector<int>& group, const Deadline& deadline, double weight) {
+  long long replan(const std::vector<int>& group, const Deadline& deadline, SearchKind kind) {
     std::vector<lattice::VertexPath> old;
     for (int i : group) old.push_back(paths_[static_cast<std::size_t>(i)]);
     ++tried_;
@@ -239,7 +269,7 @@ class LatticeLns {
       // What the robots still to plan need at least: a robot's way may
       // take what the group had, less that.
       rest -= space_.distance(i, rm_.start(i));
-      auto p = search_.search(occ_, i, deadline, before - after - rest, searchCap(rm_), weight);
+      auto p = search_.search(occ_, i, deadline, before - after - rest, searchCap(rm_), kind.weight, kind.avoid_goals && dense_);
       if (!p || (after += pathCost(*p)) > before) {
         ok = false;
         break;
@@ -251,6 +281,7 @@ class LatticeLns {
     if (ok) {
       soc_ += after - before;
       ++kept_;
+      if (after < before) record(deadline, false);
       return before - after;
     }
     for (int i : placed) occ_.remove(i);
@@ -268,14 +299,18 @@ class LatticeLns {
   typename Space::Search search_;
   std::mt19937_64 rng_;
   int n_ = 0;
+  bool dense_ = false;  // kDenseVertices
   long long soc_ = 0;
   int tried_ = 0, kept_ = 0;
   int last_delayed_ = -1;
   const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
   double last_ = 0.0;
+  std::uint64_t work0_ = 0;  // t_work_done when firstRound began
+  std::chrono::steady_clock::time_point began_;
+  std::vector<RefinePoint> history_;
   std::vector<int> junctions_;
   std::vector<int> rank_;  // throughJunction's area, per vertex
-  std::array<double, kDraws.size() * kWeights.size()> weights_{};
+  std::array<double, kDraws.size() * kSearches.size()> weights_{};
 };
 
 // The search itself, with the figures refineOnLattice and
@@ -288,7 +323,9 @@ LatticeRefineStats runLns(const Space& space, const CrowdRoadmap& rm, std::vecto
   int rounds = 0;
   lns.firstRound(deadline, rounds, max_rounds);
   while (rounds++ < max_rounds && !deadline.expired() && rm.robotCount() > 1) lns.step(deadline);
+  if (lns.history().back().sum_of_costs != lns.sumOfCosts()) lns.record(deadline, true);
   LatticeRefineStats stats;
+  stats.history = lns.history();
   stats.sum_of_costs_before = first;
   stats.sum_of_costs_after = lns.sumOfCosts();
   stats.neighbourhoods = lns.tried();

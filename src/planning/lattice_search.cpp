@@ -103,8 +103,11 @@ bool Occupancy::blocked(int i, int u, int v, std::size_t t) const {
 }
 
 void BucketQueue::clear() {
-  for (auto& b : buckets_) b.clear();
+  // Buckets below lowest_ are empty already; none above highest_ was used.
+  if (count_ > 0)
+    for (std::size_t f = lowest_; f <= highest_; ++f) buckets_[f].clear();
   lowest_ = std::numeric_limits<std::size_t>::max();
+  highest_ = 0;
   count_ = 0;
 }
 
@@ -112,6 +115,7 @@ void BucketQueue::push(std::size_t f, int node) {
   if (f >= buckets_.size()) buckets_.resize(f + 1);
   buckets_[f].push_back(node);
   lowest_ = std::min(lowest_, f);
+  highest_ = std::max(highest_, f);
   ++count_;
 }
 
@@ -124,7 +128,7 @@ int BucketQueue::pop() {
 }
 
 std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
-                                             std::size_t max_expansions, double weight) {
+                                             std::size_t max_expansions, double weight, bool avoid_goals) {
   nodes_.clear();
   open_.clear();
   const auto nv = static_cast<std::size_t>(rm_.vertexCount());
@@ -151,8 +155,15 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
   countWork(occ.horizon() - static_cast<std::size_t>(free_after + 1));
   auto h = [&](int v, long long t) { return std::max<long long>(rm_.distanceToGoal(i, v), free_after + 1 - t); };
   if (h(rm_.start(i), 0) > max_cost) return std::nullopt;
-  nodes_.push_back({rm_.start(i), 0, -1});
-  open_.push(static_cast<std::size_t>(h(rm_.start(i), 0)), 0);
+  // With avoid_goals, among equally good ways the one that spends the
+  // fewest steps on other robots' goals before they arrive comes first.
+  const int levels = avoid_goals ? kGoalLevels : 1;
+  if (goal_of_.empty()) {
+    goal_of_.assign(nv, -1);
+    for (int k = 0; k < rm_.robotCount(); ++k) goal_of_[static_cast<std::size_t>(rm_.goal(k))] = k;
+  }
+  nodes_.push_back({rm_.start(i), 0, -1, 0});
+  open_.push(static_cast<std::size_t>(h(rm_.start(i), 0)) * static_cast<std::size_t>(levels), 0);
   std::size_t expanded = 0;
   while (!open_.empty()) {
     const int k = open_.pop();
@@ -176,9 +187,12 @@ std::optional<VertexPath> StepSearch::search(const Occupancy& occ, int i, const 
       if (n.t + 1 + h(v, n.t + 1) > max_cost) return;
       if (closed_[static_cast<std::size_t>(n.t + 1) * nv + static_cast<std::size_t>(v)] == stamp_) return;
       if (occ.blocked(i, n.v, v, static_cast<std::size_t>(n.t))) return;
-      nodes_.push_back({v, n.t + 1, k});
+      const int owner = goal_of_[static_cast<std::size_t>(v)];
+      const int crossed = n.crossed + (owner >= 0 && owner != i && occ.arrival(owner) > static_cast<std::size_t>(n.t + 1) ? 1 : 0);
+      nodes_.push_back({v, n.t + 1, k, crossed});
       const long long hv = h(v, n.t + 1);
-      open_.push(static_cast<std::size_t>(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv)))),
+      const auto f = static_cast<std::size_t>(n.t + 1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv))));
+      open_.push(f * static_cast<std::size_t>(levels) + static_cast<std::size_t>(std::min(crossed, levels - 1)),
            static_cast<int>(nodes_.size()) - 1);
     };
     consider(n.v);

@@ -42,6 +42,8 @@ class Occupancy {
   std::size_t horizon() const { return rows_; }
   // The robot standing on v at step t; -1 for none.
   int at(int v, std::size_t t) const { return occ_[std::min(t, rows_ - 1) * nv_ + static_cast<std::size_t>(v)]; }
+  // Steps until robot k is at its goal for good, by its path.
+  std::size_t arrival(int k) const { return paths_[static_cast<std::size_t>(k)].size() - 1; }
   // Whether robot i's step u -> v from step t meets anyone in.
   bool blocked(int i, int u, int v, std::size_t t) const;
 
@@ -70,6 +72,9 @@ class Occupancy {
 // The searches' open list: node indices in buckets by f, lowest f first,
 // last in first out within one (the deeper of equally good nodes, so that a
 // search among equally good ways follows one to the goal). Not thread-safe.
+// Sub-levels of f for avoid_goals: steps on others' goals, counted up to this.
+inline constexpr int kGoalLevels = 16;
+
 class BucketQueue {
  public:
   void clear();
@@ -79,17 +84,18 @@ class BucketQueue {
 
  private:
   std::vector<std::vector<int>> buckets_;
-  std::size_t lowest_ = 0, count_ = 0;
+  std::size_t lowest_ = 0, highest_ = 0, count_ = 0;
 };
 
 // Space-time A* for robot i (not in occ) to its goal, heuristic times `weight`
 // (1: shortest), arriving for good by step max_cost; nothing when there is
-// none, after max_expansions or past the deadline. Not thread-safe.
+// none, after max_expansions or past the deadline. With avoid_goals, ties go
+// to the way that stays least on goals of robots not yet arrived. Not thread-safe.
 class StepSearch {
  public:
   explicit StepSearch(const CrowdRoadmap& rm) : rm_(rm) {}
   std::optional<VertexPath> search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
-                                   std::size_t max_expansions, double weight = 1.0);
+                                   std::size_t max_expansions, double weight = 1.0, bool avoid_goals = false);
   long long expansions() const { return expansions_; }
 
  private:
@@ -99,8 +105,10 @@ class StepSearch {
     int v;
     int t;
     int parent;
+    int crossed;  // other robots' goals passed before they arrive
   };
   std::vector<Node> nodes_;
+  std::vector<int> goal_of_;  // per vertex: the robot whose goal it is, or -1
   BucketQueue open_;
   std::uint32_t stamp_ = 0;
   long long expansions_ = 0;

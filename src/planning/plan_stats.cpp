@@ -71,6 +71,7 @@ template <class F> void statsFields(LatticePhaseStats& s, F&& f) {
   f("neighbourhoods", s.neighbourhoods);
   f("kept", s.kept);
   f("expansions", s.expansions);
+  f("history", s.history);
 }
 
 template <class F> void statsFields(LatticeRefineStats& s, F&& f) {

@@ -224,7 +224,7 @@ bool Occupancy::blocked(int i, int u, int a, std::size_t t) const {
 }
 
 std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
-                                           std::size_t max_expansions, double weight) {
+                                           std::size_t max_expansions, double weight, bool avoid_goals) {
   // As lattice::StepSearch, on ticks: buckets by f, deepest first; a move
   // is checked against the others when its node is taken from the open
   // list, not when it is put there (most nodes put are never taken).
@@ -253,8 +253,15 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
   countWork(occ.horizon() - static_cast<std::size_t>(free_after + 1));
   auto h = [&](int v, long long t) { return std::max<long long>(lat_.distance(i, v), free_after + 1 - t); };
   if (h(start, 0) > max_cost) return std::nullopt;
-  nodes_.push_back({start, 0, -1, 0});
-  open_.push(static_cast<std::size_t>(h(start, 0)), 0);
+  // With avoid_goals, among equally good ways the one that spends the
+  // fewest steps on other robots' goals before they arrive comes first.
+  const int levels = avoid_goals ? lattice::kGoalLevels : 1;
+  if (goal_of_.empty()) {
+    goal_of_.assign(nv, -1);
+    for (int r = 0; r < lat_.roadmap().robotCount(); ++r) goal_of_[static_cast<std::size_t>(lat_.roadmap().goal(r))] = r;
+  }
+  nodes_.push_back({start, 0, -1, 0, 0});
+  open_.push(static_cast<std::size_t>(h(start, 0)) * static_cast<std::size_t>(levels), 0);
   std::size_t expanded = 0;
   while (!open_.empty()) {
     const int k = open_.pop();
@@ -281,8 +288,11 @@ std::optional<TickPath> TickSearch::search(const Occupancy& occ, int i, const De
       const long long hv = h(v, t1);
       if (t1 + hv > max_cost) return;
       if (closed_[static_cast<std::size_t>(t1) * nv + static_cast<std::size_t>(v)] == stamp_) return;
-      nodes_.push_back({v, static_cast<int>(t1), k, a});
-      open_.push(static_cast<std::size_t>(t1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv)))),
+      const int owner = goal_of_[static_cast<std::size_t>(v)];
+      const int crossed = n.crossed + (owner >= 0 && owner != i && occ.arrival(owner) > static_cast<std::size_t>(t1) ? 1 : 0);
+      nodes_.push_back({v, static_cast<int>(t1), k, a, crossed});
+      const auto f = static_cast<std::size_t>(t1 + (weight == 1.0 ? hv : static_cast<long long>(weight * static_cast<double>(hv))));
+      open_.push(f * static_cast<std::size_t>(levels) + static_cast<std::size_t>(std::min(crossed, levels - 1)),
            static_cast<int>(nodes_.size()) - 1);
     };
     consider(n.v, 0);

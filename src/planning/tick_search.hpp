@@ -88,6 +88,8 @@ class Occupancy {
   std::size_t horizon() const { return rows_; }
   // The robot standing on v at tick t; -1 for none.
   int at(int v, std::size_t t) const;
+  // Ticks until robot k is at its goal for good, by its path.
+  std::size_t arrival(int k) const { return paths_[static_cast<std::size_t>(k)].size() - 1; }
   // Whether robot i's move of type a from u, begun at tick t, meets anyone in.
   bool blocked(int i, int u, int a, std::size_t t) const;
 
@@ -104,12 +106,12 @@ class Occupancy {
 
 // Space-time A* in ticks for robot i (not in occ) to its goal, heuristic
 // times `weight`, arriving for good by tick max_cost; nothing when there is
-// none, after max_expansions or past the deadline. Not thread-safe.
+// none, after max_expansions or past the deadline; avoid_goals as StepSearch's.
 class TickSearch {
  public:
   explicit TickSearch(const Lattice& lat) : lat_(lat) {}
   std::optional<TickPath> search(const Occupancy& occ, int i, const Deadline& deadline, long long max_cost,
-                                 std::size_t max_expansions, double weight = 1.0);
+                                 std::size_t max_expansions, double weight = 1.0, bool avoid_goals = false);
   long long expansions() const { return expansions_; }
 
  private:
@@ -120,8 +122,10 @@ class TickSearch {
     int t;
     int parent;
     int a;  // the move type from the parent
+    int crossed;  // other robots' goals passed before they arrive
   };
   std::vector<Node> nodes_;
+  std::vector<int> goal_of_;  // per vertex: the robot whose goal it is, or -1
   lattice::BucketQueue open_;
   std::uint32_t stamp_ = 0;
   long long expansions_ = 0;

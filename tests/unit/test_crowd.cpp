@@ -307,6 +307,19 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
     const long long after = latticeSumOfCosts(rm, configs);
     CHECK(st.sum_of_costs_after == after);
     CHECK(after <= last);
+    // The cost history: the start, then lower sums at later times, the end last.
+    REQUIRE(st.history.has_value());
+    const std::vector<RefinePoint>& h = *st.history;
+    REQUIRE(!h.empty());
+    CHECK(h.front().s == 0.0);
+    CHECK(h.front().sum_of_costs == before);
+    CHECK(h.back().sum_of_costs == after);
+    CHECK(h.back().makespan == static_cast<std::int64_t>(configs.size()) - 1);
+    for (std::size_t k = 1; k < h.size(); ++k) {
+      CHECK(h[k].sum_of_costs < h[k - 1].sum_of_costs);
+      CHECK(h[k].s >= h[k - 1].s);
+    }
+    if (after < before) CHECK(h.size() >= 2);
     last = after;
     CHECK(conflictFree(configs));
     for (int i = 0; i < 24; ++i) {

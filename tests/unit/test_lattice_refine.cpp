@@ -174,6 +174,15 @@ TEST_CASE("With counted budgets the lattice refinement is the same run twice, an
   CHECK(la.neighbourhoods > 100);
   CHECK(la.neighbourhoods == lb.neighbourhoods);
   CHECK(la.expansions == lb.expansions);
+  // Its cost history counts work too: the same points, at the same times.
+  REQUIRE(la.history.has_value());
+  REQUIRE(lb.history.has_value());
+  REQUIRE(la.history->size() == lb.history->size());
+  for (std::size_t k = 0; k < la.history->size(); ++k) {
+    CHECK((*la.history)[k].s == (*lb.history)[k].s);
+    CHECK((*la.history)[k].sum_of_costs == (*lb.history)[k].sum_of_costs);
+  }
+  CHECK(la.history->back().s <= *la.work_s);
   // The lattice's share of the budget, counted as work (95% on a grid).
   REQUIRE(la.work_s.has_value());
   CHECK(*la.work_s >= 0.95 * 0.4);

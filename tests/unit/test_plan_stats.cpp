@@ -66,7 +66,8 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
               "lattice_refine": {"sum_of_costs_before": 120, "sum_of_costs_after": 100, "neighbourhoods": 3,
                                  "kept": 1, "expansions": 40, "s": 0.5, "steps_per_tick": 10,
                                  "axis": {"sum_of_costs_before": 70, "sum_of_costs_after": 60,
-                                          "neighbourhoods": 9, "kept": 2, "expansions": 90}}, "steps_per_roadmap_step": 10},
+                                          "neighbourhoods": 9, "kept": 2, "expansions": 90,
+                                          "history": [[0.0, 70, 9], [0.25, 60, 8]]}}, "steps_per_roadmap_step": 10},
     "compact": {"s": 0.01, "passes": 2, "robots_retimed": 1, "steps_saved": 4, "states": 80,
                 "interrupted": false, "makespan_before": 44, "sum_of_costs_before": 94, "rejected": "x"},
     "refine": {"first_sum_of_costs": 94, "first_makespan": 44, "first_s": 1.5, "final_sum_of_costs": 90,
@@ -90,6 +91,8 @@ TEST_CASE("every method's groups round-trip, and keys no field holds stay in ext
   CHECK(s.lacam->lattice_refine->s == 0.5);
   CHECK_FALSE(s.lacam->lattice_refine->work_s);
   CHECK(s.lacam->lattice_refine->axis->neighbourhoods == 9);
+  CHECK(s.lacam->lattice_refine->axis->history.value().at(1).sum_of_costs == 60);
+  CHECK_FALSE(s.lacam->lattice_refine->history);
   CHECK(s.compact->rejected == "x");
   CHECK(s.refine->history.at(1).makespan == 40);
   CHECK(s.db_learn_error == "disk full");

@@ -64,9 +64,18 @@ struct LightningStats {
   std::optional<std::string> lightning_source;  // "recall" or "scratch"
 };
 
-// One phase of a refinement on the crowd solver's roadmap (refineOnLattice).
+// A refinement's cost at a time (written as [s, sum_of_costs, makespan]).
+struct RefinePoint {
+  double s = 0.0;
+  std::int64_t sum_of_costs = 0, makespan = 0;
+};
+
+// One phase of a refinement on the crowd solver's roadmap (refineOnLattice);
+// history: its cost over time (seconds into the phase, counted work when the
+// budget counts work), the start, every 0.5% saved and the end.
 struct LatticePhaseStats {
   std::int64_t sum_of_costs_before = 0, sum_of_costs_after = 0, neighbourhoods = 0, kept = 0, expansions = 0;
+  std::optional<std::vector<RefinePoint>> history;
 };
 
 // A refinement on the crowd solver's roadmap: its last phase; with diagonal
@@ -97,12 +106,6 @@ struct CompactStats {
   bool interrupted = false;
   std::int64_t makespan_before = 0, sum_of_costs_before = 0;
   std::optional<std::string> rejected;  // why the compacted plan was not kept
-};
-
-// A refinement's cost at a time (written as [s, sum_of_costs, makespan]).
-struct RefinePoint {
-  double s = 0.0;
-  std::int64_t sum_of_costs = 0, makespan = 0;
 };
 
 // refinePlan's run (key "refine"); times on the plan's clock.
