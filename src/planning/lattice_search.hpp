@@ -69,12 +69,12 @@ class Occupancy {
   std::vector<Threat> threats_;
 };
 
-// The searches' open list: node indices in buckets by f, lowest f first,
-// last in first out within one (the deeper of equally good nodes, so that a
-// search among equally good ways follows one to the goal). Not thread-safe.
 // Sub-levels of f for avoid_goals: steps on others' goals, counted up to this.
 inline constexpr int kGoalLevels = 16;
 
+// The searches' open list: node indices in buckets by f, lowest f first,
+// last in first out within one (the deeper of equally good nodes, so that a
+// search among equally good ways follows one to the goal). Not thread-safe.
 class BucketQueue {
  public:
   void clear();
