@@ -7,6 +7,11 @@
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 jobs=$(nproc 2>/dev/null || echo 2)
+# Tests run two to a core: most spend much of their time waiting (on
+# services, sockets, PostgreSQL, Chromium, their own time limits), so one
+# job per core leaves the cores part idle. plan_limits, with the tightest
+# wall-clock bounds, runs beside one other test (tests/CMakeLists.txt).
+test_jobs=$((2 * jobs))
 bash "$src/tools/setup.sh" --tests
 
 label_args=()
@@ -22,7 +27,7 @@ took setup
 echo "== Release build and tests"
 bash "$src/tools/build.sh" "$src/build"
 took "Release build"
-(cd "$src/build" && ctest -j"$jobs" --output-on-failure "${label_args[@]}")
+(cd "$src/build" && ctest -j"$test_jobs" --output-on-failure "${label_args[@]}")
 took "Release tests"
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
@@ -41,6 +46,8 @@ took "sanitizer build"
 # The stress, crash and damaged-file loops run the same code paths as in
 # the Release half, in fewer rounds: the sanitizers need a path run, and
 # the Release half keeps the rounds that look for rare interleavings.
+# One job per core here: the instrumented tests keep the cores busy, and
+# at two per core serve_crash's service was killed before its first answer.
 (cd "$src/build-asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
    EARC_STRESS_SECONDS=${EARC_STRESS_SECONDS:-15} EARC_CRASH_KILLS=${EARC_CRASH_KILLS:-20} \

@@ -114,8 +114,10 @@ void SqliteBackend::startCheck() {
     // it gets no time at all, not even while awaitCheck() waits for it:
     // finishCheck then runs the check itself (see there).
     // Best effort: where the policy is refused, the check runs anyway.
+    // Then it yields: the rest of the slice it was started with is the
+    // planner's, not the idle class's, and would be spent on the check.
     sched_param idle{};
-    pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
+    if (pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle) == 0) sched_yield();
     std::exception_ptr error;
     bool passed = false;
     try {

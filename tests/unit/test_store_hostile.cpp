@@ -11,7 +11,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <optional>
 #include <random>
 #include <thread>
@@ -31,7 +30,10 @@ namespace {
 
 std::vector<unsigned char> readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(std::filesystem::file_size(path)));
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  REQUIRE(in.gcount() == static_cast<std::streamsize>(bytes.size()));
+  return bytes;
 }
 
 void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes) {
@@ -41,7 +43,8 @@ void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes
 
 // A checkpointed database of 2- and 3-disc rows (paths long enough for
 // overflow pages), its WAL folded in so the main file is the whole story.
-void makeDatabase(const std::string& path, std::uint64_t seed, int rows = 30) {
+// Each of `doublings` copies every row in SQL: a large file, built cheaply.
+void makeDatabase(const std::string& path, std::uint64_t seed, int rows = 30, int doublings = 0) {
   RobotSpec disc;
   disc.radius = 0.3;
   const RobotTraits d = traitsOf(*makeRobotModel(disc, Resolution{}));
@@ -55,6 +58,11 @@ void makeDatabase(const std::string& path, std::uint64_t seed, int rows = 30) {
     store.insertAll(batch, -1);
   }
   Connection c(path, OpenMode::ReadWrite);
+  for (int i = 0; i < doublings; ++i)
+    c.exec(
+        "INSERT INTO experiences (kind, robot_count, signature, base_class, key, paths, cost, source, created_at, "
+        "solve_time_s, created_session, made_by) SELECT kind, robot_count, signature, base_class, key, paths, cost, "
+        "source, created_at, solve_time_s, created_session, made_by FROM experiences ORDER BY id");
   c.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   c.exec("PRAGMA journal_mode = DELETE");
 }
@@ -114,8 +122,8 @@ namespace {
 // its bytes with the experiences table's leftmost leaf (rows 1, 2, ...)
 // made no b-tree page: damage that quick_check sees, but neither opening
 // (which reads the key index) nor an insert (appended on the right) reads.
-std::vector<unsigned char> damagedWalDatabase(const std::string& path, int rows = 30) {
-  makeDatabase(path, 1, rows);
+std::vector<unsigned char> damagedWalDatabase(const std::string& path, int rows = 30, int doublings = 0) {
+  makeDatabase(path, 1, rows, doublings);
   {
     Connection c(path, OpenMode::ReadWrite);
     c.exec("PRAGMA journal_mode = WAL");
@@ -482,9 +490,12 @@ TEST_CASE("on a machine with no spare core a planner's open checks the file itse
   // the process, the idle-class thread still got time now and then where
   // the scheduler left a core idle (CI once saw the check finish in the
   // background in 0.14 s); two loops on its only core leave it none.
+  // The file is large (16,000 rows, 45 MB), so that the check needs several
+  // of the rare slices the idle class gets: one alone, early in the wait,
+  // could end a short check before any wait found it starved.
   ScratchDirectory dir("hostile");
   const std::string path = dir.file("busy.db");
-  damagedWalDatabase(path, 1000);
+  damagedWalDatabase(path, 250, 6);
   cpu_set_t cpus, one;
   REQUIRE(sched_getaffinity(0, sizeof cpus, &cpus) == 0);
   CPU_ZERO(&one);
