@@ -7,12 +7,12 @@
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/conflict.hpp"
+#include "compact_states.hpp"
 
 namespace earc {
 
 namespace {
 
-constexpr std::size_t kNoInstant = static_cast<std::size_t>(-1);
 // Instants whose states are kept: a search goes forward in time and seldom
 // backs up far.
 constexpr std::size_t kSlots = 2048;
@@ -22,65 +22,20 @@ constexpr std::size_t kSlots = 2048;
 constexpr std::size_t kBoxSteps = 16;
 constexpr std::size_t kBoxInstants = 2 * kBoxSteps;
 
-// Every robot's configuration at recently asked instants, in a ring of
-// slots keyed by instant, filled on first use.
-class InstantStates {
- public:
-  InstantStates(const std::vector<const RobotModel*>& models, const std::vector<Path>& paths)
-      : models_(models), paths_(paths) {
-    for (const RobotModel* m : models_) {
-      offset_.push_back(width_);
-      width_ += static_cast<std::size_t>(m->dim());
-    }
-    // No more slots than the plan has instants.
-    std::size_t longest = 0;
-    for (const Path& p : paths_) longest = std::max(longest, p.size());
-    slots_ = std::min(kSlots, 2 * longest + 1);
-    tag_.assign(slots_, kNoInstant);
-    q_.resize(slots_ * width_);
-  }
-
-  // All robots' states at instant k, robot r's at row + offset(r).
-  const double* row(std::size_t k) {
-    const std::size_t slot = k % slots_;
-    double* out = q_.data() + slot * width_;
-    if (tag_[slot] != k) {
-      countWork(models_.size());  // one state of each robot: a cache miss costs all of them
-      for (std::size_t r = 0; r < models_.size(); ++r) fill(r, k, out);
-      tag_[slot] = k;
-    }
-    return out;
-  }
-  std::size_t offset(std::size_t r) const { return offset_[r]; }
-
-  // Robot r's path changed: its states in the kept slots again.
-  void refresh(std::size_t r) {
-    countWork(slots_);
-    for (std::size_t slot = 0; slot < slots_; ++slot)
-      if (tag_[slot] != kNoInstant) fill(r, tag_[slot], q_.data() + slot * width_);
-  }
-
- private:
-  void fill(std::size_t r, std::size_t k, double* row) const {
-    if (!paths_[r].empty()) stateAtInstant(*models_[r], paths_[r], k, row + offset_[r]);
-  }
-
-  const std::vector<const RobotModel*>& models_;
-  const std::vector<Path>& paths_;
-  std::vector<std::size_t> offset_;
-  std::size_t width_ = 0;
-  std::size_t slots_ = 0;
-  std::vector<std::size_t> tag_;
-  std::vector<double> q_;
-};
-
 class Compactor {
  public:
   Compactor(const std::vector<const RobotModel*>& models, std::vector<Path>& paths, const CollisionWorld* world,
             const Deadline& deadline, std::size_t states_per_position)
-      : models_(models), paths_(paths), world_(world), deadline_(deadline), states_(models, paths),
-        poll_(deadline, kWorkPerClockRead),
+      : models_(models), paths_(paths), world_(world), deadline_(deadline), poll_(deadline, kWorkPerClockRead),
         states_per_position_(states_per_position) {
+    std::vector<TimedSource> sources;
+    std::size_t longest = 0;
+    for (std::size_t o = 0; o < paths_.size(); ++o) {
+      sources.push_back({models_[o], &paths_[o]});
+      longest = std::max(longest, paths_[o].size());
+    }
+    // No more slots than the plan has instants.
+    states_.assign(std::move(sources), std::min(kSlots, 2 * longest + 1));
     for (std::size_t o = 0; o < paths_.size(); ++o) reach_.push_back(reach(o));
     chunks_.resize(paths_.size());
     for (std::size_t o = 0; o < paths_.size(); ++o) boxChunks(o);
@@ -132,10 +87,9 @@ class Compactor {
   // Robot r at configuration q touches none of `robots` at instant k.
   bool free(std::size_t r, const double* q, std::size_t k, const std::vector<std::size_t>& robots) {
     if (poll_.expired(robots.size() + 1)) return false;
-    const double* row = states_.row(k);
     against_.set(*models_[r], q);
     for (std::size_t o : robots)
-      if (against_.check(*models_[o], row + states_.offset(o)) == RobotAgainst::Result::Touch) return false;
+      if (against_.check(*models_[o], states_.at(o, k)) == RobotAgainst::Result::Touch) return false;
     return true;
   }
 
@@ -218,7 +172,7 @@ std::int64_t Compactor::search(std::size_t r) {
   if (!timed) return 0;
   const auto saved = static_cast<std::int64_t>(arrival) - static_cast<std::int64_t>(timed->size() - 1);
   paths_[r] = std::move(*timed);
-  states_.refresh(r);
+  states_.forget(r);
   boxChunks(r);
   return saved;
 }
