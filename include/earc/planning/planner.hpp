@@ -70,7 +70,8 @@ struct ArcSettings {
   int compact_passes = 1;
   int compact_states = 8;
   // Then the routes of this many of them, those furthest behind their
-  // straight-line arrival, shortcut (compactRobots), with so many tries each.
+  // straight-line arrival (a quarter late or more), shortcut with so many
+  // tries each (shortcutRobots, compact.hpp).
   int compact_shortcut_robots = 32;
   int compact_shortcut_tries = 8;
 };
