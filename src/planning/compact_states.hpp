@@ -24,10 +24,9 @@ struct TimedSource {
   std::size_t horizon = std::numeric_limits<std::size_t>::max();
 };
 
-// The sources' states at the instants asked for, each source's filled on
-// first ask (one unit of work each) in a ring of `slots` instants. Not
-// thread-safe; a returned state stays valid until that source is asked
-// for another instant of the same slot.
+// The sources' states at the instants asked for, each filled on first ask (a
+// unit of work) in a ring of `slots` instants; a state stays valid until its
+// source's slot is refilled. Not thread-safe.
 class InstantStates {
  public:
   void assign(std::vector<TimedSource> sources, std::size_t slots) {
