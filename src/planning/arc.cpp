@@ -361,6 +361,17 @@ PlanResult ArcRun::run() {
     compacted = compactRobots(models_, paths_, mobile, &world_, deadline_.capped(kCompactShare * soFar()),
                               settings_.arc.compact_passes,
                               static_cast<std::size_t>(settings_.arc.compact_states));
+    // Then a few shortcuts, with a shallow search (a cut that is free is
+    // found at once, one that is not fails cheaply). Bounded by their
+    // count, not by a share of the time: a share would make the plan
+    // depend on how fast the roadmaps came (a cache, the machine's load).
+    if (settings_.arc.compact_shortcut_robots > 0 && !deadline_.expired()) {
+      const CompactReport cut = shortcutRobots(
+          models_, paths_, mobile, world_, deadline_,
+          static_cast<std::size_t>(settings_.arc.compact_shortcut_robots), settings_.arc.compact_shortcut_tries,
+          kShortcutStates);
+      compacted->steps_saved += cut.steps_saved;
+    }
   }
   const double compact_s = compact_clock.seconds();
   if (solved) result.solution.paths = std::move(paths_);

@@ -7,6 +7,7 @@
 #include "earc/planning/arc.hpp"
 #include "earc/planning/compact.hpp"
 #include "earc/planning/conflict.hpp"
+#include "compact_states.hpp"
 
 namespace earc {
 
@@ -41,43 +42,20 @@ class RouteTimer {
                                const std::vector<const TimedBody*>& others);
 
  private:
-  // The near robots' states at local instant k (one row, offset_ apart),
-  // placed on first use.
-  const double* row(std::size_t k);
   bool freeAt(const RobotModel& model, const double* q, std::size_t k) {
     if (poll_.expired(near_.size() + 1)) return false;
-    const double* states = row(k);
     against_.set(model, q);
     for (std::size_t o = 0; o < near_.size(); ++o)
-      if (against_.check(*near_[o]->model, states + offset_[o]) == RobotAgainst::Result::Touch) return false;
+      if (against_.check(*near_[o]->model, states_.at(o, k)) == RobotAgainst::Result::Touch) return false;
     return true;
   }
 
   DeadlinePoll poll_;
   RobotAgainst against_;
   std::vector<const TimedBody*> near_;
-  std::vector<std::size_t> offset_;
-  std::size_t width_ = 0;
-  std::vector<double> rows_;
-  std::vector<char> placed_;
+  InstantStates states_;  // near_'s, in their order
   std::vector<unsigned char> how_;
 };
-
-const double* RouteTimer::row(std::size_t k) {
-  if (k >= placed_.size()) {
-    placed_.resize(2 * k + 2, 0);
-    rows_.resize(placed_.size() * width_);
-  }
-  double* out = rows_.data() + k * width_;
-  if (!placed_[k]) {
-    placed_[k] = 1;
-    for (std::size_t o = 0; o < near_.size(); ++o) {
-      const TimedBody& b = *near_[o];
-      stateAtInstant(*b.model, *b.path, 2 * b.offset + std::min(k, b.horizon), out + offset_[o]);
-    }
-  }
-  return out;
-}
 
 std::optional<Path> RouteTimer::earliest(const RobotModel& model, const Path& route, std::size_t bound,
                                          const std::vector<const TimedBody*>& others) {
@@ -85,16 +63,13 @@ std::optional<Path> RouteTimer::earliest(const RobotModel& model, const Path& ro
   if (bound < m) return std::nullopt;
   const geo::Aabb mine = pathReach(model, route);
   near_.clear();
-  offset_.clear();
-  width_ = 0;
+  std::vector<TimedSource> sources;
   for (const TimedBody* o : others)
     if (o->reach.overlaps(mine)) {
       near_.push_back(o);
-      offset_.push_back(width_);
-      width_ += static_cast<std::size_t>(o->model->dim());
+      sources.push_back({o->model, o->path, o->offset, o->horizon});
     }
-  placed_.assign(2 * bound + 3, 0);
-  rows_.resize(placed_.size() * width_);
+  states_.assign(std::move(sources), 2 * bound + 3);
   // The last instant at which some other robot touches it standing at its
   // end: it may arrive only after that, to stay there.
   std::size_t horizon = 0;

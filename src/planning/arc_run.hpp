@@ -28,6 +28,9 @@ constexpr std::size_t kJamGrowth = 4;
 constexpr double kJamMinBudgetS = 0.25;
 // The final compaction pass's share of the plan's time so far, at most.
 constexpr double kCompactShare = 0.25;
+// The states the shortcuts' timing searches try per route position
+// (ArcSettings::compact_shortcut_robots).
+constexpr std::size_t kShortcutStates = 3;
 
 // One plan of ARC. Not thread-safe; used once.
 class ArcRun {

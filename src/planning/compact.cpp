@@ -1,18 +1,21 @@
 #include "earc/planning/compact.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <optional>
+#include <random>
 
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/conflict.hpp"
+#include "earc/util/random.hpp"
+#include "compact_states.hpp"
 
 namespace earc {
 
 namespace {
 
-constexpr std::size_t kNoInstant = static_cast<std::size_t>(-1);
 // Instants whose states are kept: a search goes forward in time and seldom
 // backs up far.
 constexpr std::size_t kSlots = 2048;
@@ -22,65 +25,20 @@ constexpr std::size_t kSlots = 2048;
 constexpr std::size_t kBoxSteps = 16;
 constexpr std::size_t kBoxInstants = 2 * kBoxSteps;
 
-// Every robot's configuration at recently asked instants, in a ring of
-// slots keyed by instant, filled on first use.
-class InstantStates {
- public:
-  InstantStates(const std::vector<const RobotModel*>& models, const std::vector<Path>& paths)
-      : models_(models), paths_(paths) {
-    for (const RobotModel* m : models_) {
-      offset_.push_back(width_);
-      width_ += static_cast<std::size_t>(m->dim());
-    }
-    // No more slots than the plan has instants.
-    std::size_t longest = 0;
-    for (const Path& p : paths_) longest = std::max(longest, p.size());
-    slots_ = std::min(kSlots, 2 * longest + 1);
-    tag_.assign(slots_, kNoInstant);
-    q_.resize(slots_ * width_);
-  }
-
-  // All robots' states at instant k, robot r's at row + offset(r).
-  const double* row(std::size_t k) {
-    const std::size_t slot = k % slots_;
-    double* out = q_.data() + slot * width_;
-    if (tag_[slot] != k) {
-      countWork(models_.size());  // one state of each robot: a cache miss costs all of them
-      for (std::size_t r = 0; r < models_.size(); ++r) fill(r, k, out);
-      tag_[slot] = k;
-    }
-    return out;
-  }
-  std::size_t offset(std::size_t r) const { return offset_[r]; }
-
-  // Robot r's path changed: its states in the kept slots again.
-  void refresh(std::size_t r) {
-    countWork(slots_);
-    for (std::size_t slot = 0; slot < slots_; ++slot)
-      if (tag_[slot] != kNoInstant) fill(r, tag_[slot], q_.data() + slot * width_);
-  }
-
- private:
-  void fill(std::size_t r, std::size_t k, double* row) const {
-    if (!paths_[r].empty()) stateAtInstant(*models_[r], paths_[r], k, row + offset_[r]);
-  }
-
-  const std::vector<const RobotModel*>& models_;
-  const std::vector<Path>& paths_;
-  std::vector<std::size_t> offset_;
-  std::size_t width_ = 0;
-  std::size_t slots_ = 0;
-  std::vector<std::size_t> tag_;
-  std::vector<double> q_;
-};
-
 class Compactor {
  public:
   Compactor(const std::vector<const RobotModel*>& models, std::vector<Path>& paths, const CollisionWorld* world,
             const Deadline& deadline, std::size_t states_per_position)
-      : models_(models), paths_(paths), world_(world), deadline_(deadline), states_(models, paths),
-        poll_(deadline, kWorkPerClockRead),
+      : models_(models), paths_(paths), world_(world), deadline_(deadline), poll_(deadline, kWorkPerClockRead),
         states_per_position_(states_per_position) {
+    std::vector<TimedSource> sources;
+    std::size_t longest = 0;
+    for (std::size_t o = 0; o < paths_.size(); ++o) {
+      sources.push_back({models_[o], &paths_[o]});
+      longest = std::max(longest, paths_[o].size());
+    }
+    // No more slots than the plan has instants.
+    states_.assign(std::move(sources), std::min(kSlots, 2 * longest + 1));
     for (std::size_t o = 0; o < paths_.size(); ++o) reach_.push_back(reach(o));
     chunks_.resize(paths_.size());
     for (std::size_t o = 0; o < paths_.size(); ++o) boxChunks(o);
@@ -91,12 +49,14 @@ class Compactor {
   bool expired() { return poll_.expired(0); }
   std::size_t states() const { return tried_; }
 
+  // Robot r's route shortcut by straight motions, `tries` drawn at random,
+  // each kept when a timing of it arrives earlier; the steps saved.
+  std::int64_t shortcut(std::size_t r, int tries);
+
   // Retimes robot r; the steps its arrival moved earlier (0: kept as it was).
   std::int64_t retime(std::size_t r) {
     const std::int64_t saved = search(r);
-    if (saved > 0) {
-      changed_at_[r] = ++changes_;
-    } else if (!poll_.seenExpired()) {
+    if (saved == 0 && !poll_.seenExpired()) {
       failed_at_[r] = changes_;
     }
     return saved;
@@ -125,6 +85,12 @@ class Compactor {
   const std::vector<std::size_t>& nearIn(std::size_t c);
 
   std::int64_t search(std::size_t r);
+  void gatherNear(std::size_t r);  // near_ := the robots whose reach meets r's
+  // The last instant at which a robot of near_ touches r standing at `goal`
+  // (-1: none).
+  long long lastBlock(std::size_t r, const double* goal);
+  // Robot r's path replaced by `timed`; the steps its arrival moved earlier.
+  std::int64_t keep(std::size_t r, Path timed);
   // The route timed to arrive before `arrival`, staying at its goal after
   // instant last_block: nothing when no such timing was found.
   std::optional<Path> timing(std::size_t r, const Path& route, long long last_block, std::size_t arrival);
@@ -132,10 +98,9 @@ class Compactor {
   // Robot r at configuration q touches none of `robots` at instant k.
   bool free(std::size_t r, const double* q, std::size_t k, const std::vector<std::size_t>& robots) {
     if (poll_.expired(robots.size() + 1)) return false;
-    const double* row = states_.row(k);
     against_.set(*models_[r], q);
     for (std::size_t o : robots)
-      if (against_.check(*models_[o], row + states_.offset(o)) == RobotAgainst::Result::Touch) return false;
+      if (against_.check(*models_[o], states_.at(o, k)) == RobotAgainst::Result::Touch) return false;
     return true;
   }
 
@@ -163,13 +128,17 @@ class Compactor {
   std::size_t states_per_position_;
 };
 
+void Compactor::gatherNear(std::size_t r) {
+  near_.clear();
+  for (std::size_t o = 0; o < paths_.size(); ++o)
+    if (o != r && !paths_[o].empty() && reach_[o].overlaps(reach_[r])) near_.push_back(o);
+}
+
 std::int64_t Compactor::search(std::size_t r) {
   const Path& path = paths_[r];
   if (path.size() < 2) return 0;
   // Only robots that come near its route can touch it.
-  near_.clear();
-  for (std::size_t o = 0; o < paths_.size(); ++o)
-    if (o != r && !paths_[o].empty() && reach_[o].overlaps(reach_[r])) near_.push_back(o);
+  gatherNear(r);
   if (failed_at_[r] != static_cast<std::size_t>(-1) &&
       std::none_of(near_.begin(), near_.end(), [&](std::size_t o) { return changed_at_[o] > failed_at_[r]; }))
     return 0;
@@ -186,10 +155,31 @@ std::int64_t Compactor::search(std::size_t r) {
     }
   }
   if (route.size() - 1 >= arrival && !faster) return 0;  // it moves on at every step, as fast as it can
+  const long long last_block = lastBlock(r, route.back());
+  if (poll_.seenExpired()) return 0;
+
+  std::optional<Path> timed;
+  if (faster) timed = timing(r, *faster, last_block, arrival);
+  if (!timed && !poll_.seenExpired()) timed = timing(r, route, last_block, arrival);
+  if (!timed) return 0;
+  return keep(r, std::move(*timed));
+}
+
+std::int64_t Compactor::keep(std::size_t r, Path timed) {
+  const auto saved = static_cast<std::int64_t>(paths_[r].size()) - static_cast<std::int64_t>(timed.size());
+  paths_[r] = std::move(timed);
+  changed_at_[r] = ++changes_;
+  states_.forget(r);
+  boxChunks(r);
+  return saved;
+}
+
+long long Compactor::lastBlock(std::size_t r, const double* goal) {
   // The last instant at which another robot touches it standing at its
   // goal: it may arrive only after that, to stay there. Only robots whose
   // reach takes in the goal can.
-  const geo::Vec2 gc = model.boundingCenter(route.back());
+  const RobotModel& model = *models_[r];
+  const geo::Vec2 gc = model.boundingCenter(goal);
   const double gr = model.boundingRadius();
   const geo::Aabb at_goal{{gc.x - gr, gc.y - gr}, {gc.x + gr, gc.y + gr}};
   std::vector<std::size_t> near_goal;
@@ -205,21 +195,50 @@ std::int64_t Compactor::search(std::size_t r) {
       if (chunkBox(o, c).overlaps(at_goal)) in_chunk.push_back(o);
     if (in_chunk.empty()) continue;
     for (std::size_t k = std::min(2 * horizon + 1, c * kBoxInstants + kBoxInstants - 1) + 1; k-- > c * kBoxInstants;)
-      if (!free(r, route.back(), k, in_chunk)) {
+      if (!free(r, goal, k, in_chunk)) {
         last_block = static_cast<long long>(k);
         break;
       }
   }
-  if (poll_.seenExpired()) return 0;
+  return last_block;
+}
 
-  std::optional<Path> timed;
-  if (faster) timed = timing(r, *faster, last_block, arrival);
-  if (!timed && !poll_.seenExpired()) timed = timing(r, route, last_block, arrival);
-  if (!timed) return 0;
-  const auto saved = static_cast<std::int64_t>(arrival) - static_cast<std::int64_t>(timed->size() - 1);
-  paths_[r] = std::move(*timed);
-  states_.refresh(r);
-  boxChunks(r);
+std::int64_t Compactor::shortcut(std::size_t r, int tries) {
+  const Path& path = paths_[r];
+  if (path.size() < 3 || world_ == nullptr) return 0;
+  gatherNear(r);
+  const RobotModel& model = *models_[r];
+  const long long last_block = lastBlock(r, path.back());
+  std::int64_t saved = 0;
+  // Deterministic per robot, so that a plan does not depend on the others'
+  // draws.
+  std::mt19937_64 rng(splitSeed(0x5c0ffee, r));
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  for (int k = 0; k < tries && !poll_.seenExpired(); ++k) {
+    const Path route = routeOf(paths_[r]);
+    const std::size_t last = route.size() - 1;
+    if (last < 2) break;
+    // Stretches of every length, log-uniformly (as refinement's shortcuts:
+    // short ones straighten a bend, long ones cut a detour); a quarter end
+    // at the goal.
+    const double span_f = std::exp(uniform(rng, std::log(2.0), std::log(static_cast<double>(last) + 1.0)));
+    const std::size_t span = std::clamp<std::size_t>(static_cast<std::size_t>(span_f), 2, last);
+    const bool to_goal = uniformIndex(rng, 4) == 0;
+    const std::size_t i0 = to_goal ? last - span : static_cast<std::size_t>(uniformIndex(rng, last - span + 1));
+    const std::size_t i1 = i0 + span;
+    const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(i0), route.at(i1)));
+    poll_.expired((n + 1) * static_cast<std::size_t>(model.dim()));
+    if (n == 0 || n >= span || !world_->motionValid(model, route.at(i0), route.at(i1))) continue;
+    Path cut(model.dim());
+    for (std::size_t i = 0; i <= i0; ++i) cut.push(route.at(i));
+    for (std::size_t j = 1; j < n; ++j) {
+      model.interpolate(route.at(i0), route.at(i1), static_cast<double>(j) / static_cast<double>(n), q.data());
+      cut.push(q.data());
+    }
+    for (std::size_t i = i1; i <= last; ++i) cut.push(route.at(i));
+    std::optional<Path> timed = timing(r, cut, last_block, paths_[r].size() - 1);
+    if (timed) saved += keep(r, std::move(*timed));
+  }
   return saved;
 }
 
@@ -329,6 +348,7 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 
 }  // namespace
 
+
 // Every robot of the plan retimed.
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                           const CollisionWorld* world, const Deadline& deadline, int max_passes,
@@ -369,6 +389,38 @@ CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::v
     }
     rep.steps_saved += saved;
     if (saved == 0) break;
+  }
+  rep.interrupted = compactor.expired();
+  rep.states = compactor.states();
+  return rep;
+}
+
+// The robots furthest behind their straight-line arrival first, each route
+// shortcut where the world and the others allow.
+CompactReport shortcutRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                             const std::vector<std::size_t>& which, const CollisionWorld& world,
+                             const Deadline& deadline, std::size_t robots, int tries, std::size_t states_per_position) {
+  CompactReport rep;
+  Compactor compactor(models, paths, &world, deadline, states_per_position);
+  std::vector<std::pair<std::int64_t, std::size_t>> behind;
+  for (std::size_t r : which) {
+    const Path& p = paths[r];
+    if (p.size() < 3) continue;
+    const std::int64_t straight = models[r]->stepsBetween(p.at(0), p.back());
+    const std::int64_t delay = static_cast<std::int64_t>(p.size() - 1) - straight;
+    // A robot nearly on time has little to gain: without obstacles most
+    // robots are, and their shortcuts would cost more than they save.
+    if (4 * delay >= straight) behind.push_back({delay, r});
+  }
+  std::stable_sort(behind.begin(), behind.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (behind.size() > robots) behind.resize(robots);
+  for (const auto& [delay, r] : behind) {
+    if (compactor.expired()) break;
+    const std::int64_t s = compactor.shortcut(r, tries);
+    if (s > 0) {
+      ++rep.robots_shortcut;
+      rep.steps_saved += s;
+    }
   }
   rep.interrupted = compactor.expired();
   rep.states = compactor.states();

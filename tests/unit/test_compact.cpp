@@ -1,7 +1,7 @@
 // Plan compaction: robots retimed along their own routes, leaving out the
 // waits nothing needs, keeping the ones that let others pass, and never
-// arriving at a goal that someone crosses later; ARC's coupled answers
-// time-stamped robot by robot.
+// arriving at a goal that someone crosses later; the most delayed robots'
+// routes shortcut; ARC's coupled answers time-stamped robot by robot.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -138,6 +138,53 @@ TEST_CASE("A robot held to a slow straight motion goes at full speed where the o
   CHECK(paths[0].size() == 161);
   CHECK(paths[0].back()[1] == 9.0);
   CHECK(c.valid(paths));
+}
+
+// From (1, 1) to (1, 9) by way of (5, 5), at full speed (steps of 0.05).
+Path shortcutDetour() {
+  Path p = test::line({1, 1, 0}, {5, 5, 0}, 115);
+  const Path back = test::line({5, 5, 0}, {1, 9, 0}, 115);
+  for (std::size_t t = 1; t < back.size(); ++t) p.push(back.at(t));
+  return p;
+}
+
+TEST_CASE("Shortcuts cut the detour of the robot furthest behind, where compaction finds nothing") {
+  CompactCase c({compactDisc("a", {1, 1, 0}, {1, 9, 0}), compactDisc("b", {9, 1, 0}, {9, 9, 0})});
+  const CollisionWorld world(c.scenario);
+  const std::vector<Path> before{shortcutDetour(), test::line({9, 1, 0}, {9, 9, 0}, 161)};
+  REQUIRE(c.valid(before));
+  std::vector<Path> paths = before;
+  // No waits, no slow motion: nothing to retime.
+  CHECK(compactRobots(c.models.raw, paths, {0, 1}, &world, Deadline(), 1, 8).steps_saved == 0);
+  CHECK(paths == before);
+  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 1, 16);
+  CHECK(rep.robots_shortcut == 1);
+  CHECK(rep.steps_saved == static_cast<std::int64_t>(before[0].size() - paths[0].size()));
+  CHECK(paths[0].size() < before[0].size());
+  CHECK(paths[1] == before[1]);  // only the robot furthest behind
+  CHECK(std::vector<double>(paths[0].back(), paths[0].back() + 3) == std::vector<double>{1, 9, 0});
+  CHECK(c.valid(paths));
+}
+
+TEST_CASE("Shortcuts stay clear of the obstacles and of a robot parked on the way") {
+  // A wall reaches from the left to x = 3 at y = 5, and b stands at
+  // (3.6, 5): a may cross y = 5 only right of x = 4.2.
+  CompactCase c({compactDisc("a", {1, 1, 0}, {1, 9, 0}), compactDisc("b", {3.6, 5, 0}, {3.6, 5, 0})});
+  c.scenario.obstacles.push_back(Obstacle::makeBox({1.5, 5}, {3.0, 0.6}, 0.0));
+  const CollisionWorld world(c.scenario);
+  const std::vector<Path> before{shortcutDetour(), test::line({{3.6, 5, 0}})};
+  REQUIRE(c.valid(before));
+  std::vector<Path> paths = before;
+  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 2, 64);
+  CHECK(c.valid(paths));
+  CHECK(rep.robots_shortcut == 1);  // cut where it could
+  CHECK(paths[0].size() < before[0].size());
+  CHECK(rep.steps_saved == static_cast<std::int64_t>(before[0].size() - paths[0].size()));
+  for (std::size_t t = 0; t + 1 < paths[0].size(); ++t) {
+    const double* p = paths[0].at(t);
+    const double* q = paths[0].at(t + 1);
+    if ((p[1] - 5) * (q[1] - 5) <= 0) CHECK(std::min(p[0], q[0]) >= 4.2);
+  }
 }
 
 // How far a robot's path takes it (in the plane, or summed over joints).

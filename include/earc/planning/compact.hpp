@@ -29,6 +29,7 @@ struct CompactReport {
   int passes = 0;               // passes over the robots that were started
   int robots_retimed = 0;       // retimings kept, over all passes
   std::int64_t steps_saved = 0; // summed over robots (the sum of costs falls by as much)
+  int robots_shortcut = 0;      // robots whose route a shortcut made shorter
   std::size_t states = 0;       // (route position, step) pairs the searches tried
   bool interrupted = false;     // the deadline ended it; the paths are valid as they stand
 };
@@ -45,6 +46,14 @@ CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vec
 CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                             const std::vector<std::size_t>& which, const CollisionWorld* world,
                             const Deadline& deadline, int max_passes = 4, std::size_t states_per_position = 64);
+
+// Of the robots in `which` at least a quarter later than their straight-line
+// arrival, the `robots` furthest behind get `tries` random stretches of their
+// route made straight motions, kept where the world allows and it arrives earlier.
+CompactReport shortcutRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
+                             const std::vector<std::size_t>& which, const CollisionWorld& world,
+                             const Deadline& deadline, std::size_t robots, int tries,
+                             std::size_t states_per_position = 8);
 
 // The path without repeated states (consecutive equal ones kept once).
 Path routeOf(const Path& path);

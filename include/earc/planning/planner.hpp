@@ -69,6 +69,11 @@ struct ArcSettings {
   // passes (0: none) and states searched per route position.
   int compact_passes = 1;
   int compact_states = 8;
+  // Then the routes of this many of them, those furthest behind their
+  // straight-line arrival (a quarter late or more), shortcut with so many
+  // tries each (shortcutRobots, compact.hpp).
+  int compact_shortcut_robots = 32;
+  int compact_shortcut_tries = 8;
 };
 
 // The experience databases: E-ARC's store and Lightning's file.
