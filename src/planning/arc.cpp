@@ -369,7 +369,7 @@ PlanResult ArcRun::run() {
       const CompactReport cut = shortcutRobots(
           models_, paths_, mobile, world_, deadline_,
           static_cast<std::size_t>(settings_.arc.compact_shortcut_robots), settings_.arc.compact_shortcut_tries,
-          kShortcutStates);
+          splitSeed(settings_.seed, 0x5c0ffee), kShortcutStates);
       compacted->steps_saved += cut.steps_saved;
     }
   }

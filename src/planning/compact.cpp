@@ -51,7 +51,7 @@ class Compactor {
 
   // Robot r's route shortcut by straight motions, `tries` drawn at random,
   // each kept when a timing of it arrives earlier; the steps saved.
-  std::int64_t shortcut(std::size_t r, int tries);
+  std::int64_t shortcut(std::size_t r, int tries, std::uint64_t seed);
 
   // Retimes robot r; the steps its arrival moved earlier (0: kept as it was).
   std::int64_t retime(std::size_t r) {
@@ -203,7 +203,7 @@ long long Compactor::lastBlock(std::size_t r, const double* goal) {
   return last_block;
 }
 
-std::int64_t Compactor::shortcut(std::size_t r, int tries) {
+std::int64_t Compactor::shortcut(std::size_t r, int tries, std::uint64_t seed) {
   const Path& path = paths_[r];
   if (path.size() < 3 || world_ == nullptr) return 0;
   gatherNear(r);
@@ -212,7 +212,7 @@ std::int64_t Compactor::shortcut(std::size_t r, int tries) {
   std::int64_t saved = 0;
   // Deterministic per robot, so that a plan does not depend on the others'
   // draws.
-  std::mt19937_64 rng(splitSeed(0x5c0ffee, r));
+  std::mt19937_64 rng(splitSeed(seed, r));
   std::vector<double> q(static_cast<std::size_t>(model.dim()));
   for (int k = 0; k < tries && !poll_.seenExpired(); ++k) {
     const Path route = routeOf(paths_[r]);
@@ -399,7 +399,8 @@ CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::v
 // shortcut where the world and the others allow.
 CompactReport shortcutRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                              const std::vector<std::size_t>& which, const CollisionWorld& world,
-                             const Deadline& deadline, std::size_t robots, int tries, std::size_t states_per_position) {
+                             const Deadline& deadline, std::size_t robots, int tries, std::uint64_t seed,
+                             std::size_t states_per_position) {
   CompactReport rep;
   Compactor compactor(models, paths, &world, deadline, states_per_position);
   std::vector<std::pair<std::int64_t, std::size_t>> behind;
@@ -416,7 +417,7 @@ CompactReport shortcutRobots(const std::vector<const RobotModel*>& models, std::
   if (behind.size() > robots) behind.resize(robots);
   for (const auto& [delay, r] : behind) {
     if (compactor.expired()) break;
-    const std::int64_t s = compactor.shortcut(r, tries);
+    const std::int64_t s = compactor.shortcut(r, tries, seed);
     if (s > 0) {
       ++rep.robots_shortcut;
       rep.steps_saved += s;

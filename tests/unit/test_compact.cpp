@@ -157,13 +157,24 @@ TEST_CASE("Shortcuts cut the detour of the robot furthest behind, where compacti
   // No waits, no slow motion: nothing to retime.
   CHECK(compactRobots(c.models.raw, paths, {0, 1}, &world, Deadline(), 1, 8).steps_saved == 0);
   CHECK(paths == before);
-  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 1, 16);
+  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 1, 16, 7);
   CHECK(rep.robots_shortcut == 1);
   CHECK(rep.steps_saved == static_cast<std::int64_t>(before[0].size() - paths[0].size()));
   CHECK(paths[0].size() < before[0].size());
   CHECK(paths[1] == before[1]);  // only the robot furthest behind
   CHECK(std::vector<double>(paths[0].back(), paths[0].back() + 3) == std::vector<double>{1, 9, 0});
   CHECK(c.valid(paths));
+  // The stretches follow the seed: the same seed cuts the same way, and
+  // with two tries apiece some seeds cut differently.
+  const auto cutWith = [&](std::uint64_t seed) {
+    std::vector<Path> again = before;
+    shortcutRobots(c.models.raw, again, {0, 1}, world, Deadline(), 1, 2, seed);
+    return again[0];
+  };
+  CHECK(cutWith(7) == cutWith(7));
+  bool differs = false;
+  for (std::uint64_t seed = 1; seed <= 8 && !differs; ++seed) differs = !(cutWith(seed) == cutWith(seed + 100));
+  CHECK(differs);
 }
 
 TEST_CASE("Shortcuts stay clear of the obstacles and of a robot parked on the way") {
@@ -175,7 +186,7 @@ TEST_CASE("Shortcuts stay clear of the obstacles and of a robot parked on the wa
   const std::vector<Path> before{shortcutDetour(), test::line({{3.6, 5, 0}})};
   REQUIRE(c.valid(before));
   std::vector<Path> paths = before;
-  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 2, 64);
+  const CompactReport rep = shortcutRobots(c.models.raw, paths, {0, 1}, world, Deadline(), 2, 64, 7);
   CHECK(c.valid(paths));
   CHECK(rep.robots_shortcut == 1);  // cut where it could
   CHECK(paths[0].size() < before[0].size());

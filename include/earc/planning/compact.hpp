@@ -48,11 +48,11 @@ CompactReport compactRobots(const std::vector<const RobotModel*>& models, std::v
                             const Deadline& deadline, int max_passes = 4, std::size_t states_per_position = 64);
 
 // Of the robots in `which` at least a quarter later than their straight-line
-// arrival, the `robots` furthest behind get `tries` random stretches of their
-// route made straight motions, kept where the world allows and it arrives earlier.
+// arrival, the `robots` furthest behind get `tries` stretches of their route,
+// drawn from `seed`, made straight motions where the world allows and it arrives earlier.
 CompactReport shortcutRobots(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
                              const std::vector<std::size_t>& which, const CollisionWorld& world,
-                             const Deadline& deadline, std::size_t robots, int tries,
+                             const Deadline& deadline, std::size_t robots, int tries, std::uint64_t seed,
                              std::size_t states_per_position = 8);
 
 // The path without repeated states (consecutive equal ones kept once).
