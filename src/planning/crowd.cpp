@@ -102,6 +102,7 @@ CrowdOutcome planCrowd(const CollisionWorld& world, const std::vector<const Robo
   out.stats.configurations = static_cast<std::int64_t>(r.nodes);
   out.stats.expansions = static_cast<std::int64_t>(r.expansions);
   out.stats.spread_meetings = r.spread_meetings;
+  out.stats.restarts = static_cast<std::int64_t>(r.restarts);
   if (!r.solved) {
     out.why = r.why;
     out.timed_out = r.timed_out;

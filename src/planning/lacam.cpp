@@ -16,6 +16,10 @@ namespace {
 
 // Steps a spread-out way may take beyond the robot's shortest.
 constexpr int kSpreadMargin = 10;
+// The search's first restart: after this many expansions per roadmap
+// vertex, and at least kFirstRestart (solveLacam).
+constexpr std::size_t kRestartExpansions = 4;
+constexpr std::size_t kFirstRestart = 1000;
 
 // A low-level constraint: robot `who` goes to `where`, on top of the
 // parent's constraints.
@@ -246,17 +250,21 @@ class Pibt {
 
 }  // namespace
 
-LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::uint64_t seed) {
-  LacamResult result;
-  if (!rm.problem().empty()) {
-    result.why = rm.problem();
-    return result;
-  }
-  const int n = rm.robotCount();
-  std::mt19937_64 rng(splitSeed(seed, 7));
-  std::vector<int> goals(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) goals[static_cast<std::size_t>(i)] = rm.goal(i);
+namespace {
 
+// How one search attempt ended.
+enum class Attempt { kSolved, kExhausted, kOverBudget, kTimedOut };
+
+// LaCAM's search from the starts with the given PIBT, within `max_expansions`
+// (0: no cap) and the deadline; on success the configurations go to result.
+Attempt searchOnce(const CrowdRoadmap& rm, Pibt& pibt, std::mt19937_64& rng, const Deadline& deadline,
+                   std::size_t max_expansions, LacamResult& result) {
+  const int n = rm.robotCount();
+  std::vector<int> goals(static_cast<std::size_t>(n)), starts(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    goals[static_cast<std::size_t>(i)] = rm.goal(i);
+    starts[static_cast<std::size_t>(i)] = rm.start(i);
+  }
   std::deque<Node> nodes;
   std::deque<Constraint> constraints;
   const Constraint* root_constraint = &constraints.emplace_back();
@@ -293,27 +301,18 @@ LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::ui
     return &node;
   };
 
-  std::vector<int> starts(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) starts[static_cast<std::size_t>(i)] = rm.start(i);
   open.push_back(makeNode(starts, nullptr));
-  // Up to a quarter of the time left (at most a second) spreads the ways out.
-  const crowd::Spread spread(rm, kSpreadMargin, deadline.capped(std::min(1.0, deadline.remaining() / 4)),
-                             splitSeed(seed, 8));
-  result.spread_meetings = spread.meetings();
-  Pibt pibt(rm, spread, rng);
   std::vector<int> next;
-  const Node* goal_node = nullptr;
   std::vector<int> cands;
+  std::size_t expansions = 0;
   while (!open.empty()) {
-    if ((result.expansions & 15) == 0 && deadline.expired()) {
-      result.timed_out = true;
-      result.why = "time limit";
-      return result;
-    }
+    if ((result.expansions & 15) == 0 && deadline.expired()) return Attempt::kTimedOut;
+    if (max_expansions > 0 && expansions >= max_expansions) return Attempt::kOverBudget;
     Node* top = open.back();
     if (top->config == goals) {
-      goal_node = top;
-      break;
+      for (const Node* v = top; v; v = v->parent) result.configs.push_back(v->config);
+      std::reverse(result.configs.begin(), result.configs.end());
+      return Attempt::kSolved;
     }
     if (top->tree.empty()) {
       open.pop_back();
@@ -331,6 +330,7 @@ LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::ui
       for (int v : cands) top->tree.push_back(&constraints.emplace_back(Constraint{c, i, v, c->depth + 1}));
     }
     ++result.expansions;
+    ++expansions;
     if (!pibt.generate(*top, c, next)) continue;
     auto it = explored.find(next);
     if (it != explored.end()) {
@@ -341,14 +341,51 @@ LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::ui
     }
     open.push_back(makeNode(next, top));
   }
-  if (!goal_node) {
-    result.why = "the roadmap has no conflict-free way to the goals";
+  return Attempt::kExhausted;
+}
+
+}  // namespace
+
+LacamResult solveLacam(const CrowdRoadmap& rm, const Deadline& deadline, std::uint64_t seed, std::size_t first_restart) {
+  LacamResult result;
+  if (!rm.problem().empty()) {
+    result.why = rm.problem();
     return result;
   }
-  for (const Node* v = goal_node; v; v = v->parent) result.configs.push_back(v->config);
-  std::reverse(result.configs.begin(), result.configs.end());
-  result.solved = true;
-  return result;
+  // Up to a quarter of the time left (at most a second) spreads the ways out.
+  const crowd::Spread spread(rm, kSpreadMargin, deadline.capped(std::min(1.0, deadline.remaining() / 4)),
+                             splitSeed(seed, 8));
+  result.spread_meetings = spread.meetings();
+  // The search's time is heavy-tailed: most seeds go nearly straight to the
+  // goals (expansions about the plan's steps), a few wander for thousands.
+  // So it restarts with fresh random choices after kRestartExpansions per
+  // roadmap vertex, twice as many each time; the searches being complete,
+  // growing caps keep the whole complete. The first attempt is the search
+  // without restarts for as long as it stays under the first cap.
+  std::mt19937_64 rng(splitSeed(seed, 7));
+  Pibt pibt(rm, spread, rng);
+  std::size_t cap = first_restart > 0 ? first_restart
+                                      : std::max<std::size_t>(kFirstRestart,
+                                                              kRestartExpansions * static_cast<std::size_t>(rm.vertexCount()));
+  for (std::uint64_t attempt = 0;; ++attempt) {
+    if (attempt > 0) rng.seed(splitSeed(seed, 7 + (attempt << 8)));
+    switch (searchOnce(rm, pibt, rng, deadline, cap, result)) {
+      case Attempt::kSolved:
+        result.solved = true;
+        return result;
+      case Attempt::kExhausted:
+        result.why = "the roadmap has no conflict-free way to the goals";
+        return result;
+      case Attempt::kTimedOut:
+        result.timed_out = true;
+        result.why = "time limit";
+        return result;
+      case Attempt::kOverBudget:
+        ++result.restarts;
+        cap *= 2;
+        break;
+    }
+  }
 }
 
 }  // namespace earc

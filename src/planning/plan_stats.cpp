@@ -92,6 +92,7 @@ template <class F> void statsFields(LacamStats& s, F&& f) {
   f("configurations", s.configurations);
   f("expansions", s.expansions);
   f("spread_meetings", s.spread_meetings);
+  f("restarts", s.restarts);
   f("roadmap_steps", s.roadmap_steps);
   f("first_solution_s", s.first_solution_s);
   f("first_sum_of_costs", s.first_sum_of_costs);

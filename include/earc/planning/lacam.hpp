@@ -23,12 +23,14 @@ struct LacamResult {
   std::size_t expansions = 0;   // successor generations tried
   bool timed_out = false;       // the deadline ended the search
   long long spread_meetings = 0;  // meetings left between the guiding ways
+  std::size_t restarts = 0;     // searches begun anew with other random choices
   std::string why;              // why not solved
 };
 
 // Searches for a sequence of conflict-free steps taking every robot from its
-// start to its goal. Complete on the roadmap: unsolved only when the roadmap
-// has no such sequence or the deadline expires. Same seed, same result.
-LacamResult solveLacam(const CrowdRoadmap& roadmap, const Deadline& deadline, std::uint64_t seed);
+// start to its goal, restarting after first_restart expansions (0: 4 a vertex), twice
+// that next. Complete: unsolved only when there is none or the deadline expires. Same seed, same result.
+LacamResult solveLacam(const CrowdRoadmap& roadmap, const Deadline& deadline, std::uint64_t seed,
+                       std::size_t first_restart = 0);
 
 }  // namespace earc

@@ -93,6 +93,7 @@ struct LacamStats {
   double lattice_spacing = 0.0, bounding_radius = 0.0, roadmap_s = 0.0, search_s = 0.0;
   bool grid_lattice = false;
   std::int64_t configurations = 0, expansions = 0, spread_meetings = 0;
+  std::optional<std::int64_t> restarts;  // of LaCAM's search; absent in older files
   std::optional<std::int64_t> roadmap_steps, steps_per_roadmap_step, first_sum_of_costs, first_makespan;
   std::optional<double> first_solution_s;
   std::optional<LatticeRefineStats> polish;          // CrowdOptions::polish
