@@ -87,10 +87,9 @@ class BucketQueue {
   std::size_t lowest_ = 0, highest_ = 0, count_ = 0;
 };
 
-// Space-time A* for robot i (not in occ) to its goal, heuristic times `weight`
-// (1: shortest), arriving for good by step max_cost; nothing when there is
-// none, after max_expansions or past the deadline. With avoid_goals, ties go
-// to the way that stays least on goals of robots not yet arrived. Not thread-safe.
+// Space-time A* for robot i (not in occ) to its goal, heuristic x `weight`, arriving for
+// good by max_cost (none past max_expansions or the deadline); avoid_goals: ties go to
+// the way least on goals of robots not yet arrived. Not thread-safe.
 class StepSearch {
  public:
   explicit StepSearch(const CrowdRoadmap& rm) : rm_(rm) {}
