@@ -97,9 +97,27 @@ class LatticeLns {
   // saved since the last one (a hundred points or so per phase).
   void record(const Deadline& deadline, bool always) {
     if (!always && !history_.empty() && 200 * (history_.back().sum_of_costs - soc_) < history_.back().sum_of_costs) return;
-    long long makespan = 0;
-    for (const auto& p : paths_) makespan = std::max(makespan, pathCost(p));
-    history_.push_back({sincePhaseBegan(deadline), soc_, makespan});
+    history_.push_back({sincePhaseBegan(deadline), soc_, makespan()});
+  }
+
+  // The last point of the history: the plan as it ends. A change kept at an
+  // equal sum of costs may have moved the makespan; then the last point after
+  // the start says so at the end's time, keeping the sums falling point by point.
+  void finish(const Deadline& deadline) {
+    RefinePoint& last = history_.back();
+    const long long m = makespan();
+    if (last.sum_of_costs == soc_ && last.makespan == m) return;
+    if (last.sum_of_costs == soc_ && history_.size() > 1) {
+      last = {sincePhaseBegan(deadline), soc_, m};
+      return;
+    }
+    record(deadline, true);
+  }
+
+  long long makespan() const {
+    long long m = 0;
+    for (const auto& p : paths_) m = std::max(m, pathCost(p));
+    return m;
   }
 
   // Each delayed robot alone, most delayed first, by the cheaper search.
@@ -323,7 +341,7 @@ LatticeRefineStats runLns(const Space& space, const CrowdRoadmap& rm, std::vecto
   int rounds = 0;
   lns.firstRound(deadline, rounds, max_rounds);
   while (rounds++ < max_rounds && !deadline.expired() && rm.robotCount() > 1) lns.step(deadline);
-  if (lns.history().back().sum_of_costs != lns.sumOfCosts()) lns.record(deadline, true);
+  lns.finish(deadline);
   LatticeRefineStats stats;
   stats.history = lns.history();
   stats.sum_of_costs_before = first;
