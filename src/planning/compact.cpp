@@ -9,6 +9,7 @@
 #include "earc/collision/collision_world.hpp"
 #include "earc/planning/composite.hpp"
 #include "earc/planning/conflict.hpp"
+#include "earc/planning/roadmap.hpp"
 #include "earc/util/random.hpp"
 #include "compact_states.hpp"
 
@@ -213,29 +214,20 @@ std::int64_t Compactor::shortcut(std::size_t r, int tries, std::uint64_t seed) {
   // Deterministic per robot, so that a plan does not depend on the others'
   // draws.
   std::mt19937_64 rng(splitSeed(seed, r));
-  std::vector<double> q(static_cast<std::size_t>(model.dim()));
   for (int k = 0; k < tries && !poll_.seenExpired(); ++k) {
     const Path route = routeOf(paths_[r]);
     const std::size_t last = route.size() - 1;
     if (last < 2) break;
-    // Stretches of every length, log-uniformly (as refinement's shortcuts:
-    // short ones straighten a bend, long ones cut a detour); a quarter end
-    // at the goal.
-    const double span_f = std::exp(uniform(rng, std::log(2.0), std::log(static_cast<double>(last) + 1.0)));
-    const std::size_t span = std::clamp<std::size_t>(static_cast<std::size_t>(span_f), 2, last);
-    const bool to_goal = uniformIndex(rng, 4) == 0;
-    const std::size_t i0 = to_goal ? last - span : static_cast<std::size_t>(uniformIndex(rng, last - span + 1));
-    const std::size_t i1 = i0 + span;
+    // Stretches drawn as refinement's shortcuts draw them.
+    const auto [i0, i1] = drawStretch(rng, last);
+    const std::size_t span = i1 - i0;
     const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(i0), route.at(i1)));
     poll_.expired((n + 1) * static_cast<std::size_t>(model.dim()));
     if (n == 0 || n >= span || !world_->motionValid(model, route.at(i0), route.at(i1))) continue;
     Path cut(model.dim());
     for (std::size_t i = 0; i <= i0; ++i) cut.push(route.at(i));
-    for (std::size_t j = 1; j < n; ++j) {
-      model.interpolate(route.at(i0), route.at(i1), static_cast<double>(j) / static_cast<double>(n), q.data());
-      cut.push(q.data());
-    }
-    for (std::size_t i = i1; i <= last; ++i) cut.push(route.at(i));
+    appendStraightMotion(model, route.at(i0), route.at(i1), cut);
+    for (std::size_t i = i1 + 1; i <= last; ++i) cut.push(route.at(i));
     std::optional<Path> timed = timing(r, cut, last_block, paths_[r].size() - 1);
     if (timed) saved += keep(r, std::move(*timed));
   }
@@ -347,7 +339,6 @@ std::optional<Path> Compactor::timing(std::size_t r, const Path& route, long lon
 }
 
 }  // namespace
-
 
 // Every robot of the plan retimed.
 CompactReport compactPlan(const std::vector<const RobotModel*>& models, std::vector<Path>& paths,
@@ -472,11 +463,7 @@ std::optional<Path> routeAtFullSpeed(const RobotModel& model, const Path& route,
     const auto n = static_cast<std::size_t>(model.stepsBetween(route.at(a), route.at(b)));
     const auto state = [&](std::size_t i) { return std::vector<double>(route.at(i), route.at(i) + model.dim()); };
     if (n < b - a && checker.motionValid({state(a)}, {state(b)}, {.start = true, .end = true})) {
-      for (std::size_t k = 1; k < n; ++k) {
-        model.interpolate(route.at(a), route.at(b), static_cast<double>(k) / static_cast<double>(n), q.data());
-        out.push(q.data());
-      }
-      out.push(route.at(b));
+      appendStraightMotion(model, route.at(a), route.at(b), out);
       shorter = true;
     } else {
       for (std::size_t k = a + 1; k <= b; ++k) out.push(route.at(k));

@@ -71,7 +71,6 @@ class Refiner {
   bool shortcut(std::size_t r);
   // Robot r's states strictly after step t0 of a straight motion from its
   // state at t0 to its state at t1, at full speed, appended to out.
-  void appendStraight(std::size_t r, std::size_t t0, std::size_t t1, Path& out);
   // The new path for robot r from a straight motion over steps [t0, t1],
   // the rest moved earlier; checked and kept when clear. Whether it was kept.
   bool tryShortcut(std::size_t r, std::size_t t0, std::size_t t1);
@@ -97,7 +96,6 @@ class Refiner {
   Stopwatch clock_;
   RefineReport report_;
   std::unique_ptr<RoadmapSet> roadmaps_;
-  std::vector<double> q_;
 };
 
 std::size_t Refiner::pickByDelay() {
@@ -117,13 +115,8 @@ bool Refiner::shortcut(std::size_t r) {
   const std::size_t len = cost(r);
   if (len < 2) return false;
   ++report_.shortcut_tries;
-  // Stretches of every length, log-uniformly (short ones straighten a
-  // bend, long ones cut a detour); a quarter of them end at the goal.
-  const double span_f = std::exp(uniform(rng_, std::log(2.0), std::log(static_cast<double>(len) + 1.0)));
-  const std::size_t span = std::clamp<std::size_t>(static_cast<std::size_t>(span_f), 2, len);
-  const bool to_goal = uniformIndex(rng_, 4) == 0;
-  const std::size_t t0 = to_goal ? len - span : uniformIndex(rng_, len - span + 1);
-  const std::size_t t1 = t0 + span;
+  const auto [t0, t1] = drawStretch(rng_, len);
+  const std::size_t span = t1 - t0;
   const Path& p = paths_[r];
   const RobotModel& m = *models_[r];
   const std::size_t n = static_cast<std::size_t>(m.stepsBetween(p.at(t0), p.at(t1)));
@@ -145,7 +138,7 @@ bool Refiner::retimeShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
   // The route: the straight motion, then the old path without its waits.
   Path route(m.dim());
   route.push(p.at(t0));
-  appendStraight(r, t0, t1, route);
+  appendStraightMotion(m, p.at(t0), p.at(t1), route);
   for (std::size_t t = t1 + 1; t <= len; ++t)
     if (m.stepsBetween(p.at(t), route.back()) > 0) route.push(p.at(t));
   // Each position tried at a few steps on average.
@@ -159,18 +152,6 @@ bool Refiner::retimeShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
   return true;
 }
 
-void Refiner::appendStraight(std::size_t r, std::size_t t0, std::size_t t1, Path& out) {
-  const Path& p = paths_[r];
-  const RobotModel& m = *models_[r];
-  const std::size_t n = static_cast<std::size_t>(m.stepsBetween(p.at(t0), p.at(t1)));
-  q_.resize(static_cast<std::size_t>(m.dim()));
-  for (std::size_t k = 1; k < n; ++k) {
-    m.interpolate(p.at(t0), p.at(t1), static_cast<double>(k) / static_cast<double>(n), q_.data());
-    out.push(q_.data());
-  }
-  if (n > 0) out.push(p.at(t1));
-}
-
 bool Refiner::tryShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
   const Path& p = paths_[r];
   const RobotModel& m = *models_[r];
@@ -178,7 +159,7 @@ bool Refiner::tryShortcut(std::size_t r, std::size_t t0, std::size_t t1) {
   Path cand(m.dim());
   cand.reserve(len + 1);
   for (std::size_t t = 0; t <= t0; ++t) cand.push(p.at(t));
-  appendStraight(r, t0, t1, cand);
+  appendStraightMotion(m, p.at(t0), p.at(t1), cand);
   for (std::size_t t = t1 + 1; t <= len; ++t) cand.push(p.at(t));
   cand.dropTrailingWaits();
   if (cand.size() >= p.size()) return false;

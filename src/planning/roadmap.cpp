@@ -359,21 +359,19 @@ Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& 
   Path p(model.dim());
   if (waypoints.empty()) return p;
   p.push(waypoints.front().data());
-  std::vector<double> q(static_cast<std::size_t>(model.dim()));
-  for (std::size_t w = 1; w < waypoints.size(); ++w) {
-    const double* a = waypoints[w - 1].data();
-    const double* b = waypoints[w].data();
-    int n = model.stepsBetween(a, b);
-    for (int k = 1; k <= n; ++k) {
-      if (k == n) {
-        p.push(b);
-      } else {
-        model.interpolate(a, b, static_cast<double>(k) / n, q.data());
-        p.push(q.data());
-      }
-    }
-  }
+  for (std::size_t w = 1; w < waypoints.size(); ++w) appendStraightMotion(model, waypoints[w - 1].data(), waypoints[w].data(), p);
   return p;
+}
+
+void appendStraightMotion(const RobotModel& model, const double* a, const double* b, Path& out) {
+  const int n = model.stepsBetween(a, b);
+  if (n <= 0) return;
+  std::vector<double> q(static_cast<std::size_t>(model.dim()));
+  for (int k = 1; k < n; ++k) {
+    model.interpolate(a, b, static_cast<double>(k) / n, q.data());
+    out.push(q.data());
+  }
+  out.push(b);
 }
 
 std::shared_ptr<const RoadmapCache::Entry> RoadmapCache::find(const std::string& key) {

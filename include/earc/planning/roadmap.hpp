@@ -220,4 +220,8 @@ std::optional<std::vector<int>> shortestPath(QueryGraph& graph, int from, int to
 // Time-stamps a sequence of configurations at the robot's resolution.
 Path timeStamp(const RobotModel& model, const std::vector<std::vector<double>>& waypoints);
 
+// Appends the straight motion a -> b after a at the robot's resolution: the
+// states between, then b (nothing when a and b are less than a step apart).
+void appendStraightMotion(const RobotModel& model, const double* a, const double* b, Path& out);
+
 }  // namespace earc

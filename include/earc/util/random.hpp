@@ -4,8 +4,11 @@
 // it is not used.)
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 
 namespace earc {
 
@@ -26,6 +29,16 @@ inline double uniform(std::mt19937_64& rng, double lo, double hi) {
 // Uniform integer in [0, n).
 inline std::uint64_t uniformIndex(std::mt19937_64& rng, std::uint64_t n) {
   return n == 0 ? 0 : rng() % n;
+}
+
+// A stretch {first, first + span} of positions 0..len (len >= 2): span log-uniform
+// in [2, len] (short ones straighten a bend, long ones cut a detour), a quarter ending at len.
+inline std::pair<std::size_t, std::size_t> drawStretch(std::mt19937_64& rng, std::size_t len) {
+  const double span_f = std::exp(uniform(rng, std::log(2.0), std::log(static_cast<double>(len) + 1.0)));
+  const std::size_t span = std::clamp<std::size_t>(static_cast<std::size_t>(span_f), 2, len);
+  const bool to_goal = uniformIndex(rng, 4) == 0;
+  const std::size_t first = to_goal ? len - span : static_cast<std::size_t>(uniformIndex(rng, len - span + 1));
+  return {first, first + span};
 }
 
 }  // namespace earc
