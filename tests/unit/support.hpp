@@ -20,6 +20,7 @@
 
 #include "earc/experience/keys.hpp"
 #include "earc/experience/store.hpp"
+#include "earc/planning/crowd_roadmap.hpp"
 #include "earc/scene/path.hpp"
 #include "earc/scene/robot_model.hpp"
 #include "earc/scene/scenario.hpp"
@@ -131,6 +132,19 @@ inline std::vector<std::vector<double>> robotEnds(const Scenario& sc, bool start
   std::vector<std::vector<double>> out;
   for (const auto& r : sc.robots) out.push_back(starts ? r.start : r.goal);
   return out;
+}
+
+// Whether no two robots' steps between consecutive configurations (vertex per
+// robot) of the roadmap conflict.
+inline bool latticeStepsConflictFree(const CrowdRoadmap& rm, const std::vector<std::vector<int>>& configs) {
+  const int n = rm.robotCount();
+  for (std::size_t t = 0; t + 1 < configs.size(); ++t)
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (rm.conflict(i, {configs[t][static_cast<std::size_t>(i)], configs[t + 1][static_cast<std::size_t>(i)]}, j,
+                        {configs[t][static_cast<std::size_t>(j)], configs[t + 1][static_cast<std::size_t>(j)]}))
+          return false;
+  return true;
 }
 
 // `n` robots between the free cells of `rows` (as gridScenario), starts and

@@ -289,16 +289,7 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
   const CrowdRoadmap rm(world, models.raw, group, starts, ends);
   const LacamResult first = solveLacam(rm, Deadline(10), 3);
   REQUIRE(first.solved);
-  auto conflictFree = [&](const std::vector<std::vector<int>>& configs) {
-    for (std::size_t t = 0; t + 1 < configs.size(); ++t)
-      for (int i = 0; i < 24; ++i)
-        for (int j = i + 1; j < 24; ++j)
-          if (rm.conflict(i, {configs[t][static_cast<std::size_t>(i)], configs[t + 1][static_cast<std::size_t>(i)]}, j,
-                          {configs[t][static_cast<std::size_t>(j)], configs[t + 1][static_cast<std::size_t>(j)]}))
-            return false;
-    return true;
-  };
-  REQUIRE(conflictFree(first.configs));
+  REQUIRE(test::latticeStepsConflictFree(rm, first.configs));
   const long long before = latticeSumOfCosts(rm, first.configs);
   long long last = before;
   for (int rounds : {1, 10, 200}) {
@@ -321,7 +312,7 @@ TEST_CASE("Refining on the lattice never raises the sum of costs, keeps every st
     }
     if (after < before) CHECK(h.size() >= 2);
     last = after;
-    CHECK(conflictFree(configs));
+    CHECK(test::latticeStepsConflictFree(rm, configs));
     for (int i = 0; i < 24; ++i) {
       CHECK(configs.front()[static_cast<std::size_t>(i)] == rm.start(i));
       CHECK(configs.back()[static_cast<std::size_t>(i)] == rm.goal(i));

@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "earc/planning/crowd.hpp"
+#include "earc/collision/collision_world.hpp"
+#include "earc/planning/crowd_roadmap.hpp"
 #include "earc/planning/lacam.hpp"
 #include "support.hpp"
 
@@ -14,38 +15,21 @@ namespace {
 
 // The roadmap of a grid scenario's robots, all in one group.
 struct RestartCase {
-  explicit RestartCase(const Scenario& s) : sc(s), world(sc), models(sc) {
-    for (std::size_t i = 0; i < sc.robots.size(); ++i) {
-      group.push_back(static_cast<int>(i));
-      starts.push_back(sc.robots[i].start);
-      goals.push_back(sc.robots[i].goal);
-    }
-  }
-  CrowdRoadmap roadmap() const { return CrowdRoadmap(world, models.raw, group, starts, goals); }
+  explicit RestartCase(const Scenario& s)
+      : sc(s), world(sc), models(sc),
+        rm(world, models.raw, test::allRobots(sc), test::robotEnds(sc, true), test::robotEnds(sc, false)) {}
   Scenario sc;
   CollisionWorld world;
   RobotModels models;
-  std::vector<int> group;
-  std::vector<std::vector<double>> starts, goals;
+  CrowdRoadmap rm;
 };
-
-bool stepsConflictFree(const CrowdRoadmap& rm, const std::vector<std::vector<int>>& configs) {
-  const int n = rm.robotCount();
-  for (std::size_t t = 0; t + 1 < configs.size(); ++t)
-    for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n; ++j)
-        if (rm.conflict(i, {configs[t][static_cast<std::size_t>(i)], configs[t + 1][static_cast<std::size_t>(i)]}, j,
-                        {configs[t][static_cast<std::size_t>(j)], configs[t + 1][static_cast<std::size_t>(j)]}))
-          return false;
-  return true;
-}
 
 TEST_CASE("LaCAM restarted after a few expansions still reaches every goal by conflict-free steps, the same way twice") {
   std::vector<std::string> rows(8, "........");
   rows[2] = "..##.#..";
   rows[5] = ".#..##..";
   const RestartCase c(test::gridScenario(rows, test::shuffledMoves(rows, 24, 7), RobotSpec::mobileDisc("", 0.3)));
-  const CrowdRoadmap rm = c.roadmap();
+  const CrowdRoadmap& rm = c.rm;
   const LacamResult plain = solveLacam(rm, Deadline(10), 3);
   REQUIRE(plain.solved);
   CHECK(plain.restarts == 0);
@@ -55,7 +39,7 @@ TEST_CASE("LaCAM restarted after a few expansions still reaches every goal by co
   REQUIRE(cut.solved);
   CHECK(cut.restarts >= 1);
   CHECK(cut.expansions > plain.expansions);
-  CHECK(stepsConflictFree(rm, cut.configs));
+  CHECK(test::latticeStepsConflictFree(rm, cut.configs));
   for (int i = 0; i < rm.robotCount(); ++i) {
     CHECK(cut.configs.front()[static_cast<std::size_t>(i)] == rm.start(i));
     CHECK(cut.configs.back()[static_cast<std::size_t>(i)] == rm.goal(i));
@@ -73,7 +57,7 @@ TEST_CASE("LaCAM with restarts still proves that two robots cannot pass in a cor
   const std::vector<std::string> rows = {"#######", "#.....#", "#######"};
   const RestartCase c(
       test::gridScenario(rows, {{{1.5, 1.5}, {4.5, 1.5}}, {{4.5, 1.5}, {1.5, 1.5}}}, RobotSpec::mobileDisc("", 0.3)));
-  const CrowdRoadmap rm = c.roadmap();
+  const CrowdRoadmap& rm = c.rm;
   REQUIRE(rm.problem().empty());
   const LacamResult r = solveLacam(rm, Deadline(10), 1, 1);
   CHECK_FALSE(r.solved);
